@@ -1,0 +1,48 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+from glob import glob
+
+from setuptools import find_packages, setup
+
+package_name = 'stewart_kinematics'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/config', sorted(glob('config/*.yaml'))),
+        ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
+    ],
+    install_requires=['setuptools', 'numpy', 'pyyaml'],
+    zip_safe=True,
+    maintainer='stewart_kinematics developers',
+    maintainer_email='maintainer@example.com',
+    description=(
+        'Inverse and forward kinematics of a 6-6 Gough-Stewart platform (hexapod), '
+        'with ROS 2 nodes'),
+    license='Apache-2.0',
+    extras_require={'test': ['pytest']},
+    entry_points={
+        'console_scripts': [
+            'ik_node = stewart_kinematics.ik_node:main',
+            'fk_node = stewart_kinematics.fk_node:main',
+            'trajectory_node = stewart_kinematics.trajectory_node:main',
+            'ramp_demo = stewart_kinematics.ramp_demo:main',
+        ],
+    },
+)

@@ -1,0 +1,65 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Kinematics of a 6-6 Gough-Stewart platform, with ROS 2 nodes around it.
+
+The core (this package's root) imports only numpy and PyYAML::
+
+    from stewart_kinematics import Geometry, inverse_kinematics, forward_kinematics
+
+    geometry = Geometry.from_yaml('config/paper_platform.yaml')
+    lengths = inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
+    result = forward_kinematics(geometry, lengths)
+    result.pose, result.converged, result.iterations, result.residual
+
+Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
+``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
+"""
+
+from stewart_kinematics.geometry import Geometry
+from stewart_kinematics.kinematics import (
+    forward_kinematics,
+    ForwardKinematicsResult,
+    inverse_kinematics,
+    jacobian,
+    leg_lengths,
+    leg_vectors,
+)
+from stewart_kinematics.rotations import (
+    euler_zyx_to_matrix,
+    euler_zyx_to_quaternion,
+    matrix_to_euler_zyx,
+    matrix_to_quaternion,
+    quaternion_to_euler_zyx,
+    quaternion_to_matrix,
+)
+from stewart_kinematics.trajectory import Ramp
+
+__all__ = [
+    'euler_zyx_to_matrix',
+    'euler_zyx_to_quaternion',
+    'forward_kinematics',
+    'ForwardKinematicsResult',
+    'Geometry',
+    'inverse_kinematics',
+    'jacobian',
+    'leg_lengths',
+    'leg_vectors',
+    'matrix_to_euler_zyx',
+    'matrix_to_quaternion',
+    'quaternion_to_euler_zyx',
+    'quaternion_to_matrix',
+    'Ramp',
+]

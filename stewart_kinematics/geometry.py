@@ -1,0 +1,180 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The platform's geometry: joint positions, home pose and leg length limits.
+
+Frames: the base frame is fixed, with its origin on the base and z up; the platform frame moves
+with the platform. A pose ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) places the platform
+frame at ``(X, Y, Z)`` in the base frame, rotated by ``R = Rz(gamma) Ry(beta) Rx(alpha)``.
+Leg ``i`` runs from base joint ``b_i`` (base frame) to platform joint ``p_i`` (platform frame).
+"""
+
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from stewart_kinematics import parameter_spec
+
+#: Two joints closer than this (metres) count as one: a leg pair would be degenerate.
+MIN_JOINT_SEPARATION = 1e-6
+#: Joints whose spread off their best-fit line is below this (metres) count as collinear.
+MIN_JOINT_SPREAD = 1e-6
+
+
+@dataclass(frozen=True, eq=False)
+class Geometry:
+    """
+    A 6-6 Gough-Stewart platform, validated on construction.
+
+    :param base_joints: b_1..b_6 in the base frame, metres, shape (6, 3).
+    :param platform_joints: p_1..p_6 in the platform frame, metres, shape (6, 3).
+    :param home_pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) of the neutral pose.
+    :param leg_length_min: shortest allowed leg length, metres (0 for no limit).
+    :param leg_length_max: longest allowed leg length, metres (``inf`` for no limit).
+    :raises ValueError: if an array has the wrong shape or a non-finite value, two joints
+        coincide, the joints of the base or of the platform are collinear, the limits are not
+        ``0 <= min < max``, or the home pose puts a leg outside them.
+
+    >>> from stewart_kinematics import Geometry
+    >>> geometry = Geometry.from_yaml('config/paper_platform.yaml')  # doctest: +SKIP
+    """
+
+    base_joints: np.ndarray
+    platform_joints: np.ndarray
+    home_pose: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    leg_length_min: float = 0.0
+    leg_length_max: float = math.inf
+
+    def __post_init__(self):
+        for name, shape in (('base_joints', (6, 3)), ('platform_joints', (6, 3)),
+                            ('home_pose', (6,))):
+            array = _checked_array(name, getattr(self, name), shape)
+            array.flags.writeable = False
+            object.__setattr__(self, name, array)
+        for name in ('base_joints', 'platform_joints'):
+            _check_joint_layout(name, getattr(self, name))
+        low, high = float(self.leg_length_min), float(self.leg_length_max)
+        if not (math.isfinite(low) and 0.0 <= low < high) or math.isnan(high):
+            raise ValueError(
+                'leg length limits must satisfy 0 <= leg_length_min < leg_length_max, '
+                f'got leg_length_min={low!r}, leg_length_max={high!r}')
+        object.__setattr__(self, 'leg_length_min', low)
+        object.__setattr__(self, 'leg_length_max', high)
+        home_lengths = np.linalg.norm(self._home_leg_vectors(), axis=-1)
+        outside = np.flatnonzero((home_lengths < low) | (home_lengths > high))
+        if outside.size:
+            raise ValueError(
+                f'the home pose puts leg(s) {", ".join(str(i + 1) for i in outside)} at '
+                f'{np.round(home_lengths[outside], 6).tolist()} m, outside the limits '
+                f'[{low:g}, {high:g}] m')
+
+    def _home_leg_vectors(self):
+        # Imported here: kinematics imports this module.
+        from stewart_kinematics.kinematics import leg_vectors_from_euler
+        return leg_vectors_from_euler(self, self.home_pose)
+
+    @property
+    def home_leg_lengths(self) -> np.ndarray:
+        """Leg lengths at the home pose, metres, shape (6,)."""
+        return np.linalg.norm(self._home_leg_vectors(), axis=-1)
+
+    def leg_length_violations(self, lengths) -> list:
+        """
+        Every way the given leg lengths break the length limits.
+
+        :param lengths: leg lengths l_1..l_6 in metres, shape (6,).
+        :returns: one sentence per leg outside ``[leg_length_min, leg_length_max]``, naming
+            the leg, its length, the limit and by how much; empty when all are allowed.
+        """
+        reasons = []
+        for leg, length in enumerate(np.asarray(lengths, dtype=float), start=1):
+            if length < self.leg_length_min:
+                reasons.append(
+                    f'leg {leg} length {length:.6f} m is below leg_length_min '
+                    f'{self.leg_length_min:g} m by {self.leg_length_min - length:.6f} m')
+            elif length > self.leg_length_max:
+                reasons.append(
+                    f'leg {leg} length {length:.6f} m is above leg_length_max '
+                    f'{self.leg_length_max:g} m by {length - self.leg_length_max:.6f} m')
+        return reasons
+
+    @classmethod
+    def from_parameters(cls, values: dict) -> 'Geometry':
+        """
+        Build a geometry from ROS parameter values, as the nodes declare them.
+
+        :param values: parameter name -> value, with the names and units of
+            :data:`stewart_kinematics.parameter_spec.GEOMETRY_PARAMETERS` (flat joint lists in
+            metres, home orientation in degrees); a missing optional one takes its default.
+        :raises ValueError: naming the parameter, if a value is missing or not allowed.
+        """
+        specs = parameter_spec.GEOMETRY_PARAMETERS
+        merged = parameter_spec.defaults(specs)
+        merged.update({key: value for key, value in values.items() if key in merged})
+        parameter_spec.check_values(specs, merged)
+        home_pose = np.concatenate([
+            np.asarray(merged['home_position'], dtype=float),
+            np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
+        return cls(
+            base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
+            platform_joints=np.reshape(
+                np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
+            home_pose=home_pose,
+            leg_length_min=float(merged['leg_length_min']),
+            leg_length_max=float(merged['leg_length_max']))
+
+    @classmethod
+    def from_yaml(cls, path, node_name=None) -> 'Geometry':
+        """
+        Read a geometry from a ROS 2 parameter file, the same one the nodes are given.
+
+        :param path: YAML file with the geometry under ``/**:`` (or under ``node_name``).
+        :param node_name: also apply this node's section, as that node would see it.
+        :raises ValueError: if the file cannot be read or its geometry is not allowed.
+        """
+        values = parameter_spec.read_parameter_file(path, node_name)
+        try:
+            return cls.from_parameters(values)
+        except ValueError as error:
+            raise ValueError(f'{path}: {error}') from error
+
+
+def _checked_array(name, value, shape):
+    try:
+        array = np.array(value, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f'{name} must be numeric with shape {shape}: {error}') from error
+    if array.shape != shape:
+        raise ValueError(f'{name} must have shape {shape}, got {array.shape}')
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f'{name} must be finite, got {array.tolist()}')
+    return array
+
+
+def _check_joint_layout(name, joints):
+    separation = np.linalg.norm(joints[:, None, :] - joints[None, :, :], axis=-1)
+    separation[np.diag_indices(6)] = np.inf
+    i, j = np.unravel_index(np.argmin(separation), separation.shape)
+    if separation[i, j] < MIN_JOINT_SEPARATION:
+        raise ValueError(
+            f'{name}: joints {i + 1} and {j + 1} coincide ({separation[i, j]:.3g} m apart, '
+            f'at least {MIN_JOINT_SEPARATION:g} m needed)')
+    # The second singular value of the centred joints is their spread off the best-fit line.
+    spread = np.linalg.svd(joints - joints.mean(axis=0), compute_uv=False)[1] / math.sqrt(6)
+    if spread < MIN_JOINT_SPREAD:
+        raise ValueError(
+            f'{name}: the six joints are collinear (spread {spread:.3g} m off their common '
+            f'line, at least {MIN_JOINT_SPREAD:g} m needed); the platform would be singular')

@@ -1,0 +1,353 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Every ROS parameter of the package, declared once, and the reader of parameter files.
+
+Each :class:`ParameterSpec` gives a parameter's name, type, default (``None``: required),
+description with its unit, read-only flag and validators. The nodes turn these specs into ROS
+declarations (:mod:`stewart_kinematics.ros_parameters`), the core reads the same names from YAML
+(:meth:`stewart_kinematics.Geometry.from_yaml`), and the README's parameter tables list them.
+
+A validator takes ``(name, value)`` and returns ``''`` when the value is allowed, else a sentence
+that names the parameter, the value and what is allowed. Nothing here imports ROS.
+"""
+
+import array
+from dataclasses import dataclass
+import math
+from typing import Any, Callable, Optional, Tuple
+
+import yaml
+
+Validator = Callable[[str, Any], str]
+
+# Parameter types, spelled as in rcl_interfaces/msg/ParameterType.
+BOOL = 'bool'
+INTEGER = 'integer'
+DOUBLE = 'double'
+STRING = 'string'
+DOUBLE_ARRAY = 'double_array'
+
+_PYTHON_TYPES = {
+    BOOL: (bool,),
+    INTEGER: (int,),
+    DOUBLE: (float,),
+    STRING: (str,),
+    # rclpy hands double arrays from parameter services over as array.array('d').
+    DOUBLE_ARRAY: (list, tuple, array.array),
+}
+
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """
+    Declaration of one ROS parameter.
+
+    :param name: parameter name.
+    :param value_type: one of ``bool``, ``integer``, ``double``, ``string``, ``double_array``.
+    :param description: what it means, with its unit.
+    :param default: value used when no parameter file sets it; ``None`` makes it required.
+    :param read_only: True where a change at run time makes no sense (the geometry).
+    :param validators: checks run on every value, at start-up and on every run-time change.
+    :param constraints: the allowed values in words, for the README table.
+    """
+
+    name: str
+    value_type: str
+    description: str
+    default: Any = None
+    read_only: bool = False
+    validators: Tuple[Validator, ...] = ()
+    constraints: str = ''
+
+    def check(self, value) -> str:
+        """
+        Check a value against the type and the validators.
+
+        :returns: ``''`` if the value is allowed, else the first reason it is not.
+        """
+        if value is None:
+            if self.default is None:
+                return (f"parameter '{self.name}' is required ({self.description}); set it in "
+                        'a parameter file')
+            return ''
+        if self.value_type == DOUBLE and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
+                self.value_type == INTEGER and isinstance(value, bool)):
+            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
+                    f'({type(value).__name__})')
+        if self.value_type == DOUBLE_ARRAY and not all(
+                isinstance(item, (int, float)) and not isinstance(item, bool) for item in value):
+            return f"parameter '{self.name}' must be a list of numbers, got {list(value)!r}"
+        for validator in self.validators:
+            reason = validator(self.name, value)
+            if reason:
+                return reason
+        return ''
+
+
+def fixed_length(length: int) -> Validator:
+    """Require an array of exactly ``length`` elements."""
+    def validate(name, value):
+        if len(value) != length:
+            return (f"parameter '{name}' must have exactly {length} elements, "
+                    f'got {len(value)}: {list(value)!r}')
+        return ''
+    return validate
+
+
+def finite(name, value) -> str:
+    """Require a finite number, or an array of finite numbers."""
+    values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
+    if not all(math.isfinite(item) for item in values):
+        return f"parameter '{name}' must be finite, got {value!r}"
+    return ''
+
+
+def in_range(low: float, high: float, *, low_inclusive: bool = True,
+             high_inclusive: bool = True) -> Validator:
+    """Require a number (or every element of an array) within ``[low, high]``."""
+    def validate(name, value):
+        values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
+        for item in values:
+            above_low = item >= low if low_inclusive else item > low
+            below_high = item <= high if high_inclusive else item < high
+            if not (above_low and below_high):
+                interval = (('[' if low_inclusive else '(') + f'{low:g}, {high:g}'
+                            + (']' if high_inclusive else ')'))
+                return f"parameter '{name}' must be in {interval}, got {value!r}"
+        return ''
+    return validate
+
+
+def one_of(*allowed: str) -> Validator:
+    """Require one of the given strings."""
+    def validate(name, value):
+        if value not in allowed:
+            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {value!r}"
+        return ''
+    return validate
+
+
+GEOMETRY_PARAMETERS = (
+    ParameterSpec(
+        'base_joints', DOUBLE_ARRAY,
+        'Base joint centres b_1..b_6 in the base frame, metres, flattened as '
+        'x1, y1, z1, ..., x6, y6, z6',
+        read_only=True, validators=(fixed_length(18), finite),
+        constraints='18 finite values; 6 distinct, non-collinear joints'),
+    ParameterSpec(
+        'platform_joints', DOUBLE_ARRAY,
+        'Platform joint centres p_1..p_6 in the platform frame, metres, flattened as '
+        'x1, y1, z1, ..., x6, y6, z6',
+        read_only=True, validators=(fixed_length(18), finite),
+        constraints='18 finite values; 6 distinct, non-collinear joints'),
+    ParameterSpec(
+        'home_position', DOUBLE_ARRAY,
+        'Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; '
+        'leg extensions are measured from it and forward kinematics starts from it',
+        read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
+        'home_orientation_deg', DOUBLE_ARRAY,
+        'Home orientation alpha, beta, gamma (R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
+        constraints='3 values in [-180, 180]'),
+    ParameterSpec(
+        'leg_length_min', DOUBLE,
+        'Shortest allowed leg length (actuator fully retracted), metres; 0.0 for no limit',
+        default=0.0, read_only=True, validators=(finite, in_range(0.0, math.inf)),
+        constraints='>= 0, < leg_length_max'),
+    ParameterSpec(
+        'leg_length_max', DOUBLE,
+        'Longest allowed leg length (actuator fully extended), metres; .inf for no limit',
+        default=math.inf, read_only=True,
+        validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> leg_length_min; .inf allowed'),
+)
+
+SOLVER_PARAMETERS = (
+    ParameterSpec(
+        'tolerance', DOUBLE,
+        'Newton-Raphson stops when every leg length of the solution is within this of the '
+        'measured one, metres',
+        default=1e-12, validators=(finite, in_range(0.0, 1e-2, low_inclusive=False)),
+        constraints='in (0, 0.01]'),
+    ParameterSpec(
+        'max_iterations', INTEGER,
+        'Newton-Raphson iterations before a solve is reported as not converged',
+        default=50, validators=(in_range(1, 1000),), constraints='in [1, 1000]'),
+)
+
+QUEUE_PARAMETERS = (
+    ParameterSpec(
+        'queue_depth', INTEGER,
+        'Depth of the reliable, keep-last queues of every subscription and publisher, messages',
+        default=10, read_only=True, validators=(in_range(1, 10000),),
+        constraints='in [1, 10000]'),
+)
+
+RAMP_PARAMETERS = (
+    ParameterSpec(
+        'position_start', DOUBLE_ARRAY, 'First row of the ramp: X, Y, Z in metres',
+        default=[0.0, 0.0, 0.4325], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
+        'position_step', DOUBLE_ARRAY, 'Change of X, Y, Z from one row to the next, metres',
+        default=[0.01, 0.015, 0.01], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values; same number of steps on every axis'),
+    ParameterSpec(
+        'position_end', DOUBLE_ARRAY, 'Last row of the ramp: X, Y, Z in metres',
+        default=[0.1, 0.15, 0.5325], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
+        'orientation_start_deg', DOUBLE_ARRAY,
+        'First row of the ramp: alpha, beta, gamma in degrees',
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
+        constraints='3 values in [-180, 180]'),
+    ParameterSpec(
+        'orientation_step_deg', DOUBLE_ARRAY,
+        'Change of alpha, beta, gamma from one row to the next, degrees',
+        default=[1.5, -1.5, 2.0], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values; same number of steps on every axis'),
+    ParameterSpec(
+        'orientation_end_deg', DOUBLE_ARRAY,
+        'Last row of the ramp: alpha, beta, gamma in degrees',
+        default=[15.0, -15.0, 20.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
+        constraints='3 values in [-180, 180]'),
+    ParameterSpec(
+        'mode', STRING,
+        "'table': publish the table's rows, one every row_period; 'interpolate': sample the "
+        "ramp in time, like the paper's clock-driven lookup tables, at publish_rate over "
+        'duration',
+        default='table', read_only=True, validators=(one_of('table', 'interpolate'),),
+        constraints="'table' or 'interpolate'"),
+    ParameterSpec(
+        'row_period', DOUBLE, "Time between two rows in 'table' mode, seconds",
+        default=1.0, read_only=True, validators=(finite, in_range(1e-3, 3600.0)),
+        constraints='in [0.001, 3600]'),
+    ParameterSpec(
+        'publish_rate', DOUBLE, "Rate of the samples in 'interpolate' mode, hertz",
+        default=50.0, read_only=True, validators=(finite, in_range(1e-3, 1000.0)),
+        constraints='in [0.001, 1000]'),
+    ParameterSpec(
+        'duration', DOUBLE,
+        "Time from the first row to the last in 'interpolate' mode, seconds",
+        default=10.0, read_only=True, validators=(finite, in_range(1e-3, 86400.0)),
+        constraints='in [0.001, 86400]'),
+    ParameterSpec(
+        'loop', BOOL, 'Start again from the first row after the last one',
+        default=False, read_only=True),
+    ParameterSpec(
+        'start_delay', DOUBLE,
+        'Time between min_subscribers being matched and the first pose, seconds: the '
+        'subscribers match this publisher a moment after it matches them, and a pose sent '
+        'before that would be lost',
+        default=0.5, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
+        constraints='in [0, 3600]'),
+    ParameterSpec(
+        'min_subscribers', INTEGER,
+        'Wait until this many subscriptions are matched on target_pose before playing, so '
+        'that no pose is published to nobody',
+        default=0, read_only=True, validators=(in_range(0, 1000),), constraints='in [0, 1000]'),
+)
+
+
+def defaults(specs) -> dict:
+    """Map each parameter name of ``specs`` to its default value (``None`` when required)."""
+    return {spec.name: spec.default for spec in specs}
+
+
+def check_values(specs, values: dict) -> None:
+    """
+    Check every value of ``values`` named in ``specs``.
+
+    :raises ValueError: with the first reason a value is not allowed.
+    """
+    for spec in specs:
+        reason = spec.check(values.get(spec.name))
+        if reason:
+            raise ValueError(reason)
+
+
+def read_parameter_file(path, node_name: Optional[str] = None) -> dict:
+    """
+    Read the parameters a node would get from a ROS 2 parameter file.
+
+    Sections apply as rcl applies them: ``/**`` first, then the section of ``node_name``
+    (``name``, ``/name`` or ``/namespace/name``), which overrides it.
+
+    :param path: a YAML file in the ``<node>: ros__parameters: {...}`` layout.
+    :param node_name: the node whose view to return: a bare name (``fk_node``) matches its
+        section in any namespace, a full name (``/robot_a/fk_node``) only that one; ``None``
+        reads only ``/**``.
+    :returns: parameter name -> value.
+    :raises ValueError: if the file is missing, is not valid YAML or has no such layout.
+    """
+    try:
+        with open(path, encoding='utf-8') as stream:
+            document = yaml.safe_load(stream)
+    except OSError as error:
+        raise ValueError(f'cannot read parameter file {path}: {error.strerror}') from error
+    except yaml.YAMLError as error:
+        raise ValueError(f'parameter file {path} is not valid YAML: {error}') from error
+    if not isinstance(document, dict):
+        raise ValueError(f'parameter file {path} must map node names to ros__parameters')
+
+    def applies(key, section):
+        if section == '/**' or '/' in section:
+            return key.lstrip('/') == section.lstrip('/')
+        return key.rsplit('/', 1)[-1] == section
+
+    values = {}
+    for section in ['/**'] + ([] if node_name is None else [node_name]):
+        for key, content in document.items():
+            if applies(str(key), section):
+                if not isinstance(content, dict) or not isinstance(
+                        content.get('ros__parameters'), dict):
+                    raise ValueError(
+                        f"section '{key}' of parameter file {path} has no ros__parameters map")
+                values.update(content['ros__parameters'])
+    return values
+
+
+def markdown_table(specs) -> str:
+    """
+    Render the README's table of ``specs``: name, type, default, meaning, allowed values.
+
+    A test compares the README with this, so the documentation cannot drift from the code.
+    """
+    def shown(value):
+        if value is None:
+            return 'required'
+        if isinstance(value, float) and math.isinf(value):
+            return '`.inf`'
+        if isinstance(value, str):
+            return f"`'{value}'`"
+        if isinstance(value, bool):
+            return f'`{str(value).lower()}`'
+        return f'`{value}`'
+
+    lines = ['| Parameter | Type | Default | Meaning | Allowed | Run-time change |',
+             '| --- | --- | --- | --- | --- | --- |']
+    for spec in specs:
+        lines.append(
+            f'| `{spec.name}` | {spec.value_type} | {shown(spec.default)} | {spec.description} | '
+            f'{spec.constraints or "any"} | {"no (read-only)" if spec.read_only else "yes"} |')
+    return '\n'.join(lines)

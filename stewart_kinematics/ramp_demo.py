@@ -1,0 +1,195 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The main job: the paper's Table 3 ramp through the IK and FK nodes, over real topics.
+
+Starts ``ik_node``, ``fk_node`` and ``trajectory_node`` as separate processes with the shipped
+parameter files, as ``ros2 run`` would, records ``target_pose``, ``leg_lengths`` and
+``estimated_pose``, and prints for each of the 11 table poses the input pose, the six leg
+lengths, the FK pose and the round-trip error: the paper's Figures 5, 7 and 9 as tables.
+Exits 0 when every pose came back within the required error.
+"""
+
+import argparse
+import math
+from pathlib import Path
+import sys
+import time
+
+import numpy as np
+
+#: The demo passes when every round trip is within these (metres, radians).
+MAX_POSITION_ERROR = 1e-9
+MAX_ORIENTATION_ERROR = 1e-9
+
+
+def default_config_directory() -> Path:
+    """Find the installed ``share/stewart_kinematics/config``, else the source ``config/``."""
+    candidates = [Path(sys.prefix) / 'share' / 'stewart_kinematics' / 'config',
+                  Path(__file__).resolve().parent.parent / 'config']
+    try:
+        from ament_index_python.packages import get_package_share_directory
+        candidates.insert(0, Path(get_package_share_directory('stewart_kinematics')) / 'config')
+    except (ImportError, LookupError, OSError, ValueError):
+        # Not installed in an ament prefix (AMENT_PREFIX_PATH unset or without the package).
+        pass
+    for candidate in candidates:
+        if (candidate / 'paper_platform.yaml').is_file():
+            return candidate
+    return candidates[-1]
+
+
+def parse_arguments(argv):
+    """Command-line options of the demo."""
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--config-dir', type=Path, default=None,
+                        help='folder with paper_platform.yaml, solver.yaml, table3_ramp.yaml '
+                             '(default: the installed share/stewart_kinematics/config)')
+    parser.add_argument('--row-period', type=float, default=0.2,
+                        help='seconds between two table rows (default 0.2)')
+    parser.add_argument('--timeout', type=float, default=60.0,
+                        help='seconds to wait for the nodes and the ramp (default 60)')
+    return parser.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    """Run the demo; return 0 when all 11 poses made the round trip within 1e-9."""
+    options = parse_arguments(argv)
+    from stewart_kinematics.node_processes import isolated_ros_environment
+    with isolated_ros_environment() as domain:
+        print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST', flush=True)
+        return run_demo(options.config_dir or default_config_directory(),
+                        options.row_period, options.timeout)
+
+
+def run_demo(config_directory: Path, row_period: float, timeout: float) -> int:
+    """Start the nodes, play the ramp, print the tables; see the module docstring."""
+    # Imported here so that --help works without a ROS environment.
+    import rclpy
+    from stewart_kinematics.node_processes import NodeProcess
+    from stewart_kinematics.ramp_recorder import RampRecorder
+
+    platform = config_directory / 'paper_platform.yaml'
+    solver = config_directory / 'solver.yaml'
+    ramp = config_directory / 'table3_ramp.yaml'
+    for path in (platform, solver, ramp):
+        if not path.is_file():
+            print(f'error: parameter file {path} not found', file=sys.stderr)
+            return 1
+    table_rows = _ramp_rows(ramp)
+    row_count = len(table_rows)
+    print(f'config: {config_directory}', flush=True)
+
+    rclpy.init(args=[])
+    recorder = RampRecorder()
+    nodes = []
+    try:
+        kinematics_args = ['--ros-args', '--params-file', str(platform),
+                           '--params-file', str(solver)]
+        nodes.append(NodeProcess('ik_node', kinematics_args))
+        nodes.append(NodeProcess('fk_node', kinematics_args))
+        deadline = time.monotonic() + timeout
+        if not recorder.spin_until(recorder.kinematics_nodes_connected, deadline, nodes):
+            return _fail('the IK and FK nodes did not connect', nodes)
+        # The recorder and ik_node both subscribe target_pose: wait for both before playing.
+        nodes.append(NodeProcess('trajectory_node', [
+            '--ros-args', '--params-file', str(ramp),
+            '-p', 'min_subscribers:=2', '-p', f'row_period:={row_period}']))
+        if not recorder.spin_until(lambda: recorder.complete(row_count), deadline, nodes):
+            return _fail(f'the ramp did not complete: {recorder.counts()} of {row_count} '
+                         'poses, lengths, estimates received', nodes)
+    finally:
+        exit_codes = [node.stop() for node in nodes]
+        recorder.destroy_node()
+        rclpy.try_shutdown()
+
+    errors = print_tables(table_rows, recorder)
+    stopped = all(code == 0 for code in exit_codes)
+    passed = (errors[0] <= MAX_POSITION_ERROR and errors[1] <= MAX_ORIENTATION_ERROR
+              and stopped)
+    print(f'\nlargest round-trip error: {errors[0]:.3g} m, {errors[1]:.3g} rad '
+          f'(required: <= {MAX_POSITION_ERROR:g} m, <= {MAX_ORIENTATION_ERROR:g} rad; '
+          'the paper accepted 1e-4)')
+    print('nodes stopped cleanly' if stopped else f'node exit codes: {exit_codes}')
+    print('PASS' if passed else 'FAIL')
+    return 0 if passed else 1
+
+
+def _ramp_rows(ramp_file):
+    from stewart_kinematics import parameter_spec
+    from stewart_kinematics.trajectory import Ramp
+    values = parameter_spec.defaults(parameter_spec.RAMP_PARAMETERS)
+    values.update(parameter_spec.read_parameter_file(ramp_file, 'trajectory_node'))
+    return Ramp.from_table(*(values[name] for name in (
+        'position_start', 'position_step', 'position_end',
+        'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg'))).rows
+
+
+def _fail(reason, nodes) -> int:
+    print(f'error: {reason}', file=sys.stderr)
+    for node in nodes:
+        print(f'--- output of {node.name} ---\n{node.output()}', file=sys.stderr)
+    return 1
+
+
+def print_tables(table_rows, recorder):
+    """
+    Print the three tables and the round-trip errors; return the largest errors.
+
+    Errors are measured against the table's rows as the parameter file defines them, so that
+    the conversions to and from messages on every topic count too.
+
+    :returns: ``(position error in metres, orientation error in radians)``.
+    """
+    from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+    received = np.array(recorder.target_poses)
+    lengths = np.array(recorder.leg_lengths)
+    estimates = np.array(recorder.estimated_poses)
+    count = min(len(table_rows), len(received), len(lengths), len(estimates))
+    targets, received = table_rows[:count], received[:count]
+    lengths, estimates = lengths[:count], estimates[:count]
+
+    def pose_rows(poses):
+        # Adding 0.0 turns -0.0 into 0.0, which would print as '-0.0000'.
+        return np.concatenate([poses[:, :3] * 1e3, np.degrees(poses[:, 3:])], axis=1) + 0.0
+
+    pose_header = ['X [mm]', 'Y [mm]', 'Z [mm]', 'alpha [deg]', 'beta [deg]', 'gamma [deg]']
+    _print_table("Input pose received on target_pose (the paper's Figure 5)", pose_header,
+                 pose_rows(received), '{:12.4f}')
+    _print_table('Leg lengths from ik_node on leg_lengths (Figure 7)',
+                 [f'l{leg} [mm]' for leg in range(1, 7)], lengths * 1e3, '{:12.4f}')
+    position_error = np.linalg.norm(estimates[:, :3] - targets[:, :3], axis=1)
+    orientation_error = rotation_angle_between(
+        euler_zyx_to_matrix(targets[:, 3:]), euler_zyx_to_matrix(estimates[:, 3:]))
+    _print_table('Pose from fk_node on estimated_pose (Figure 9), and round-trip error',
+                 pose_header + ['error [m]', 'error [rad]'],
+                 np.column_stack([pose_rows(estimates), position_error, orientation_error]),
+                 '{:12.4f}', error_columns=2)
+    if count == 0:
+        return math.inf, math.inf
+    return float(position_error.max()), float(orientation_error.max())
+
+
+def _print_table(title, header, rows, number_format, error_columns=0):
+    print(f'\n{title}')
+    print('row ' + ''.join(f'{name:>12}' for name in header))
+    for index, row in enumerate(rows):
+        cells = [number_format.format(value) for value in row[:len(row) - error_columns]]
+        cells += [f'{value:12.1e}' for value in row[len(row) - error_columns:]]
+        print(f'{index:3d} ' + ''.join(cells))
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

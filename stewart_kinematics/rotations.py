@@ -1,0 +1,214 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Rotation conversions: Euler ZYX angles, rotation matrices and unit quaternions.
+
+The one rotation convention of this package is the paper's:
+``R = Rz(gamma) @ Ry(beta) @ Rx(alpha)``, that is roll ``alpha`` about x, then pitch ``beta``
+about y, then yaw ``gamma`` about z, all about the fixed base axes. ``R`` maps vectors from the
+platform frame to the base frame. Angles are in radians.
+
+Quaternions are ``(x, y, z, w)``, the order of geometry_msgs/msg/Quaternion.
+
+Every function accepts a single value or a batch (leading dimensions) and never loops in Python.
+"""
+
+import numpy as np
+
+#: Below this norm a quaternion carries no rotation and is rejected.
+QUATERNION_NORM_MIN = 1e-9
+
+
+def euler_zyx_to_matrix(angles):
+    """
+    Rotation matrix of Euler ZYX angles.
+
+    :param angles: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
+    :returns: ``Rz(gamma) @ Ry(beta) @ Rx(alpha)``, shape (3, 3) or (..., 3, 3).
+
+    >>> euler_zyx_to_matrix([0.0, 0.0, np.pi / 2]).round(12) @ [1.0, 0.0, 0.0]
+    array([0., 1., 0.])
+    """
+    angles = np.asarray(angles, dtype=float)
+    if angles.shape[-1:] != (3,):
+        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
+    ca, cb, cg = np.cos(angles[..., 0]), np.cos(angles[..., 1]), np.cos(angles[..., 2])
+    sa, sb, sg = np.sin(angles[..., 0]), np.sin(angles[..., 1]), np.sin(angles[..., 2])
+    rotation = np.empty(angles.shape[:-1] + (3, 3))
+    # Entries r11..r33 exactly as printed in the paper, section 3.
+    rotation[..., 0, 0] = cg * cb
+    rotation[..., 0, 1] = cg * sb * sa - sg * ca
+    rotation[..., 0, 2] = cg * sb * ca + sg * sa
+    rotation[..., 1, 0] = sg * cb
+    rotation[..., 1, 1] = sg * sb * sa + cg * ca
+    rotation[..., 1, 2] = sg * sb * ca - cg * sa
+    rotation[..., 2, 0] = -sb
+    rotation[..., 2, 1] = cb * sa
+    rotation[..., 2, 2] = cb * ca
+    return rotation
+
+
+def matrix_to_euler_zyx(rotation):
+    """
+    Euler ZYX angles of a rotation matrix.
+
+    Returns ``beta`` in [-pi/2, pi/2] and ``alpha``, ``gamma`` in (-pi, pi]. At gimbal lock
+    (``|beta| = pi/2``) only ``gamma - alpha`` or ``gamma + alpha`` is defined; ``alpha`` is then
+    set to 0 so that the result is still an exact representation of ``rotation``.
+
+    :param rotation: rotation matrix, shape (3, 3) or (..., 3, 3).
+    :returns: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
+    """
+    rotation = np.asarray(rotation, dtype=float)
+    if rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    r11, r21, r31 = rotation[..., 0, 0], rotation[..., 1, 0], rotation[..., 2, 0]
+    cos_beta = np.hypot(r11, r21)
+    beta = np.arctan2(-r31, cos_beta)
+    # cos(beta) below ~1e-12 cannot separate alpha from gamma in double precision.
+    locked = cos_beta < 1e-12
+    alpha = np.where(locked, 0.0, np.arctan2(rotation[..., 2, 1], rotation[..., 2, 2]))
+    gamma = np.where(
+        locked,
+        np.arctan2(-rotation[..., 0, 1], rotation[..., 1, 1]),
+        np.arctan2(r21, r11))
+    return np.stack([alpha, beta, gamma], axis=-1)
+
+
+def quaternion_to_matrix(quaternion):
+    """
+    Rotation matrix of a quaternion ``(x, y, z, w)``.
+
+    The quaternion is normalised first, so any non-zero quaternion is accepted; use
+    :func:`normalize_quaternion` beforehand to detect a non-unit input.
+
+    :param quaternion: shape (4,) or (..., 4).
+    :returns: rotation matrix, shape (3, 3) or (..., 3, 3).
+    :raises ValueError: if a quaternion is not finite or has (nearly) zero norm.
+    """
+    x, y, z, w = np.moveaxis(normalize_quaternion(quaternion), -1, 0)
+    rotation = np.empty(np.shape(x) + (3, 3))
+    rotation[..., 0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    rotation[..., 0, 1] = 2.0 * (x * y - z * w)
+    rotation[..., 0, 2] = 2.0 * (x * z + y * w)
+    rotation[..., 1, 0] = 2.0 * (x * y + z * w)
+    rotation[..., 1, 1] = 1.0 - 2.0 * (x * x + z * z)
+    rotation[..., 1, 2] = 2.0 * (y * z - x * w)
+    rotation[..., 2, 0] = 2.0 * (x * z - y * w)
+    rotation[..., 2, 1] = 2.0 * (y * z + x * w)
+    rotation[..., 2, 2] = 1.0 - 2.0 * (x * x + y * y)
+    return rotation
+
+
+def matrix_to_quaternion(rotation):
+    """
+    Convert a rotation matrix to a unit quaternion ``(x, y, z, w)`` with ``w >= 0``.
+
+    Uses Shepperd's method (the largest of the four candidate pivots), which stays accurate for
+    every rotation, including half turns where ``w`` is near zero.
+
+    :param rotation: rotation matrix, shape (3, 3) or (..., 3, 3).
+    :returns: shape (4,) or (..., 4).
+    """
+    rotation = np.asarray(rotation, dtype=float)
+    if rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    r = rotation
+    trace = r[..., 0, 0] + r[..., 1, 1] + r[..., 2, 2]
+    # Four times the square of each component; the largest gives the best-conditioned division.
+    pivots = np.stack([
+        1.0 + 2.0 * r[..., 0, 0] - trace,
+        1.0 + 2.0 * r[..., 1, 1] - trace,
+        1.0 + 2.0 * r[..., 2, 2] - trace,
+        1.0 + trace,
+    ], axis=-1)
+    best = np.argmax(pivots, axis=-1)
+    scale = np.sqrt(np.maximum(np.take_along_axis(pivots, best[..., None], -1)[..., 0], 0.0))
+    half_inverse = 0.5 / scale
+    # Off-diagonal sums and differences: each equals 4 * (product of two components).
+    xy = r[..., 0, 1] + r[..., 1, 0]
+    xz = r[..., 0, 2] + r[..., 2, 0]
+    yz = r[..., 1, 2] + r[..., 2, 1]
+    wx = r[..., 2, 1] - r[..., 1, 2]
+    wy = r[..., 0, 2] - r[..., 2, 0]
+    wz = r[..., 1, 0] - r[..., 0, 1]
+    candidates = np.stack([
+        np.stack([0.5 * scale, xy * half_inverse, xz * half_inverse, wx * half_inverse], -1),
+        np.stack([xy * half_inverse, 0.5 * scale, yz * half_inverse, wy * half_inverse], -1),
+        np.stack([xz * half_inverse, yz * half_inverse, 0.5 * scale, wz * half_inverse], -1),
+        np.stack([wx * half_inverse, wy * half_inverse, wz * half_inverse, 0.5 * scale], -1),
+    ], axis=-2)
+    quaternion = np.take_along_axis(candidates, best[..., None, None], -2)[..., 0, :]
+    quaternion = quaternion / np.linalg.norm(quaternion, axis=-1, keepdims=True)
+    return np.where(quaternion[..., 3:] < 0.0, -quaternion, quaternion)
+
+
+def euler_zyx_to_quaternion(angles):
+    """
+    Convert Euler ZYX angles (radians) to a unit quaternion ``(x, y, z, w)`` with ``w >= 0``.
+
+    :param angles: ``(alpha, beta, gamma)``, shape (3,) or (..., 3).
+    :returns: shape (4,) or (..., 4).
+    """
+    return matrix_to_quaternion(euler_zyx_to_matrix(angles))
+
+
+def quaternion_to_euler_zyx(quaternion):
+    """
+    Euler ZYX angles ``(alpha, beta, gamma)`` in radians of a quaternion ``(x, y, z, w)``.
+
+    :param quaternion: shape (4,) or (..., 4); normalised first.
+    :returns: shape (3,) or (..., 3), ranges as in :func:`matrix_to_euler_zyx`.
+    """
+    return matrix_to_euler_zyx(quaternion_to_matrix(quaternion))
+
+
+def normalize_quaternion(quaternion):
+    """
+    Scale a quaternion ``(x, y, z, w)`` to unit norm.
+
+    :param quaternion: shape (4,) or (..., 4).
+    :returns: the unit quaternion, same shape.
+    :raises ValueError: if a quaternion has a non-finite component or a norm below
+        :data:`QUATERNION_NORM_MIN`; such a quaternion describes no rotation.
+    """
+    quaternion = np.asarray(quaternion, dtype=float)
+    if quaternion.shape[-1:] != (4,):
+        raise ValueError(f'quaternions must have shape (..., 4), got {quaternion.shape}')
+    if not np.all(np.isfinite(quaternion)):
+        raise ValueError(f'quaternion components must be finite, got {quaternion.tolist()}')
+    norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
+    if np.any(norm < QUATERNION_NORM_MIN):
+        raise ValueError(
+            f'quaternion norm must be at least {QUATERNION_NORM_MIN:g}, got {norm.min():g}: '
+            'a zero quaternion describes no rotation')
+    return quaternion / norm
+
+
+def rotation_angle_between(rotation_a, rotation_b):
+    """
+    Angle in radians of the rotation that takes ``rotation_a`` to ``rotation_b``.
+
+    A frame-independent orientation error: 0 for equal rotations, at most pi.
+
+    :param rotation_a: shape (3, 3) or (..., 3, 3).
+    :param rotation_b: same shape as ``rotation_a``.
+    :returns: shape () or (...,).
+    """
+    relative = np.swapaxes(np.asarray(rotation_a, dtype=float), -1, -2) @ rotation_b
+    # The quaternion's vector part gives an accurate angle near zero, where arccos of the trace
+    # would lose half of the digits.
+    quaternion = matrix_to_quaternion(relative)
+    return 2.0 * np.arctan2(np.linalg.norm(quaternion[..., :3], axis=-1), quaternion[..., 3])

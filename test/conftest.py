@@ -1,0 +1,79 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Shared fixtures; every test session runs on a private ROS domain, on this machine only.
+
+``pytest_configure`` sets ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``, a ``ROS_LOG_DIR`` and a
+reserved free ``ROS_DOMAIN_ID`` before any test starts rclpy, so neither in-process nodes nor
+the node processes the tests start can reach the network or another run.
+"""
+
+import contextlib
+from pathlib import Path
+import time
+
+import pytest
+
+from stewart_kinematics.node_processes import isolated_ros_environment
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+#: Seconds a test waits for data: DDS discovery on loopback has multi-second tails.
+DEADLINE = 20.0
+
+_environment = contextlib.ExitStack()
+
+
+def pytest_configure(config):
+    """Isolate ROS before any test runs."""
+    _environment.enter_context(isolated_ros_environment())
+
+
+def pytest_unconfigure(config):
+    """Release the reserved domain."""
+    _environment.close()
+
+
+@pytest.fixture
+def config_directory():
+    """Return the package's config/ folder."""
+    return CONFIG_DIRECTORY
+
+
+@pytest.fixture
+def ros():
+    """Initialise rclpy for one test and shut it down afterwards."""
+    import rclpy
+    rclpy.init(args=[])
+    yield rclpy
+    rclpy.try_shutdown()
+
+
+@pytest.fixture
+def spin_until():
+    """
+    Provide a function that spins an executor until a condition holds.
+
+    ``spin_until(executor, condition, timeout=DEADLINE) -> bool`` spins ``executor`` until
+    ``condition()`` holds or ``timeout`` seconds pass, and returns whether the condition holds:
+    tests wait for data with a deadline, never a fixed sleep.
+    """
+    def spin(executor, condition, timeout=DEADLINE):
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > deadline:
+                return False
+            executor.spin_once(timeout_sec=0.05)
+        return True
+    return spin

@@ -1,0 +1,260 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+In-process tests of the FK node: real rclpy, a probe node, one SingleThreadedExecutor.
+
+The input lengths of the paper's Table 3 rows come from the package's closed-form inverse
+kinematics; the output is checked against the rows typed here in millimetres and degrees, with
+orientations compared as textbook quaternions.
+"""
+
+import math
+from pathlib import Path
+
+from geometry_msgs.msg import Pose
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
+
+from stewart_kinematics import fk_node, Geometry, inverse_kinematics
+from stewart_kinematics.fk_node import FkNode
+import yaml
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
+SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
+KINEMATICS_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', SOLVER_FILE]
+
+#: The paper's Table 3 row by row: X, Y, Z in mm, alpha, beta, gamma in degrees.
+TABLE3_MM_DEG = [
+    (0.0, 0.0, 432.5, 0.0, 0.0, 0.0),
+    (10.0, 15.0, 442.5, 1.5, -1.5, 2.0),
+    (20.0, 30.0, 452.5, 3.0, -3.0, 4.0),
+    (30.0, 45.0, 462.5, 4.5, -4.5, 6.0),
+    (40.0, 60.0, 472.5, 6.0, -6.0, 8.0),
+    (50.0, 75.0, 482.5, 7.5, -7.5, 10.0),
+    (60.0, 90.0, 492.5, 9.0, -9.0, 12.0),
+    (70.0, 105.0, 502.5, 10.5, -10.5, 14.0),
+    (80.0, 120.0, 512.5, 12.0, -12.0, 16.0),
+    (90.0, 135.0, 522.5, 13.5, -13.5, 18.0),
+    (100.0, 150.0, 532.5, 15.0, -15.0, 20.0),
+]
+TABLE3 = [tuple(v / 1000.0 for v in row[:3]) + tuple(math.radians(v) for v in row[3:])
+          for row in TABLE3_MM_DEG]
+
+
+def quaternion_from_euler(alpha, beta, gamma):
+    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
+    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
+    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
+    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
+    quaternion = np.array([
+        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+    return -quaternion if quaternion[3] < 0.0 else quaternion
+
+
+def assert_pose_message(message, pose, tolerance):
+    """Check a Pose against (X, Y, Z, alpha, beta, gamma): position, then quaternion."""
+    position = [message.position.x, message.position.y, message.position.z]
+    orientation = message.orientation
+    quaternion = [orientation.x, orientation.y, orientation.z, orientation.w]
+    assert_allclose(position, pose[:3], rtol=0.0, atol=tolerance)
+    assert_allclose(quaternion, quaternion_from_euler(*pose[3:]), rtol=0.0, atol=tolerance)
+
+
+def lengths_message(values, data_offset=0, labelled=True):
+    """Build a Float64MultiArray of leg lengths, with or without the 'leg' layout."""
+    layout = MultiArrayLayout(data_offset=data_offset)
+    if labelled:
+        layout.dim = [MultiArrayDimension(label='leg', size=6, stride=6)]
+    return Float64MultiArray(layout=layout, data=[float(v) for v in values])
+
+
+def table_lengths(row):
+    """Return the leg lengths of a Table 3 row by closed-form inverse kinematics."""
+    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    return inverse_kinematics(geometry, TABLE3[row])
+
+
+class Probe:
+    """A node that publishes leg_lengths and records estimated_pose."""
+
+    def __init__(self):
+        """Create the probe node and its publisher and subscription."""
+        self.node = Node('fk_probe')
+        self.publisher = self.node.create_publisher(Float64MultiArray, 'leg_lengths', 10)
+        self.poses = []
+        self.node.create_subscription(Pose, 'estimated_pose', self.poses.append, 100)
+
+
+@pytest.fixture
+def start(ros, spin_until):
+    """
+    Return a starter of an FkNode and a Probe on one executor, connected both ways.
+
+    The starter takes the node's keyword arguments (default: the config files) and returns
+    ``(node, probe, executor)``.
+    """
+    created = []
+    executor = SingleThreadedExecutor()
+
+    def start_nodes(**node_kwargs):
+        node_kwargs.setdefault('cli_args', KINEMATICS_ARGS)
+        node = FkNode(**node_kwargs)
+        created.append(node)
+        probe = Probe()
+        created.append(probe.node)
+        executor.add_node(node)
+        executor.add_node(probe.node)
+        subscription = next(iter(node.subscriptions))
+
+        def connected():
+            return (probe.publisher.get_subscription_count() >= 1
+                    and subscription.get_publisher_count() >= 1
+                    and node.pose_publisher.get_subscription_count() >= 1)
+        assert spin_until(executor, connected), 'FK node and probe did not connect'
+        return node, probe, executor
+    yield start_nodes
+    executor.shutdown()
+    for node in created:
+        node.destroy_node()
+
+
+def send_and_wait(spin_until, executor, probe, message, answers):
+    """Publish leg lengths and spin until ``answers`` poses have arrived in total."""
+    probe.publisher.publish(message)
+    assert spin_until(executor, lambda: len(probe.poses) >= answers), (
+        f'expected {answers} poses, got {len(probe.poses)}')
+
+
+def test_table3_rows_come_back_as_their_poses(start, spin_until):
+    """The lengths of each Table 3 row give that row's pose to 1e-9; the start is warm."""
+    node, probe, executor = start()
+    assert_allclose(node.last_pose, TABLE3[0], atol=0.0)
+    for row in range(len(TABLE3)):
+        send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(row)), row + 1)
+        assert_pose_message(probe.poses[-1], TABLE3[row], 1e-9)
+        # Warm start: the next solve starts from this solution.
+        assert_allclose(node.last_pose, TABLE3[row], rtol=0.0, atol=1e-9)
+    assert (node.received, node.published, node.rejected) == (11, 11, 0)
+
+
+def test_bare_and_offset_arrays_are_accepted(start, spin_until):
+    """Lengths without a layout, or after a data_offset, are solved like labelled ones."""
+    node, probe, executor = start()
+    lengths = list(table_lengths(4))
+    send_and_wait(spin_until, executor, probe, lengths_message(lengths, labelled=False), 1)
+    send_and_wait(spin_until, executor, probe,
+                  lengths_message([-1.0, 42.0] + lengths, data_offset=2, labelled=False), 2)
+    for message in probe.poses:
+        assert_pose_message(message, TABLE3[4], 1e-9)
+
+
+def test_bad_lengths_are_rejected_and_the_node_keeps_working(start, spin_until):
+    """Wrong sizes, NaN, negative, zero and impossible lengths publish nothing; then it works."""
+    node, probe, executor = start()
+    send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(5)), 1)
+    good = list(table_lengths(6))
+    bad = [
+        good[:5],
+        good + [0.7],
+        good[:2] + [math.nan] + good[3:],
+        good[:3] + [-0.7] + good[4:],
+        good[:5] + [0.0],
+        [10.0] * 5 + [0.1],
+    ]
+    for values in bad:
+        probe.publisher.publish(lengths_message(values))
+    assert spin_until(executor, lambda: node.rejected >= len(bad)), (
+        f'{node.rejected} of {len(bad)} bad arrays rejected')
+    assert len(probe.poses) == 1
+    # A rejected array leaves the warm start where the last good solution put it.
+    assert_allclose(node.last_pose, TABLE3[5], rtol=0.0, atol=1e-9)
+    send_and_wait(spin_until, executor, probe, lengths_message(good), 2)
+    assert len(probe.poses) == 2
+    assert_pose_message(probe.poses[-1], TABLE3[6], 1e-9)
+    assert (node.received, node.published, node.rejected) == (8, 2, 6)
+
+
+def test_lengths_beyond_the_limits_are_rejected(start, spin_until):
+    """With leg limits around home, lengths outside them are rejected before any solve."""
+    limits = [Parameter('leg_length_min', value=0.69), Parameter('leg_length_max', value=0.73)]
+    node, probe, executor = start(cli_args=KINEMATICS_ARGS, parameter_overrides=limits)
+    probe.publisher.publish(lengths_message(table_lengths(10)))
+    send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(0)), 1)
+    assert len(probe.poses) == 1
+    assert_pose_message(probe.poses[0], TABLE3[0], 1e-9)
+    assert node.rejected == 1
+
+
+def test_tolerance_change_at_run_time(start, spin_until):
+    """A valid tolerance is applied to the solver settings; -1.0 is refused and changes nothing."""
+    node, probe, executor = start()
+    assert node.solver_settings == {'tolerance': 1e-12, 'max_iterations': 50}
+    [result] = node.set_parameters([Parameter('tolerance', value=1e-9)])
+    assert result.successful, result.reason
+    assert node.solver_settings['tolerance'] == 1e-9
+    [result] = node.set_parameters([Parameter('tolerance', value=-1.0)])
+    assert not result.successful
+    assert 'tolerance' in result.reason and '-1.0' in result.reason
+    assert node.solver_settings['tolerance'] == 1e-9
+    assert node.get_parameter('tolerance').value == 1e-9
+    send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(3)), 1)
+    assert_pose_message(probe.poses[0], TABLE3[3], 1e-6)
+
+
+def test_max_iterations_change_is_used_by_the_solver(start, spin_until):
+    """With max_iterations 1 a far pose is not found (rejected); with 50 again it is."""
+    node, probe, executor = start()
+    [result] = node.set_parameters([Parameter('max_iterations', value=1)])
+    assert result.successful, result.reason
+    assert node.solver_settings['max_iterations'] == 1
+    probe.publisher.publish(lengths_message(table_lengths(10)))
+    assert spin_until(executor, lambda: node.rejected >= 1)
+    assert probe.poses == []
+    [result] = node.set_parameters([Parameter('max_iterations', value=50)])
+    assert result.successful, result.reason
+    send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(10)), 1)
+    assert_pose_message(probe.poses[0], TABLE3[10], 1e-9)
+
+
+def test_main_returns_1_for_a_bad_parameter_file(tmp_path):
+    """A bad file (base_joints of 17 values) makes main() log and return 1, not raise."""
+    with open(PLATFORM_FILE, encoding='utf-8') as stream:
+        document = yaml.safe_load(stream)
+    document['/**']['ros__parameters']['base_joints'] = [0.1] * 17
+    bad_file = tmp_path / 'bad_platform.yaml'
+    bad_file.write_text(yaml.safe_dump(document), encoding='utf-8')
+    arguments = ['fk_node', '--ros-args', '--params-file', str(bad_file),
+                 '--params-file', SOLVER_FILE]
+    assert fk_node.main(arguments) == 1
+    assert not rclpy.ok()
+
+
+def test_main_returns_1_for_a_bad_solver_setting(tmp_path):
+    """A tolerance out of range in the fk_node section makes main() return 1."""
+    bad_file = tmp_path / 'bad_solver.yaml'
+    bad_file.write_text(yaml.safe_dump(
+        {'fk_node': {'ros__parameters': {'tolerance': 0.5}}}), encoding='utf-8')
+    arguments = ['fk_node', '--ros-args', '--params-file', PLATFORM_FILE,
+                 '--params-file', str(bad_file)]
+    assert fk_node.main(arguments) == 1
+    assert not rclpy.ok()

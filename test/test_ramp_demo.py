@@ -1,0 +1,150 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The ``ramp_demo`` console script, run as a user runs it.
+
+It starts ik_node, fk_node and trajectory_node as processes of their own, plays the paper's
+Table 3 through them and prints three tables (the paper's Figures 5, 7 and 9). These tests
+read that printout: every table has the 11 rows, the poses are the table's, the round trip is
+within 1e-9, and a broken parameter file ends the demo with the node's own error message.
+"""
+
+import re
+import shutil
+import subprocess
+
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics.node_processes import NodeProcess
+
+#: Seconds the demo may take; it waits at most --timeout for the nodes and the ramp.
+DEMO_DEADLINE = 60.0
+#: The demo's own deadline for the nodes and the ramp, seconds.
+DEMO_TIMEOUT = '30'
+#: Titles of the three tables the demo prints.
+INPUT_TITLE = 'Input pose received on target_pose'
+LENGTHS_TITLE = 'Leg lengths from ik_node on leg_lengths'
+ESTIMATE_TITLE = 'Pose from fk_node on estimated_pose'
+#: A paper_platform.yaml with one base joint coordinate missing.
+BROKEN_PLATFORM = """\
+/**:
+  ros__parameters:
+    base_joints: [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4,
+                  1.5, 1.6]
+    home_position: [0.0, 0.0, 0.4325]
+"""
+#: The tables print 4 decimals (mm, deg): a printed value is within 5e-5 of the true one.
+PRINT_TOLERANCE = 1e-4
+
+
+def table3_row_mm_deg(index):
+    """Row ``index`` of the paper's Table 3: X, Y, Z in mm, alpha, beta, gamma in degrees."""
+    return [10.0 * index, 15.0 * index, 432.5 + 10.0 * index,
+            1.5 * index, -1.5 * index, 2.0 * index]
+
+
+def run_ramp_demo(arguments):
+    """
+    Run the ramp_demo console script to its end.
+
+    :returns: ``(exit code, everything it printed)``; the exit code is None if it did not
+        finish within :data:`DEMO_DEADLINE` (it is then stopped with SIGINT, which also stops
+        its nodes).
+    """
+    with NodeProcess('ramp_demo', arguments) as demo:
+        try:
+            code = demo.process.wait(DEMO_DEADLINE)
+        except subprocess.TimeoutExpired:
+            code = None
+        return code, demo.output()
+
+
+def printed_table(output, title):
+    """
+    Parse the table printed under ``title``.
+
+    :returns: a list of ``(row number, [values])``, in printed order.
+    """
+    lines = output.splitlines()
+    starts = [number for number, line in enumerate(lines) if line.startswith(title)]
+    assert len(starts) == 1, f'table {title!r} printed {len(starts)} times:\n{output}'
+    assert lines[starts[0] + 1].split()[0] == 'row', output
+    rows = []
+    for line in lines[starts[0] + 2:]:
+        if not line.strip():
+            break
+        number, *values = line.split()
+        rows.append((int(number), [float(value) for value in values]))
+    return rows
+
+
+@pytest.fixture(scope='module')
+def demo_run():
+    """Exit code and printout of one ramp_demo run with the shipped configuration."""
+    return run_ramp_demo(['--row-period', '0.05', '--timeout', DEMO_TIMEOUT])
+
+
+def test_ramp_demo_passes(demo_run):
+    """The demo exits 0, stops its nodes cleanly and says PASS."""
+    code, output = demo_run
+    assert code == 0, output
+    lines = output.splitlines()
+    assert 'PASS' in lines, output
+    assert 'nodes stopped cleanly' in lines, output
+    assert 'Traceback' not in output, output
+
+
+def test_ramp_demo_prints_eleven_rows_per_table(demo_run):
+    """Each of the three tables has the 11 rows of Table 3, numbered 0 to 10."""
+    _, output = demo_run
+    for title, columns in ((INPUT_TITLE, 6), (LENGTHS_TITLE, 6), (ESTIMATE_TITLE, 8)):
+        rows = printed_table(output, title)
+        assert [number for number, _ in rows] == list(range(11)), output
+        assert all(len(values) == columns for _, values in rows), output
+
+
+def test_ramp_demo_poses_are_table3(demo_run):
+    """The poses received and the poses estimated are Table 3's, to the printed precision."""
+    _, output = demo_run
+    for title in (INPUT_TITLE, ESTIMATE_TITLE):
+        for number, values in printed_table(output, title):
+            assert_allclose(values[:6], table3_row_mm_deg(number), rtol=0.0,
+                            atol=PRINT_TOLERANCE, err_msg=f'{title}, row {number}')
+
+
+def test_ramp_demo_round_trip_error_is_below_1e_9(demo_run):
+    """The largest round-trip error printed is below 1e-9 m and 1e-9 rad, as is every row's."""
+    _, output = demo_run
+    match = re.search(r'^largest round-trip error: (\S+) m, (\S+) rad', output, re.MULTILINE)
+    assert match, output
+    position_error, orientation_error = float(match.group(1)), float(match.group(2))
+    assert position_error < 1e-9
+    assert orientation_error < 1e-9
+    for number, values in printed_table(output, ESTIMATE_TITLE):
+        assert max(values[6:]) < 1e-9, f'row {number}: {values[6:]}'
+
+
+def test_ramp_demo_with_broken_config_fails_with_node_error(config_directory, tmp_path):
+    """A broken paper_platform.yaml ends the demo non-zero, showing ik_node's start-up error."""
+    broken = tmp_path / 'config'
+    shutil.copytree(config_directory, broken)
+    (broken / 'paper_platform.yaml').write_text(BROKEN_PLATFORM)
+
+    code, output = run_ramp_demo(['--config-dir', str(broken), '--timeout', DEMO_TIMEOUT])
+
+    assert code is not None and code > 0, f'exit code {code}:\n{output}'
+    assert "parameter 'base_joints' must have exactly 18 elements, got 17" in output, output
+    assert 'Traceback' not in output, output

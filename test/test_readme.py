@@ -1,0 +1,69 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""The README stays true: its tables, commands, files and numbers match the code."""
+
+from pathlib import Path
+import re
+
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics import Geometry, parameter_spec
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / 'README.md').read_text(encoding='utf-8')
+
+
+@pytest.mark.parametrize('specs', [
+    parameter_spec.GEOMETRY_PARAMETERS, parameter_spec.SOLVER_PARAMETERS,
+    parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
+], ids=['geometry', 'solver', 'queue', 'ramp'])
+def test_parameter_tables_match_the_declarations(specs):
+    """Each parameter table in the README is the one generated from the specs."""
+    assert parameter_spec.markdown_table(specs) in README
+
+
+def test_the_two_commands_exist_and_are_executable():
+    """The README's two commands are scripts in the repository, and CI runs the test one."""
+    for command in ('scripts/run_demo.sh', 'scripts/run_tests.sh'):
+        assert f'{command}' in README
+        assert (ROOT / command).is_file()
+        assert (ROOT / command).stat().st_mode & 0o111, command
+    assert 'scripts/run_tests.sh' in (ROOT / '.ci' / 'run').read_text(encoding='utf-8')
+
+
+def test_linked_files_exist():
+    """Every relative link in the README points to a file of the repository."""
+    links = re.findall(r'\]\(((?!https?:)[^)#]+)\)', README)
+    assert links
+    for link in links:
+        assert (ROOT / link).exists(), link
+
+
+def test_console_scripts_named_in_the_readme_are_declared():
+    """ik_node, fk_node, trajectory_node and ramp_demo are console scripts of setup.py."""
+    setup = (ROOT / 'setup.py').read_text(encoding='utf-8')
+    for script in ('ik_node', 'fk_node', 'trajectory_node', 'ramp_demo'):
+        assert f'`{script}`' in README
+        assert re.search(rf"'{script} = stewart_kinematics\.{script}:main'", setup), script
+
+
+def test_leg_lengths_example_is_the_home_pose():
+    """The ros2 topic pub example sends the home pose's leg lengths, to 1e-9 m."""
+    example = re.search(r'Float64MultiArray \\\n\s+"\{data: \[([^\]]+)\]\}"', README)
+    assert example, 'leg_lengths example not found'
+    lengths = [float(value) for value in example.group(1).split(',')]
+    geometry = Geometry.from_yaml(ROOT / 'config' / 'paper_platform.yaml')
+    assert_allclose(lengths, geometry.home_leg_lengths, atol=1e-9)

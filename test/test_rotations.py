@@ -1,0 +1,325 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Unit tests of stewart_kinematics.rotations (pure numpy).
+
+Expected values come from elementary rotation matrices and quaternions written out here, never
+from the functions under test.
+"""
+
+import math
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics.rotations import (
+    euler_zyx_to_matrix,
+    euler_zyx_to_quaternion,
+    matrix_to_euler_zyx,
+    matrix_to_quaternion,
+    normalize_quaternion,
+    quaternion_to_euler_zyx,
+    quaternion_to_matrix,
+    rotation_angle_between,
+)
+
+ATOL = 1e-12
+SQRT_HALF = math.sqrt(0.5)
+
+
+def rx(angle):
+    """Elementary rotation about x."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def ry(angle):
+    """Elementary rotation about y."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rz(angle):
+    """Elementary rotation about z."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def zyx(alpha, beta, gamma):
+    """Rz(gamma) @ Ry(beta) @ Rx(alpha) from the elementary matrices."""
+    return rz(gamma) @ ry(beta) @ rx(alpha)
+
+
+def axis_angle_quaternion(axis, angle):
+    """Quaternion (x, y, z, w) of a rotation by angle about a unit axis."""
+    half = 0.5 * angle
+    return np.array([*(math.sin(half) * np.asarray(axis, dtype=float)), math.cos(half)])
+
+
+def rodrigues(axis, angle):
+    """Matrix of a rotation by angle about a unit axis: I + sin K + (1 - cos) K^2."""
+    x, y, z = axis
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+
+
+def random_angles(count, seed=0):
+    """Random (alpha, beta, gamma) with beta inside (-pi/2, pi/2), shape (count, 3)."""
+    rng = np.random.default_rng(seed)
+    return np.column_stack([
+        rng.uniform(-math.pi, math.pi, count),
+        rng.uniform(-0.499 * math.pi, 0.499 * math.pi, count),
+        rng.uniform(-math.pi, math.pi, count)])
+
+
+def test_euler_zyx_to_matrix_equals_product_of_elementary_rotations():
+    """The matrix of random angles is Rz(gamma) Ry(beta) Rx(alpha)."""
+    for alpha, beta, gamma in random_angles(50):
+        assert_allclose(euler_zyx_to_matrix([alpha, beta, gamma]), zyx(alpha, beta, gamma),
+                        rtol=0.0, atol=ATOL)
+
+
+def test_euler_zyx_to_matrix_of_zero_is_identity():
+    """Zero angles give the identity matrix."""
+    assert_allclose(euler_zyx_to_matrix([0.0, 0.0, 0.0]), np.eye(3), rtol=0.0, atol=0.0)
+
+
+@pytest.mark.parametrize('angles, expected', [
+    ([math.pi / 2, 0.0, 0.0], [[1, 0, 0], [0, 0, -1], [0, 1, 0]]),
+    ([0.0, math.pi / 2, 0.0], [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]),
+    ([0.0, 0.0, math.pi / 2], [[0, -1, 0], [1, 0, 0], [0, 0, 1]]),
+])
+def test_euler_zyx_to_matrix_quarter_turns_by_hand(angles, expected):
+    """A quarter turn about x, y or z gives the matrix written by hand."""
+    assert_allclose(euler_zyx_to_matrix(angles), np.array(expected, dtype=float),
+                    rtol=0.0, atol=ATOL)
+
+
+def test_euler_zyx_to_matrix_quarter_turn_about_z_maps_x_to_y():
+    """Yaw of +90 degrees turns the x axis onto the y axis (right hand rule)."""
+    assert_allclose(euler_zyx_to_matrix([0.0, 0.0, math.pi / 2]) @ [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0], rtol=0.0, atol=ATOL)
+
+
+def test_euler_zyx_to_matrix_batch_shape_matches_singles():
+    """A (N, 3) batch gives (N, 3, 3), each equal to the single conversion."""
+    angles = random_angles(7)
+    batch = euler_zyx_to_matrix(angles)
+    assert batch.shape == (7, 3, 3)
+    for row, matrix in zip(angles, batch):
+        assert_allclose(matrix, zyx(*row), rtol=0.0, atol=ATOL)
+
+
+def test_euler_zyx_to_matrix_rejects_wrong_shape():
+    """Angles that are not (..., 3) raise ValueError."""
+    with pytest.raises(ValueError, match='shape'):
+        euler_zyx_to_matrix([0.0, 0.0])
+
+
+def test_matrix_to_euler_zyx_round_trip_on_random_angles():
+    """Angles with beta in (-pi/2, pi/2) and alpha, gamma in (-pi, pi) come back unchanged."""
+    angles = random_angles(1000, seed=1)
+    matrices = np.array([zyx(*row) for row in angles])
+    assert_allclose(matrix_to_euler_zyx(matrices), angles, rtol=0.0, atol=1e-9)
+
+
+def test_matrix_to_euler_zyx_single_shape():
+    """One matrix gives one angle triple, shape (3,)."""
+    result = matrix_to_euler_zyx(zyx(0.1, -0.2, 0.3))
+    assert result.shape == (3,)
+    assert_allclose(result, [0.1, -0.2, 0.3], rtol=0.0, atol=ATOL)
+
+
+def test_matrix_to_euler_zyx_wraps_angles_into_canonical_range():
+    """Angles beyond pi are returned as the equivalent angle in (-pi, pi]."""
+    result = matrix_to_euler_zyx(zyx(0.3 + 2.0 * math.pi, 0.2, -0.4 - 2.0 * math.pi))
+    assert_allclose(result, [0.3, 0.2, -0.4], rtol=0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize('beta', [math.pi / 2, -math.pi / 2])
+@pytest.mark.parametrize('alpha, gamma', [(0.3, 0.7), (-1.2, 2.5), (0.0, 0.0), (3.0, -3.0)])
+def test_matrix_to_euler_zyx_at_gimbal_lock_reproduces_matrix(alpha, beta, gamma):
+    """At beta = +-pi/2 the returned angles describe the input rotation exactly."""
+    matrix = zyx(alpha, beta, gamma)
+    result = matrix_to_euler_zyx(matrix)
+    assert np.all(np.isfinite(result))
+    assert_allclose(result[1], beta, rtol=0.0, atol=1e-9)
+    assert_allclose(zyx(*result), matrix, rtol=0.0, atol=1e-9)
+
+
+def test_matrix_to_euler_zyx_rejects_wrong_shape():
+    """A matrix that is not (..., 3, 3) raises ValueError."""
+    with pytest.raises(ValueError, match='shape'):
+        matrix_to_euler_zyx(np.eye(4))
+
+
+@pytest.mark.parametrize('quaternion, matrix', [
+    ([0.0, 0.0, 0.0, 1.0], np.eye(3)),
+    ([0.0, 0.0, SQRT_HALF, SQRT_HALF], rz(math.pi / 2)),
+    ([SQRT_HALF, 0.0, 0.0, SQRT_HALF], rx(math.pi / 2)),
+    ([0.0, SQRT_HALF, 0.0, SQRT_HALF], ry(math.pi / 2)),
+    ([1.0, 0.0, 0.0, 0.0], rx(math.pi)),
+    ([0.0, 1.0, 0.0, 0.0], ry(math.pi)),
+    ([0.0, 0.0, 1.0, 0.0], rz(math.pi)),
+])
+def test_quaternion_to_matrix_known_values(quaternion, matrix):
+    """Known quaternions, including half turns with w = 0, give the expected matrix."""
+    assert_allclose(quaternion_to_matrix(quaternion), matrix, rtol=0.0, atol=ATOL)
+
+
+def test_quaternion_to_matrix_normalises_a_non_unit_quaternion():
+    """A scaled quaternion describes the same rotation as the unit one."""
+    assert_allclose(quaternion_to_matrix([0.0, 0.0, 3.0, 3.0]), rz(math.pi / 2),
+                    rtol=0.0, atol=ATOL)
+
+
+def test_matrix_to_quaternion_quarter_turn_about_z():
+    """Rz(90 deg) gives (0, 0, sin 45, cos 45)."""
+    assert_allclose(matrix_to_quaternion(rz(math.pi / 2)), [0.0, 0.0, SQRT_HALF, SQRT_HALF],
+                    rtol=0.0, atol=ATOL)
+
+
+@pytest.mark.parametrize('matrix, axis', [
+    (rx(math.pi), [1.0, 0.0, 0.0]),
+    (ry(math.pi), [0.0, 1.0, 0.0]),
+    (rz(math.pi), [0.0, 0.0, 1.0]),
+    (rz(math.pi / 4) @ rx(math.pi) @ rz(-math.pi / 4), [SQRT_HALF, SQRT_HALF, 0.0]),
+])
+def test_matrix_to_quaternion_half_turns_have_zero_w(matrix, axis):
+    """A half turn gives w = 0 and the rotation axis (up to sign) as vector part."""
+    quaternion = matrix_to_quaternion(matrix)
+    assert_allclose(quaternion[3], 0.0, rtol=0.0, atol=ATOL)
+    assert_allclose(abs(np.dot(quaternion[:3], axis)), 1.0, rtol=0.0, atol=ATOL)
+
+
+def test_matrix_to_quaternion_has_non_negative_w():
+    """Rotations by more than pi about an axis still give w >= 0 (the -q representative)."""
+    angles = np.linspace(-2.0 * math.pi + 0.1, 2.0 * math.pi - 0.1, 41)
+    axis = np.array([1.0, 2.0, 2.0]) / 3.0
+    for angle in angles:
+        expected = axis_angle_quaternion(axis, angle)
+        if expected[3] < 0.0:
+            expected = -expected
+        quaternion = matrix_to_quaternion(rodrigues(axis, angle))
+        assert quaternion[3] >= 0.0
+        assert_allclose(quaternion, expected, rtol=0.0, atol=1e-12)
+
+
+def test_matrix_to_quaternion_round_trip_random_rotations():
+    """Matrix -> quaternion -> matrix returns the Euler-built matrix for random angles."""
+    matrices = np.array([zyx(*row) for row in random_angles(500, seed=2)])
+    quaternions = matrix_to_quaternion(matrices)
+    assert quaternions.shape == (500, 4)
+    assert_allclose(np.linalg.norm(quaternions, axis=-1), 1.0, rtol=0.0, atol=1e-12)
+    assert np.all(quaternions[:, 3] >= 0.0)
+    assert_allclose(quaternion_to_matrix(quaternions), matrices, rtol=0.0, atol=1e-12)
+
+
+def test_quaternion_conversions_batch_and_single_shapes():
+    """(4,) -> (3, 3), (N, 4) -> (N, 3, 3), (N, 3) -> (N, 4) and (3,) -> (4,)."""
+    quaternions = np.array([[0.0, 0.0, SQRT_HALF, SQRT_HALF], [0.0, 0.0, 0.0, 1.0]])
+    assert quaternion_to_matrix(quaternions[0]).shape == (3, 3)
+    assert quaternion_to_matrix(quaternions).shape == (2, 3, 3)
+    assert matrix_to_quaternion(np.eye(3)).shape == (4,)
+    assert matrix_to_quaternion(np.stack([np.eye(3)] * 5)).shape == (5, 4)
+    assert euler_zyx_to_quaternion([0.1, 0.2, 0.3]).shape == (4,)
+    assert euler_zyx_to_quaternion(random_angles(5)).shape == (5, 4)
+    assert quaternion_to_euler_zyx(quaternions[0]).shape == (3,)
+    assert quaternion_to_euler_zyx(quaternions).shape == (2, 3)
+
+
+def test_euler_zyx_to_quaternion_is_product_of_axis_quaternions():
+    """q(alpha, beta, gamma) equals qz(gamma) * qy(beta) * qx(alpha) written by hand."""
+    alpha, beta, gamma = 0.4, -0.3, 1.1
+    ca, sa = math.cos(alpha / 2), math.sin(alpha / 2)
+    cb, sb = math.cos(beta / 2), math.sin(beta / 2)
+    cg, sg = math.cos(gamma / 2), math.sin(gamma / 2)
+    expected = [
+        sa * cb * cg - ca * sb * sg,
+        ca * sb * cg + sa * cb * sg,
+        ca * cb * sg - sa * sb * cg,
+        ca * cb * cg + sa * sb * sg,
+    ]
+    assert_allclose(euler_zyx_to_quaternion([alpha, beta, gamma]), expected,
+                    rtol=0.0, atol=ATOL)
+
+
+def test_quaternion_to_euler_zyx_quarter_turn_about_z():
+    """(0, 0, sin 45, cos 45) gives gamma = pi/2 and zero roll and pitch."""
+    assert_allclose(quaternion_to_euler_zyx([0.0, 0.0, SQRT_HALF, SQRT_HALF]),
+                    [0.0, 0.0, math.pi / 2], rtol=0.0, atol=ATOL)
+
+
+def test_normalize_quaternion_scales_to_unit_norm():
+    """A non-unit quaternion is divided by its norm."""
+    assert_allclose(normalize_quaternion([0.0, 3.0, 0.0, 4.0]), [0.0, 0.6, 0.0, 0.8],
+                    rtol=0.0, atol=ATOL)
+
+
+def test_normalize_quaternion_batch():
+    """Each quaternion of a batch is normalised on its own."""
+    result = normalize_quaternion([[2.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.5]])
+    assert_allclose(result, [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]], rtol=0.0, atol=ATOL)
+
+
+@pytest.mark.parametrize('quaternion, message', [
+    ([0.0, 0.0, 0.0, 0.0], 'norm'),
+    ([1e-12, 0.0, 0.0, 0.0], 'norm'),
+    ([[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 0.0]], 'norm'),
+    ([math.nan, 0.0, 0.0, 1.0], 'finite'),
+    ([0.0, math.inf, 0.0, 1.0], 'finite'),
+    ([0.0, 0.0, 1.0], 'shape'),
+    ([[0.0, 0.0, 0.0, 1.0, 0.0]], 'shape'),
+])
+def test_normalize_quaternion_rejects_invalid_input(quaternion, message):
+    """Zero, tiny, non-finite or wrongly shaped quaternions raise ValueError."""
+    with pytest.raises(ValueError, match=message):
+        normalize_quaternion(quaternion)
+
+
+def test_quaternion_to_matrix_rejects_zero_quaternion():
+    """A zero quaternion describes no rotation and raises ValueError."""
+    with pytest.raises(ValueError, match='norm'):
+        quaternion_to_matrix([0.0, 0.0, 0.0, 0.0])
+
+
+def test_rotation_angle_between_equal_rotations_is_zero():
+    """Equal rotations are 0 rad apart."""
+    matrix = zyx(0.3, -0.2, 1.0)
+    assert_allclose(rotation_angle_between(matrix, matrix), 0.0, rtol=0.0, atol=1e-15)
+
+
+@pytest.mark.parametrize('angle', [1e-9, 1e-6, 0.5, 2.0, math.pi - 1e-6])
+def test_rotation_angle_between_known_angles(angle):
+    """The angle between R and R @ Rk(angle) is angle, accurate even at 1e-9 rad."""
+    base = zyx(0.3, -0.2, 1.0)
+    axis = np.array([2.0, -1.0, 2.0]) / 3.0
+    relative = rodrigues(axis, angle)
+    assert_allclose(rotation_angle_between(base, base @ relative), angle, rtol=1e-6, atol=0.0)
+
+
+def test_rotation_angle_between_half_turn_is_pi():
+    """A half turn is pi rad away."""
+    assert_allclose(rotation_angle_between(np.eye(3), rz(math.pi)), math.pi,
+                    rtol=0.0, atol=1e-12)
+
+
+def test_rotation_angle_between_batch_shape():
+    """Batches of (N, 3, 3) give N angles."""
+    first = np.stack([np.eye(3)] * 3)
+    second = np.stack([rx(0.1), ry(0.2), rz(0.3)])
+    assert_allclose(rotation_angle_between(first, second), [0.1, 0.2, 0.3],
+                    rtol=0.0, atol=1e-12)

@@ -1,0 +1,227 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+In-process tests of the trajectory node: real rclpy, a probe node, one SingleThreadedExecutor.
+
+The node plays config/table3_ramp.yaml, with a short row period or duration given as
+parameter overrides; the received poses are compared with the paper's Table 3 typed here in
+millimetres and degrees, orientations as textbook quaternions.
+"""
+
+import math
+from pathlib import Path
+
+from geometry_msgs.msg import Pose
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+
+from stewart_kinematics import trajectory_node
+from stewart_kinematics.trajectory_node import TrajectoryNode
+import yaml
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')
+RAMP_ARGS = ['--ros-args', '--params-file', RAMP_FILE]
+
+#: The paper's Table 3 row by row: X, Y, Z in mm, alpha, beta, gamma in degrees.
+TABLE3_MM_DEG = [
+    (0.0, 0.0, 432.5, 0.0, 0.0, 0.0),
+    (10.0, 15.0, 442.5, 1.5, -1.5, 2.0),
+    (20.0, 30.0, 452.5, 3.0, -3.0, 4.0),
+    (30.0, 45.0, 462.5, 4.5, -4.5, 6.0),
+    (40.0, 60.0, 472.5, 6.0, -6.0, 8.0),
+    (50.0, 75.0, 482.5, 7.5, -7.5, 10.0),
+    (60.0, 90.0, 492.5, 9.0, -9.0, 12.0),
+    (70.0, 105.0, 502.5, 10.5, -10.5, 14.0),
+    (80.0, 120.0, 512.5, 12.0, -12.0, 16.0),
+    (90.0, 135.0, 522.5, 13.5, -13.5, 18.0),
+    (100.0, 150.0, 532.5, 15.0, -15.0, 20.0),
+]
+TABLE3 = np.array([[v / 1000.0 for v in row[:3]] + [math.radians(v) for v in row[3:]]
+                   for row in TABLE3_MM_DEG])
+#: Seconds of silence that show a finished ramp has stopped (ten row periods of 0.05 s).
+QUIET_TIME = 0.5
+
+
+def quaternion_from_euler(alpha, beta, gamma):
+    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
+    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
+    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
+    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
+    quaternion = np.array([
+        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+    return -quaternion if quaternion[3] < 0.0 else quaternion
+
+
+def position_of(message):
+    """Return a Pose's position as an array."""
+    return np.array([message.position.x, message.position.y, message.position.z])
+
+
+def quaternion_of(message):
+    """Return a Pose's quaternion (x, y, z, w) as an array."""
+    orientation = message.orientation
+    return np.array([orientation.x, orientation.y, orientation.z, orientation.w])
+
+
+def assert_pose_message(message, pose, tolerance=1e-9):
+    """Check a Pose against (X, Y, Z, alpha, beta, gamma): position, then quaternion."""
+    assert_allclose(position_of(message), pose[:3], rtol=0.0, atol=tolerance)
+    assert_allclose(quaternion_of(message), quaternion_from_euler(*pose[3:]),
+                    rtol=0.0, atol=tolerance)
+
+
+class Probe:
+    """A node whose subscription to target_pose can be created late."""
+
+    def __init__(self, subscribe=True):
+        """Create the probe node, and its subscription unless ``subscribe`` is False."""
+        self.node = Node('trajectory_probe')
+        self.poses = []
+        if subscribe:
+            self.subscribe()
+
+    def subscribe(self):
+        """Create the subscription to target_pose."""
+        self.node.create_subscription(Pose, 'target_pose', self.poses.append, 100)
+
+
+@pytest.fixture
+def start(ros):
+    """
+    Return a starter of a TrajectoryNode and a Probe on one executor.
+
+    The starter takes the parameter overrides (on top of config/table3_ramp.yaml) and whether
+    the probe subscribes at once, and returns ``(node, probe, executor)``.
+    """
+    created = []
+    executor = SingleThreadedExecutor()
+
+    def start_nodes(overrides, subscribe=True):
+        probe = Probe(subscribe)
+        created.append(probe.node)
+        parameters = [Parameter(name, value=value) for name, value in overrides.items()]
+        node = TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=parameters)
+        created.append(node)
+        executor.add_node(node)
+        executor.add_node(probe.node)
+        return node, probe, executor
+    yield start_nodes
+    executor.shutdown()
+    for node in created:
+        node.destroy_node()
+
+
+def test_table_mode_plays_the_11_rows_in_order_then_stops(start, spin_until):
+    """Table mode publishes Table 3's 11 rows in order, once, then nothing more."""
+    node, probe, executor = start({'row_period': 0.05, 'min_subscribers': 1})
+    assert node.settings['mode'] == 'table' and node.settings['loop'] is False
+    assert spin_until(executor, lambda: len(probe.poses) >= 11), (
+        f'{len(probe.poses)} of 11 rows received')
+    for message, row in zip(probe.poses, TABLE3):
+        assert_pose_message(message, row)
+    assert not spin_until(executor, lambda: len(probe.poses) > 11, timeout=QUIET_TIME)
+    assert len(probe.poses) == 11
+    assert node.published == 11
+    assert node.timer.is_canceled()
+
+
+def test_loop_mode_wraps_back_to_the_first_row(start, spin_until):
+    """With loop true the 12th pose is row 0 again, and publishing goes on."""
+    node, probe, executor = start({'row_period': 0.05, 'min_subscribers': 1, 'loop': True})
+    assert spin_until(executor, lambda: len(probe.poses) >= 14), (
+        f'{len(probe.poses)} of 14 poses received')
+    for index, message in enumerate(probe.poses[:14]):
+        assert_pose_message(message, TABLE3[index % 11])
+    assert node.published > 11
+    assert not node.timer.is_canceled()
+
+
+def test_interpolate_mode_samples_the_straight_line(start, spin_until):
+    """Every sample lies on start + s (end - start), s rising from 0 to exactly 1 at the end."""
+    duration, rate = 0.5, 50.0
+    node, probe, executor = start({
+        'mode': 'interpolate', 'duration': duration, 'publish_rate': rate,
+        'min_subscribers': 1})
+
+    def finished():
+        return (node.timer is not None and node.timer.is_canceled()
+                and len(probe.poses) >= node.published)
+    assert spin_until(executor, finished), (
+        f'ramp not finished: {node.published} published, {len(probe.poses)} received')
+    assert not spin_until(executor, lambda: len(probe.poses) > node.published, timeout=0.2)
+    start_pose, end_pose = TABLE3[0], TABLE3[-1]
+    direction = end_pose - start_pose
+    fractions = []
+    for message in probe.poses:
+        offset = position_of(message) - start_pose[:3]
+        s = float(offset @ direction[:3] / (direction[:3] @ direction[:3]))
+        pose = start_pose + s * direction
+        assert_pose_message(message, pose)
+        assert -1e-9 <= s <= 1.0 + 1e-9
+        fractions.append(s)
+    assert len(fractions) == node.published
+    # About duration * rate + 1 samples; a loaded machine may drop timer ticks.
+    assert duration * rate * 0.5 <= len(fractions) <= duration * rate + 2
+    assert all(later > earlier for earlier, later in zip(fractions, fractions[1:])), fractions
+    # The first sample is taken as the ramp starts: well within one sample period of s = 0.
+    assert fractions[0] < 0.5 / (duration * rate)
+    assert_pose_message(probe.poses[0], start_pose, 1e-3)
+    assert fractions[-1] == pytest.approx(1.0, abs=1e-9)
+    assert_pose_message(probe.poses[-1], end_pose)
+
+
+def test_min_subscribers_waits_for_a_subscriber(start, spin_until):
+    """Nothing is published while nobody subscribes; the first pose received is row 0."""
+    node, probe, executor = start({'row_period': 0.05, 'min_subscribers': 1}, subscribe=False)
+    assert not spin_until(executor, lambda: node.published > 0, timeout=1.0)
+    assert node.published == 0
+    probe.subscribe()
+    assert spin_until(executor, lambda: len(probe.poses) >= 11), (
+        f'{len(probe.poses)} of 11 rows received')
+    assert_pose_message(probe.poses[0], TABLE3[0])
+    assert_pose_message(probe.poses[10], TABLE3[10])
+    assert node.published == 11
+
+
+def test_start_delay_of_zero_starts_at_once(start, spin_until):
+    """With min_subscribers 0 and no delay the ramp plays with no subscriber at all."""
+    node, _, executor = start(
+        {'row_period': 0.05, 'min_subscribers': 0, 'start_delay': 0.0}, subscribe=False)
+    assert spin_until(executor, lambda: node.published >= 11)
+    assert not spin_until(executor, lambda: node.published > 11, timeout=0.3)
+
+
+@pytest.mark.parametrize('name, value', [
+    ('position_end', [0.1, 0.15, 0.54]),
+    ('mode', 'circle'),
+    ('position_start', [0.0, 0.4325]),
+])
+def test_main_returns_1_for_a_bad_parameter_file(tmp_path, name, value):
+    """A ramp that is not whole steps, an unknown mode or a short array makes main() return 1."""
+    with open(RAMP_FILE, encoding='utf-8') as stream:
+        document = yaml.safe_load(stream)
+    document['trajectory_node']['ros__parameters'][name] = value
+    bad_file = tmp_path / 'bad_ramp.yaml'
+    bad_file.write_text(yaml.safe_dump(document), encoding='utf-8')
+    assert trajectory_node.main(
+        ['trajectory_node', '--ros-args', '--params-file', str(bad_file)]) == 1
+    assert not rclpy.ok()
