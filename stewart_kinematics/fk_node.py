@@ -18,43 +18,47 @@ Forward kinematics node: six leg lengths in, the platform pose out.
 Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6). Publishes
 ``estimated_pose`` (geometry_msgs/msg/Pose, base frame, metres). Each solve starts from the last
 good solution, since a platform moves continuously, and falls back to the home pose when that
-fails; lengths that neither start solves are reported and publish nothing.
+fails. Lengths out of the limits, lengths that neither start solves, a solution out of the
+limits and a jump to another assembly mode publish nothing: the reason goes to the log and to
+``/diagnostics`` (with iterations and residual). A solution near a singularity is published
+with a WARN status.
 """
+
+import math
 
 from geometry_msgs.msg import Pose
 import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import parameter_spec
+from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import forward_kinematics
+from stewart_kinematics.message_accounting import MessageAccounting, violation_values
 from stewart_kinematics.message_conversions import leg_lengths_from_message, pose_to_message
 from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
-
-#: Seconds between two repeats of the same warning.
-WARNING_PERIOD = 1.0
+from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 
 
 class FkNode(Node):
-    """Publish the platform pose that matches every set of leg lengths received."""
+    """Publish the platform pose that matches every set of leg lengths received, or refuse."""
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        self.solver_settings = {}
+        self.settings = {}
         values = declare_parameters(
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
             + parameter_spec.QUEUE_PARAMETERS,
-            on_change=self.solver_settings.__setitem__)
+            on_change=self.settings.__setitem__)
+        self.settings.update(values)
         self.geometry = Geometry.from_parameters(values)
-        self.solver_settings.update(
-            tolerance=values['tolerance'], max_iterations=values['max_iterations'])
         self.last_pose = self.geometry.home_pose
-        self.received = self.published = self.rejected = 0
+        self.last_lengths = None
         depth = values['queue_depth']
         self.pose_publisher = self.create_publisher(Pose, 'estimated_pose', depth)
+        self.accounting = MessageAccounting(self, 'leg_lengths')
         self.create_subscription(Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
         self.get_logger().info(
             f'ready: tolerance {values["tolerance"]:g} m, '
@@ -62,44 +66,78 @@ class FkNode(Node):
 
     def on_leg_lengths(self, message: Float64MultiArray):
         """Solve for the pose of the received lengths and publish it, or say why not."""
-        self.received += 1
+        self.accounting.receive()
         try:
             lengths = leg_lengths_from_message(message)
         except ValueError as error:
-            self.reject(f'leg_lengths rejected: {error}')
+            self.accounting.reject(f'leg_lengths rejected: {error}')
             return
-        violations = self.geometry.leg_length_violations(lengths)
+        violations = limits.leg_length_violations(self.geometry, lengths)
         if violations:
-            self.reject('leg_lengths rejected: ' + '; '.join(violations))
+            self.accounting.reject(
+                'leg_lengths rejected, out of the limits: ' + '; '.join(map(str, violations)),
+                violation_values(violations))
             return
         result = self.solve(lengths)
         if not result.converged:
-            self.reject(
+            self.accounting.reject(
                 f'no pose found for leg lengths {np.round(lengths, 6).tolist()} m: '
-                f'{result.reason} ({result.iterations} iterations, residual '
-                f'{result.residual:.3g} m)')
+                f'{result.reason}',
+                (('iterations', result.iterations), ('residual_m', f'{result.residual:.3g}')))
             return
-        self.last_pose = result.pose
-        self.pose_publisher.publish(pose_to_message(result.pose))
-        self.published += 1
+        position, rotation = result.pose[:3], euler_zyx_to_matrix(result.pose[3:])
+        violations = limits.check_pose(self.geometry, position, rotation)
+        if violations:
+            self.accounting.reject(
+                'the pose of these leg lengths is out of the limits: '
+                + '; '.join(map(str, violations)), violation_values(violations))
+            return
+        jump = self.assembly_mode_jump(lengths, result.pose)
+        if jump:
+            self.accounting.reject(jump)
+            return
+        condition = float(limits.jacobian_condition(self.geometry, position, rotation))
+        if condition > self.settings['near_singularity_condition']:
+            self.accounting.warn(
+                f'estimated pose is near a singularity: Jacobian condition number '
+                f'{condition:.4g} > near_singularity_condition '
+                f'{self.settings["near_singularity_condition"]:g}',
+                (('jacobian_condition', f'{condition:.4g}'),))
+        self.last_pose, self.last_lengths = result.pose, lengths
+        self.accounting.publish(self.pose_publisher, pose_to_message(result.pose))
 
     def solve(self, lengths):
         """Solve from the last good pose, then from the home pose if that fails."""
-        settings = self.solver_settings
-        result = forward_kinematics(
-            self.geometry, lengths, self.last_pose, tolerance=settings['tolerance'],
-            max_iterations=settings['max_iterations'])
+        options = {'tolerance': self.settings['tolerance'],
+                   'max_iterations': self.settings['max_iterations']}
+        result = forward_kinematics(self.geometry, lengths, self.last_pose, **options)
         if not result.converged and not np.array_equal(self.last_pose, self.geometry.home_pose):
-            result = forward_kinematics(
-                self.geometry, lengths, self.geometry.home_pose,
-                tolerance=settings['tolerance'], max_iterations=settings['max_iterations'])
+            result = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
+                                        **options)
         return result
 
-    def reject(self, reason: str):
-        """Count a rejected message and log why, at most once per warning period."""
-        self.rejected += 1
-        self.get_logger().warning(
-            f'{reason} ({self.rejected} rejected so far)', throttle_duration_sec=WARNING_PERIOD)
+    def assembly_mode_jump(self, lengths, pose) -> str:
+        """
+        Say why ``pose`` looks like a jump to another assembly mode, or return ``''``.
+
+        For the same leg lengths a platform has several poses (assembly modes). A solution far
+        from the last one while the lengths barely changed is one of the others, not where the
+        platform went.
+        """
+        if self.last_lengths is None:
+            return ''
+        length_change = float(np.max(np.abs(lengths - self.last_lengths)))
+        if length_change > self.settings['assembly_guard_length_change']:
+            return ''
+        position_change = float(np.linalg.norm(pose[:3] - self.last_pose[:3]))
+        angle_change = math.degrees(float(rotation_angle_between(
+            euler_zyx_to_matrix(self.last_pose[3:]), euler_zyx_to_matrix(pose[3:]))))
+        if (position_change <= self.settings['assembly_guard_position_change']
+                and angle_change <= self.settings['assembly_guard_angle_change_deg']):
+            return ''
+        return (f'leg_lengths rejected: the solution jumped {position_change:.4g} m and '
+                f'{angle_change:.4g} deg from the last one while no leg changed by more than '
+                f'{length_change:.4g} m: another assembly mode, not a motion')
 
 
 def main(args=None) -> int:

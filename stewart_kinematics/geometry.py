@@ -27,6 +27,7 @@ import math
 import numpy as np
 
 from stewart_kinematics import parameter_spec
+from stewart_kinematics.rotations import euler_zyx_to_matrix
 
 #: Two joints closer than this (metres) count as one: a leg pair would be degenerate.
 MIN_JOINT_SEPARATION = 1e-6
@@ -44,9 +45,17 @@ class Geometry:
     :param home_pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) of the neutral pose.
     :param leg_length_min: shortest allowed leg length, metres (0 for no limit).
     :param leg_length_max: longest allowed leg length, metres (``inf`` for no limit).
+    :param base_joint_max_angle: largest angle between a leg and its home direction at the
+        base joint, radians, in (0, pi] (pi for no limit).
+    :param platform_joint_max_angle: the same at the platform joint, in the platform frame.
+    :param max_jacobian_condition: largest allowed condition number of the dimensionless
+        Jacobian (:func:`stewart_kinematics.limits.jacobian_condition`), >= 1 (``inf`` for no
+        limit): the singularity margin.
     :raises ValueError: if an array has the wrong shape or a non-finite value, two joints
-        coincide, the joints of the base or of the platform are collinear, the limits are not
-        ``0 <= min < max``, or the home pose puts a leg outside them.
+        coincide, the joints of the base or of the platform are collinear, a limit is out of
+        its range, or the home pose breaks a limit.
+
+    The limits are checked by :mod:`stewart_kinematics.limits`.
 
     >>> from stewart_kinematics import Geometry
     >>> geometry = Geometry.from_yaml('config/paper_platform.yaml')  # doctest: +SKIP
@@ -57,6 +66,9 @@ class Geometry:
     home_pose: np.ndarray = field(default_factory=lambda: np.zeros(6))
     leg_length_min: float = 0.0
     leg_length_max: float = math.inf
+    base_joint_max_angle: float = math.pi
+    platform_joint_max_angle: float = math.pi
+    max_jacobian_condition: float = math.inf
 
     def __post_init__(self):
         for name, shape in (('base_joints', (6, 3)), ('platform_joints', (6, 3)),
@@ -73,43 +85,34 @@ class Geometry:
                 f'got leg_length_min={low!r}, leg_length_max={high!r}')
         object.__setattr__(self, 'leg_length_min', low)
         object.__setattr__(self, 'leg_length_max', high)
-        home_lengths = np.linalg.norm(self._home_leg_vectors(), axis=-1)
-        outside = np.flatnonzero((home_lengths < low) | (home_lengths > high))
-        if outside.size:
-            raise ValueError(
-                f'the home pose puts leg(s) {", ".join(str(i + 1) for i in outside)} at '
-                f'{np.round(home_lengths[outside], 6).tolist()} m, outside the limits '
-                f'[{low:g}, {high:g}] m')
+        for name in ('base_joint_max_angle', 'platform_joint_max_angle'):
+            angle = float(getattr(self, name))
+            if not 0.0 < angle <= math.pi:
+                raise ValueError(f'{name} must be in (0, pi] radians, got {angle!r}')
+            object.__setattr__(self, name, angle)
+        condition = float(self.max_jacobian_condition)
+        if not condition >= 1.0:
+            raise ValueError(f'max_jacobian_condition must be >= 1, got {condition!r}')
+        object.__setattr__(self, 'max_jacobian_condition', condition)
 
-    def _home_leg_vectors(self):
-        # Imported here: kinematics imports this module.
+        # Derived once: every IK request and limit check uses them.
+        from stewart_kinematics import limits
         from stewart_kinematics.kinematics import leg_vectors_from_euler
-        return leg_vectors_from_euler(self, self.home_pose)
-
-    @property
-    def home_leg_lengths(self) -> np.ndarray:
-        """Leg lengths at the home pose, metres, shape (6,)."""
-        return np.linalg.norm(self._home_leg_vectors(), axis=-1)
-
-    def leg_length_violations(self, lengths) -> list:
-        """
-        Every way the given leg lengths break the length limits.
-
-        :param lengths: leg lengths l_1..l_6 in metres, shape (6,).
-        :returns: one sentence per leg outside ``[leg_length_min, leg_length_max]``, naming
-            the leg, its length, the limit and by how much; empty when all are allowed.
-        """
-        reasons = []
-        for leg, length in enumerate(np.asarray(lengths, dtype=float), start=1):
-            if length < self.leg_length_min:
-                reasons.append(
-                    f'leg {leg} length {length:.6f} m is below leg_length_min '
-                    f'{self.leg_length_min:g} m by {self.leg_length_min - length:.6f} m')
-            elif length > self.leg_length_max:
-                reasons.append(
-                    f'leg {leg} length {length:.6f} m is above leg_length_max '
-                    f'{self.leg_length_max:g} m by {length - self.leg_length_max:.6f} m')
-        return reasons
+        home_legs = leg_vectors_from_euler(self, self.home_pose)
+        home_lengths = np.linalg.norm(home_legs, axis=-1)
+        home_lengths.flags.writeable = False
+        home_directions = home_legs / home_lengths[:, None]
+        home_directions.flags.writeable = False
+        centred = self.platform_joints - self.platform_joints.mean(axis=0)
+        object.__setattr__(self, 'home_leg_lengths', home_lengths)
+        object.__setattr__(self, 'home_leg_directions', home_directions)
+        object.__setattr__(self, 'platform_radius',
+                           float(np.sqrt(np.mean(np.sum(centred ** 2, axis=-1)))))
+        home_violations = limits.check_pose(
+            self, self.home_pose[:3], euler_zyx_to_matrix(self.home_pose[3:]))
+        if home_violations:
+            raise ValueError('the home pose breaks the limits: '
+                             + '; '.join(str(v) for v in home_violations))
 
     @classmethod
     def from_parameters(cls, values: dict) -> 'Geometry':
@@ -134,7 +137,10 @@ class Geometry:
                 np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
             home_pose=home_pose,
             leg_length_min=float(merged['leg_length_min']),
-            leg_length_max=float(merged['leg_length_max']))
+            leg_length_max=float(merged['leg_length_max']),
+            base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
+            platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
+            max_jacobian_condition=float(merged['max_jacobian_condition']))
 
     @classmethod
     def from_yaml(cls, path, node_name=None) -> 'Geometry':

@@ -178,6 +178,24 @@ GEOMETRY_PARAMETERS = (
         default=math.inf, read_only=True,
         validators=(in_range(0.0, math.inf, low_inclusive=False),),
         constraints='> leg_length_min; .inf allowed'),
+    ParameterSpec(
+        'base_joint_max_angle_deg', DOUBLE,
+        'Largest angle between a leg and its home direction at the base joint (joint cone), '
+        'degrees; 180.0 for no limit',
+        default=180.0, read_only=True,
+        validators=(finite, in_range(0.0, 180.0, low_inclusive=False)), constraints='in (0, 180]'),
+    ParameterSpec(
+        'platform_joint_max_angle_deg', DOUBLE,
+        'Largest angle between a leg and its home direction at the platform joint, in the '
+        'platform frame (joint cone), degrees; 180.0 for no limit',
+        default=180.0, read_only=True,
+        validators=(finite, in_range(0.0, 180.0, low_inclusive=False)), constraints='in (0, 180]'),
+    ParameterSpec(
+        'max_jacobian_condition', DOUBLE,
+        'Singularity margin: largest condition number of the dimensionless Jacobian '
+        "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
+        default=math.inf, read_only=True, validators=(in_range(1.0, math.inf),),
+        constraints='>= 1; .inf allowed'),
 )
 
 SOLVER_PARAMETERS = (
@@ -191,6 +209,28 @@ SOLVER_PARAMETERS = (
         'max_iterations', INTEGER,
         'Newton-Raphson iterations before a solve is reported as not converged',
         default=50, validators=(in_range(1, 1000),), constraints='in [1, 1000]'),
+    ParameterSpec(
+        'near_singularity_condition', DOUBLE,
+        'A solution whose dimensionless Jacobian condition number exceeds this is published '
+        'with a WARN status on /diagnostics: it lies near a singularity',
+        default=100.0, validators=(in_range(1.0, math.inf),), constraints='>= 1; .inf allowed'),
+    ParameterSpec(
+        'assembly_guard_length_change', DOUBLE,
+        'Assembly-mode guard: when no leg changed by more than this since the last solution, '
+        'metres, the new solution must lie within the two limits below of the last one',
+        default=0.005, validators=(finite, in_range(0.0, 1.0)), constraints='in [0, 1]'),
+    ParameterSpec(
+        'assembly_guard_position_change', DOUBLE,
+        'Assembly-mode guard: largest move of the platform origin allowed for such a small '
+        'change of the lengths, metres',
+        default=0.05, validators=(finite, in_range(0.0, 10.0, low_inclusive=False)),
+        constraints='in (0, 10]'),
+    ParameterSpec(
+        'assembly_guard_angle_change_deg', DOUBLE,
+        'Assembly-mode guard: largest rotation of the platform allowed for such a small '
+        'change of the lengths, degrees',
+        default=10.0, validators=(finite, in_range(0.0, 180.0, low_inclusive=False)),
+        constraints='in (0, 180]'),
 )
 
 QUEUE_PARAMETERS = (

@@ -18,13 +18,17 @@ Trajectory node: plays a ramp described as the paper's Table 3 on ``target_pose`
 Publishes ``target_pose`` (geometry_msgs/msg/Pose, base frame, metres). In ``table`` mode it
 publishes the table's rows, one every ``row_period``; in ``interpolate`` mode it samples the
 ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup tables
-do. Once, or looping.
+do. Once, or looping. Before playing, it checks every pose it would publish against the
+limits of the geometry (the same parameters as ik_node) and refuses to start, listing the
+failing samples, rather than play half of the ramp.
 """
 
 from geometry_msgs.msg import Pose
+import numpy as np
 from rclpy.node import Node
 
-from stewart_kinematics import parameter_spec
+from stewart_kinematics import limits, parameter_spec
+from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.message_conversions import pose_to_message
 from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
@@ -32,6 +36,8 @@ from stewart_kinematics.trajectory import Ramp
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
+#: How many failing samples a refusal lists in full.
+LISTED_FAILURES = 10
 
 
 class TrajectoryNode(Node):
@@ -40,12 +46,14 @@ class TrajectoryNode(Node):
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.RAMP_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS)
         self.settings = values
         self.ramp = Ramp.from_table(*(values[name] for name in (
             'position_start', 'position_step', 'position_end',
             'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')))
         self.rows = self.ramp.rows
+        check_samples(Geometry.from_parameters(values), *self.planned_samples())
         self.publisher = self.create_publisher(Pose, 'target_pose', values['queue_depth'])
         self.published = 0
         self.row_index = 0
@@ -55,6 +63,21 @@ class TrajectoryNode(Node):
         self.get_logger().info(
             f'{values["mode"]} ramp of {len(self.rows)} rows, '
             + ('looping' if values['loop'] else 'once'))
+
+    def planned_samples(self):
+        """
+        Return the times (seconds from the start of a pass) and poses the node will publish.
+
+        In interpolate mode the timer's jitter moves the real sample times a little; the ramp
+        is linear between rows, so those poses lie between samples checked here.
+        """
+        if self.settings['mode'] == 'table':
+            times = np.arange(len(self.rows)) * self.settings['row_period']
+            return times, self.rows
+        duration = self.settings['duration']
+        times = np.append(np.arange(0.0, duration, 1.0 / self.settings['publish_rate']),
+                          duration)
+        return times, self.ramp.sample(times, duration)
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
@@ -105,6 +128,28 @@ class TrajectoryNode(Node):
         if not self.settings['loop']:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
+
+
+def check_samples(geometry, times, poses):
+    """
+    Refuse a ramp any of whose samples breaks a limit of ``geometry``.
+
+    :param times: seconds from the start of a pass, shape (N,).
+    :param poses: the samples, ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
+    :raises ValueError: listing the failing samples (time, pose, every violation).
+    """
+    failures = [(index, violations) for index, violations
+                in enumerate(limits.check_poses(geometry, poses)) if violations]
+    if not failures:
+        return
+    lines = [
+        f'sample {index} at t={times[index]:.3f} s, pose '
+        f'{np.round(poses[index], 6).tolist()}: ' + '; '.join(map(str, violations))
+        for index, violations in failures[:LISTED_FAILURES]]
+    more = len(failures) - LISTED_FAILURES
+    raise ValueError(
+        f'ramp refused: {len(failures)} of {len(poses)} samples break the limits of the '
+        'geometry:\n  ' + '\n  '.join(lines) + (f'\n  ... and {more} more' if more > 0 else ''))
 
 
 def main(args=None) -> int:

@@ -41,13 +41,15 @@ NODE_SPECS = {
     'ik_node': parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
     'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
                 + parameter_spec.QUEUE_PARAMETERS),
-    'trajectory_node': parameter_spec.RAMP_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+    'trajectory_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS
+                        + parameter_spec.QUEUE_PARAMETERS),
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {
-    'ik_node': (IkNode, ('paper_platform.yaml', 'solver.yaml')),
-    'fk_node': (FkNode, ('paper_platform.yaml', 'solver.yaml')),
-    'trajectory_node': (TrajectoryNode, ('table3_ramp.yaml',)),
+    'ik_node': (IkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
+    'fk_node': (FkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
+    'trajectory_node': (TrajectoryNode, ('paper_platform.yaml', 'example_limits.yaml',
+                                         'table3_ramp.yaml')),
 }
 
 
@@ -179,7 +181,7 @@ def test_ik_and_fk_see_the_same_geometry(nodes):
     assert_allclose(ik.geometry.base_joints, fk.geometry.base_joints, atol=0.0)
     assert_allclose(ik.geometry.platform_joints, fk.geometry.platform_joints, atol=0.0)
     assert_allclose(ik.geometry.home_pose, fk.geometry.home_pose, atol=0.0)
-    assert fk.solver_settings == {'tolerance': 1e-12, 'max_iterations': 50}
+    assert (fk.settings['tolerance'], fk.settings['max_iterations']) == (1e-12, 50)
 
 
 def test_geometry_from_yaml_reads_the_paper_platform():

@@ -60,6 +60,12 @@ TABLE3 = [tuple(v / 1000.0 for v in row[:3]) + tuple(math.radians(v) for v in ro
           for row in TABLE3_MM_DEG]
 
 
+def counts(node):
+    """Return the node's (received, published, rejected) message counters."""
+    accounting = node.accounting
+    return accounting.received, accounting.published, accounting.rejected
+
+
 def quaternion_from_euler(alpha, beta, gamma):
     """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
     ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
@@ -154,7 +160,7 @@ def test_table3_rows_come_back_as_their_poses(start, spin_until):
         assert_pose_message(probe.poses[-1], TABLE3[row], 1e-9)
         # Warm start: the next solve starts from this solution.
         assert_allclose(node.last_pose, TABLE3[row], rtol=0.0, atol=1e-9)
-    assert (node.received, node.published, node.rejected) == (11, 11, 0)
+    assert counts(node) == (11, 11, 0)
 
 
 def test_bare_and_offset_arrays_are_accepted(start, spin_until):
@@ -183,15 +189,15 @@ def test_bad_lengths_are_rejected_and_the_node_keeps_working(start, spin_until):
     ]
     for values in bad:
         probe.publisher.publish(lengths_message(values))
-    assert spin_until(executor, lambda: node.rejected >= len(bad)), (
-        f'{node.rejected} of {len(bad)} bad arrays rejected')
+    assert spin_until(executor, lambda: node.accounting.rejected >= len(bad)), (
+        f'{node.accounting.rejected} of {len(bad)} bad arrays rejected')
     assert len(probe.poses) == 1
     # A rejected array leaves the warm start where the last good solution put it.
     assert_allclose(node.last_pose, TABLE3[5], rtol=0.0, atol=1e-9)
     send_and_wait(spin_until, executor, probe, lengths_message(good), 2)
     assert len(probe.poses) == 2
     assert_pose_message(probe.poses[-1], TABLE3[6], 1e-9)
-    assert (node.received, node.published, node.rejected) == (8, 2, 6)
+    assert counts(node) == (8, 2, 6)
 
 
 def test_lengths_beyond_the_limits_are_rejected(start, spin_until):
@@ -202,20 +208,20 @@ def test_lengths_beyond_the_limits_are_rejected(start, spin_until):
     send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(0)), 1)
     assert len(probe.poses) == 1
     assert_pose_message(probe.poses[0], TABLE3[0], 1e-9)
-    assert node.rejected == 1
+    assert node.accounting.rejected == 1
 
 
 def test_tolerance_change_at_run_time(start, spin_until):
     """A valid tolerance is applied to the solver settings; -1.0 is refused and changes nothing."""
     node, probe, executor = start()
-    assert node.solver_settings == {'tolerance': 1e-12, 'max_iterations': 50}
+    assert (node.settings['tolerance'], node.settings['max_iterations']) == (1e-12, 50)
     [result] = node.set_parameters([Parameter('tolerance', value=1e-9)])
     assert result.successful, result.reason
-    assert node.solver_settings['tolerance'] == 1e-9
+    assert node.settings['tolerance'] == 1e-9
     [result] = node.set_parameters([Parameter('tolerance', value=-1.0)])
     assert not result.successful
     assert 'tolerance' in result.reason and '-1.0' in result.reason
-    assert node.solver_settings['tolerance'] == 1e-9
+    assert node.settings['tolerance'] == 1e-9
     assert node.get_parameter('tolerance').value == 1e-9
     send_and_wait(spin_until, executor, probe, lengths_message(table_lengths(3)), 1)
     assert_pose_message(probe.poses[0], TABLE3[3], 1e-6)
@@ -226,9 +232,9 @@ def test_max_iterations_change_is_used_by_the_solver(start, spin_until):
     node, probe, executor = start()
     [result] = node.set_parameters([Parameter('max_iterations', value=1)])
     assert result.successful, result.reason
-    assert node.solver_settings['max_iterations'] == 1
+    assert node.settings['max_iterations'] == 1
     probe.publisher.publish(lengths_message(table_lengths(10)))
-    assert spin_until(executor, lambda: node.rejected >= 1)
+    assert spin_until(executor, lambda: node.accounting.rejected >= 1)
     assert probe.poses == []
     [result] = node.set_parameters([Parameter('max_iterations', value=50)])
     assert result.successful, result.reason

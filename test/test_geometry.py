@@ -206,14 +206,21 @@ def test_bad_leg_length_limits_raise(low, high):
 
 def test_home_pose_outside_limits_raises_naming_the_legs():
     """A maximum between leg 3 (0.701 m) and the others (0.719 m) names legs 1, 2, 4, 5, 6."""
-    with pytest.raises(ValueError, match=r'home pose puts leg\(s\) 1, 2, 4, 5, 6 at'):
+    with pytest.raises(ValueError, match='home pose breaks the limits') as raised:
         paper_geometry(leg_length_max=0.71)
+    message = str(raised.value)
+    for leg in (1, 2, 4, 5, 6):
+        assert f'leg {leg}: leg_length_max 0.71 m' in message
+    assert 'leg 3' not in message
 
 
 def test_home_pose_below_minimum_raises_naming_the_leg():
     """A minimum above leg 3's home length (0.701 m) names leg 3 only."""
-    with pytest.raises(ValueError, match=r'home pose puts leg\(s\) 3 at'):
+    with pytest.raises(ValueError, match='home pose breaks the limits') as raised:
         paper_geometry(leg_length_min=0.71, leg_length_max=1.0)
+    message = str(raised.value)
+    assert 'leg 3: leg_length_min 0.71 m broken by 0.00885' in message
+    assert 'leg 1' not in message
 
 
 def test_limits_around_home_are_accepted():
@@ -246,14 +253,20 @@ def test_fields_cannot_be_reassigned():
         geometry.leg_length_max = 2.0
 
 
-def test_leg_length_violations_name_leg_and_limit():
-    """Lengths outside the limits give one sentence per leg; allowed lengths give none."""
-    geometry = paper_geometry(leg_length_min=0.5, leg_length_max=1.0)
-    assert geometry.leg_length_violations([0.7] * 6) == []
-    reasons = geometry.leg_length_violations([0.4, 0.7, 0.7, 0.7, 0.7, 1.2])
-    assert len(reasons) == 2
-    assert 'leg 1' in reasons[0] and 'leg_length_min' in reasons[0] and '0.400000' in reasons[0]
-    assert 'leg 6' in reasons[1] and 'leg_length_max' in reasons[1] and '1.200000' in reasons[1]
+def test_joint_angle_and_condition_limits_are_validated():
+    """Cone angles must be in (0, pi] and the condition limit at least 1."""
+    with pytest.raises(ValueError, match='base_joint_max_angle'):
+        paper_geometry(base_joint_max_angle=0.0)
+    with pytest.raises(ValueError, match='platform_joint_max_angle'):
+        paper_geometry(platform_joint_max_angle=4.0)
+    with pytest.raises(ValueError, match='max_jacobian_condition'):
+        paper_geometry(max_jacobian_condition=0.5)
+
+
+def test_home_pose_must_be_away_from_the_singularity_margin():
+    """A condition limit below the home pose's (about 9.5) refuses the geometry."""
+    with pytest.raises(ValueError, match='platform: max_jacobian_condition 5'):
+        paper_geometry(max_jacobian_condition=5.0)
 
 
 def test_from_parameters_builds_the_paper_geometry():
@@ -319,7 +332,7 @@ def test_from_yaml_bad_value_names_parameter_and_value(tmp_path):
 def test_from_yaml_bad_geometry_names_file_and_problem(tmp_path):
     """Limits that exclude the home pose raise ValueError naming the file and the legs."""
     path = write_file(tmp_path, paper_yaml_section() + '    leg_length_max: 0.5\n')
-    with pytest.raises(ValueError, match=r'params\.yaml: the home pose puts leg\(s\)'):
+    with pytest.raises(ValueError, match=r'params\.yaml: the home pose breaks the limits: leg'):
         Geometry.from_yaml(path)
 
 

@@ -47,6 +47,12 @@ TABLE3_END = (0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0), math.r
 TILTED = (-0.02, 0.03, 0.45, math.radians(-5.0), math.radians(8.0), math.radians(-30.0))
 
 
+def counts(node):
+    """Return the node's (received, published, rejected) message counters."""
+    accounting = node.accounting
+    return accounting.received, accounting.published, accounting.rejected
+
+
 def paper_joints():
     """Return the base and platform joints of config/paper_platform.yaml as lists of triples."""
     with open(PLATFORM_FILE, encoding='utf-8') as stream:
@@ -176,7 +182,7 @@ def test_leg_lengths_match_the_paper_equation(start, spin_until):
     """Home, the last Table 3 row and a tilted pose give the lengths of equation 1."""
     node, probe, executor = start()
     home_lengths = expected_lengths(HOME)
-    assert_allclose(node.home_lengths, home_lengths, rtol=0.0, atol=1e-12)
+    assert_allclose(node.geometry.home_leg_lengths, home_lengths, rtol=0.0, atol=1e-12)
     for count, pose in enumerate((HOME, TABLE3_END, TILTED), start=1):
         send_and_wait(spin_until, executor, probe, message_of(pose), count)
         lengths, extensions = probe.lengths[-1], probe.extensions[-1]
@@ -187,14 +193,14 @@ def test_leg_lengths_match_the_paper_equation(start, spin_until):
         assert_allclose(extensions.data, [w - h for w, h in zip(wanted, home_lengths)],
                         rtol=0.0, atol=1e-12)
     assert_allclose(probe.extensions[0].data, [0.0] * 6, rtol=0.0, atol=1e-15)
-    assert (node.received, node.published, node.rejected) == (3, 3, 0)
+    assert counts(node) == (3, 3, 0)
 
 
 def test_home_lengths_are_the_documented_values(start):
     """The node's home lengths match the values printed in the kinematics docstring."""
     node, _, _ = start()
     assert_allclose(
-        node.home_lengths,
+        node.geometry.home_leg_lengths,
         [0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488], atol=1e-8)
 
 
@@ -207,7 +213,7 @@ def test_quaternion_of_norm_two_is_normalised(start, spin_until):
     wanted = expected_lengths(TILTED)
     for message in probe.lengths:
         assert_allclose(message.data, wanted, rtol=0.0, atol=1e-12)
-    assert node.rejected == 0
+    assert node.accounting.rejected == 0
 
 
 def test_bad_poses_are_rejected_and_the_node_keeps_working(start, spin_until):
@@ -226,7 +232,7 @@ def test_bad_poses_are_rejected_and_the_node_keeps_working(start, spin_until):
     send_and_wait(spin_until, executor, probe, message_of(TABLE3_END), 1)
     assert (len(probe.lengths), len(probe.extensions)) == (1, 1)
     assert_allclose(probe.lengths[0].data, expected_lengths(TABLE3_END), rtol=0.0, atol=1e-12)
-    assert (node.received, node.published, node.rejected) == (5, 1, 4)
+    assert counts(node) == (5, 1, 4)
 
 
 def test_pose_out_of_reach_is_rejected(start, spin_until):
@@ -241,7 +247,7 @@ def test_pose_out_of_reach_is_rejected(start, spin_until):
     send_and_wait(spin_until, executor, probe, message_of(HOME), 1)
     assert (len(probe.lengths), len(probe.extensions)) == (1, 1)
     assert_allclose(probe.lengths[0].data, expected_lengths(HOME), rtol=0.0, atol=1e-12)
-    assert (node.received, node.published, node.rejected) == (3, 1, 2)
+    assert counts(node) == (3, 1, 2)
 
 
 def test_target_pose_remap(start, spin_until):

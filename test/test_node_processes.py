@@ -42,7 +42,7 @@ import pytest
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.ik_node import WARNING_PERIOD
+from stewart_kinematics.message_accounting import WARNING_PERIOD
 from stewart_kinematics.node_processes import NodeProcess
 
 #: Seconds to wait for discovery or data.
@@ -326,7 +326,8 @@ def test_trajectory_node_plays_table3(client, start_node, config_directory):
     received = []
     client.node.create_subscription(Pose, 'target_pose', received.append, CLIENT_DEPTH)
     node = start_node('trajectory_node', [
-        '--ros-args', '--params-file', str(config_directory / 'table3_ramp.yaml'),
+        '--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+        '--params-file', str(config_directory / 'table3_ramp.yaml'),
         '-p', 'row_period:=0.1', '-p', 'min_subscribers:=1'])
 
     client.wait(lambda: len(received) >= len(TABLE3), '11 poses on target_pose', [node])

@@ -32,7 +32,8 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
 ], ids=['geometry', 'solver', 'queue', 'ramp'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
-    assert parameter_spec.markdown_table(specs) in README
+    assert parameter_spec.markdown_table(specs) in README, (
+        'README.md is out of date: run .venv/bin/python scripts/update_readme_tables.py')
 
 
 def test_the_two_commands_exist_and_are_executable():

@@ -38,7 +38,8 @@ import yaml
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')
-RAMP_ARGS = ['--ros-args', '--params-file', RAMP_FILE]
+PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
+RAMP_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', RAMP_FILE]
 
 #: The paper's Table 3 row by row: X, Y, Z in mm, alpha, beta, gamma in degrees.
 TABLE3_MM_DEG = [

@@ -1,0 +1,171 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Reachability: every reason a pose, or a set of leg lengths, is not allowed.
+
+The limits are those of :class:`stewart_kinematics.Geometry`:
+
+- leg length: ``leg_length_min <= l_i <= leg_length_max`` (actuator stroke);
+- joint cone angle: the angle between leg ``i`` and its direction at the home pose, seen from
+  the base joint (base frame) and from the platform joint (platform frame), is at most
+  ``base_joint_max_angle`` and ``platform_joint_max_angle``; the home direction is the joint's
+  neutral axis, as a joint is mounted to sit centred there;
+- singularity margin: the condition number of the dimensionless Jacobian (see
+  :func:`jacobian_condition`) is at most ``max_jacobian_condition``.
+
+Like a hexapod controller's "is this pose valid?", the checks return every violation (which
+leg, which limit, by how much), not only the first. Nothing here imports ROS.
+"""
+
+from dataclasses import dataclass
+import math
+from typing import List, Optional
+
+import numpy as np
+
+from stewart_kinematics.kinematics import as_poses, leg_vectors
+from stewart_kinematics.rotations import euler_zyx_to_matrix
+
+
+@dataclass(frozen=True)
+class Violation:
+    """
+    One limit that a pose or a set of leg lengths breaks.
+
+    :param limit: the limit's parameter name, such as ``leg_length_max``.
+    :param leg: the leg concerned, 1..6, or ``None`` for the whole platform.
+    :param value: the value reached, in ``unit``.
+    :param allowed: the limit, in ``unit``.
+    :param unit: ``m``, ``deg`` or ``''`` (condition number).
+    """
+
+    limit: str
+    leg: Optional[int]
+    value: float
+    allowed: float
+    unit: str
+
+    @property
+    def excess(self) -> float:
+        """By how much the limit is broken, in ``unit``, always positive."""
+        return abs(self.value - self.allowed)
+
+    def __str__(self):
+        unit = f' {self.unit}' if self.unit else ''
+        subject = f'leg {self.leg}' if self.leg else 'platform'
+        return (f'{subject}: {self.limit} {self.allowed:.6g}{unit} broken by '
+                f'{self.excess:.6g}{unit} (value {self.value:.6g}{unit})')
+
+
+def leg_length_violations(geometry, lengths) -> List[Violation]:
+    """
+    Every leg length outside ``[leg_length_min, leg_length_max]``.
+
+    :param lengths: leg lengths l_1..l_6 in metres, shape (6,).
+    """
+    violations = []
+    for leg, length in enumerate(np.asarray(lengths, dtype=float), start=1):
+        if length < geometry.leg_length_min:
+            violations.append(Violation('leg_length_min', leg, length, geometry.leg_length_min,
+                                        'm'))
+        elif length > geometry.leg_length_max:
+            violations.append(Violation('leg_length_max', leg, length, geometry.leg_length_max,
+                                        'm'))
+    return violations
+
+
+def joint_angles(geometry, position, rotation):
+    """
+    Cone angles of the joints: each leg's angle to its home direction, radians.
+
+    :param position: platform position in the base frame, metres, shape (3,) or (N, 3).
+    :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
+    :returns: ``(base_angles, platform_angles)``, each shape (6,) or (N, 6): at the base joint
+        measured in the base frame, at the platform joint measured in the platform frame.
+    """
+    legs = leg_vectors(geometry, position, rotation)
+    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    home = geometry.home_leg_directions
+    home_rotation = euler_zyx_to_matrix(geometry.home_pose[3:])
+    # In the platform frame: R^T u now against R_home^T u_home.
+    platform_now = np.swapaxes(np.swapaxes(rotation, -1, -2) @ np.swapaxes(directions, -1, -2),
+                               -1, -2)
+    platform_home = home @ home_rotation
+    return _angle_between(directions, home), _angle_between(platform_now, platform_home)
+
+
+def jacobian_condition(geometry, position, rotation):
+    """
+    Condition number of the dimensionless Jacobian: how close the pose is to a singularity.
+
+    The rows are ``[u_i, (R p_i x u_i) / rho]``: leg directions and their moment arms divided
+    by ``rho``, the RMS distance of the platform joints from their centroid, so that
+    translation and rotation weigh alike. 1 is ideal; it grows without bound at a singularity,
+    where the platform gains a motion that no leg resists.
+
+    :param position: metres, shape (3,) or (N, 3).
+    :param rotation: shape (3, 3) or (N, 3, 3).
+    :returns: shape () or (N,); ``inf`` at an exact singularity.
+    """
+    legs = leg_vectors(geometry, position, rotation)
+    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    rotated = np.swapaxes(np.asarray(rotation, dtype=float) @ geometry.platform_joints.T, -1, -2)
+    moments = np.cross(rotated, directions) / geometry.platform_radius
+    singular_values = np.linalg.svd(np.concatenate([directions, moments], axis=-1),
+                                    compute_uv=False)
+    with np.errstate(divide='ignore'):
+        return singular_values[..., 0] / singular_values[..., -1]
+
+
+def check_pose(geometry, position, rotation) -> List[Violation]:
+    """
+    Every limit that one pose breaks; empty when the pose is allowed.
+
+    :param position: platform position in the base frame, metres, shape (3,).
+    :param rotation: platform-to-base rotation matrix, shape (3, 3).
+    """
+    lengths = np.linalg.norm(leg_vectors(geometry, position, rotation), axis=-1)
+    violations = leg_length_violations(geometry, lengths)
+    base_angles, platform_angles = joint_angles(geometry, position, rotation)
+    for limit, angles, allowed in (
+            ('base_joint_max_angle', base_angles, geometry.base_joint_max_angle),
+            ('platform_joint_max_angle', platform_angles, geometry.platform_joint_max_angle)):
+        for leg in np.flatnonzero(angles > allowed):
+            violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
+                                        math.degrees(allowed), 'deg'))
+    if math.isfinite(geometry.max_jacobian_condition):
+        condition = float(jacobian_condition(geometry, position, rotation))
+        if not condition <= geometry.max_jacobian_condition:
+            violations.append(Violation('max_jacobian_condition', None, condition,
+                                        geometry.max_jacobian_condition, ''))
+    return violations
+
+
+def check_poses(geometry, poses) -> List[List[Violation]]:
+    """
+    Every limit that each of a batch of poses breaks.
+
+    :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (N, 6).
+    :returns: one list per pose, empty for an allowed pose.
+    """
+    poses = np.atleast_2d(as_poses(poses))
+    rotations = euler_zyx_to_matrix(poses[:, 3:])
+    return [check_pose(geometry, pose[:3], rotation)
+            for pose, rotation in zip(poses, rotations)]
+
+
+def _angle_between(a, b):
+    # atan2 of |a x b| and a . b is accurate for small and large angles alike.
+    return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))
