@@ -153,6 +153,7 @@ class Geometry:
         """
         values = parameter_spec.read_parameter_file(path, node_name)
         try:
+            parameter_spec.check_known_names(values, 'the file')
             return cls.from_parameters(values)
         except ValueError as error:
             raise ValueError(f'{path}: {error}') from error

@@ -15,7 +15,8 @@
 """The ``main()`` shared by the nodes: start-up errors, spinning and a clean stop."""
 
 import rclpy
-from rclpy._rclpy_pybind11 import RCLError
+# rclpy exposes these two only from its C extension.
+from rclpy._rclpy_pybind11 import RCLError, UnknownROSArgsError
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 
@@ -37,22 +38,26 @@ def run_node(node_class, name: str, args=None) -> int:
     """
     try:
         rclpy.init(args=args)
-    except RCLError as error:
+    except (RCLError, UnknownROSArgsError) as error:
         # rcl rejects unreadable parameter files and malformed --ros-args here.
         rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
         return EXIT_START_FAILED
-    node = None
     try:
         node = node_class()
+    except (ParameterException, ValueError) as error:
+        rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
+        rclpy.try_shutdown()
+        return EXIT_START_FAILED
+    except KeyboardInterrupt:
+        rclpy.try_shutdown()
+        return 0
+    try:
         executor = SingleThreadedExecutor()
         executor.add_node(node)
         # Spinning in slices rather than rclpy.spin(): a signal that lands between two waits
         # of a blocking spin can leave it waiting forever (ros2/rclpy#1166).
         while rclpy.ok():
             executor.spin_once(timeout_sec=SPIN_SLICE)
-    except (ParameterException, ValueError) as error:
-        rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
-        return EXIT_START_FAILED
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except RCLError:
@@ -60,7 +65,6 @@ def run_node(node_class, name: str, args=None) -> int:
         if rclpy.ok():
             raise
     finally:
-        if node is not None:
-            node.destroy_node()
+        node.destroy_node()
         rclpy.try_shutdown()
     return 0

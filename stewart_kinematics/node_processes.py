@@ -42,21 +42,21 @@ def isolated_ros_environment():
     """
     Set up ``os.environ`` so that ROS traffic stays on this machine and on a free domain.
 
-    Sets ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST`` and ``ROS_LOG_DIR`` unless already set,
-    and reserves a free ``ROS_DOMAIN_ID`` (holding a local port for it, as ROS's
-    ``domain_coordinator`` does) unless one is set. Child processes inherit the environment.
-    Restores ``os.environ`` on exit.
+    Always sets ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST`` and reserves a free
+    ``ROS_DOMAIN_ID`` (holding a local port for it, as ROS's ``domain_coordinator`` does),
+    whatever the caller's environment says: the demo, the tests and the benchmarks must neither
+    reach the network nor meet another run. Sets ``ROS_LOG_DIR`` unless already set. Child
+    processes inherit the environment. Restores ``os.environ`` on exit.
 
     :yields: the ``ROS_DOMAIN_ID`` in use, as a string.
     """
     saved = dict(os.environ)
     with contextlib.ExitStack() as stack:
-        os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+        os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
         if 'ROS_LOG_DIR' not in os.environ:
             os.environ['ROS_LOG_DIR'] = stack.enter_context(
                 tempfile.TemporaryDirectory(prefix='stewart_ros_log_'))
-        if 'ROS_DOMAIN_ID' not in os.environ:
-            os.environ['ROS_DOMAIN_ID'] = str(stack.enter_context(_free_domain_id()))
+        os.environ['ROS_DOMAIN_ID'] = str(stack.enter_context(_free_domain_id()))
         try:
             yield os.environ['ROS_DOMAIN_ID']
         finally:

@@ -26,6 +26,7 @@ that names the parameter, the value and what is allowed. Nothing here imports RO
 
 import array
 from dataclasses import dataclass
+import difflib
 import math
 from typing import Any, Callable, Optional, Tuple
 
@@ -83,15 +84,15 @@ class ParameterSpec:
                 return (f"parameter '{self.name}' is required ({self.description}); set it in "
                         'a parameter file')
             return ''
-        if self.value_type == DOUBLE and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
+        # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
         if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
                 self.value_type == INTEGER and isinstance(value, bool)):
+            hint = ' (write 1.0, not 1)' if self.value_type == DOUBLE else ''
             return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
-                    f'({type(value).__name__})')
-        if self.value_type == DOUBLE_ARRAY and not all(
-                isinstance(item, (int, float)) and not isinstance(item, bool) for item in value):
-            return f"parameter '{self.name}' must be a list of numbers, got {list(value)!r}"
+                    f'({type(value).__name__}){hint}')
+        if self.value_type == DOUBLE_ARRAY and not all(isinstance(item, float) for item in value):
+            return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
+                    f'{list(value)!r} (write 1.0, not 1)')
         for validator in self.validators:
             reason = validator(self.name, value)
             if reason:
@@ -307,6 +308,30 @@ RAMP_PARAMETERS = (
         'that no pose is published to nobody',
         default=0, read_only=True, validators=(in_range(0, 1000),), constraints='in [0, 1000]'),
 )
+
+
+def all_specs():
+    """Return every parameter spec of the package, each name once."""
+    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+
+
+def check_known_names(names, context: str) -> None:
+    """
+    Refuse parameter names that no node of the package declares: a typo would go unnoticed.
+
+    :param names: the names given, such as the keys of a parameter file's sections.
+    :param context: where they come from, for the message.
+    :raises ValueError: naming the unknown names and the closest known ones.
+    """
+    known = {spec.name for spec in all_specs()}
+    unknown = sorted(set(names) - known)
+    if unknown:
+        suggestions = {name: difflib.get_close_matches(name, known, n=1) for name in unknown}
+        described = ', '.join(
+            f"'{name}'" + (f" (did you mean '{suggestions[name][0]}'?)"
+                           if suggestions[name] else '') for name in unknown)
+        raise ValueError(f'unknown parameter(s) {described} in {context}; known parameters: '
+                         + ', '.join(sorted(known)))
 
 
 def defaults(specs) -> dict:

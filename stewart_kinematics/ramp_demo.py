@@ -24,6 +24,7 @@ Exits 0 when every pose came back within the required error.
 
 import argparse
 import math
+import os
 from pathlib import Path
 import sys
 import time
@@ -69,7 +70,8 @@ def main(argv=None) -> int:
     options = parse_arguments(argv)
     from stewart_kinematics.node_processes import isolated_ros_environment
     with isolated_ros_environment() as domain:
-        print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST', flush=True)
+        print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE='
+              f'{os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}', flush=True)
         return run_demo(options.config_dir or default_config_directory(),
                         options.row_period, options.timeout)
 
@@ -132,9 +134,7 @@ def _ramp_rows(ramp_file):
     from stewart_kinematics.trajectory import Ramp
     values = parameter_spec.defaults(parameter_spec.RAMP_PARAMETERS)
     values.update(parameter_spec.read_parameter_file(ramp_file, 'trajectory_node'))
-    return Ramp.from_table(*(values[name] for name in (
-        'position_start', 'position_step', 'position_end',
-        'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg'))).rows
+    return Ramp.from_parameters(values).rows
 
 
 def _fail(reason, nodes) -> int:

@@ -17,6 +17,7 @@
 import time
 
 from geometry_msgs.msg import Pose
+import rclpy
 from rclpy.node import Node
 from std_msgs.msg import Float64MultiArray
 
@@ -65,7 +66,6 @@ class RampRecorder(Node):
 
         :returns: whether the condition holds.
         """
-        import rclpy
         while not condition():
             if time.monotonic() > deadline or not all(p.running() for p in processes):
                 return False

@@ -56,9 +56,15 @@ def declare_parameters(node, specs, on_change=None) -> dict:
     :returns: parameter name -> value, as set by parameter files, overrides or defaults.
     :raises rclpy.exceptions.ParameterException: if a value has the wrong type or is not
         allowed; the message gives the spec's reason.
-    :raises ValueError: if a required parameter is not set.
+    :raises ValueError: if a required parameter is not set, or a parameter file or override
+        names a parameter that no node of the package declares.
     """
     by_name = {spec.name: spec for spec in specs}
+    # rclpy ignores overrides nobody declares: a misspelt name would silently keep a default.
+    parameter_spec.check_known_names(
+        [name for name in node._parameter_overrides
+         if not (node.has_parameter(name) or name.startswith('qos_overrides.'))],
+        f'the parameters given to {node.get_fully_qualified_name()}')
 
     def validate(parameters):
         for parameter in parameters:

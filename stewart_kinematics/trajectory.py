@@ -20,7 +20,8 @@ go from ``start`` to ``end`` in equal steps. It can be played row by row, or sam
 time like the paper's clock-driven lookup tables, which interpolate linearly between rows.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+import math
 
 import numpy as np
 
@@ -45,6 +46,7 @@ class Ramp:
     start: np.ndarray
     step: np.ndarray
     end: np.ndarray
+    step_count: int = field(init=False)
 
     AXES = ('X', 'Y', 'Z', 'alpha', 'beta', 'gamma')
 
@@ -56,27 +58,50 @@ class Ramp:
             array.flags.writeable = False
             object.__setattr__(self, name, array)
         counts = {}
-        for axis, start, step, end in zip(self.AXES, self.start, self.step, self.end):
+        for index, (axis, start, step, end) in enumerate(
+                zip(self.AXES, self.start, self.step, self.end)):
             span = end - start
             scale = max(abs(start), abs(end), abs(step), 1.0)
+            # Messages in the units of the parameter files: metres, and degrees for angles.
+            shown = (lambda value: f'{value:g} m') if index < 3 else (
+                lambda value: f'{math.degrees(value):g} deg')
             if step == 0.0:
                 if abs(span) > STEP_COUNT_TOLERANCE * scale:
                     raise ValueError(
-                        f'ramp axis {axis}: step is 0 but start {start:g} differs from '
-                        f'end {end:g}')
+                        f'ramp axis {axis}: step is 0 but start {shown(start)} differs from '
+                        f'end {shown(end)}')
                 continue
             count = span / step
-            if count < -STEP_COUNT_TOLERANCE or abs(count - round(count)) > (
-                    STEP_COUNT_TOLERANCE * scale / abs(step)):
+            if count < -STEP_COUNT_TOLERANCE:
                 raise ValueError(
-                    f'ramp axis {axis}: from {start:g} to {end:g} is not a whole number of '
-                    f'steps of {step:g} ({count:g} steps)')
+                    f'ramp axis {axis}: step {shown(step)} points away from the end: from '
+                    f'{shown(start)} to {shown(end)} needs a step of the other sign')
+            if abs(count - round(count)) > STEP_COUNT_TOLERANCE * scale / abs(step):
+                raise ValueError(
+                    f'ramp axis {axis}: from {shown(start)} to {shown(end)} is not a whole '
+                    f'number of steps of {shown(step)} ({count:g} steps)')
             counts[axis] = int(round(count))
         if len(set(counts.values())) > 1:
             raise ValueError(
                 'every ramp axis must take the same number of steps, got '
                 + ', '.join(f'{axis}: {count}' for axis, count in counts.items()))
         object.__setattr__(self, 'step_count', next(iter(counts.values()), 0))
+
+    @classmethod
+    def from_parameters(cls, values: dict) -> 'Ramp':
+        """
+        Build a ramp from the trajectory node's parameter values (metres and degrees).
+
+        :param values: parameter name -> value, with the names of
+            :data:`stewart_kinematics.parameter_spec.RAMP_PARAMETERS`.
+        :raises ValueError: naming the axis and its parameters, if the table is inconsistent.
+        """
+        names = ('position_start', 'position_step', 'position_end',
+                 'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')
+        try:
+            return cls.from_table(*(values[name] for name in names))
+        except ValueError as error:
+            raise ValueError(f'{error} (parameters {", ".join(names)})') from error
 
     @classmethod
     def from_table(cls, position_start, position_step, position_end,

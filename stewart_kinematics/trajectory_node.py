@@ -49,9 +49,7 @@ class TrajectoryNode(Node):
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS
             + parameter_spec.QUEUE_PARAMETERS)
         self.settings = values
-        self.ramp = Ramp.from_table(*(values[name] for name in (
-            'position_start', 'position_step', 'position_end',
-            'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')))
+        self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
         check_samples(Geometry.from_parameters(values), *self.planned_samples())
         self.publisher = self.create_publisher(Pose, 'target_pose', values['queue_depth'])

@@ -349,3 +349,12 @@ def test_from_yaml_node_section_overrides_wildcard(tmp_path):
     shared = Geometry.from_yaml(path)
     assert shared.leg_length_max == math.inf
     assert_allclose(shared.home_pose[:3], [0.0, 0.0, HOME_Z], rtol=0.0, atol=0.0)
+
+
+def test_from_yaml_refuses_a_misspelt_parameter_name(tmp_path):
+    """A typo in a parameter name is refused with the closest known name."""
+    text = PAPER_PLATFORM_YAML.read_text(encoding='utf-8')
+    path = tmp_path / 'typo.yaml'
+    path.write_text(text.replace('leg_length_max:', 'leg_length_mx:'), encoding='utf-8')
+    with pytest.raises(ValueError, match="did you mean 'leg_length_max'"):
+        Geometry.from_yaml(path)

@@ -286,3 +286,23 @@ def test_main_returns_1_for_a_missing_parameter_file(tmp_path):
     missing = str(tmp_path / 'no_such_file.yaml')
     assert ik_node.main(['ik_node', '--ros-args', '--params-file', missing]) == 1
     assert not rclpy.ok()
+
+
+def test_main_returns_1_for_a_misspelt_parameter_name(tmp_path, capfd):
+    """A typo in a parameter name stops the node naming it, instead of keeping a default."""
+    with open(PLATFORM_FILE, encoding='utf-8') as stream:
+        document = yaml.safe_load(stream)
+    parameters = document['/**']['ros__parameters']
+    parameters['leg_length_mx'] = parameters.pop('leg_length_max')
+    bad_file = tmp_path / 'typo.yaml'
+    bad_file.write_text(yaml.safe_dump(document), encoding='utf-8')
+    assert ik_node.main(['ik_node', '--ros-args', '--params-file', str(bad_file)]) == 1
+    assert "'leg_length_mx' (did you mean 'leg_length_max'?)" in capfd.readouterr().err
+
+
+def test_main_returns_1_for_a_misspelt_ros_option(capfd):
+    """An unknown --ros-args option is a fatal start-up error, not a traceback."""
+    assert ik_node.main(['ik_node', '--ros-args', '--params-fle', PLATFORM_FILE]) == 1
+    error = capfd.readouterr().err
+    assert 'cannot start' in error and '--params-fle' in error
+    assert 'Traceback' not in error

@@ -43,7 +43,6 @@ GOOD_VALUES = [
     ('home_position', [0.0, 0.0, 0.4325]),
     ('home_orientation_deg', [-180.0, 0.0, 180.0]),
     ('leg_length_min', 0.0),
-    ('leg_length_min', 0),
     ('leg_length_max', 1.2),
     ('leg_length_max', math.inf),
     ('tolerance', 1e-12),
@@ -53,7 +52,7 @@ GOOD_VALUES = [
     ('queue_depth', 1),
     ('queue_depth', 10000),
     ('position_start', (0.0, 0.0, 0.4325)),
-    ('position_step', [0, 0, 1]),
+    ('position_step', [0.0, 0.0, 1.0]),
     ('orientation_end_deg', [15.0, -15.0, 20.0]),
     ('orientation_step_deg', [-400.0, 0.0, 400.0]),
     ('mode', 'table'),
@@ -232,10 +231,18 @@ def test_double_array_from_rclpy_is_checked(name):
     assert f"'{name}'" in SPECS[name].check(bad)
 
 
-def test_double_accepts_integer_value():
-    """An integer for a double parameter is taken as the same float."""
-    assert SPECS['duration'].check(10) == ''
-    assert SPECS['duration'].check(0) != ''
+def test_double_refuses_integer_value_as_rcl_does():
+    """An integer for a double parameter is refused with a hint, as rcl refuses YAML's 1."""
+    assert SPECS['duration'].check(10.0) == ''
+    assert 'write 1.0, not 1' in SPECS['duration'].check(10)
+    assert 'write 1.0, not 1' in SPECS['position_step'].check([0, 0, 1])
+
+
+def test_unknown_names_are_refused_with_a_suggestion():
+    """A misspelt parameter name is refused, naming the closest known one."""
+    parameter_spec.check_known_names(['tolerance', 'base_joints'], 'test')
+    with pytest.raises(ValueError, match="'tolerence' \\(did you mean 'tolerance'\\?\\)"):
+        parameter_spec.check_known_names(['tolerence', 'base_joints'], 'test')
 
 
 def test_defaults_maps_names_to_defaults():

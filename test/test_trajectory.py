@@ -202,3 +202,19 @@ def test_malformed_pose_raises_naming_it(name):
     arguments[name] = [0.0, 0.0, math.nan, 0.0, 0.0, 0.0]
     with pytest.raises(ValueError, match=rf'ramp {name}'):
         Ramp(**arguments)
+
+
+def test_step_of_the_wrong_sign_is_named_in_degrees():
+    """A step pointing away from the end says so, in the parameter's degrees."""
+    with pytest.raises(ValueError, match=r'alpha: step -1\.5 deg points away from the end'):
+        Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
+                        [0.0, 0.0, 0.0], [-1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
+
+
+def test_from_parameters_names_the_parameters():
+    """Ramp.from_parameters adds the parameter names to a table error."""
+    values = {'position_start': [0.0, 0.0, 0.0], 'position_step': [0.1, 0.0, 0.0],
+              'position_end': [0.35, 0.0, 0.0], 'orientation_start_deg': [0.0, 0.0, 0.0],
+              'orientation_step_deg': [0.0, 0.0, 0.0], 'orientation_end_deg': [0.0, 0.0, 0.0]}
+    with pytest.raises(ValueError, match='not a whole number.*parameters position_start'):
+        Ramp.from_parameters(values)
