@@ -28,14 +28,16 @@ import sys
 from stewart_kinematics import parameter_spec
 
 README = Path(__file__).resolve().parent.parent / 'README.md'
-TABLE = re.compile(r'(<!-- parameters: (\w+) -->\n).*?(\n<!-- end parameters -->)', re.DOTALL)
+# The table between the markers may be empty (a new group): `.*?` then matches nothing.
+TABLE = re.compile(r'(<!-- parameters: (\w+) -->\n)(?:.*?\n)??(<!-- end parameters -->)',
+                   re.DOTALL)
 
 
 def render(text: str) -> str:
     """Return ``text`` with every marked table regenerated."""
     def table(match):
         specs = getattr(parameter_spec, f'{match.group(2)}_PARAMETERS')
-        return match.group(1) + parameter_spec.markdown_table(specs) + match.group(3)
+        return match.group(1) + parameter_spec.markdown_table(specs) + '\n' + match.group(3)
     return TABLE.sub(table, text)
 
 

@@ -15,8 +15,12 @@
 """
 Forward kinematics node: six leg lengths in, the platform pose out.
 
-Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6). Publishes
-``estimated_pose`` (geometry_msgs/msg/Pose, base frame, metres). Each solve starts from the last
+Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), ``joint_states``
+(sensor_msgs/msg/JointState, legs ``leg_1`` .. ``leg_6``) and ``leg_velocities``
+(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose, base frame,
+metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the stamp of the joint
+state it comes from, or the time of arrival) and ``estimated_twist`` (geometry_msgs/msg/Twist,
+base frame: from leg velocities, at the last pose). Each solve starts from the last
 good solution, since a platform moves continuously, and falls back to the home pose when that
 fails. Lengths out of the limits, lengths that neither start solves, a solution out of the
 limits and a jump to another assembly mode publish nothing: the reason goes to the log and to
@@ -26,19 +30,26 @@ with a WARN status.
 
 import math
 
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
-from std_msgs.msg import Float64MultiArray
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import forward_kinematics
 from stewart_kinematics.message_accounting import MessageAccounting, violation_values
-from stewart_kinematics.message_conversions import leg_lengths_from_message, pose_to_message
+from stewart_kinematics.message_conversions import (
+    leg_lengths_from_message,
+    legs_from_joint_state,
+    pose_to_message,
+    twist_to_message,
+)
 from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.velocities import platform_twist
 
 
 class FkNode(Node):
@@ -50,7 +61,7 @@ class FkNode(Node):
         values = declare_parameters(
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS,
+            + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.settings.__setitem__)
         self.settings.update(values)
         self.geometry = Geometry.from_parameters(values)
@@ -58,8 +69,16 @@ class FkNode(Node):
         self.last_lengths = None
         depth = values['queue_depth']
         self.pose_publisher = self.create_publisher(Pose, 'estimated_pose', depth)
+        self.stamped_publisher = self.create_publisher(
+            PoseStamped, 'estimated_pose_stamped', depth)
+        self.twist_publisher = self.create_publisher(Twist, 'estimated_twist', depth)
         self.accounting = MessageAccounting(self, 'leg_lengths')
+        self.joint_state_accounting = MessageAccounting(self, 'joint_states')
+        self.velocity_accounting = MessageAccounting(self, 'leg_velocities')
         self.create_subscription(Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
+        self.create_subscription(JointState, 'joint_states', self.on_joint_states, depth)
+        self.create_subscription(
+            Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
         self.get_logger().info(
             f'ready: tolerance {values["tolerance"]:g} m, '
             f'at most {values["max_iterations"]} iterations')
@@ -72,39 +91,77 @@ class FkNode(Node):
         except ValueError as error:
             self.accounting.reject(f'leg_lengths rejected: {error}')
             return
+        header = Header(stamp=self.get_clock().now().to_msg())
+        self.estimate(lengths, header, self.accounting)
+
+    def on_joint_states(self, message: JointState):
+        """Solve for the pose of a joint state; with leg velocities, publish the twist too."""
+        self.joint_state_accounting.receive()
+        try:
+            lengths, velocities = legs_from_joint_state(message)
+        except ValueError as error:
+            self.joint_state_accounting.reject(f'joint_states rejected: {error}')
+            return
+        if self.estimate(lengths, message.header, self.joint_state_accounting) and (
+                velocities is not None):
+            self.twist_publisher.publish(twist_to_message(
+                platform_twist(self.geometry, self.last_pose, velocities)))
+
+    def on_leg_velocities(self, message: Float64MultiArray):
+        """Publish the platform twist of leg velocities at the last estimated pose."""
+        self.velocity_accounting.receive()
+        try:
+            velocities = np.asarray(message.data, dtype=float)[message.layout.data_offset:]
+            twist = platform_twist(self.geometry, self.last_pose, velocities)
+        except ValueError as error:
+            self.velocity_accounting.reject(f'leg_velocities rejected: {error}')
+            return
+        self.velocity_accounting.publish(self.twist_publisher, twist_to_message(twist))
+
+    def estimate(self, lengths, header: Header, accounting: MessageAccounting) -> bool:
+        """
+        Publish the pose of six leg lengths, or reject them with the reason.
+
+        :param header: stamp to carry to ``estimated_pose_stamped``; its frame is base_frame.
+        :returns: whether a pose was published.
+        """
         violations = limits.leg_length_violations(self.geometry, lengths)
         if violations:
-            self.accounting.reject(
-                'leg_lengths rejected, out of the limits: ' + '; '.join(map(str, violations)),
-                violation_values(violations))
-            return
+            accounting.reject(
+                f'{accounting.topic} rejected, out of the limits: '
+                + '; '.join(map(str, violations)), violation_values(violations))
+            return False
         result = self.solve(lengths)
         if not result.converged:
-            self.accounting.reject(
+            accounting.reject(
                 f'no pose found for leg lengths {np.round(lengths, 6).tolist()} m: '
                 f'{result.reason}',
                 (('iterations', result.iterations), ('residual_m', f'{result.residual:.3g}')))
-            return
+            return False
         position, rotation = result.pose[:3], euler_zyx_to_matrix(result.pose[3:])
         violations = limits.check_pose(self.geometry, position, rotation)
         if violations:
-            self.accounting.reject(
+            accounting.reject(
                 'the pose of these leg lengths is out of the limits: '
                 + '; '.join(map(str, violations)), violation_values(violations))
-            return
+            return False
         jump = self.assembly_mode_jump(lengths, result.pose)
         if jump:
-            self.accounting.reject(jump)
-            return
+            accounting.reject(jump)
+            return False
         condition = float(limits.jacobian_condition(self.geometry, position, rotation))
         if condition > self.settings['near_singularity_condition']:
-            self.accounting.warn(
+            accounting.warn(
                 f'estimated pose is near a singularity: Jacobian condition number '
                 f'{condition:.4g} > near_singularity_condition '
                 f'{self.settings["near_singularity_condition"]:g}',
                 (('jacobian_condition', f'{condition:.4g}'),))
         self.last_pose, self.last_lengths = result.pose, lengths
-        self.accounting.publish(self.pose_publisher, pose_to_message(result.pose))
+        pose = pose_to_message(result.pose)
+        accounting.publish(self.pose_publisher, pose)
+        stamped_header = Header(stamp=header.stamp, frame_id=self.settings['base_frame'])
+        self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
+        return True
 
     def solve(self, lengths):
         """Solve from the last good pose, then from the home pose if that fails."""
@@ -135,7 +192,7 @@ class FkNode(Node):
         if (position_change <= self.settings['assembly_guard_position_change']
                 and angle_change <= self.settings['assembly_guard_angle_change_deg']):
             return ''
-        return (f'leg_lengths rejected: the solution jumped {position_change:.4g} m and '
+        return (f'rejected: the solution jumped {position_change:.4g} m and '
                 f'{angle_change:.4g} deg from the last one while no leg changed by more than '
                 f'{length_change:.4g} m: another assembly mode, not a motion')
 

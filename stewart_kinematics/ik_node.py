@@ -15,74 +15,128 @@
 """
 Inverse kinematics node: a commanded platform pose in, six leg lengths out.
 
-Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame, metres). Publishes
-``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6) and ``leg_extensions``
-(the same layout: each length minus its length at the home pose, the paper's q_i). A pose
-that breaks a limit of the geometry is refused, never clamped: see
-:mod:`stewart_kinematics.limits` and :mod:`stewart_kinematics.message_accounting`.
+Subscribes ``target_pose`` (geometry_msgs/msg/Pose) or ``target_pose_stamped``
+(geometry_msgs/msg/PoseStamped), base frame, metres, and ``target_twist``
+(geometry_msgs/msg/Twist, base frame). Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray,
+metres, leg 1..6), ``leg_extensions`` (the same layout: each length minus its length at the
+home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, legs ``leg_1``
+.. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
+change of the lengths for a twist at the last pose, m/s). A pose that breaks a limit of the
+geometry is refused, never clamped: see :mod:`stewart_kinematics.limits` and
+:mod:`stewart_kinematics.message_accounting`.
 """
 
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
-from std_msgs.msg import Float64MultiArray
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import leg_lengths
 from stewart_kinematics.message_accounting import MessageAccounting, violation_values
 from stewart_kinematics.message_conversions import (
+    joint_state_message,
     legs_to_message,
     position_quaternion_from_message,
     QUATERNION_NORM_TOLERANCE,
+    twist_from_message,
 )
 from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
+from stewart_kinematics.velocities import twist_jacobian
 
 
 class IkNode(Node):
-    """Publish the leg lengths of every pose received on ``target_pose``, or refuse it."""
+    """Publish the leg lengths of every pose received, or refuse it."""
 
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS)
         self.geometry = Geometry.from_parameters(values)
+        self.base_frame = values['base_frame']
+        self.last_pose = None
         depth = values['queue_depth']
         self.lengths_publisher = self.create_publisher(Float64MultiArray, 'leg_lengths', depth)
         self.extensions_publisher = self.create_publisher(
             Float64MultiArray, 'leg_extensions', depth)
+        # Commands, not measurements: joint_states is left to the actuators' driver.
+        self.joint_command_publisher = self.create_publisher(
+            JointState, 'joint_commands', depth)
+        self.velocities_publisher = self.create_publisher(
+            Float64MultiArray, 'leg_velocities', depth)
         self.accounting = MessageAccounting(self, 'target_pose')
+        self.stamped_accounting = MessageAccounting(self, 'target_pose_stamped')
+        self.twist_accounting = MessageAccounting(self, 'target_twist')
         self.create_subscription(Pose, 'target_pose', self.on_target_pose, depth)
+        self.create_subscription(
+            PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
+        self.create_subscription(Twist, 'target_twist', self.on_target_twist, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
 
     def on_target_pose(self, message: Pose):
-        """Turn a pose into leg lengths and extensions, or reject it with every reason."""
+        """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""
         self.accounting.receive()
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
+        self.solve(message, header, self.accounting)
+
+    def on_target_pose_stamped(self, message: PoseStamped):
+        """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
+        self.stamped_accounting.receive()
+        frame = message.header.frame_id
+        if frame and frame != self.base_frame:
+            self.stamped_accounting.reject(
+                f"target_pose_stamped rejected: it is in frame '{frame}', not in base_frame "
+                f"'{self.base_frame}'; transform it first")
+            return
+        self.solve(message.pose, message.header, self.stamped_accounting)
+
+    def solve(self, pose: Pose, header: Header, accounting: MessageAccounting):
+        """Publish the leg lengths, extensions and joint states of a pose, or reject it."""
         try:
-            position, quaternion, norm = position_quaternion_from_message(message)
+            position, quaternion, norm = position_quaternion_from_message(pose)
         except ValueError as error:
-            self.accounting.reject(f'target_pose rejected: {error}')
+            accounting.reject(f'{accounting.topic} rejected: {error}')
             return
         if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
             self.get_logger().warning(
-                f'target_pose orientation has norm {norm:.9g}, not 1: normalised (said once)',
-                once=True)
+                f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
+                '(said once)', once=True)
         rotation = quaternion_to_matrix(quaternion)
         violations = limits.check_pose(self.geometry, position, rotation)
         if violations:
-            self.accounting.reject(
-                'target_pose rejected, out of the limits: '
+            accounting.reject(
+                f'{accounting.topic} rejected, out of the limits: '
                 + '; '.join(str(violation) for violation in violations),
                 violation_values(violations))
             return
         lengths = leg_lengths(self.geometry, position, rotation)
-        self.accounting.publish(self.lengths_publisher, legs_to_message(lengths))
+        self.last_pose = position, rotation
+        accounting.publish(self.lengths_publisher, legs_to_message(lengths))
         self.extensions_publisher.publish(
             legs_to_message(lengths - self.geometry.home_leg_lengths))
+        self.joint_command_publisher.publish(joint_state_message(header, lengths))
+
+    def on_target_twist(self, message: Twist):
+        """Publish the leg velocities of a platform twist at the last accepted pose."""
+        self.twist_accounting.receive()
+        if self.last_pose is None:
+            self.twist_accounting.reject(
+                'target_twist rejected: no pose accepted yet, so no Jacobian to apply it at')
+            return
+        try:
+            twist = twist_from_message(message)
+        except ValueError as error:
+            self.twist_accounting.reject(f'target_twist rejected: {error}')
+            return
+        velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
+        self.twist_accounting.publish(self.velocities_publisher, legs_to_message(velocities))
 
 
 def main(args=None) -> int:

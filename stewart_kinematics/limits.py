@@ -35,7 +35,7 @@ from typing import List, Optional
 
 import numpy as np
 
-from stewart_kinematics.kinematics import as_poses, leg_vectors
+from stewart_kinematics.kinematics import as_leg_lengths, as_poses, leg_vectors
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
 
@@ -74,9 +74,13 @@ def leg_length_violations(geometry, lengths) -> List[Violation]:
     Every leg length outside ``[leg_length_min, leg_length_max]``.
 
     :param lengths: leg lengths l_1..l_6 in metres, shape (6,).
+    :raises ValueError: if the lengths are not six finite, positive numbers.
     """
+    lengths = as_leg_lengths(lengths)
+    if lengths.shape != (6,):
+        raise ValueError(f'expected the 6 lengths of one pose, got shape {lengths.shape}')
     violations = []
-    for leg, length in enumerate(np.asarray(lengths, dtype=float), start=1):
+    for leg, length in enumerate(lengths, start=1):
         if length < geometry.leg_length_min:
             violations.append(Violation('leg_length_min', leg, length, geometry.leg_length_min,
                                         'm'))
@@ -135,7 +139,14 @@ def check_pose(geometry, position, rotation) -> List[Violation]:
 
     :param position: platform position in the base frame, metres, shape (3,).
     :param rotation: platform-to-base rotation matrix, shape (3, 3).
+    :raises ValueError: if the position or the rotation is malformed or not finite.
     """
+    position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+    if position.shape != (3,) or rotation.shape != (3, 3):
+        raise ValueError(f'expected a position (3,) and a rotation (3, 3), got shapes '
+                         f'{position.shape} and {rotation.shape}')
+    if not (np.all(np.isfinite(position)) and np.all(np.isfinite(rotation))):
+        raise ValueError(f'pose must be finite, got position {position.tolist()}')
     lengths = np.linalg.norm(leg_vectors(geometry, position, rotation), axis=-1)
     violations = leg_length_violations(geometry, lengths)
     base_angles, platform_angles = joint_angles(geometry, position, rotation)

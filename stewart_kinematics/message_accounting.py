@@ -41,6 +41,7 @@ class MessageAccounting:
 
     def __init__(self, node, input_topic: str):
         self.node = node
+        self.topic = input_topic
         self.status_name = f'{node.get_fully_qualified_name()}: {input_topic}'
         self.received = self.published = self.rejected = 0
         self.last_rejection = ''

@@ -19,8 +19,9 @@ The only module besides the nodes that imports message types. Every ``*_from_mes
 raises ``ValueError`` with a sentence a user can act on when a message cannot be used.
 """
 
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, Twist
 import numpy as np
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
 from stewart_kinematics.kinematics import as_leg_lengths
@@ -32,6 +33,8 @@ from stewart_kinematics.rotations import (
 
 #: Label of the one layout dimension of a leg array message.
 LEG_DIMENSION_LABEL = 'leg'
+#: Names of the six legs as prismatic joints in sensor_msgs/msg/JointState, leg 1..6.
+LEG_JOINT_NAMES = tuple(f'leg_{leg}' for leg in range(1, 7))
 #: A quaternion whose norm is this far from 1 is normalised with a warning.
 QUATERNION_NORM_TOLERANCE = 1e-6
 
@@ -107,3 +110,65 @@ def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
         raise ValueError(
             f'expected 6 leg lengths (leg 1..6, metres), got {data.size}: {data.tolist()}')
     return as_leg_lengths(data)
+
+
+def joint_state_message(header, lengths, velocities=None) -> JointState:
+    """
+    sensor_msgs/msg/JointState of the six legs as prismatic joints ``leg_1`` .. ``leg_6``.
+
+    :param header: std_msgs/msg/Header to carry through (stamp of the pose it comes from).
+    :param lengths: positions, the leg lengths in metres, shape (6,).
+    :param velocities: leg velocities in metres per second, shape (6,), or ``None`` if unknown
+        (the message's velocity list is then empty, as JointState allows).
+    """
+    message = JointState(header=header, name=list(LEG_JOINT_NAMES))
+    message.position = [float(value) for value in lengths]
+    if velocities is not None:
+        message.velocity = [float(value) for value in velocities]
+    return message
+
+
+def legs_from_joint_state(message: JointState):
+    """
+    Leg lengths, and leg velocities if given, from a JointState naming ``leg_1`` .. ``leg_6``.
+
+    Joints are matched by name, in any order; other joints are ignored.
+
+    :returns: ``(lengths, velocities)``: metres, shape (6,); m/s, shape (6,) or ``None``.
+    :raises ValueError: if a leg is missing, or a length is not finite and positive.
+    """
+    names = list(message.name)
+    missing = [name for name in LEG_JOINT_NAMES if name not in names]
+    if missing or len(message.position) != len(names):
+        raise ValueError(
+            f'joint state must give a position for each of {", ".join(LEG_JOINT_NAMES)}; '
+            f'missing: {", ".join(missing) or "positions"}')
+    order = [names.index(name) for name in LEG_JOINT_NAMES]
+    lengths = as_leg_lengths(np.asarray(message.position, dtype=float)[order])
+    velocities = None
+    if len(message.velocity) == len(names):
+        velocities = np.asarray(message.velocity, dtype=float)[order]
+        if not np.all(np.isfinite(velocities)):
+            raise ValueError(f'leg velocities must be finite, got {velocities.tolist()}')
+    return lengths, velocities
+
+
+def twist_from_message(message: Twist) -> np.ndarray:
+    """
+    ``[vx, vy, vz, wx, wy, wz]`` (m/s, rad/s) of a geometry_msgs/msg/Twist.
+
+    :raises ValueError: if a component is not finite.
+    """
+    twist = np.array([message.linear.x, message.linear.y, message.linear.z,
+                      message.angular.x, message.angular.y, message.angular.z])
+    if not np.all(np.isfinite(twist)):
+        raise ValueError(f'twist must be finite (m/s, rad/s), got {twist.tolist()}')
+    return twist
+
+
+def twist_to_message(twist) -> Twist:
+    """geometry_msgs/msg/Twist of ``[vx, vy, vz, wx, wy, wz]`` (m/s, rad/s)."""
+    message = Twist()
+    message.linear.x, message.linear.y, message.linear.z = (float(v) for v in twist[:3])
+    message.angular.x, message.angular.y, message.angular.z = (float(v) for v in twist[3:])
+    return message

@@ -234,6 +234,14 @@ SOLVER_PARAMETERS = (
         constraints='in (0, 180]'),
 )
 
+FRAME_PARAMETERS = (
+    ParameterSpec(
+        'base_frame', STRING,
+        'Name of the base frame: the frame_id of published stamped poses; a stamped pose '
+        'received in another frame (not empty) is refused, since this package does no tf',
+        default='stewart_base', read_only=True, constraints='any'),
+)
+
 QUEUE_PARAMETERS = (
     ParameterSpec(
         'queue_depth', INTEGER,
@@ -312,7 +320,8 @@ RAMP_PARAMETERS = (
 
 def all_specs():
     """Return every parameter spec of the package, each name once."""
-    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS + QUEUE_PARAMETERS
+            + RAMP_PARAMETERS)
 
 
 def check_known_names(names, context: str) -> None:

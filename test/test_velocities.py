@@ -1,0 +1,88 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+"""Velocity kinematics against finite differences of the closed-form inverse kinematics."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+from stewart_kinematics import Geometry, leg_lengths
+from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.velocities import leg_velocities, platform_twist, twist_jacobian
+
+GEOMETRY = Geometry.from_yaml(
+    Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml')
+POSES = np.array([
+    [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0],
+    [0.05, 0.075, 0.4825, math.radians(7.5), math.radians(-7.5), math.radians(10.0)],
+    [0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0), math.radians(20.0)],
+])
+TWISTS = np.array([
+    [0.1, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.5],
+    [0.1, -0.2, 0.05, 0.3, -0.1, 0.2],
+])
+
+
+def axis_angle_matrix(vector):
+    """Return the rotation by |vector| radians about vector (Rodrigues), written out."""
+    angle = float(np.linalg.norm(vector))
+    if angle == 0.0:
+        return np.eye(3)
+    x, y, z = np.asarray(vector) / angle
+    skew = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + math.sin(angle) * skew + (1.0 - math.cos(angle)) * skew @ skew
+
+
+def moved_lengths(pose, twist, dt):
+    """Return the leg lengths after moving with ``twist`` for ``dt`` seconds from ``pose``."""
+    rotation = axis_angle_matrix(np.asarray(twist[3:]) * dt) @ euler_zyx_to_matrix(pose[3:])
+    return leg_lengths(GEOMETRY, np.asarray(pose[:3]) + np.asarray(twist[:3]) * dt, rotation)
+
+
+@pytest.mark.parametrize('pose', POSES)
+@pytest.mark.parametrize('twist', TWISTS)
+def test_leg_velocities_match_finite_differences(pose, twist):
+    """Leg velocities equal the central difference of the lengths along the twist."""
+    dt = 1e-6
+    expected = (moved_lengths(pose, twist, dt) - moved_lengths(pose, twist, -dt)) / (2 * dt)
+    assert_allclose(leg_velocities(GEOMETRY, pose, twist), expected, rtol=0.0, atol=1e-8)
+
+
+def test_platform_twist_inverts_leg_velocities():
+    """platform_twist recovers the twist that produced the leg velocities, in a batch."""
+    velocities = leg_velocities(GEOMETRY, POSES, TWISTS)
+    assert velocities.shape == (3, 6)
+    assert_allclose(platform_twist(GEOMETRY, POSES, velocities), TWISTS, rtol=0.0, atol=1e-12)
+
+
+def test_pure_vertical_velocity_at_home():
+    """At home, rising at 1 m/s lengthens each leg at its vertical direction cosine."""
+    legs = GEOMETRY.platform_joints + [0.0, 0.0, 0.4325] - GEOMETRY.base_joints
+    expected = legs[:, 2] / np.linalg.norm(legs, axis=1)
+    velocities = leg_velocities(GEOMETRY, POSES[0], [0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+    assert_allclose(velocities, expected, rtol=0.0, atol=1e-15)
+
+
+def test_jacobian_shape_and_bad_input():
+    """The Jacobian is (6, 6) or (N, 6, 6); non-finite twists raise ValueError."""
+    rotation = euler_zyx_to_matrix(POSES[:, 3:])
+    assert twist_jacobian(GEOMETRY, POSES[0, :3], rotation[0]).shape == (6, 6)
+    assert twist_jacobian(GEOMETRY, POSES[:, :3], rotation).shape == (3, 6, 6)
+    with pytest.raises(ValueError, match='twists'):
+        leg_velocities(GEOMETRY, POSES[0], [math.nan] * 6)
+    with pytest.raises(ValueError, match='leg velocities'):
+        platform_twist(GEOMETRY, POSES[0], [0.0] * 5)
