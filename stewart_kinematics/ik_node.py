@@ -21,7 +21,9 @@ Subscribes ``target_pose`` (geometry_msgs/msg/Pose) or ``target_pose_stamped``
 metres, leg 1..6), ``leg_extensions`` (the same layout: each length minus its length at the
 home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, legs ``leg_1``
 .. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
-change of the lengths for a twist at the last pose, m/s). A pose that breaks a limit of the
+change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
+(visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
+break a limit in red, even for a refused pose). A pose that breaks a limit of the
 geometry is refused, never clamped: see :mod:`stewart_kinematics.limits` and
 :mod:`stewart_kinematics.message_accounting`.
 """
@@ -35,6 +37,7 @@ from std_msgs.msg import Float64MultiArray, Header
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import leg_lengths
+from stewart_kinematics.markers import platform_markers
 from stewart_kinematics.message_accounting import MessageAccounting, violation_values
 from stewart_kinematics.message_conversions import (
     joint_state_message,
@@ -47,6 +50,7 @@ from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
 from stewart_kinematics.velocities import twist_jacobian
+from visualization_msgs.msg import MarkerArray
 
 
 class IkNode(Node):
@@ -69,6 +73,7 @@ class IkNode(Node):
             JointState, 'joint_commands', depth)
         self.velocities_publisher = self.create_publisher(
             Float64MultiArray, 'leg_velocities', depth)
+        self.marker_publisher = self.create_publisher(MarkerArray, 'platform_markers', depth)
         self.accounting = MessageAccounting(self, 'target_pose')
         self.stamped_accounting = MessageAccounting(self, 'target_pose_stamped')
         self.twist_accounting = MessageAccounting(self, 'target_twist')
@@ -110,6 +115,12 @@ class IkNode(Node):
                 '(said once)', once=True)
         rotation = quaternion_to_matrix(quaternion)
         violations = limits.check_pose(self.geometry, position, rotation)
+        # Shown in RViz even when refused, with the offending legs in red: what was asked.
+        marker_header = Header(stamp=header.stamp, frame_id=self.base_frame)
+        self.marker_publisher.publish(platform_markers(
+            marker_header, self.geometry, position, rotation,
+            [violation.leg for violation in violations], self.get_namespace().strip('/')
+            or 'stewart_platform'))
         if violations:
             accounting.reject(
                 f'{accounting.topic} rejected, out of the limits: '

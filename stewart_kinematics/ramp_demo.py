@@ -23,7 +23,6 @@ Exits 0 when every pose came back within the required error.
 """
 
 import argparse
-import math
 import os
 from pathlib import Path
 import sys
@@ -62,6 +61,10 @@ def parse_arguments(argv):
                         help='seconds between two table rows (default 0.2)')
     parser.add_argument('--timeout', type=float, default=60.0,
                         help='seconds to wait for the nodes and the ramp (default 60)')
+    parser.add_argument('--figures', type=Path, default=Path('demo_output'),
+                        help='folder for the PNG figures (default demo_output/)')
+    parser.add_argument('--no-figures', action='store_true',
+                        help='print the tables only')
     return parser.parse_args(argv)
 
 
@@ -73,11 +76,17 @@ def main(argv=None) -> int:
         print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE='
               f'{os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}', flush=True)
         return run_demo(options.config_dir or default_config_directory(),
-                        options.row_period, options.timeout)
+                        options.row_period, options.timeout,
+                        None if options.no_figures else options.figures)
 
 
-def run_demo(config_directory: Path, row_period: float, timeout: float) -> int:
-    """Start the nodes, play the ramp, print the tables; see the module docstring."""
+def run_demo(config_directory: Path, row_period: float, timeout: float,
+             figure_directory=None) -> int:
+    """
+    Start the nodes, play the ramp, print the tables; see the module docstring.
+
+    :param figure_directory: where to write the PNG figures, or ``None`` for none.
+    """
     # Imported here so that --help works without a ROS environment.
     import rclpy
     from stewart_kinematics.node_processes import NodeProcess
@@ -117,7 +126,16 @@ def run_demo(config_directory: Path, row_period: float, timeout: float) -> int:
         recorder.destroy_node()
         rclpy.try_shutdown()
 
-    errors = print_tables(table_rows, recorder)
+    run = print_tables(table_rows, recorder)
+    # The ramp completed, so every row has its three messages.
+    errors = float(run['position_error'].max()), float(run['orientation_error'].max())
+    if figure_directory is not None:
+        from stewart_kinematics.plots import write_figures
+        run['times'] *= row_period
+        paths = write_figures(figure_directory, run['times'], run['received'], run['lengths'],
+                              run['estimates'], run['position_error'],
+                              run['orientation_error'])
+        print('\nfigures: ' + ', '.join(str(path) for path in paths))
     stopped = all(code == 0 for code in exit_codes)
     passed = (errors[0] <= MAX_POSITION_ERROR and errors[1] <= MAX_ORIENTATION_ERROR
               and stopped)
@@ -146,12 +164,13 @@ def _fail(reason, nodes) -> int:
 
 def print_tables(table_rows, recorder):
     """
-    Print the three tables and the round-trip errors; return the largest errors.
+    Print the three tables and the round-trip errors, and return the run's arrays.
 
     Errors are measured against the table's rows as the parameter file defines them, so that
     the conversions to and from messages on every topic count too.
 
-    :returns: ``(position error in metres, orientation error in radians)``.
+    :returns: dict of ``times`` (row indices), ``received``, ``lengths``, ``estimates``,
+        ``position_error`` (metres) and ``orientation_error`` (radians), one row per pose.
     """
     from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
     received = np.array(recorder.target_poses)
@@ -177,9 +196,9 @@ def print_tables(table_rows, recorder):
                  pose_header + ['error [m]', 'error [rad]'],
                  np.column_stack([pose_rows(estimates), position_error, orientation_error]),
                  '{:12.4f}', error_columns=2)
-    if count == 0:
-        return math.inf, math.inf
-    return float(position_error.max()), float(orientation_error.max())
+    return {'times': np.arange(count, dtype=float), 'received': received, 'lengths': lengths,
+            'estimates': estimates, 'position_error': position_error,
+            'orientation_error': orientation_error}
 
 
 def _print_table(title, header, rows, number_format, error_columns=0):

@@ -92,9 +92,26 @@ def printed_table(output, title):
 
 
 @pytest.fixture(scope='module')
-def demo_run():
+def figure_directory(tmp_path_factory):
+    """Return the folder the demo writes its figures to."""
+    return tmp_path_factory.mktemp('figures')
+
+
+@pytest.fixture(scope='module')
+def demo_run(figure_directory):
     """Exit code and printout of one ramp_demo run with the shipped configuration."""
-    return run_ramp_demo(['--row-period', '0.05', '--timeout', DEMO_TIMEOUT])
+    return run_ramp_demo(['--row-period', '0.05', '--timeout', DEMO_TIMEOUT,
+                          '--figures', str(figure_directory)])
+
+
+def test_ramp_demo_writes_the_four_figures(demo_run, figure_directory):
+    """The demo writes the paper's Figures 5, 7 and 9 and the round-trip error as PNG."""
+    code, output = demo_run
+    assert code == 0, output
+    for name in ('input_pose', 'leg_lengths', 'fk_pose', 'round_trip_error'):
+        path = figure_directory / f'{name}.png'
+        assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n', path
+        assert str(path) in output
 
 
 def test_ramp_demo_passes(demo_run):

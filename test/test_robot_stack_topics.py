@@ -143,3 +143,39 @@ def test_joint_state_with_velocities_gives_the_twist(ros, spin_until):
         executor.shutdown()
         fk.destroy_node()
         probe.destroy_node()
+
+
+def test_markers_show_the_platform_and_colour_violating_legs(ros, spin_until):
+    """platform_markers draws base, platform and legs; legs past a limit are red."""
+    from visualization_msgs.msg import MarkerArray
+    from rclpy.parameter import Parameter
+    ik = IkNode(cli_args=ARGS, parameter_overrides=[Parameter('leg_length_max', value=0.8)])
+    probe = ros.create_node('probe')
+    arrays = []
+    probe.create_subscription(MarkerArray, 'platform_markers', arrays.append, 10)
+    publisher = probe.create_publisher(PoseStamped, 'target_pose_stamped', 10)
+    executor = SingleThreadedExecutor()
+    executor.add_node(ik)
+    executor.add_node(probe)
+    try:
+        assert spin_until(executor, lambda: publisher.get_subscription_count() >= 1)
+        publisher.publish(stamped(POSE))
+        far = np.array([0.1, 0.15, 0.5325, math.radians(15), math.radians(-15), math.radians(20)])
+        publisher.publish(stamped(far))
+        assert spin_until(executor, lambda: len(arrays) >= 2)
+        base, platform, legs = arrays[0].markers
+        assert base.header.frame_id == 'stewart_base'
+        assert_allclose([[p.x, p.y, p.z] for p in base.points[:6]], GEOMETRY.base_joints)
+        tops = [[p.x, p.y, p.z] for p in legs.points[1::2]]
+        expected_lengths = inverse_kinematics(GEOMETRY, POSE)
+        assert_allclose(np.linalg.norm(np.array(tops) - GEOMETRY.base_joints, axis=1),
+                        expected_lengths, rtol=0, atol=1e-12)
+        assert all(colour.g > colour.r for colour in legs.colors)
+        far_lengths = inverse_kinematics(GEOMETRY, far)
+        red = [colour.r > colour.g for colour in arrays[1].markers[2].colors[::2]]
+        assert red == list(far_lengths > 0.8) and any(red)
+        assert ik.stamped_accounting.rejected == 1
+    finally:
+        executor.shutdown()
+        ik.destroy_node()
+        probe.destroy_node()
