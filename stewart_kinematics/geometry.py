@@ -122,6 +122,8 @@ class Geometry:
         :param values: parameter name -> value, with the names and units of
             :data:`stewart_kinematics.parameter_spec.GEOMETRY_PARAMETERS` (flat joint lists in
             metres, home orientation in degrees); a missing optional one takes its default.
+            With a ``pivot_point`` c, the geometry's platform joints are ``p_i - c``: poses
+            then place the pivot, and rotations turn the platform about it.
         :raises ValueError: naming the parameter, if a value is missing or not allowed.
         """
         specs = parameter_spec.GEOMETRY_PARAMETERS
@@ -134,7 +136,8 @@ class Geometry:
         return cls(
             base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
             platform_joints=np.reshape(
-                np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
+                np.asarray(merged['platform_joints'], dtype=float), (6, 3))
+            - np.asarray(merged['pivot_point'], dtype=float),
             home_pose=home_pose,
             leg_length_min=float(merged['leg_length_min']),
             leg_length_max=float(merged['leg_length_max']),

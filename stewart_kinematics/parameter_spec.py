@@ -157,6 +157,13 @@ GEOMETRY_PARAMETERS = (
         read_only=True, validators=(fixed_length(18), finite),
         constraints='18 finite values; 6 distinct, non-collinear joints'),
     ParameterSpec(
+        'pivot_point', DOUBLE_ARRAY,
+        'Centre of rotation (pivot point) in the platform frame, metres: every pose, on the '
+        'topics and in home_position, places the frame at this point, so that a pure rotation '
+        'turns the platform about it',
+        default=[0.0, 0.0, 0.0], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
         'home_position', DOUBLE_ARRAY,
         'Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; '
         'leg extensions are measured from it and forward kinematics starts from it',
