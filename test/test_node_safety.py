@@ -1,0 +1,627 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+In-process tests of the nodes' safety behaviour: limits, bad input, diagnostics, accounting.
+
+Each node is built with config/paper_platform.yaml and config/example_limits.yaml (plus
+solver.yaml or table3_ramp.yaml), with parameter overrides where a test needs tighter limits.
+A probe node feeds the node's input topic and records its outputs and ``/diagnostics``
+(diagnostic_msgs/msg/DiagnosticArray): a refused message must publish no output and one ERROR
+status that says why, and the counters on /diagnostics must add up.
+
+The poses used against the limits were chosen with the values printed beside them; the
+functions of stewart_kinematics.limits that give those values are tested in test_limits.py.
+"""
+
+import math
+from pathlib import Path
+import threading
+
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from geometry_msgs.msg import Pose
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from std_msgs.msg import Float64MultiArray
+
+from stewart_kinematics import forward_kinematics, Geometry, inverse_kinematics
+from stewart_kinematics import trajectory_node
+from stewart_kinematics.fk_node import FkNode
+from stewart_kinematics.ik_node import IkNode
+from stewart_kinematics.trajectory_node import TrajectoryNode
+import yaml
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
+LIMITS_FILE = str(CONFIG_DIRECTORY / 'example_limits.yaml')
+SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
+RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')
+IK_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', LIMITS_FILE]
+FK_ARGS = IK_ARGS + ['--params-file', SOLVER_FILE]
+RAMP_ARGS = IK_ARGS + ['--params-file', RAMP_FILE]
+
+HOME = (0.0, 0.0, 0.4325, 0.0, 0.0, 0.0)
+TILTED = (-0.02, 0.03, 0.45, math.radians(-5.0), math.radians(8.0), math.radians(-30.0))
+#: Last row of the paper's Table 3: 100 mm, 150 mm, 532.5 mm, 15 deg, -15 deg, 20 deg.
+TABLE3_END = (0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0), math.radians(20.0))
+#: Second row of Table 3: every leg differs from home by more than 5 mm (about 15 mm).
+TABLE3_ROW_1 = (0.01, 0.015, 0.4425, math.radians(1.5), math.radians(-1.5), math.radians(2.0))
+#: One step beyond the end of Table 3: legs 0.757 m to 0.854 m, inside example_limits, but
+#: leg 4 turns 36.7 deg at its platform joint (limit 35 deg); condition number about 18.
+BEYOND_TABLE3 = (0.11, 0.165, 0.5425, math.radians(16.5), math.radians(-16.5),
+                 math.radians(22.0))
+
+#: Tighter limits for the IK tests, on top of example_limits.yaml (legs 0.65 m to 0.90 m).
+IK_TIGHT_LIMITS = {'base_joint_max_angle_deg': 12.1, 'max_jacobian_condition': 12.0}
+#: Raised 0.1875 m: legs 1, 2, 4, 5, 6 are 0.904 m (> 0.90 m), leg 3 0.886 m; joints turn
+#: 2.2 deg; condition 11.6.
+STROKE_POSE = (0.0, 0.0, 0.62, 0.0, 0.0, 0.0)
+#: Moved 0.15 m along x: leg 3 turns 12.14 deg at its base joint (> 12.1 deg), the others at
+#: most 12.02 deg; legs 0.713 m to 0.758 m; condition 11.3.
+CONE_POSE = (0.15, 0.0, 0.4325, 0.0, 0.0, 0.0)
+#: Raised and tilted 15 deg about x and y: condition 13.3 (> 12); joints turn at most 8 deg
+#: at the base and 15 deg at the platform; legs 0.699 m to 0.835 m.
+SINGULAR_POSE = (0.0, 0.0, 0.5, math.radians(15.0), math.radians(15.0), 0.0)
+#: Leg lengths inside example_limits that no pose has (Newton-Raphson diverges from home,
+#: and from 2000 random starts none converges).
+IMPOSSIBLE_LENGTHS = [0.9, 0.65, 0.9, 0.65, 0.9, 0.65]
+
+
+# Messages and poses ---------------------------------------------------------------------------
+
+def quaternion_from_euler(alpha, beta, gamma):
+    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
+    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
+    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
+    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
+    quaternion = np.array([
+        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+    return -quaternion if quaternion[3] < 0.0 else quaternion
+
+
+def pose_message(position, quaternion):
+    """Build a Pose from a position and a quaternion (x, y, z, w)."""
+    message = Pose()
+    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
+    orientation = message.orientation
+    orientation.x, orientation.y, orientation.z, orientation.w = (float(v) for v in quaternion)
+    return message
+
+
+def message_of(pose, scale=1.0):
+    """Build the Pose message of (X, Y, Z, alpha, beta, gamma), quaternion times ``scale``."""
+    return pose_message(pose[:3], scale * quaternion_from_euler(*pose[3:]))
+
+
+def lengths_message(values):
+    """Build a bare Float64MultiArray of leg lengths."""
+    return Float64MultiArray(data=[float(v) for v in values])
+
+
+def paper_geometry():
+    """Return the paper's geometry, without limits."""
+    return Geometry.from_yaml(PLATFORM_FILE)
+
+
+def lengths_of(pose):
+    """Return the leg lengths of a pose by closed-form inverse kinematics."""
+    return inverse_kinematics(paper_geometry(), np.array(pose, dtype=float))
+
+
+def assert_pose_message(message, pose, tolerance=1e-9):
+    """Check a Pose against (X, Y, Z, alpha, beta, gamma): position, then quaternion."""
+    position = [message.position.x, message.position.y, message.position.z]
+    orientation = message.orientation
+    quaternion = [orientation.x, orientation.y, orientation.z, orientation.w]
+    assert_allclose(position, pose[:3], rtol=0.0, atol=tolerance)
+    assert_allclose(quaternion, quaternion_from_euler(*pose[3:]), rtol=0.0, atol=tolerance)
+
+
+# Diagnostics ----------------------------------------------------------------------------------
+
+def values_of(status):
+    """Return a DiagnosticStatus's key-value pairs as a dict."""
+    return {pair.key: pair.value for pair in status.values}
+
+
+def counters_of(status):
+    """Return the (received, published, rejected) counters a status carries, as integers."""
+    values = values_of(status)
+    return tuple(int(values[key]) for key in ('received', 'published', 'rejected'))
+
+
+def is_summary(status):
+    """Say whether a status is the periodic summary (OK 'running' or WARN 'N rejected')."""
+    return status.message == 'running' or 'message(s) rejected; last:' in status.message
+
+
+class Probe:
+    """A node that publishes a node's input and records its outputs and /diagnostics."""
+
+    def __init__(self, input_type=None, input_topic=None, outputs=()):
+        """Create the probe: ``outputs`` are (topic, type) pairs to record."""
+        self.node = Node('safety_probe')
+        self.publisher = (None if input_type is None
+                          else self.node.create_publisher(input_type, input_topic, 10))
+        self.received = {}
+        for topic, message_type in outputs:
+            self.received[topic] = []
+            self.node.create_subscription(message_type, topic, self.received[topic].append, 100)
+        self.statuses = []
+        self.node.create_subscription(
+            DiagnosticArray, '/diagnostics', lambda array: self.statuses.extend(array.status),
+            100)
+
+    def statuses_of(self, node, level=None):
+        """Return the statuses ``node`` published, of one level or of all."""
+        name = node.accounting.status_name
+        return [status for status in self.statuses
+                if status.name == name and (level is None or status.level == level)]
+
+    def errors(self, node):
+        """Return the ERROR statuses ``node`` published: one per refused message."""
+        return self.statuses_of(node, DiagnosticStatus.ERROR)
+
+
+@pytest.fixture
+def start(ros, spin_until):
+    """
+    Return a starter of a node and a Probe on one executor, with every topic connected.
+
+    ``start_nodes(node_class, cli_args, overrides, input_type, input_topic, outputs)`` returns
+    ``(node, probe, executor)``; ``overrides`` maps parameter names to values.
+    """
+    created = []
+    executor = SingleThreadedExecutor()
+
+    def start_nodes(node_class, cli_args, overrides, input_type, input_topic, outputs):
+        parameters = [Parameter(name, value=value) for name, value in overrides.items()]
+        node = node_class(cli_args=cli_args, parameter_overrides=parameters)
+        created.append(node)
+        probe = Probe(input_type, input_topic, outputs)
+        created.append(probe.node)
+        executor.add_node(node)
+        executor.add_node(probe.node)
+        recorded = {'/' + topic for topic, _ in outputs}
+        watched = [p for p in node.publishers if p.topic_name in recorded]
+        assert len(watched) == len(recorded)
+        watched.append(node.accounting.diagnostics)
+        [subscription] = [s for s in node.subscriptions if s.topic_name == '/' + input_topic]
+
+        def connected():
+            return (probe.publisher.get_subscription_count() >= 1
+                    and subscription.get_publisher_count() >= 1
+                    and all(p.get_subscription_count() >= 1 for p in watched))
+        assert spin_until(executor, connected), 'node and probe did not connect'
+        return node, probe, executor
+    yield start_nodes
+    executor.shutdown()
+    for node in created:
+        node.destroy_node()
+
+
+def start_ik(start, overrides=None):
+    """Start an IkNode with the example limits (and ``overrides``) and its probe."""
+    return start(IkNode, IK_ARGS, overrides or {}, Pose, 'target_pose',
+                 [('leg_lengths', Float64MultiArray), ('leg_extensions', Float64MultiArray)])
+
+
+def start_fk(start, overrides=None):
+    """Start an FkNode with the example limits (and ``overrides``) and its probe."""
+    return start(FkNode, FK_ARGS, overrides or {}, Float64MultiArray, 'leg_lengths',
+                 [('estimated_pose', Pose)])
+
+
+def wait_for_summary(spin_until, executor, probe, node, received):
+    """Spin until a summary status reports ``received`` messages, and return it."""
+    def found():
+        return [s for s in probe.statuses_of(node)
+                if is_summary(s) and counters_of(s)[0] == received]
+    assert spin_until(executor, found), (
+        f'no summary with received={received}: '
+        f'{[(s.message, values_of(s)) for s in probe.statuses_of(node)]}')
+    return found()[0]
+
+
+# ik_node --------------------------------------------------------------------------------------
+
+def test_ik_refuses_poses_beyond_each_limit_and_says_why(start, spin_until):
+    """Stroke, joint cone and singularity margin: no lengths, an ERROR naming leg and limit."""
+    node, probe, executor = start_ik(start, IK_TIGHT_LIMITS)
+    lengths, extensions = probe.received['leg_lengths'], probe.received['leg_extensions']
+    for pose in (STROKE_POSE, CONE_POSE, SINGULAR_POSE):
+        probe.publisher.publish(message_of(pose))
+    assert spin_until(executor, lambda: len(probe.errors(node)) >= 3), (
+        f'{len(probe.errors(node))} of 3 ERROR statuses')
+    # Poses from one publisher arrive in order: the answer to this good pose comes after any
+    # answer to the three bad ones, so one answer of each kind means they produced none.
+    probe.publisher.publish(message_of(HOME))
+    assert spin_until(executor, lambda: len(lengths) >= 1 and len(extensions) >= 1)
+    assert (len(lengths), len(extensions)) == (1, 1)
+    assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)
+    assert_allclose(extensions[0].data, np.zeros(6), rtol=0.0, atol=1e-15)
+
+    stroke, cone, singular = probe.errors(node)
+    for number, status in enumerate((stroke, cone, singular), start=1):
+        assert status.message.startswith('target_pose rejected, out of the limits: ')
+        assert status.hardware_id == 'stewart_platform'
+        assert counters_of(status) == (number, 0, number)
+
+    for leg in (1, 2, 4, 5, 6):
+        assert f'leg {leg}: leg_length_max 0.9 m broken by' in stroke.message
+        assert f'leg_length_max leg {leg}' in values_of(stroke)
+    assert 'leg 3' not in stroke.message
+    assert stroke.message.count('leg_length_max') == 5
+
+    assert 'leg 3: base_joint_max_angle 12.1 deg broken by' in cone.message
+    assert cone.message.count('base_joint_max_angle') == 1
+    assert values_of(cone)['base_joint_max_angle leg 3'].endswith('deg (limit 12.1 deg)')
+
+    assert 'platform: max_jacobian_condition 12 broken by' in singular.message
+    assert 'leg ' not in singular.message
+    assert float(values_of(singular)['max_jacobian_condition'].split()[0]) > 12.0
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (4, 1, 3)
+
+
+def test_ik_counts_every_message_as_one_output_or_one_rejection(start, spin_until, capfd):
+    """NaN, infinity, zero and NaN quaternions, out of reach: counted refusals, throttled log."""
+    node, probe, executor = start_ik(start)
+    unit = [0.0, 0.0, 0.0, 1.0]
+    good = [message_of(HOME), message_of(TILTED), message_of(TABLE3_END)]
+    bad = [
+        ('position must be finite', pose_message([math.nan, 0.0, 0.4325], unit)),
+        ('position must be finite', pose_message([0.0, 0.0, math.inf], unit)),
+        ('position must be finite', pose_message([0.0, -math.inf, 0.4325], unit)),
+        ('zero quaternion', pose_message([0.0, 0.0, 0.4325], [0.0, 0.0, 0.0, 0.0])),
+        ('quaternion components must be finite',
+         pose_message([0.0, 0.0, 0.4325], [0.0, math.nan, 0.0, 1.0])),
+        ('quaternion components must be finite',
+         pose_message([0.0, 0.0, 0.4325], [math.inf, 0.0, 0.0, 1.0])),
+        ('out of the limits', message_of(STROKE_POSE)),
+        ('out of the limits', message_of((0.0, 0.0, 0.3, 0.0, 0.0, 0.0))),
+    ]
+    bad_messages = [message for _, message in bad]
+    mixed = ([good[0]] + bad_messages[:3] + [good[1]] + bad_messages[3:6] + [good[2]]
+             + bad_messages[6:])
+    # One at a time: a burst longer than the queues (depth 10) would lose the oldest.
+    for count, message in enumerate(mixed, start=1):
+        probe.publisher.publish(message)
+        assert spin_until(executor, lambda: node.accounting.received >= count)
+    summary = wait_for_summary(spin_until, executor, probe, node, len(mixed))
+    assert counters_of(summary) == (11, 3, 8)
+    assert spin_until(executor, lambda: len(probe.received['leg_extensions']) >= 3)
+    assert len(probe.received['leg_lengths']) == 3
+    assert len(probe.received['leg_extensions']) == 3
+    for message, pose in zip(probe.received['leg_lengths'], (HOME, TILTED, TABLE3_END)):
+        assert_allclose(message.data, lengths_of(pose), rtol=0.0, atol=1e-12)
+
+    errors = probe.errors(node)
+    assert len(errors) == 8, [status.message for status in errors]
+    for status, (reason, _) in zip(errors, bad):
+        assert status.message.startswith('target_pose rejected')
+        assert reason in status.message, status.message
+    assert [counters_of(status)[2] for status in errors] == list(range(1, 9))
+    warnings = [s for s in probe.statuses_of(node, DiagnosticStatus.WARN) if is_summary(s)]
+    assert warnings and 'rejected; last: target_pose rejected' in warnings[0].message
+    # Every rejection is on /diagnostics, but the log says it at most once a second.
+    captured = capfd.readouterr()
+    logged = (captured.out + captured.err).count('rejected so far')
+    assert 1 <= logged < len(bad), captured.err
+
+
+def test_ik_normalises_a_non_unit_quaternion_and_warns_once(start, spin_until, capfd):
+    """Quaternions of norm 2, 0.5 and 3 give the unit one's lengths; one warning in the log."""
+    node, probe, executor = start_ik(start)
+    lengths = probe.received['leg_lengths']
+    for count, scale in enumerate((1.0, 2.0, 0.5, -3.0), start=1):
+        probe.publisher.publish(message_of(TILTED, scale=scale))
+        assert spin_until(executor, lambda: len(lengths) >= count), f'{len(lengths)} answers'
+    for message in lengths[1:]:
+        assert_allclose(message.data, lengths[0].data, rtol=0.0, atol=1e-12)
+    assert_allclose(lengths[0].data, lengths_of(TILTED), rtol=0.0, atol=1e-12)
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (4, 4, 0)
+    captured = capfd.readouterr()
+    log = captured.out + captured.err
+    assert log.count('normalised') == 1, log
+    assert 'orientation has norm 2, not 1: normalised' in log
+
+
+def test_run_time_parameter_changes_are_validated(ros):
+    """An invalid value is refused with a reason and the old value stays; geometry is fixed."""
+    ik = IkNode(cli_args=IK_ARGS)
+    fk = FkNode(cli_args=FK_ARGS)
+    try:
+        [result] = ik.set_parameters([Parameter('leg_length_max', value=2.0)])
+        assert not result.successful
+        assert 'leg_length_max' in result.reason
+        assert ik.get_parameter('leg_length_max').value == 0.9
+        assert ik.geometry.leg_length_max == 0.9
+
+        for name, value in (('near_singularity_condition', 0.5),
+                            ('assembly_guard_position_change', 0.0),
+                            ('assembly_guard_angle_change_deg', 200.0),
+                            ('max_iterations', 0)):
+            old = fk.settings[name]
+            [result] = fk.set_parameters([Parameter(name, value=value)])
+            assert not result.successful, name
+            assert name in result.reason and repr(value) in result.reason, result.reason
+            assert fk.get_parameter(name).value == old
+            assert fk.settings[name] == old
+        # A value of the wrong type is refused by rclpy itself, before the validator.
+        [result] = fk.set_parameters([Parameter('tolerance', value='small')])
+        assert not result.successful and 'type' in result.reason
+        assert fk.settings['tolerance'] == fk.get_parameter('tolerance').value == 1e-12
+
+        [result] = fk.set_parameters([Parameter('near_singularity_condition', value=50.0)])
+        assert result.successful, result.reason
+        assert fk.settings['near_singularity_condition'] == 50.0
+    finally:
+        ik.destroy_node()
+        fk.destroy_node()
+
+
+# fk_node --------------------------------------------------------------------------------------
+
+def test_fk_publishes_no_pose_for_lengths_it_cannot_solve(start, spin_until):
+    """Out of the limits, impossible, non-convergent, pose out of the limits: ERROR, no pose."""
+    node, probe, executor = start_fk(start)
+    poses = probe.received['estimated_pose']
+
+    def refuse(values, count):
+        probe.publisher.publish(lengths_message(values))
+        assert spin_until(executor, lambda: len(probe.errors(node)) >= count), (
+            f'{len(probe.errors(node))} of {count} ERROR statuses')
+        return probe.errors(node)[-1]
+
+    too_long = refuse([0.95] * 6, 1)
+    assert too_long.message.startswith('leg_lengths rejected, out of the limits: ')
+    for leg in range(1, 7):
+        assert f'leg {leg}: leg_length_max 0.9 m broken by 0.05 m' in too_long.message
+        assert f'leg_length_max leg {leg}' in values_of(too_long)
+
+    impossible = refuse(IMPOSSIBLE_LENGTHS, 2)
+    assert impossible.message.startswith('no pose found for leg lengths [0.9, 0.65, 0.9')
+    values = values_of(impossible)
+    assert int(values['iterations']) >= 1
+    assert float(values['residual_m']) > 1e-3
+
+    beyond = refuse(lengths_of(BEYOND_TABLE3), 3)
+    assert beyond.message.startswith('the pose of these leg lengths is out of the limits: ')
+    assert 'leg 4: platform_joint_max_angle 35 deg broken by' in beyond.message
+    assert 'platform_joint_max_angle leg 4' in values_of(beyond)
+
+    [result] = node.set_parameters([Parameter('max_iterations', value=1)])
+    assert result.successful, result.reason
+    slow = refuse(lengths_of(TABLE3_END), 4)
+    assert 'no convergence within 1 iterations' in slow.message
+    values = values_of(slow)
+    assert values['iterations'] == '1'
+    assert float(values['residual_m']) > node.settings['tolerance']
+    assert counters_of(slow) == (4, 0, 4)
+    assert poses == []
+
+    [result] = node.set_parameters([Parameter('max_iterations', value=50)])
+    assert result.successful, result.reason
+    probe.publisher.publish(lengths_message(lengths_of(TABLE3_END)))
+    assert spin_until(executor, lambda: len(poses) >= 1)
+    assert len(poses) == 1
+    assert_pose_message(poses[0], TABLE3_END)
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (5, 1, 4)
+    # Condition about 17 is below the default near_singularity_condition of 100: no warning.
+    assert not [s for s in probe.statuses_of(node) if 'near a singularity' in s.message]
+
+
+def test_fk_warns_near_a_singularity_and_still_publishes(start, spin_until):
+    """With near_singularity_condition 5 (home is about 9.5) the home pose comes with a WARN."""
+    node, probe, executor = start_fk(start, {'near_singularity_condition': 5.0})
+    poses = probe.received['estimated_pose']
+    probe.publisher.publish(lengths_message(lengths_of(HOME)))
+
+    def warned():
+        return [s for s in probe.statuses_of(node, DiagnosticStatus.WARN)
+                if 'near a singularity' in s.message]
+    assert spin_until(executor, lambda: len(poses) >= 1 and warned())
+    assert_pose_message(poses[0], HOME)
+    [warning] = warned()
+    assert 'near_singularity_condition 5' in warning.message
+    assert float(values_of(warning)['jacobian_condition']) == pytest.approx(9.54, abs=0.01)
+    assert probe.errors(node) == []
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (1, 1, 0)
+
+
+def test_fk_refuses_a_jump_to_another_solution(start, spin_until):
+    """Unchanged lengths solved 0.1 m from the last pose are refused; then the node moves on."""
+    node, probe, executor = start_fk(start)
+    poses = probe.received['estimated_pose']
+    home_lengths = lengths_of(HOME)
+    probe.publisher.publish(lengths_message(home_lengths))
+    assert spin_until(executor, lambda: len(poses) >= 1)
+    assert_allclose(node.last_lengths, home_lengths, rtol=0.0, atol=0.0)
+    # The node believes the platform 0.1 m along x, as if it had followed another branch.
+    believed = np.array(HOME) + [0.1, 0.0, 0.0, 0.0, 0.0, 0.0]
+    node.last_pose = believed
+    probe.publisher.publish(lengths_message(home_lengths))
+    assert spin_until(executor, lambda: len(probe.errors(node)) >= 1)
+    [jump] = probe.errors(node)
+    assert 'another assembly mode' in jump.message
+    assert 'the solution jumped 0.1 m and ' in jump.message
+    assert counters_of(jump) == (2, 1, 1)
+    assert_allclose(node.last_pose, believed, rtol=0.0, atol=0.0)
+    # Lengths 15 mm away are a motion, not a jump: solved and published.
+    probe.publisher.publish(lengths_message(lengths_of(TABLE3_ROW_1)))
+    assert spin_until(executor, lambda: len(poses) >= 2)
+    assert len(poses) == 2
+    assert_pose_message(poses[1], TABLE3_ROW_1)
+
+
+def test_assembly_mode_jump_compares_with_the_last_solution(ros):
+    """The guard refuses the other assembly mode of the home lengths, not a small motion."""
+    node = FkNode(cli_args=FK_ARGS)
+    try:
+        geometry = paper_geometry()
+        home_lengths = geometry.home_leg_lengths
+        home = np.array(HOME)
+        # The same six lengths have a second solution, turned a half turn about z.
+        other = forward_kinematics(geometry, home_lengths, [0.0, 0.0, 0.35, 0.0, 0.0, math.pi])
+        assert other.converged
+        assert_allclose(inverse_kinematics(geometry, other.pose), home_lengths, atol=1e-12)
+        assert abs(other.pose[2] - HOME[2]) > 0.05
+
+        assert node.last_lengths is None
+        assert node.assembly_mode_jump(home_lengths, other.pose) == ''
+
+        node.last_lengths, node.last_pose = home_lengths, home
+        jump = node.assembly_mode_jump(home_lengths + 1e-4, other.pose)
+        assert 'another assembly mode' in jump and 'rejected' in jump
+        turned = home + [0.0, 0.0, 0.0, 0.0, 0.0, math.radians(20.0)]
+        assert '20 deg' in node.assembly_mode_jump(home_lengths + 1e-4, turned)
+        moved = home + [0.06, 0.0, 0.0, 0.0, 0.0, 0.0]
+        assert '0.06 m' in node.assembly_mode_jump(home_lengths, moved)
+
+        nearby = home + [0.01, -0.01, 0.02, math.radians(5.0), 0.0, math.radians(-5.0)]
+        assert node.assembly_mode_jump(home_lengths + 1e-3, nearby) == ''
+        # Lengths changed by more than assembly_guard_length_change (5 mm): a motion.
+        assert node.assembly_mode_jump(home_lengths + 0.006, other.pose) == ''
+    finally:
+        node.destroy_node()
+
+
+# trajectory_node ------------------------------------------------------------------------------
+
+def plain_lengths(pose):
+    """Return |t + R p_i - b_i| of a pose, with R built from its three textbook factors."""
+    alpha, beta, gamma = pose[3:]
+    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
+    cg, sg = math.cos(gamma), math.sin(gamma)
+    rotation = (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
+                @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
+                @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
+    with open(PLATFORM_FILE, encoding='utf-8') as stream:
+        parameters = yaml.safe_load(stream)['/**']['ros__parameters']
+    base = np.reshape(parameters['base_joints'], (6, 3))
+    platform = np.reshape(parameters['platform_joints'], (6, 3))
+    return [float(np.linalg.norm(np.asarray(pose[:3]) + rotation @ p - b))
+            for b, p in zip(base, platform)]
+
+
+def ramp_pose(fraction):
+    """Return the Table 3 ramp's pose a fraction 0..1 of the way from its start to its end."""
+    return tuple(h + fraction * (e - h) for h, e in zip(HOME, TABLE3_END))
+
+
+def assert_refusal_lists(message, failing, times, samples):
+    """Check a refusal: count, then each failing sample (10 at most) with index and time."""
+    assert message.startswith(
+        f'ramp refused: {len(failing)} of {samples} samples break the limits of the geometry')
+    lines = message.splitlines()[1:]
+    listed = failing[:10]
+    for line, index in zip(lines, listed):
+        assert line.strip().startswith(f'sample {index} at t={times[index]:.3f} s, pose ')
+        assert 'leg_length_max 0.8 m broken by' in line
+    if len(failing) > 10:
+        assert lines[-1].strip() == f'... and {len(failing) - 10} more'
+        assert len(lines) == 11
+    else:
+        assert len(lines) == len(failing)
+
+
+@pytest.fixture
+def ramp_probe(ros):
+    """Return a probe node recording target_pose, on its own executor."""
+    executor = SingleThreadedExecutor()
+    probe = Probe(outputs=[('target_pose', Pose)])
+    executor.add_node(probe.node)
+    yield probe, executor
+    executor.shutdown()
+    probe.node.destroy_node()
+
+
+def test_trajectory_refuses_a_ramp_that_breaks_a_limit(ramp_probe, spin_until):
+    """With legs of at most 0.80 m rows 7 to 10 fail: ValueError listing them, nothing played."""
+    probe, executor = ramp_probe
+    failing = [row for row in range(11) if max(plain_lengths(ramp_pose(row / 10.0))) > 0.80]
+    assert failing == [7, 8, 9, 10]
+    overrides = [Parameter('leg_length_max', value=0.80), Parameter('row_period', value=0.02),
+                 Parameter('start_delay', value=0.0)]
+    with pytest.raises(ValueError) as raised:
+        TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=overrides)
+    message = str(raised.value)
+    assert_refusal_lists(message, failing, [0.02 * row for row in range(11)], 11)
+    assert 'sample 6 ' not in message
+    assert 'leg 3: leg_length_max 0.8 m' in message.splitlines()[1]
+    assert not spin_until(executor, lambda: probe.received['target_pose'], timeout=0.3)
+    assert probe.node.count_publishers('/target_pose') == 0
+
+
+def test_trajectory_plays_a_ramp_within_the_example_limits(ramp_probe, spin_until):
+    """The example limits keep the whole Table 3 ramp: its 11 rows are played."""
+    probe, executor = ramp_probe
+    overrides = [Parameter('row_period', value=0.02), Parameter('start_delay', value=0.0),
+                 Parameter('min_subscribers', value=1)]
+    node = TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=overrides)
+    try:
+        executor.add_node(node)
+        poses = probe.received['target_pose']
+        assert spin_until(executor, lambda: len(poses) >= 11), f'{len(poses)} of 11 rows'
+        assert_pose_message(poses[0], HOME)
+        assert_pose_message(poses[10], TABLE3_END)
+    finally:
+        executor.remove_node(node)
+        node.destroy_node()
+
+
+def test_trajectory_checks_every_sample_in_interpolate_mode(ramp_probe):
+    """Interpolate mode checks its own samples: 41 over 4 s, failing ones listed by time."""
+    duration, rate = 4.0, 10.0
+    times = np.append(np.arange(0.0, duration, 1.0 / rate), duration)
+    assert len(times) == 41
+    failing = [index for index, time in enumerate(times)
+               if max(plain_lengths(ramp_pose(time / duration))) > 0.80]
+    assert len(failing) > 10
+    overrides = [Parameter('leg_length_max', value=0.80), Parameter('mode', value='interpolate'),
+                 Parameter('duration', value=duration), Parameter('publish_rate', value=rate)]
+    with pytest.raises(ValueError) as raised:
+        TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=overrides)
+    assert_refusal_lists(str(raised.value), failing, times, 41)
+
+
+def test_trajectory_main_returns_1_for_a_refused_ramp(tmp_path, capfd):
+    """main() logs the refusal, with the failing samples, and returns 1."""
+    tight = tmp_path / 'tight_limits.yaml'
+    tight.write_text(yaml.safe_dump({'/**': {'ros__parameters': {'leg_length_max': 0.8}}}),
+                     encoding='utf-8')
+    arguments = ['trajectory_node'] + RAMP_ARGS + ['--params-file', str(tight)]
+    # A node that wrongly plays the ramp would spin forever: stop it after a deadline.
+    watchdog = threading.Timer(10.0, rclpy.try_shutdown)
+    watchdog.start()
+    try:
+        code = trajectory_node.main(arguments)
+    finally:
+        watchdog.cancel()
+    assert code == 1
+    assert not rclpy.ok()
+    captured = capfd.readouterr()
+    log = captured.out + captured.err
+    assert 'cannot start: ramp refused: 4 of 11 samples' in log
+    assert 'sample 7 at t=7.000 s' in log
