@@ -147,7 +147,7 @@ class FkNode(Node):
             return False
         jump = self.assembly_mode_jump(lengths, result.pose)
         if jump:
-            accounting.reject(jump)
+            accounting.reject(f'{accounting.topic} {jump}')
             return False
         condition = float(limits.jacobian_condition(self.geometry, position, rotation))
         if condition > self.settings['near_singularity_condition']:

@@ -29,6 +29,8 @@ import numpy as np
 
 #: Below this norm a quaternion carries no rotation and is rejected.
 QUATERNION_NORM_MIN = 1e-9
+#: Below this cos(beta), double precision cannot separate alpha from gamma (gimbal lock).
+GIMBAL_LOCK_COS_BETA = 1e-12
 
 
 def euler_zyx_to_matrix(angles):
@@ -77,8 +79,7 @@ def matrix_to_euler_zyx(rotation):
     r11, r21, r31 = rotation[..., 0, 0], rotation[..., 1, 0], rotation[..., 2, 0]
     cos_beta = np.hypot(r11, r21)
     beta = np.arctan2(-r31, cos_beta)
-    # cos(beta) below ~1e-12 cannot separate alpha from gamma in double precision.
-    locked = cos_beta < 1e-12
+    locked = cos_beta < GIMBAL_LOCK_COS_BETA
     alpha = np.where(locked, 0.0, np.arctan2(rotation[..., 2, 1], rotation[..., 2, 2]))
     gamma = np.where(
         locked,

@@ -457,3 +457,58 @@ def test_forward_kinematics_random_angles_in_canonical_range(geometry):
     assert np.all(np.abs(result.pose[:, [3, 5]]) <= math.pi)
     assert np.all(np.abs(result.pose[:, 4]) <= math.pi / 2)
     assert_allclose(result.pose, poses, rtol=0.0, atol=1e-9)
+
+
+def test_single_pose_inverse_kinematics_equals_batch(geometry):
+    """The one-pose fast path gives the batch path's lengths to 1e-12 m."""
+    poses = random_poses(200, seed=7)
+    batch = inverse_kinematics(geometry, poses)
+    singles = np.array([inverse_kinematics(geometry, pose) for pose in poses])
+    assert_allclose(singles, batch, rtol=0.0, atol=1e-12)
+    assert_allclose(batch, [paper_leg_lengths(pose) for pose in poses], rtol=0.0, atol=1e-12)
+
+
+def test_batched_inverse_kinematics_spans_blocks(geometry):
+    """A batch longer than one block equals the per-pose leg vector norms."""
+    from stewart_kinematics.kinematics import IK_BLOCK_SIZE, leg_vectors_from_euler
+    poses = random_poses(2 * IK_BLOCK_SIZE + 3, seed=7)
+    expected = np.linalg.norm(leg_vectors_from_euler(geometry, poses), axis=-1)
+    assert_allclose(inverse_kinematics(geometry, poses), expected, rtol=0.0, atol=1e-12)
+
+
+def test_single_pose_leg_lengths_equals_batch(geometry):
+    """leg_lengths of one position and matrix equals its batch form."""
+    from stewart_kinematics.rotations import euler_zyx_to_matrix
+    poses = random_poses(50, seed=7)
+    rotations = euler_zyx_to_matrix(poses[:, 3:])
+    batch = leg_lengths(geometry, poses[:, :3], rotations)
+    for pose, rotation, expected in zip(poses, rotations, batch):
+        assert_allclose(leg_lengths(geometry, pose[:3], rotation), expected, atol=1e-12)
+
+
+@pytest.mark.parametrize('start', ['home', 'nearby'])
+def test_single_pose_forward_kinematics_equals_batch(geometry, start):
+    """The one-pose solver (cold from home, or warm) matches the batch solver to 1e-12."""
+    poses = random_poses(100, seed=7)
+    lengths = inverse_kinematics(geometry, poses)
+    guesses = (np.broadcast_to(geometry.home_pose, poses.shape) if start == 'home'
+               else poses + 1e-4)
+    batch = forward_kinematics(geometry, lengths, guesses)
+    for k in range(len(poses)):
+        single = forward_kinematics(geometry, lengths[k], guesses[k])
+        assert single.converged and batch.converged[k]
+        assert single.iterations == batch.iterations[k]
+        assert single.reason == batch.reason[k] == ''
+        assert_allclose(single.pose, batch.pose[k], rtol=0.0, atol=1e-12)
+        assert_allclose(single.pose, poses[k], rtol=0.0, atol=1e-9)
+
+
+def test_single_pose_forward_kinematics_failures_match_batch(geometry):
+    """Unreachable lengths fail with the same reason in the one-pose and the batch solver."""
+    lengths = np.full(6, 5.0)
+    single = forward_kinematics(geometry, lengths, max_iterations=5)
+    batch = forward_kinematics(geometry, lengths[None, :], max_iterations=5)
+    assert not single.converged
+    assert single.reason == batch.reason[0]
+    assert single.iterations == batch.iterations[0]
+    assert single.residual == pytest.approx(batch.residual[0], abs=1e-9)
