@@ -60,9 +60,11 @@ class IkNode(Node):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS)
+            + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
         self.geometry = Geometry.from_parameters(values)
         self.base_frame = values['base_frame']
+        self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
+        self.last_marker_ns = None
         self.last_pose = None
         depth = values['queue_depth']
         self.lengths_publisher = self.create_publisher(Float64MultiArray, 'leg_lengths', depth)
@@ -115,12 +117,7 @@ class IkNode(Node):
                 '(said once)', once=True)
         rotation = quaternion_to_matrix(quaternion)
         violations = limits.check_pose(self.geometry, position, rotation)
-        # Shown in RViz even when refused, with the offending legs in red: what was asked.
-        marker_header = Header(stamp=header.stamp, frame_id=self.base_frame)
-        self.marker_publisher.publish(platform_markers(
-            marker_header, self.geometry, position, rotation,
-            [violation.leg for violation in violations], self.get_namespace().strip('/')
-            or 'stewart_platform'))
+        self.publish_markers(header, position, rotation, violations)
         if violations:
             accounting.reject(
                 f'{accounting.topic} rejected, out of the limits: '
@@ -133,6 +130,24 @@ class IkNode(Node):
         self.extensions_publisher.publish(
             legs_to_message(lengths - self.geometry.home_leg_lengths))
         self.joint_command_publisher.publish(joint_state_message(header, lengths))
+
+    def publish_markers(self, header, position, rotation, violations):
+        """
+        Publish the platform's markers, at most at marker_rate.
+
+        Refused poses are shown too, with the offending legs in red: what was asked, and why
+        it was refused.
+        """
+        now_ns = self.get_clock().now().nanoseconds
+        if self.marker_period_ns is None or (
+                self.last_marker_ns is not None
+                and now_ns - self.last_marker_ns < self.marker_period_ns):
+            return
+        self.last_marker_ns = now_ns
+        self.marker_publisher.publish(platform_markers(
+            Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
+            rotation, [violation.leg for violation in violations],
+            self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):
         """Publish the leg velocities of a platform twist at the last accepted pose."""

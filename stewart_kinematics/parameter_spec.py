@@ -249,6 +249,15 @@ FRAME_PARAMETERS = (
         default='stewart_base', read_only=True, constraints='any'),
 )
 
+MARKER_PARAMETERS = (
+    ParameterSpec(
+        'marker_rate', DOUBLE,
+        'Highest rate of platform_markers, hertz: RViz needs no more, and a marker array per '
+        'pose would cost a 1 kHz command stream; 0.0 turns the markers off',
+        default=30.0, read_only=True, validators=(finite, in_range(0.0, 1000.0)),
+        constraints='in [0, 1000]'),
+)
+
 QUEUE_PARAMETERS = (
     ParameterSpec(
         'queue_depth', INTEGER,
@@ -327,8 +336,8 @@ RAMP_PARAMETERS = (
 
 def all_specs():
     """Return every parameter spec of the package, each name once."""
-    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS + QUEUE_PARAMETERS
-            + RAMP_PARAMETERS)
+    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS + MARKER_PARAMETERS
+            + QUEUE_PARAMETERS + RAMP_PARAMETERS)
 
 
 def check_known_names(names, context: str) -> None:

@@ -25,6 +25,8 @@ Quaternions are ``(x, y, z, w)``, the order of geometry_msgs/msg/Quaternion.
 Every function accepts a single value or a batch (leading dimensions) and never loops in Python.
 """
 
+import math
+
 import numpy as np
 
 #: Below this norm a quaternion carries no rotation and is rejected.
@@ -126,6 +128,8 @@ def matrix_to_quaternion(rotation):
     rotation = np.asarray(rotation, dtype=float)
     if rotation.shape[-2:] != (3, 3):
         raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    if rotation.shape == (3, 3):
+        return _matrix_to_quaternion_single(rotation.tolist())
     r = rotation
     trace = r[..., 0, 0] + r[..., 1, 1] + r[..., 2, 2]
     # Four times the square of each component; the largest gives the best-conditioned division.
@@ -154,6 +158,25 @@ def matrix_to_quaternion(rotation):
     quaternion = np.take_along_axis(candidates, best[..., None, None], -2)[..., 0, :]
     quaternion = quaternion / np.linalg.norm(quaternion, axis=-1, keepdims=True)
     return np.where(quaternion[..., 3:] < 0.0, -quaternion, quaternion)
+
+
+def _matrix_to_quaternion_single(r):
+    """Shepperd's method for one matrix (nested lists), in scalars: the nodes' hot path."""
+    trace = r[0][0] + r[1][1] + r[2][2]
+    pivots = (1.0 + 2.0 * r[0][0] - trace, 1.0 + 2.0 * r[1][1] - trace,
+              1.0 + 2.0 * r[2][2] - trace, 1.0 + trace)
+    best = max(range(4), key=pivots.__getitem__)
+    scale = math.sqrt(max(pivots[best], 0.0))
+    half_inverse = 0.5 / scale
+    xy, xz, yz = r[0][1] + r[1][0], r[0][2] + r[2][0], r[1][2] + r[2][1]
+    wx, wy, wz = r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]
+    quaternion = np.array((
+        (0.5 * scale, xy * half_inverse, xz * half_inverse, wx * half_inverse),
+        (xy * half_inverse, 0.5 * scale, yz * half_inverse, wy * half_inverse),
+        (xz * half_inverse, yz * half_inverse, 0.5 * scale, wz * half_inverse),
+        (wx * half_inverse, wy * half_inverse, wz * half_inverse, 0.5 * scale))[best])
+    quaternion /= math.sqrt(float(quaternion @ quaternion))
+    return -quaternion if quaternion[3] < 0.0 else quaternion
 
 
 def euler_zyx_to_quaternion(angles):

@@ -149,7 +149,8 @@ def test_markers_show_the_platform_and_colour_violating_legs(ros, spin_until):
     """platform_markers draws base, platform and legs; legs past a limit are red."""
     from visualization_msgs.msg import MarkerArray
     from rclpy.parameter import Parameter
-    ik = IkNode(cli_args=ARGS, parameter_overrides=[Parameter('leg_length_max', value=0.8)])
+    ik = IkNode(cli_args=ARGS, parameter_overrides=[
+        Parameter('leg_length_max', value=0.8), Parameter('marker_rate', value=1000.0)])
     probe = ros.create_node('probe')
     arrays = []
     probe.create_subscription(MarkerArray, 'platform_markers', arrays.append, 10)
@@ -160,8 +161,10 @@ def test_markers_show_the_platform_and_colour_violating_legs(ros, spin_until):
     try:
         assert spin_until(executor, lambda: publisher.get_subscription_count() >= 1)
         publisher.publish(stamped(POSE))
+        assert spin_until(executor, lambda: len(arrays) >= 1)
         far = np.array([0.1, 0.15, 0.5325, math.radians(15), math.radians(-15), math.radians(20)])
         publisher.publish(stamped(far))
+        assert spin_until(executor, lambda: ik.stamped_accounting.rejected == 1)
         assert spin_until(executor, lambda: len(arrays) >= 2)
         base, platform, legs = arrays[0].markers
         assert base.header.frame_id == 'stewart_base'
@@ -175,6 +178,32 @@ def test_markers_show_the_platform_and_colour_violating_legs(ros, spin_until):
         red = [colour.r > colour.g for colour in arrays[1].markers[2].colors[::2]]
         assert red == list(far_lengths > 0.8) and any(red)
         assert ik.stamped_accounting.rejected == 1
+    finally:
+        executor.shutdown()
+        ik.destroy_node()
+        probe.destroy_node()
+
+
+def test_markers_are_limited_to_marker_rate(ros, spin_until):
+    """At marker_rate 1 Hz, a burst of poses gives one marker array, and every pose its lengths."""
+    from visualization_msgs.msg import MarkerArray
+    from rclpy.parameter import Parameter
+    ik = IkNode(cli_args=ARGS, parameter_overrides=[Parameter('marker_rate', value=1.0)])
+    probe = ros.create_node('probe')
+    arrays, lengths = [], []
+    probe.create_subscription(MarkerArray, 'platform_markers', arrays.append, 10)
+    probe.create_subscription(Float64MultiArray, 'leg_lengths', lengths.append, 10)
+    publisher = probe.create_publisher(PoseStamped, 'target_pose_stamped', 10)
+    executor = SingleThreadedExecutor()
+    executor.add_node(ik)
+    executor.add_node(probe)
+    try:
+        assert spin_until(executor, lambda: publisher.get_subscription_count() >= 1)
+        for _ in range(5):
+            publisher.publish(stamped(POSE))
+        assert spin_until(executor, lambda: len(lengths) == 5)
+        executor.spin_once(timeout_sec=0.2)
+        assert len(arrays) == 1
     finally:
         executor.shutdown()
         ik.destroy_node()

@@ -323,3 +323,14 @@ def test_rotation_angle_between_batch_shape():
     second = np.stack([rx(0.1), ry(0.2), rz(0.3)])
     assert_allclose(rotation_angle_between(first, second), [0.1, 0.2, 0.3],
                     rtol=0.0, atol=1e-12)
+
+
+def test_single_matrix_path_equals_the_batch_path():
+    """One matrix (the nodes' scalar fast path) gives the batch path's quaternion."""
+    rng = np.random.default_rng(7)
+    angles = rng.uniform(-np.pi, np.pi, (200, 3))
+    angles[:, 1] /= 2.0
+    matrices = euler_zyx_to_matrix(angles)
+    batch = matrix_to_quaternion(matrices)
+    for matrix, expected in zip(matrices, batch):
+        assert_allclose(matrix_to_quaternion(matrix), expected, rtol=0.0, atol=1e-15)
