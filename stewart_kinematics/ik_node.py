@@ -133,15 +133,16 @@ class IkNode(Node):
 
     def publish_markers(self, header, position, rotation, violations):
         """
-        Publish the platform's markers, at most at marker_rate.
+        Publish the platform's markers, at most at marker_rate and only to a subscriber.
 
         Refused poses are shown too, with the offending legs in red: what was asked, and why
         it was refused.
         """
+        if self.marker_period_ns is None or self.marker_publisher.get_subscription_count() == 0:
+            return
         now_ns = self.get_clock().now().nanoseconds
-        if self.marker_period_ns is None or (
-                self.last_marker_ns is not None
-                and now_ns - self.last_marker_ns < self.marker_period_ns):
+        if self.last_marker_ns is not None and (
+                now_ns - self.last_marker_ns < self.marker_period_ns):
             return
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(

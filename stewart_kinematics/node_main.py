@@ -14,21 +14,30 @@
 
 """The ``main()`` shared by the nodes: start-up errors, spinning and a clean stop."""
 
+import signal
+
 import rclpy
 # rclpy exposes these two only from its C extension.
 from rclpy._rclpy_pybind11 import RCLError, UnknownROSArgsError
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.signals import SignalHandlerOptions
 
 #: Exit code of a node that could not start (bad parameters, bad arguments).
 EXIT_START_FAILED = 1
 #: Longest a node waits for work before it checks again whether it was asked to stop, seconds.
 SPIN_SLICE = 0.1
+#: The signals that stop a node cleanly: Ctrl-C and what a supervisor sends.
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
 def run_node(node_class, name: str, args=None) -> int:
     """
     Initialise rclpy, build and spin a node until SIGINT or SIGTERM, then shut down.
+
+    The signals only set a flag, checked between two slices of spinning: neither a
+    KeyboardInterrupt nor a context shut down from rclpy's signal thread can land in the
+    middle of a callback, of a take or of the clean-up.
 
     :param node_class: the node's class, constructed without arguments.
     :param name: the node's default name, for the log of a failed start.
@@ -36,35 +45,32 @@ def run_node(node_class, name: str, args=None) -> int:
     :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when the node could not be
         built, with a fatal log that says why.
     """
+    stop_requests = []
+    previous = {number: signal.signal(number, lambda number, frame: stop_requests.append(number))
+                for number in STOP_SIGNALS}
     try:
-        rclpy.init(args=args)
-    except (RCLError, UnknownROSArgsError) as error:
-        # rcl rejects unreadable parameter files and malformed --ros-args here.
-        rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
-        return EXIT_START_FAILED
-    try:
-        node = node_class()
-    except (ParameterException, ValueError) as error:
-        rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
-        rclpy.try_shutdown()
-        return EXIT_START_FAILED
-    except KeyboardInterrupt:
-        rclpy.try_shutdown()
+        try:
+            rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+        except (RCLError, UnknownROSArgsError) as error:
+            rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
+            return EXIT_START_FAILED
+        try:
+            node = node_class()
+        except (ParameterException, ValueError) as error:
+            rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
+            rclpy.try_shutdown()
+            return EXIT_START_FAILED
+        try:
+            executor = SingleThreadedExecutor()
+            executor.add_node(node)
+            while not stop_requests and rclpy.ok():
+                executor.spin_once(timeout_sec=SPIN_SLICE)
+        except ExternalShutdownException:
+            pass
+        finally:
+            node.destroy_node()
+            rclpy.try_shutdown()
         return 0
-    try:
-        executor = SingleThreadedExecutor()
-        executor.add_node(node)
-        # Spinning in slices rather than rclpy.spin(): a signal that lands between two waits
-        # of a blocking spin can leave it waiting forever (ros2/rclpy#1166).
-        while rclpy.ok():
-            executor.spin_once(timeout_sec=SPIN_SLICE)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    except RCLError:
-        # The signal handler shut the context down while a wait set was being built.
-        if rclpy.ok():
-            raise
     finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+        for number, handler in previous.items():
+            signal.signal(number, handler)

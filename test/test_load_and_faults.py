@@ -21,13 +21,13 @@ test's rclpy client is spun by a background thread, so that the main thread can 
 monotonic schedule (no drift) and wait for conditions with a deadline. Messages are counted on
 both sides: what the client sent and received, and the counters every node publishes on
 ``/diagnostics`` (:mod:`stewart_kinematics.message_accounting`). Every publisher and
-subscription, the nodes' (``-p queue_depth:=100``) and the client's, is reliable, keep-last,
+subscription, the nodes' (``-p queue_depth:=1000``) and the client's, is reliable, keep-last,
 depth :data:`QUEUE_DEPTH`.
 
-The two 30 s load tests run one node at a time. Both nodes at once with the client, at
-500 messages/s each, need about 1.9 of the two cores of the machines this runs on (ik_node
-about 0.7 of a core, fk_node about 0.85, the client 0.3 for each stream): they then lose
-between 1 % and a third of the messages, which measures the machine, not the nodes.
+The two 30 s load tests run one node at a time. At 500 messages/s a node uses 0.55 to 0.95
+of a core and the client about 0.3 for each stream, so both nodes at once with the client
+need 1.5 to 1.9 of the two cores of the machines this runs on: they then lost between 1 % and
+a third of the messages, which measures the machine, not the nodes.
 
 The restart test kills fk_node with SIGKILL, which leaves its Fast DDS shared-memory segment
 in /dev/shm unless a surviving participant's watchdog removes it; the test removes it
@@ -66,8 +66,10 @@ SETTLE_TIME = 0.5
 #: Seconds between two checks of a condition that the test waits for.
 POLL_PERIOD = 0.01
 #: Depth of every queue: the nodes' queue_depth parameter and the client's publishers and
-#: subscriptions. 0.2 s of messages at LOAD_RATE.
-QUEUE_DEPTH = 100
+#: subscriptions. 2 s of messages at LOAD_RATE, so that a moment of CPU contention on a
+#: 2-core machine (the client and a node share it) delays messages instead of dropping them:
+#: what queue_depth is for.
+QUEUE_DEPTH = 1000
 #: Messages per second on each input stream during the load test.
 LOAD_RATE = 500.0
 #: Seconds of load.
@@ -452,7 +454,7 @@ def test_node_loses_nothing_at_500_hz(client, start_node, config_directory, pape
     """
     A node fed 500 messages/s for 30 s accounts for every message, in flat memory.
 
-    Reliable, keep-last queues of depth 100 on both sides; one message in 50 is bad (a NaN
+    Reliable, keep-last queues of depth QUEUE_DEPTH (1000) on both sides; one message in 50 is bad (a NaN
     position, five leg lengths). The node's /diagnostics counters must show every message sent
     as received, every good one published (and seen by the client) and every bad one rejected;
     its resident memory must stay flat after a 3 s warm-up.
@@ -527,7 +529,7 @@ def test_ik_node_survives_a_burst(client, start_node, config_directory, paper_ge
     """
     ik_node survives 5000 poses published as fast as the client can, far above 500/s.
 
-    Keep-last queues of depth 100 may drop part of a burst (reported, not asserted). The node
+    Keep-last queues of depth QUEUE_DEPTH may drop part of a burst (reported, not asserted). The node
     must keep running, answer the good pose sent right after the burst (queues drop the oldest
     messages, never the newest) and keep its counters consistent.
     """
