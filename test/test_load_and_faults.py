@@ -454,7 +454,7 @@ def test_node_loses_nothing_at_500_hz(client, start_node, config_directory, pape
     """
     A node fed 500 messages/s for 30 s accounts for every message, in flat memory.
 
-    Reliable, keep-last queues of depth QUEUE_DEPTH (1000) on both sides; one message in 50 is bad (a NaN
+    Reliable, keep-last queues of depth QUEUE_DEPTH on both sides; one message in 50 is bad (a NaN
     position, five leg lengths). The node's /diagnostics counters must show every message sent
     as received, every good one published (and seen by the client) and every bad one rejected;
     its resident memory must stay flat after a 3 s warm-up.
@@ -529,9 +529,9 @@ def test_ik_node_survives_a_burst(client, start_node, config_directory, paper_ge
     """
     ik_node survives 5000 poses published as fast as the client can, far above 500/s.
 
-    Keep-last queues of depth QUEUE_DEPTH may drop part of a burst (reported, not asserted). The node
-    must keep running, answer the good pose sent right after the burst (queues drop the oldest
-    messages, never the newest) and keep its counters consistent.
+    Keep-last queues of depth QUEUE_DEPTH may drop part of a burst (reported, not asserted).
+    The node must keep running, answer the good pose sent right after the burst (queues drop
+    the oldest messages, never the newest) and keep its counters consistent.
     """
     node = start_node('ik_node', node_arguments(config_directory, '-p',
                                                 f'queue_depth:={QUEUE_DEPTH}'))
