@@ -67,6 +67,8 @@ class FkNode(Node):
         self.geometry = Geometry.from_parameters(values)
         self.last_pose = self.geometry.home_pose
         self.last_lengths = None
+        # The last good solution itself: a solve from it reuses its Jacobian too.
+        self.last_result = None
         depth = values['queue_depth']
         self.pose_publisher = self.create_publisher(Pose, 'estimated_pose', depth)
         self.stamped_publisher = self.create_publisher(
@@ -156,18 +158,20 @@ class FkNode(Node):
                 f'{condition:.4g} > near_singularity_condition '
                 f'{self.settings["near_singularity_condition"]:g}',
                 (('jacobian_condition', f'{condition:.4g}'),))
-        self.last_pose, self.last_lengths = result.pose, lengths
+        self.last_pose, self.last_lengths, self.last_result = result.pose, lengths, result
         pose = pose_to_message(result.pose)
         accounting.publish(self.pose_publisher, pose)
-        stamped_header = Header(stamp=header.stamp, frame_id=self.settings['base_frame'])
-        self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
+        if self.stamped_publisher.get_subscription_count():  # only for a subscriber, as ik_node
+            stamped_header = Header(stamp=header.stamp, frame_id=self.settings['base_frame'])
+            self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
         return True
 
     def solve(self, lengths):
         """Solve from the last good pose, then from the home pose if that fails."""
         options = {'tolerance': self.settings['tolerance'],
                    'max_iterations': self.settings['max_iterations']}
-        result = forward_kinematics(self.geometry, lengths, self.last_pose, **options)
+        result = forward_kinematics(self.geometry, lengths, self.last_result or self.last_pose,
+                                    **options)
         if not result.converged and not np.array_equal(self.last_pose, self.geometry.home_pose):
             result = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
                                         **options)
@@ -183,10 +187,10 @@ class FkNode(Node):
         """
         if self.last_lengths is None:
             return ''
-        length_change = float(np.max(np.abs(lengths - self.last_lengths)))
+        length_change = max(map(abs, (lengths - self.last_lengths).tolist()))
         if length_change > self.settings['assembly_guard_length_change']:
             return ''
-        position_change = float(np.linalg.norm(pose[:3] - self.last_pose[:3]))
+        position_change = math.dist(pose[:3].tolist(), self.last_pose[:3].tolist())
         angle_change = math.degrees(float(rotation_angle_between(
             euler_zyx_to_matrix(self.last_pose[3:]), euler_zyx_to_matrix(pose[3:]))))
         if (position_change <= self.settings['assembly_guard_position_change']

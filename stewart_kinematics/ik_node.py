@@ -36,7 +36,7 @@ from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.kinematics import leg_lengths
+from stewart_kinematics.kinematics import leg_lengths, twist_jacobian
 from stewart_kinematics.markers import platform_markers
 from stewart_kinematics.message_accounting import MessageAccounting, violation_values
 from stewart_kinematics.message_conversions import (
@@ -49,7 +49,6 @@ from stewart_kinematics.message_conversions import (
 from stewart_kinematics.node_main import run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
-from stewart_kinematics.velocities import twist_jacobian
 from visualization_msgs.msg import MarkerArray
 
 
@@ -108,6 +107,10 @@ class IkNode(Node):
         """Publish the leg lengths, extensions and joint states of a pose, or reject it."""
         try:
             position, quaternion, norm = position_quaternion_from_message(pose)
+            # Here too, not after the try: a finite pose so far away that its leg lengths
+            # overflow makes these raise, and a callback must never raise.
+            rotation = quaternion_to_matrix(quaternion)
+            violations = limits.check_pose(self.geometry, position, rotation)
         except ValueError as error:
             accounting.reject(f'{accounting.topic} rejected: {error}')
             return
@@ -115,8 +118,6 @@ class IkNode(Node):
             self.get_logger().warning(
                 f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
                 '(said once)', once=True)
-        rotation = quaternion_to_matrix(quaternion)
-        violations = limits.check_pose(self.geometry, position, rotation)
         self.publish_markers(header, position, rotation, violations)
         if violations:
             accounting.reject(
@@ -125,11 +126,20 @@ class IkNode(Node):
                 violation_values(violations))
             return
         lengths = leg_lengths(self.geometry, position, rotation)
+        # Without a stroke limit check_pose skips the lengths: never command inf, NaN or 0.
+        if not (lengths.min() > 0.0 and lengths.max() < np.inf):
+            accounting.reject(f'{accounting.topic} rejected: its leg lengths '
+                              f'{lengths.tolist()} m are not finite and positive')
+            return
         self.last_pose = position, rotation
         accounting.publish(self.lengths_publisher, legs_to_message(lengths))
-        self.extensions_publisher.publish(
-            legs_to_message(lengths - self.geometry.home_leg_lengths))
-        self.joint_command_publisher.publish(joint_state_message(header, lengths))
+        # The other forms only for a subscriber: in a 1 kHz command stream, messages that
+        # nobody reads would cost the node a third of its rate.
+        if self.extensions_publisher.get_subscription_count():
+            self.extensions_publisher.publish(
+                legs_to_message(lengths - self.geometry.home_leg_lengths))
+        if self.joint_command_publisher.get_subscription_count():
+            self.joint_command_publisher.publish(joint_state_message(header, lengths))
 
     def publish_markers(self, header, position, rotation, violations):
         """

@@ -24,14 +24,15 @@ Units are metres and radians; frames and the rotation convention are those of
 one pose, shape (6,), or a batch, shape (N, 6), and loops over no poses in Python.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import math
-from typing import Tuple, Union
+from typing import Optional, Tuple, Union
 import weakref
 
 import numpy as np
 
 from stewart_kinematics.rotations import (
+    euler_zyx_matrix_entries,
     euler_zyx_to_matrix,
     GIMBAL_LOCK_COS_BETA,
     matrix_to_euler_zyx,
@@ -44,6 +45,13 @@ DEFAULT_MAX_ITERATIONS = 50
 #: An iterate with a coordinate beyond this (metres or radians) has diverged: no platform
 #: reaches a kilometre, and angles wound a hundred times round mean the iteration is lost.
 DIVERGENCE_BOUND = 1e3
+#: Modified Newton (one solve): a step that cut the largest leg length error by at least this
+#: factor shows that its Jacobian still fits, and the next step reuses it. Far from the solution
+#: a step cuts less, and a new Jacobian is computed, as in plain Newton-Raphson.
+JACOBIAN_REUSE_CONTRACTION = 1e-4
+#: Reasons a solve fails, as ForwardKinematicsResult.reason gives them.
+SINGULAR_JACOBIAN = 'singular Jacobian: the pose is at a singularity'
+DIVERGED = 'diverged: the next iterate left every plausible pose'
 #: Poses per block of a batched inverse kinematics: the temporaries of one block stay in the
 #: processor's cache, which doubles the throughput of batches of millions.
 IK_BLOCK_SIZE = 4096
@@ -167,6 +175,10 @@ class _GeometryConstants:
         #: Joints as columns, shape (3, 6), for ``R @ platform_columns``.
         self.base_columns = np.ascontiguousarray(base.T)
         self.platform_columns = np.ascontiguousarray(platform.T)
+        #: ``(px, py, pz, bx, by, bz)`` of each leg as Python floats, for the one-pose paths:
+        #: on six legs, plain float arithmetic costs less than numpy's per-call overhead.
+        self.joint_pairs = tuple(tuple(p) + tuple(b)
+                                 for p, b in zip(platform.tolist(), base.tolist()))
         # Batched IK as one matrix product: [r11 .. r33, X, Y, Z] @ weights - base_flat gives
         # the leg vectors flattened as (leg, axis); see _block_lengths.
         weights = np.zeros((12, 18))
@@ -180,12 +192,12 @@ class _GeometryConstants:
         self.ik_weights_affine = np.vstack([weights, -self.base_flat])
         #: Sums the squared components of each leg: (18,) @ leg_sums -> (6,).
         self.leg_sums = np.kron(np.eye(6), np.ones((3, 1)))
-        # Newton-Raphson from the home pose: its first iterate is the same for every call.
-        home = np.array(geometry.home_pose, dtype=float)
-        self.home_pose = home
-        self.home_lengths, home_jacobian = _lengths_and_jacobian(geometry, home)
+        # Newton-Raphson from the home pose: its first step is the same for every call.
+        self.home_pose = tuple(geometry.home_pose.tolist())
+        home_legs = _single_euler_legs(self, self.home_pose)
+        self.home_lengths = [leg[0] for leg in home_legs]
         try:
-            self.home_jacobian_inverse = np.linalg.inv(home_jacobian)
+            self.home_jacobian_inverse = np.linalg.inv(_single_twist_jacobian(home_legs))
         except np.linalg.LinAlgError:
             # A home pose at a singularity: every solve from it reports the singular Jacobian.
             self.home_jacobian_inverse = None
@@ -204,60 +216,107 @@ def _constants(geometry) -> _GeometryConstants:
         return constants
 
 
-def _single_rotation(alpha, beta, gamma) -> np.ndarray:
-    """Return ``Rz(gamma) Ry(beta) Rx(alpha)`` of three floats (scalar twin of the batch one)."""
-    ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
-    sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
-    return np.array([
-        [cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa],
-        [sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa],
-        [-sb, cb * sa, cb * ca],
-    ])
-
-
 def _single_pose_lengths(constants, values):
-    """Leg lengths of one pose given as six floats: one small matrix product, no batch code."""
+    """Leg lengths (6,) of one pose given as six floats, in float arithmetic."""
     x, y, z, alpha, beta, gamma = values
-    ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
-    sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
-    coefficients = np.array([
-        cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa,
-        sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa,
-        -sb, cb * sa, cb * ca, x, y, z, 1.0])
-    legs = coefficients @ constants.ik_weights_affine
-    legs *= legs
-    return np.sqrt(legs @ constants.leg_sums)
+    r11, r12, r13, r21, r22, r23, r31, r32, r33 = euler_zyx_matrix_entries(alpha, beta, gamma)
+    squares = []
+    for px, py, pz, bx, by, bz in constants.joint_pairs:
+        lx = r11 * px + r12 * py + r13 * pz + x - bx
+        ly = r21 * px + r22 * py + r23 * pz + y - by
+        lz = r31 * px + r32 * py + r33 * pz + z - bz
+        squares.append(lx * lx + ly * ly + lz * lz)
+    return np.sqrt(squares)
 
 
-def _single_lengths(constants, pose):
+def _single_legs(constants, position, rotation_entries):
     """
-    Leg lengths of one pose, with what the Jacobian needs.
+    Legs of one pose, in float arithmetic.
 
-    :returns: ``(lengths (6,), legs (3, 6), rotated joints R p_i (3, 6), rotation (3, 3))``.
+    :param position: ``(X, Y, Z)`` of the platform frame, metres, base frame.
+    :param rotation_entries: its rotation ``(r11, r12, ..., r33)``, row by row.
+    :returns: per leg ``(l, lx, ly, lz, ax, ay, az)``: its length, its vector ``t + R p_i - b_i``
+        and the rotated platform joint ``R p_i``, metres, base frame.
     """
-    x, y, z, alpha, beta, gamma = pose.tolist()
-    rotation = _single_rotation(alpha, beta, gamma)
-    rotated = rotation @ constants.platform_columns
-    legs = rotated - constants.base_columns
-    legs += np.array([[x], [y], [z]])
-    return np.sqrt(np.einsum('ij,ij->j', legs, legs)), legs, rotated, rotation
+    x, y, z = position
+    r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation_entries
+    sqrt = math.sqrt
+    legs = []
+    for px, py, pz, bx, by, bz in constants.joint_pairs:
+        ax = r11 * px + r12 * py + r13 * pz
+        ay = r21 * px + r22 * py + r23 * pz
+        az = r31 * px + r32 * py + r33 * pz
+        lx, ly, lz = ax + x - bx, ay + y - by, az + z - bz
+        legs.append((sqrt(lx * lx + ly * ly + lz * lz), lx, ly, lz, ax, ay, az))
+    return legs
 
 
-def _single_jacobian(lengths, legs, rotated, rotation, gamma) -> np.ndarray:
-    """Jacobian of one pose from :func:`_single_lengths`; the formula of :func:`jacobian`."""
-    units = legs / lengths
-    ax, ay, az = rotated
-    ux, uy, uz = units
-    moment_arms = np.array([ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux])
-    euler_rate_axes = np.array([
-        [rotation[0, 0], -math.sin(gamma), 0.0],
-        [rotation[1, 0], math.cos(gamma), 0.0],
-        [rotation[2, 0], 0.0, 1.0],
-    ])
-    jac = np.empty((6, 6))
-    jac[:, :3] = units.T
-    jac[:, 3:] = moment_arms.T @ euler_rate_axes
-    return jac
+def _single_euler_legs(constants, pose):
+    """:func:`_single_legs` of a pose ``[X, Y, Z, alpha, beta, gamma]`` given as six floats."""
+    return _single_legs(constants, pose[:3], euler_zyx_matrix_entries(*pose[3:]))
+
+
+def _single_twist_jacobian(legs):
+    """
+    Jacobian of the leg lengths with respect to the platform twist, from :func:`_single_legs`.
+
+    Row ``i`` is ``[u_i, R p_i x u_i]``: the rates of ``l_i`` per unit velocity of the platform
+    origin and per unit angular velocity, both in the base frame. It is :func:`jacobian` without
+    the Euler rate matrix ``E``, whose inverse :func:`_euler_step` applies in closed form.
+
+    :returns: shape (6, 6).
+    """
+    entries = []
+    for length, lx, ly, lz, ax, ay, az in legs:
+        ux, uy, uz = lx / length, ly / length, lz / length
+        entries += (ux, uy, uz, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux)
+    return np.array(entries).reshape(6, 6)
+
+
+def _euler_step(pose, twist):
+    """
+    Pose ``pose - dx`` where ``E dx = twist``: a Newton step taken in Euler angle rates.
+
+    ``E``'s columns are ``R e_x``, ``Rz e_y`` and ``e_z`` (see :func:`jacobian`), so
+    ``d_alpha = (cos(gamma) w_x + sin(gamma) w_y) / cos(beta)``,
+    ``d_beta = cos(gamma) w_y - sin(gamma) w_x`` and ``d_gamma = w_z + sin(beta) d_alpha``.
+
+    :returns: the new pose as a list, or None where ``cos(beta) = 0`` (``E`` is singular).
+    """
+    x, y, z, alpha, beta, gamma = pose
+    vx, vy, vz, wx, wy, wz = twist
+    cos_beta = math.cos(beta)
+    if cos_beta == 0.0:
+        return None
+    cg, sg = math.cos(gamma), math.sin(gamma)
+    d_alpha = (cg * wx + sg * wy) / cos_beta
+    return [x - vx, y - vy, z - vz, alpha - d_alpha, beta - (cg * wy - sg * wx),
+            gamma - (wz + math.sin(beta) * d_alpha)]
+
+
+def twist_jacobian(geometry, position, rotation) -> np.ndarray:
+    """
+    Jacobian from the platform twist to the leg velocities.
+
+    A twist is ``[vx, vy, vz, wx, wy, wz]``: the velocity of the platform frame's origin and the
+    platform's angular velocity, both in the base frame. Leg ``i`` changes at
+    ``u_i . (v + w x R p_i)``, so row ``i`` is ``[u_i, R p_i x u_i]``, with ``u_i`` the unit
+    vector of the leg. :func:`jacobian` is this times the Euler rate matrix.
+
+    :param position: platform origin in the base frame, metres, shape (3,) or (N, 3).
+    :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
+    :returns: shape (6, 6) or (N, 6, 6); translation columns dimensionless, rotation columns
+        in metres per radian.
+    """
+    position = np.asarray(position, dtype=float)
+    rotation = np.asarray(rotation, dtype=float)
+    if position.shape == (3,) and rotation.shape == (3, 3):
+        return _single_twist_jacobian(_single_legs(
+            _constants(geometry), position.tolist(), rotation.ravel().tolist()))
+    legs = leg_vectors(geometry, position, rotation)
+    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    rotated = np.swapaxes(rotation @ geometry.platform_joints.T, -1, -2)
+    return np.concatenate([directions, np.cross(rotated, directions)], axis=-1)
 
 
 def _block_lengths(constants, poses, out):
@@ -339,6 +398,10 @@ class ForwardKinematicsResult:
     iterations: Union[int, np.ndarray]
     residual: Union[float, np.ndarray]
     reason: Union[str, Tuple[str, ...]]
+    #: One solve: the inverse of the twist Jacobian (see :func:`_single_twist_jacobian`) at the
+    #: last iterate that needed one, so that a solve started from this result (tracking)
+    #: begins with it instead of computing one at a pose only microns away.
+    _jacobian_inverse: Optional[np.ndarray] = field(default=None, repr=False, compare=False)
 
 
 def forward_kinematics(geometry, lengths, initial_guess=None, *,
@@ -353,28 +416,46 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
     A platform has several assembly modes for the same lengths: the solver finds the one the
     initial guess leads to, normally the nearest.
 
+    A solve keeps its Jacobian for the next step while it works well (while each step cuts the
+    residual by ``JACOBIAN_REUSE_CONTRACTION`` or more): the classic modified Newton method,
+    with the same stopping test. The first step from the home pose uses the home Jacobian,
+    computed once per geometry, and a solve started from a previous result (tracking) starts
+    with the Jacobian of that result. A batch takes, pose by pose, the steps of single solves,
+    vectorised.
+
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param lengths: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
     :param initial_guess: starting pose(s), shape (6,) or (N, 6); default
-        ``geometry.home_pose``. Start from the last solution when tracking a moving platform.
+        ``geometry.home_pose``. When tracking a moving platform, start from the last solution:
+        pass the last :class:`ForwardKinematicsResult` itself, and its Jacobian is reused too.
     :param tolerance: largest accepted leg length error, metres (default 1e-12).
     :param max_iterations: Newton-Raphson steps before giving up (default 50).
     :returns: a :class:`ForwardKinematicsResult`; non-convergence is reported there, not
         raised.
     :raises ValueError: if the lengths or the guess are malformed, or a limit is not positive.
     """
-    lengths = as_leg_lengths(lengths)
-    if initial_guess is None:
-        initial_guess = geometry.home_pose
-    guess = as_poses(initial_guess, 'initial_guess')
+    jacobian_inverse = None
+    if isinstance(initial_guess, ForwardKinematicsResult):
+        if initial_guess.converged is True:
+            jacobian_inverse = initial_guess._jacobian_inverse
+        initial_guess = initial_guess.pose
     if not 0.0 < tolerance < np.inf:
         raise ValueError(f'tolerance must be positive and finite (metres), got {tolerance!r}')
     if int(max_iterations) != max_iterations or max_iterations < 1:
         raise ValueError(f'max_iterations must be a positive integer, got {max_iterations!r}')
-    single = lengths.ndim == 1 and guess.ndim == 1
-    if single:
+    constants = _constants(geometry)
+    # One solve: six valid floats each (the common case, checked without numpy's overhead).
+    target = _single_values(lengths, positive=True)
+    guess = constants.home_pose if initial_guess is None else _single_values(initial_guess)
+    if target is None or guess is None:
+        lengths = as_leg_lengths(lengths)
+        guess = as_poses(geometry.home_pose if initial_guess is None else initial_guess,
+                         'initial_guess')
+        target, guess = ((lengths.tolist(), guess.tolist())
+                         if lengths.ndim == 1 and guess.ndim == 1 else (None, guess))
+    if target is not None:
         return _forward_kinematics_single(
-            geometry, lengths, guess, tolerance, int(max_iterations))
+            constants, target, list(guess), tolerance, int(max_iterations), jacobian_inverse)
     targets = np.atleast_2d(lengths)
     count = max(targets.shape[0], np.atleast_2d(guess).shape[0])
     if np.atleast_2d(guess).shape[0] not in (1, count) or targets.shape[0] not in (1, count):
@@ -383,109 +464,214 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
             'number of poses, or one of them a single one')
     targets = np.broadcast_to(targets, (count, 6))
     poses = np.array(np.broadcast_to(np.atleast_2d(guess), (count, 6)))
+    return _forward_kinematics_batch(
+        constants, targets, poses, tolerance, int(max_iterations))
 
+
+def _forward_kinematics_batch(constants, targets, poses, tolerance, max_iterations):
+    """
+    Solve a batch of poses at once: the algorithm of :func:`_forward_kinematics_single`.
+
+    Each pose keeps its own inverse twist Jacobian and takes the same steps, with the same
+    stopping rules and reasons, as it would alone; the arithmetic is vectorised over the poses
+    still being solved.
+
+    :param targets: leg lengths, metres, shape (N, 6).
+    :param poses: initial guesses, shape (N, 6); overwritten by the iterates.
+    """
+    count = len(poses)
     iterations = np.zeros(count, dtype=int)
     residual = np.full(count, np.inf)
-    reason = np.full(count, f'no convergence within {int(max_iterations)} iterations',
-                     dtype=object)
+    last_residual = np.full(count, np.inf)
+    reason = np.full(count, f'no convergence within {max_iterations} iterations', dtype=object)
+    inverses = np.empty((count, 6, 6))
+    has_inverse = np.zeros(count, dtype=bool)
+    if constants.home_jacobian_inverse is not None:
+        has_inverse = np.all(poses == constants.home_pose, axis=-1)
+        inverses[has_inverse] = constants.home_jacobian_inverse
     active = np.arange(count)
-    for step in range(int(max_iterations) + 1):
-        current, jac = _lengths_and_jacobian(geometry, poses[active])
-        error = current - targets[active]
-        residual[active] = np.max(np.abs(error), axis=-1)
+    for step in range(max_iterations + 1):
+        lengths, legs, rotated = _batch_legs(constants, poses[active])
+        errors = lengths - targets[active]
+        residual[active] = np.max(np.abs(errors), axis=-1)
         done = residual[active] <= tolerance
         reason[active[done]] = ''
-        active, jac, error = active[~done], jac[~done], error[~done]
+        active, errors = active[~done], errors[~done]
         if active.size == 0 or step == max_iterations:
             break
-        delta, solvable = _solve_each(jac, error)
-        reason[active[~solvable]] = 'singular Jacobian: the pose is at a singularity'
-        active, delta = active[solvable], delta[solvable]
-        stepped = poses[active] - delta
+        keep = ~done
+        refresh = ~has_inverse[active] | (
+            residual[active] > JACOBIAN_REUSE_CONTRACTION * last_residual[active])
+        if np.any(refresh):
+            rows = np.flatnonzero(keep)[refresh]
+            new, invertible = _invert_each(
+                _batch_twist_jacobian(lengths[rows], legs[rows], rotated[rows]))
+            inverses[active[refresh]] = new
+            has_inverse[active[refresh]] = invertible
+            reason[active[refresh][~invertible]] = SINGULAR_JACOBIAN
+            solvable = np.ones(active.size, dtype=bool)
+            solvable[np.flatnonzero(refresh)[~invertible]] = False
+            active, errors = active[solvable], errors[solvable]
+        last_residual[active] = residual[active]
+        twists = np.einsum('nij,nj->ni', inverses[active], errors)
+        stepped, defined = _batch_euler_step(poses[active], twists)
+        reason[active[~defined]] = SINGULAR_JACOBIAN
         # A diverging solve stops at its last plausible iterate, whose residual is known.
-        diverged = ~np.all(np.abs(stepped) < DIVERGENCE_BOUND, axis=-1)
-        reason[active[diverged]] = 'diverged: the next iterate left every plausible pose'
-        active, stepped = active[~diverged], stepped[~diverged]
-        poses[active] = stepped
+        diverged = defined & ~np.all(np.abs(stepped) < DIVERGENCE_BOUND, axis=-1)
+        reason[active[diverged]] = DIVERGED
+        moving = defined & ~diverged
+        active = active[moving]
+        poses[active] = stepped[moving]
         iterations[active] += 1
 
     converged = reason == ''
     # Same rotation, canonical angles: beta in [-pi/2, pi/2], alpha and gamma in (-pi, pi].
-    finite = np.all(np.isfinite(poses), axis=-1)
-    poses[finite, 3:] = matrix_to_euler_zyx(euler_zyx_to_matrix(poses[finite, 3:]))
-    if single:
-        return ForwardKinematicsResult(
-            pose=poses[0], converged=bool(converged[0]), iterations=int(iterations[0]),
-            residual=float(residual[0]), reason=str(reason[0]))
+    poses[:, 3:] = matrix_to_euler_zyx(euler_zyx_to_matrix(poses[:, 3:]))
     return ForwardKinematicsResult(
         pose=poses, converged=converged, iterations=iterations, residual=residual,
         reason=tuple(str(item) for item in reason))
 
 
-def _solve_each(jac, error):
-    """Solve each system ``jac[k] x = error[k]``; report which were singular."""
+def _batch_legs(constants, poses):
+    """
+    Legs of a batch of poses: the arrays of :func:`_single_legs`.
+
+    :param poses: shape (n, 6).
+    :returns: ``(lengths (n, 6), legs (n, 6, 3), rotated joints R p_i (n, 6, 3))``, metres.
+    """
+    rotations = euler_zyx_to_matrix(poses[:, 3:])
+    rotated = rotations @ constants.platform_columns  # (n, 3, 6)
+    rotated = np.swapaxes(rotated, -1, -2)
+    legs = rotated + (poses[:, None, :3] - constants.base_columns.T)
+    lengths = np.sqrt(np.einsum('nij,nij->ni', legs, legs))
+    return lengths, legs, rotated
+
+
+def _batch_twist_jacobian(lengths, legs, rotated):
+    """Twist Jacobians, shape (n, 6, 6), of :func:`_batch_legs`; see :func:`twist_jacobian`."""
+    units = legs / lengths[..., None]
+    ax, ay, az = rotated[..., 0], rotated[..., 1], rotated[..., 2]
+    ux, uy, uz = units[..., 0], units[..., 1], units[..., 2]
+    jac = np.empty(lengths.shape + (6,))
+    jac[..., :3] = units
+    jac[..., 3] = ay * uz - az * uy
+    jac[..., 4] = az * ux - ax * uz
+    jac[..., 5] = ax * uy - ay * ux
+    return jac
+
+
+def _batch_euler_step(poses, twists):
+    """
+    :func:`_euler_step` of each pose, shape (n, 6).
+
+    :returns: ``(stepped poses (n, 6), defined (n,))``; a step is undefined where
+        ``cos(beta) = 0``.
+    """
+    beta, gamma = poses[:, 4], poses[:, 5]
+    cos_beta = np.cos(beta)
+    defined = cos_beta != 0.0
+    cg, sg = np.cos(gamma), np.sin(gamma)
+    wx, wy, wz = twists[:, 3], twists[:, 4], twists[:, 5]
+    with np.errstate(divide='ignore', invalid='ignore'):
+        d_alpha = (cg * wx + sg * wy) / np.where(defined, cos_beta, 1.0)
+    stepped = np.empty_like(poses)
+    stepped[:, :3] = poses[:, :3] - twists[:, :3]
+    stepped[:, 3] = poses[:, 3] - d_alpha
+    stepped[:, 4] = beta - (cg * wy - sg * wx)
+    stepped[:, 5] = gamma - (wz + np.sin(beta) * d_alpha)
+    return stepped, defined
+
+
+def _invert_each(matrices):
+    """Invert each matrix of a stack (n, 6, 6); report which were singular."""
     try:
-        return np.linalg.solve(jac, error[..., None])[..., 0], np.ones(len(error), dtype=bool)
+        return np.linalg.inv(matrices), np.ones(len(matrices), dtype=bool)
     except np.linalg.LinAlgError:
-        # One singular matrix fails the whole stack: solve them one by one.
-        delta = np.zeros_like(error)
-        solvable = np.ones(len(error), dtype=bool)
-        for k in range(len(error)):
+        # One singular matrix fails the whole stack: invert them one by one.
+        inverses = np.zeros_like(matrices)
+        invertible = np.ones(len(matrices), dtype=bool)
+        for k, matrix in enumerate(matrices):
             try:
-                delta[k] = np.linalg.solve(jac[k], error[k])
+                inverses[k] = np.linalg.inv(matrix)
             except np.linalg.LinAlgError:
-                solvable[k] = False
-        return delta, solvable
+                invertible[k] = False
+        return inverses, invertible
 
 
-def _forward_kinematics_single(geometry, target, guess, tolerance, max_iterations):
+def _single_values(values, positive=False):
     """
-    Solve one pose: the loop of :func:`forward_kinematics` without the batch bookkeeping.
+    Six floats of one pose or one set of leg lengths, or None to leave it to the full checks.
 
-    The same iterates, stopping rules and reasons as the batch solver. From the home pose the
-    first iterate comes from the cached home lengths and inverse Jacobian (the same for every
-    call), and the Jacobian is computed only when a step is taken.
+    The fast path of the argument checks for one solve: None unless ``values`` is an array,
+    list or tuple of six numbers that are finite (and positive, with ``positive``), so that
+    :func:`as_poses` and :func:`as_leg_lengths` say what is wrong, or see a batch.
+
+    :returns: a list of six floats, or None.
     """
-    constants = _constants(geometry)
-    pose = guess.copy()
+    if isinstance(values, np.ndarray):
+        if values.shape != (6,):
+            return None
+        values = values.tolist()
+    elif not isinstance(values, (list, tuple)) or len(values) != 6:
+        return None
+    try:
+        values = [float(value) for value in values]
+    except (TypeError, ValueError):
+        return None
+    low = 0.0 if positive else -math.inf
+    return values if all(low < value < math.inf for value in values) else None
+
+
+def _forward_kinematics_single(constants, target, pose, tolerance, max_iterations,
+                               jacobian_inverse):
+    """
+    Solve one pose in float arithmetic: modified Newton-Raphson (see :func:`forward_kinematics`).
+
+    Steps are taken in the twist form ``[u_i, R p_i x u_i] [v, w] = l(x) - lengths`` and turned
+    into Euler angle steps by :func:`_euler_step`: the same step as with :func:`jacobian`, whose
+    rotation columns are these times ``E``.
+
+    :param target: the six leg lengths, metres, as floats.
+    :param pose: the initial guess, as six floats.
+    :param jacobian_inverse: inverse twist Jacobian to take the first step with, or None.
+    """
+    if jacobian_inverse is None and tuple(pose) == constants.home_pose:
+        jacobian_inverse = constants.home_jacobian_inverse
     iterations = 0
     reason = f'no convergence within {max_iterations} iterations'
-    from_home = (constants.home_jacobian_inverse is not None
-                 and np.array_equal(pose, constants.home_pose))
+    last_residual = math.inf
     for step in range(max_iterations + 1):
-        if step == 0 and from_home:
-            current = constants.home_lengths
-        else:
-            current, legs, rotated, rotation = _single_lengths(constants, pose)
-        error = current - target
-        residual = max(map(abs, error.tolist()))
+        legs = _single_euler_legs(constants, pose)
+        errors = [leg[0] - length for leg, length in zip(legs, target)]
+        residual = max(map(abs, errors))
         if residual <= tolerance:
             reason = ''
             break
         if step == max_iterations:
             break
-        if step == 0 and from_home:
-            delta = constants.home_jacobian_inverse @ error
-        else:
-            jac = _single_jacobian(current, legs, rotated, rotation, pose[5])
+        if jacobian_inverse is None or residual > JACOBIAN_REUSE_CONTRACTION * last_residual:
             try:
-                delta = np.linalg.solve(jac, error)
+                jacobian_inverse = np.linalg.inv(_single_twist_jacobian(legs))
             except np.linalg.LinAlgError:
-                reason = 'singular Jacobian: the pose is at a singularity'
+                jacobian_inverse = None
+                reason = SINGULAR_JACOBIAN
                 break
-        stepped = pose - delta
+        last_residual = residual
+        stepped = _euler_step(pose, (jacobian_inverse @ errors).tolist())
+        if stepped is None:
+            reason = SINGULAR_JACOBIAN
+            break
         # A diverging solve stops at its last plausible iterate, whose residual is known.
-        if not all(abs(value) < DIVERGENCE_BOUND for value in stepped.tolist()):
-            reason = 'diverged: the next iterate left every plausible pose'
+        if not all(abs(value) < DIVERGENCE_BOUND for value in stepped):
+            reason = DIVERGED
             break
         pose = stepped
         iterations += 1
-    if all(map(math.isfinite, pose.tolist())):
-        # Same rotation, canonical angles, as in the batch solver.
-        pose[3:] = _single_canonical_angles(*pose[3:].tolist())
+    # Same rotation, canonical angles, as in the batch solver.
+    pose[3:] = _single_canonical_angles(*pose[3:])
     return ForwardKinematicsResult(
-        pose=pose, converged=reason == '', iterations=iterations, residual=residual,
-        reason=reason)
+        pose=np.array(pose), converged=reason == '', iterations=iterations, residual=residual,
+        reason=reason, _jacobian_inverse=jacobian_inverse)
 
 
 def _single_canonical_angles(alpha, beta, gamma):

@@ -35,7 +35,13 @@ from typing import List, Optional
 
 import numpy as np
 
-from stewart_kinematics.kinematics import as_leg_lengths, as_poses, leg_vectors
+from stewart_kinematics.kinematics import (
+    as_leg_lengths,
+    as_poses,
+    leg_lengths,
+    leg_vectors,
+    twist_jacobian,
+)
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
 
@@ -80,7 +86,7 @@ def leg_length_violations(geometry, lengths) -> List[Violation]:
     if lengths.shape != (6,):
         raise ValueError(f'expected the 6 lengths of one pose, got shape {lengths.shape}')
     violations = []
-    for leg, length in enumerate(lengths, start=1):
+    for leg, length in enumerate(lengths.tolist(), start=1):
         if length < geometry.leg_length_min:
             violations.append(Violation('leg_length_min', leg, length, geometry.leg_length_min,
                                         'm'))
@@ -123,12 +129,9 @@ def jacobian_condition(geometry, position, rotation):
     :param rotation: shape (3, 3) or (N, 3, 3).
     :returns: shape () or (N,); ``inf`` at an exact singularity.
     """
-    legs = leg_vectors(geometry, position, rotation)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
-    rotated = np.swapaxes(np.asarray(rotation, dtype=float) @ geometry.platform_joints.T, -1, -2)
-    moments = np.cross(rotated, directions) / geometry.platform_radius
-    singular_values = np.linalg.svd(np.concatenate([directions, moments], axis=-1),
-                                    compute_uv=False)
+    jac = twist_jacobian(geometry, position, rotation)
+    jac[..., 3:] /= geometry.platform_radius
+    singular_values = np.linalg.svd(jac, compute_uv=False)
     with np.errstate(divide='ignore'):
         return singular_values[..., 0] / singular_values[..., -1]
 
@@ -145,17 +148,21 @@ def check_pose(geometry, position, rotation) -> List[Violation]:
     if position.shape != (3,) or rotation.shape != (3, 3):
         raise ValueError(f'expected a position (3,) and a rotation (3, 3), got shapes '
                          f'{position.shape} and {rotation.shape}')
-    if not (np.all(np.isfinite(position)) and np.all(np.isfinite(rotation))):
+    if not all(map(math.isfinite, position.tolist() + rotation.ravel().tolist())):
         raise ValueError(f'pose must be finite, got position {position.tolist()}')
-    lengths = np.linalg.norm(leg_vectors(geometry, position, rotation), axis=-1)
-    violations = leg_length_violations(geometry, lengths)
-    base_angles, platform_angles = joint_angles(geometry, position, rotation)
-    for limit, angles, allowed in (
-            ('base_joint_max_angle', base_angles, geometry.base_joint_max_angle),
-            ('platform_joint_max_angle', platform_angles, geometry.platform_joint_max_angle)):
-        for leg in np.flatnonzero(angles > allowed):
-            violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
-                                        math.degrees(allowed), 'deg'))
+    # Each check runs only where its limit is set: the nodes call this for every message.
+    violations = []
+    if geometry.leg_length_min > 0.0 or geometry.leg_length_max < math.inf:
+        violations += leg_length_violations(geometry, leg_lengths(geometry, position, rotation))
+    if min(geometry.base_joint_max_angle, geometry.platform_joint_max_angle) < math.pi:
+        base_angles, platform_angles = joint_angles(geometry, position, rotation)
+        for limit, angles, allowed in (
+                ('base_joint_max_angle', base_angles, geometry.base_joint_max_angle),
+                ('platform_joint_max_angle', platform_angles,
+                 geometry.platform_joint_max_angle)):
+            for leg in np.flatnonzero(angles > allowed):
+                violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
+                                            math.degrees(allowed), 'deg'))
     if math.isfinite(geometry.max_jacobian_condition):
         condition = float(jacobian_condition(geometry, position, rotation))
         if not condition <= geometry.max_jacobian_condition:

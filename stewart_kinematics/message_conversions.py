@@ -19,6 +19,8 @@ The only module besides the nodes that imports message types. Every ``*_from_mes
 raises ``ValueError`` with a sentence a user can act on when a message cannot be used.
 """
 
+import math
+
 from geometry_msgs.msg import Pose, Twist
 import numpy as np
 from sensor_msgs.msg import JointState
@@ -48,13 +50,13 @@ def position_quaternion_from_message(message: Pose):
         that the caller can warn about a non-unit one.
     :raises ValueError: if a coordinate is not finite, or the quaternion is zero or not finite.
     """
-    position = np.array([message.position.x, message.position.y, message.position.z])
-    if not np.all(np.isfinite(position)):
-        raise ValueError(f'position must be finite (metres), got {position.tolist()}')
-    orientation = message.orientation
-    quaternion = np.array([orientation.x, orientation.y, orientation.z, orientation.w])
+    point, orientation = message.position, message.orientation
+    position = [point.x, point.y, point.z]
+    if not all(map(math.isfinite, position)):
+        raise ValueError(f'position must be finite (metres), got {position}')
+    quaternion = [orientation.x, orientation.y, orientation.z, orientation.w]
     unit = normalize_quaternion(quaternion)
-    return position, unit, float(np.linalg.norm(quaternion))
+    return np.array(position), unit, math.sqrt(sum(value * value for value in quaternion))
 
 
 def pose_from_message(message: Pose) -> np.ndarray:
@@ -75,8 +77,8 @@ def pose_to_message(pose) -> Pose:
     """
     pose = np.asarray(pose, dtype=float)
     message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    x, y, z, w = (float(v) for v in euler_zyx_to_quaternion(pose[3:]))
+    message.position.x, message.position.y, message.position.z = pose[:3].tolist()
+    x, y, z, w = euler_zyx_to_quaternion(pose[3:]).tolist()
     message.orientation.x, message.orientation.y = x, y
     message.orientation.z, message.orientation.w = z, w
     return message
@@ -91,7 +93,7 @@ def legs_to_message(values) -> Float64MultiArray:
     """
     message = Float64MultiArray()
     message.layout.dim = [MultiArrayDimension(label=LEG_DIMENSION_LABEL, size=6, stride=6)]
-    message.data = [float(value) for value in values]
+    message.data = np.asarray(values, dtype=float).tolist()
     return message
 
 
@@ -122,9 +124,9 @@ def joint_state_message(header, lengths, velocities=None) -> JointState:
         (the message's velocity list is then empty, as JointState allows).
     """
     message = JointState(header=header, name=list(LEG_JOINT_NAMES))
-    message.position = [float(value) for value in lengths]
+    message.position = np.asarray(lengths, dtype=float).tolist()
     if velocities is not None:
-        message.velocity = [float(value) for value in velocities]
+        message.velocity = np.asarray(velocities, dtype=float).tolist()
     return message
 
 

@@ -93,10 +93,15 @@ def find_executable(name: str) -> str:
     Path of one of the package's console scripts.
 
     Looks beside the running interpreter (a venv's ``bin/``), on ``PATH``, then in the
-    package's ``lib/stewart_kinematics/`` (where colcon installs them for ``ros2 run``).
+    package's ``lib/stewart_kinematics/`` (where colcon installs them for ``ros2 run``). A name
+    with a slash is a path, taken as it is (as a shell does).
 
     :raises FileNotFoundError: naming the places searched.
     """
+    if os.sep in name:
+        if Path(name).is_file() and os.access(name, os.X_OK):
+            return name
+        raise FileNotFoundError(f'executable {name!r} not found or not executable')
     candidates = [Path(sys.executable).parent / name]
     on_path = shutil.which(name)
     if on_path:

@@ -48,6 +48,9 @@ def euler_zyx_to_matrix(angles):
     angles = np.asarray(angles, dtype=float)
     if angles.shape[-1:] != (3,):
         raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
+    if angles.shape == (3,):
+        # One rotation (the nodes' case): scalars cost less than numpy's per-call overhead.
+        return np.array(euler_zyx_matrix_entries(*angles.tolist())).reshape(3, 3)
     ca, cb, cg = np.cos(angles[..., 0]), np.cos(angles[..., 1]), np.cos(angles[..., 2])
     sa, sb, sg = np.sin(angles[..., 0]), np.sin(angles[..., 1]), np.sin(angles[..., 2])
     rotation = np.empty(angles.shape[:-1] + (3, 3))
@@ -62,6 +65,23 @@ def euler_zyx_to_matrix(angles):
     rotation[..., 2, 1] = cb * sa
     rotation[..., 2, 2] = cb * ca
     return rotation
+
+
+def euler_zyx_matrix_entries(alpha, beta, gamma):
+    """
+    Entries of ``Rz(gamma) Ry(beta) Rx(alpha)`` for three floats (radians).
+
+    The scalar form of :func:`euler_zyx_to_matrix`, for code that works on one pose in float
+    arithmetic.
+
+    :returns: ``(r11, r12, r13, r21, r22, r23, r31, r32, r33)``, row by row.
+    """
+    ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
+    sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
+    # Entries r11..r33 exactly as printed in the paper, section 3.
+    return (cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa,
+            sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa,
+            -sb, cb * sa, cb * ca)
 
 
 def matrix_to_euler_zyx(rotation):
@@ -102,6 +122,12 @@ def quaternion_to_matrix(quaternion):
     :raises ValueError: if a quaternion is not finite or has (nearly) zero norm.
     """
     x, y, z, w = np.moveaxis(normalize_quaternion(quaternion), -1, 0)
+    if np.ndim(x) == 0:
+        x, y, z, w = float(x), float(y), float(z), float(w)
+        return np.array((
+            (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)),
+            (2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)),
+            (2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y))))
     rotation = np.empty(np.shape(x) + (3, 3))
     rotation[..., 0, 0] = 1.0 - 2.0 * (y * y + z * z)
     rotation[..., 0, 1] = 2.0 * (x * y - z * w)
@@ -186,6 +212,15 @@ def euler_zyx_to_quaternion(angles):
     :param angles: ``(alpha, beta, gamma)``, shape (3,) or (..., 3).
     :returns: shape (4,) or (..., 4).
     """
+    angles = np.asarray(angles, dtype=float)
+    if angles.shape == (3,):
+        # One rotation: the product q_z(gamma) q_y(beta) q_x(alpha) of half-angle quaternions.
+        alpha, beta, gamma = (0.5 * angle for angle in angles.tolist())
+        ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
+        sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
+        quaternion = np.array([sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+                               ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+        return -quaternion if quaternion[3] < 0.0 else quaternion
     return matrix_to_quaternion(euler_zyx_to_matrix(angles))
 
 
@@ -211,13 +246,24 @@ def normalize_quaternion(quaternion):
     quaternion = np.asarray(quaternion, dtype=float)
     if quaternion.shape[-1:] != (4,):
         raise ValueError(f'quaternions must have shape (..., 4), got {quaternion.shape}')
+    if quaternion.shape == (4,):
+        # One quaternion (the nodes' case), in scalars; NaN fails both comparisons.
+        components = quaternion.tolist()
+        norm = math.sqrt(sum(value * value for value in components))
+        if QUATERNION_NORM_MIN <= norm < math.inf:
+            return np.array([value / norm for value in components])
     if not np.all(np.isfinite(quaternion)):
         raise ValueError(f'quaternion components must be finite, got {quaternion.tolist()}')
-    norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
+    with np.errstate(over='ignore'):  # an overflow to inf is handled below
+        norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
     if np.any(norm < QUATERNION_NORM_MIN):
         raise ValueError(
             f'quaternion norm must be at least {QUATERNION_NORM_MIN:g}, got {norm.min():g}: '
             'a zero quaternion describes no rotation')
+    if not np.all(np.isfinite(norm)):
+        # Finite components whose squares overflow (such as 1e200): scale them down first.
+        quaternion = quaternion / np.max(np.abs(quaternion), axis=-1, keepdims=True)
+        norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
     return quaternion / norm
 
 
@@ -234,5 +280,8 @@ def rotation_angle_between(rotation_a, rotation_b):
     relative = np.swapaxes(np.asarray(rotation_a, dtype=float), -1, -2) @ rotation_b
     # The quaternion's vector part gives an accurate angle near zero, where arccos of the trace
     # would lose half of the digits.
+    if relative.shape == (3, 3):
+        x, y, z, w = _matrix_to_quaternion_single(relative.tolist()).tolist()
+        return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), w)
     quaternion = matrix_to_quaternion(relative)
     return 2.0 * np.arctan2(np.linalg.norm(quaternion[..., :3], axis=-1), quaternion[..., 3])

@@ -20,27 +20,13 @@ in geometry_msgs/msg/Twist. Leg velocities are the rates of change of the leg le
 (metres per second), the paper's "rate of change of the lengths".
 
 Leg ``i`` changes at ``u_i . (v + w x R p_i) = [u_i, R p_i x u_i] . [v, w]``, with ``u_i`` its
-unit vector: the rows of :func:`twist_jacobian`.
+unit vector: the rows of :func:`stewart_kinematics.kinematics.twist_jacobian`.
 """
 
 import numpy as np
 
-from stewart_kinematics.kinematics import as_poses, leg_vectors
+from stewart_kinematics.kinematics import as_poses, twist_jacobian
 from stewart_kinematics.rotations import euler_zyx_to_matrix
-
-
-def twist_jacobian(geometry, position, rotation) -> np.ndarray:
-    """
-    Jacobian from the platform twist to the leg velocities.
-
-    :param position: platform origin in the base frame, metres, shape (3,) or (N, 3).
-    :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
-    :returns: shape (6, 6) or (N, 6, 6); row ``i`` is ``[u_i, R p_i x u_i]``.
-    """
-    legs = leg_vectors(geometry, position, rotation)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
-    rotated = np.swapaxes(np.asarray(rotation, dtype=float) @ geometry.platform_joints.T, -1, -2)
-    return np.concatenate([directions, np.cross(rotated, directions)], axis=-1)
 
 
 def leg_velocities(geometry, poses, twists) -> np.ndarray:

@@ -18,6 +18,10 @@ Shared fixtures; every test session runs on a private ROS domain, on this machin
 ``pytest_configure`` sets ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``, a ``ROS_LOG_DIR`` and a
 reserved free ``ROS_DOMAIN_ID`` before any test starts rclpy, so neither in-process nodes nor
 the node processes the tests start can reach the network or another run.
+
+The multi-process tests share ``start_node`` (console scripts as child processes, stopped at the
+end of the test) and ``client`` (the test's own rclpy node, with waits that fail with the
+nodes' output).
 """
 
 import contextlib
@@ -26,7 +30,7 @@ import time
 
 import pytest
 
-from stewart_kinematics.node_processes import isolated_ros_environment
+from stewart_kinematics.node_processes import isolated_ros_environment, NodeProcess
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 #: Seconds a test waits for data: DDS discovery on loopback has multi-second tails.
@@ -77,3 +81,63 @@ def spin_until():
             executor.spin_once(timeout_sec=0.05)
         return True
     return spin
+
+
+class TopicClient:
+    """The test's own node and executor, with waits that fail with the nodes' output."""
+
+    def __init__(self, node, executor, spin_until):
+        """Wrap the test's node, the executor that spins it and conftest's spin_until."""
+        self.node = node
+        self.executor = executor
+        self._spin_until = spin_until
+
+    def wait(self, condition, what, processes=()):
+        """
+        Spin until ``condition()`` holds; fail after :data:`DEADLINE` s or when a process exits.
+
+        :param what: the awaited condition in words, for the failure message.
+        :param processes: the NodeProcess instances that must keep running meanwhile.
+        """
+        def done():
+            return condition() or not all(process.running() for process in processes)
+
+        self._spin_until(self.executor, done, DEADLINE)
+        if not condition():
+            report = [f'{what}: not within {DEADLINE} s']
+            for process in processes:
+                code = process.stop()
+                report.append(f'--- {process.name} (exit code {code}) ---\n{process.output()}')
+            pytest.fail('\n'.join(report))
+
+    def spin_for(self, seconds):
+        """Spin for ``seconds``: a settle time or a throttle window, never a wait for data."""
+        end = time.monotonic() + seconds
+        self._spin_until(self.executor, lambda: time.monotonic() >= end, seconds + 1.0)
+
+
+@pytest.fixture
+def client(ros, spin_until):
+    """Create a TopicClient with a fresh node on the session's private domain."""
+    from rclpy.executors import SingleThreadedExecutor
+    node = ros.create_node('stewart_test_client')
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    yield TopicClient(node, executor, spin_until)
+    executor.shutdown()
+    node.destroy_node()
+
+
+@pytest.fixture
+def start_node():
+    """
+    Provide a function that starts a console script with arguments as a NodeProcess.
+
+    ``start(executable, arguments=(), env=None)``: ``executable`` is a console script's name or
+    a path; ``env`` replaces the environment. Every process started is stopped (SIGINT, then
+    kill) when the test ends, pass or fail.
+    """
+    with contextlib.ExitStack() as stack:
+        def start(executable, arguments=(), env=None):
+            return stack.enter_context(NodeProcess(executable, list(arguments), env))
+        yield start

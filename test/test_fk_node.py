@@ -33,7 +33,7 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from stewart_kinematics import fk_node, Geometry, inverse_kinematics
+from stewart_kinematics import fk_node, forward_kinematics, Geometry, inverse_kinematics
 from stewart_kinematics.fk_node import FkNode
 import yaml
 
@@ -161,6 +161,48 @@ def test_table3_rows_come_back_as_their_poses(start, spin_until):
         # Warm start: the next solve starts from this solution.
         assert_allclose(node.last_pose, TABLE3[row], rtol=0.0, atol=1e-9)
     assert counts(node) == (11, 11, 0)
+
+
+def yawed_home(degrees):
+    """Return the home pose turned ``degrees`` about z: (X, Y, Z, alpha, beta, gamma)."""
+    return TABLE3[0][:5] + (math.radians(degrees),)
+
+
+def test_each_solve_starts_from_the_last_solution(start, spin_until):
+    """
+    Turned 150 degrees about z in steps of 15, the platform is tracked to the right pose.
+
+    From the home pose the lengths of that half turn lead Newton-Raphson to another pose with
+    the same lengths (another assembly mode): only a start from the last solution finds it.
+    """
+    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    turned = yawed_home(150.0)
+    cold = forward_kinematics(geometry, inverse_kinematics(geometry, turned))
+    assert not (cold.converged and np.allclose(cold.pose, turned, rtol=0.0, atol=1e-6)), (
+        'this test needs lengths whose solve from home misses the pose')
+    node, probe, executor = start()
+    for step in range(1, 11):
+        pose = yawed_home(15.0 * step)
+        send_and_wait(spin_until, executor, probe,
+                      lengths_message(inverse_kinematics(geometry, pose)), step)
+        assert_pose_message(probe.poses[-1], pose, 1e-9)
+    assert counts(node) == (10, 10, 0)
+
+
+def test_a_failed_solve_falls_back_to_the_home_pose(start, spin_until):
+    """From a turn of -60 degrees about z Table 3's last row diverges; from home it is found."""
+    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    turned = yawed_home(-60.0)
+    end_lengths = table_lengths(10)
+    warm = forward_kinematics(geometry, end_lengths, turned)
+    assert not warm.converged, 'this test needs lengths whose solve from the last pose fails'
+    node, probe, executor = start()
+    send_and_wait(spin_until, executor, probe,
+                  lengths_message(inverse_kinematics(geometry, turned)), 1)
+    assert_pose_message(probe.poses[-1], turned, 1e-9)
+    send_and_wait(spin_until, executor, probe, lengths_message(end_lengths), 2)
+    assert_pose_message(probe.poses[-1], TABLE3[10], 1e-9)
+    assert counts(node) == (2, 2, 0)
 
 
 def test_bare_and_offset_arrays_are_accepted(start, spin_until):

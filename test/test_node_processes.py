@@ -27,19 +27,16 @@ the only fixed waits are the settle time after discovery (a reliable, volatile r
 match a writer a moment after the writer matched it) and the nodes' one-second warning throttle.
 """
 
-import contextlib
 import math
 import os
 import signal
 import subprocess
 import sys
-import time
 
 from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.message_accounting import WARNING_PERIOD
@@ -191,63 +188,6 @@ def kinematics_arguments(config_directory):
     """Return the command line of ik_node and fk_node with the shipped parameter files."""
     return ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
             '--params-file', str(config_directory / 'solver.yaml')]
-
-
-class TopicClient:
-    """The test's own node and executor, with waits that fail with the nodes' output."""
-
-    def __init__(self, node, executor, spin_until):
-        """Wrap the test's node, the executor that spins it and conftest's spin_until."""
-        self.node = node
-        self.executor = executor
-        self._spin_until = spin_until
-
-    def wait(self, condition, what, processes=()):
-        """
-        Spin until ``condition()`` holds; fail after :data:`DEADLINE` s or when a process exits.
-
-        :param what: the awaited condition in words, for the failure message.
-        :param processes: the NodeProcess instances that must keep running meanwhile.
-        """
-        def done():
-            return condition() or not all(process.running() for process in processes)
-
-        self._spin_until(self.executor, done, DEADLINE)
-        if not condition():
-            report = [f'{what}: not within {DEADLINE} s']
-            for process in processes:
-                code = process.stop()
-                report.append(f'--- {process.name} (exit code {code}) ---\n{process.output()}')
-            pytest.fail('\n'.join(report))
-
-    def spin_for(self, seconds):
-        """Spin for ``seconds``: a settle time or a throttle window, never a wait for data."""
-        end = time.monotonic() + seconds
-        self._spin_until(self.executor, lambda: time.monotonic() >= end, seconds + 1.0)
-
-
-@pytest.fixture
-def client(ros, spin_until):
-    """Create a TopicClient with a fresh node on the session's private domain."""
-    node = ros.create_node('stewart_test_client')
-    executor = SingleThreadedExecutor()
-    executor.add_node(node)
-    yield TopicClient(node, executor, spin_until)
-    executor.shutdown()
-    node.destroy_node()
-
-
-@pytest.fixture
-def start_node():
-    """
-    Provide a function that starts a console script with arguments as a NodeProcess.
-
-    Every process started is stopped (SIGINT, then kill) when the test ends, pass or fail.
-    """
-    with contextlib.ExitStack() as stack:
-        def start(executable, arguments=()):
-            return stack.enter_context(NodeProcess(executable, list(arguments)))
-        yield start
 
 
 def warnings_in(output):

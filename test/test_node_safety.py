@@ -345,6 +345,29 @@ def test_ik_normalises_a_non_unit_quaternion_and_warns_once(start, spin_until, c
     assert 'orientation has norm 2, not 1: normalised' in log
 
 
+@pytest.mark.parametrize('cli_args', [IK_ARGS[:3], IK_ARGS], ids=['no limits', 'example limits'])
+def test_ik_refuses_a_finite_pose_whose_leg_lengths_overflow(start, spin_until, cli_args):
+    """Positions of 1e200 m and 1e155 m (legs overflow to inf): refused, the node keeps going."""
+    node, probe, executor = start(IkNode, cli_args, {}, Pose, 'target_pose',
+                                  [('leg_lengths', Float64MultiArray)])
+    lengths = probe.received['leg_lengths']
+    unit = [0.0, 0.0, 0.0, 1.0]
+    probe.publisher.publish(pose_message([0.0, 0.0, 1e200], unit))
+    probe.publisher.publish(pose_message([1e155, 0.0, 0.4325], unit))
+    assert spin_until(executor, lambda: len(probe.errors(node)) >= 2), (
+        f'{len(probe.errors(node))} of 2 ERROR statuses')
+    # Poses from one publisher arrive in order: one answer to this one means none to those.
+    probe.publisher.publish(message_of(HOME))
+    assert spin_until(executor, lambda: len(lengths) >= 1)
+    assert len(lengths) == 1
+    assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)
+    for status in probe.errors(node):
+        assert status.message.startswith('target_pose rejected'), status.message
+        assert 'finite and positive' in status.message, status.message
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (3, 1, 2)
+
+
 def test_run_time_parameter_changes_are_validated(ros):
     """An invalid value is refused with a reason and the old value stays; geometry is fixed."""
     ik = IkNode(cli_args=IK_ARGS)

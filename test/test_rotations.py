@@ -275,6 +275,14 @@ def test_normalize_quaternion_batch():
     assert_allclose(result, [[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]], rtol=0.0, atol=ATOL)
 
 
+@pytest.mark.parametrize('quaternion', [[1e200, 1e200, 0.0, 0.0], [[1e200, 1e200, 0.0, 0.0]]],
+                         ids=['one', 'batch'])
+def test_normalize_quaternion_of_a_norm_that_overflows(quaternion):
+    """Components of 1e200 (their squares overflow to inf) give a unit quaternion, not zero."""
+    assert_allclose(np.reshape(normalize_quaternion(quaternion), 4),
+                    [SQRT_HALF, SQRT_HALF, 0.0, 0.0], rtol=0.0, atol=ATOL)
+
+
 @pytest.mark.parametrize('quaternion, message', [
     ([0.0, 0.0, 0.0, 0.0], 'norm'),
     ([1e-12, 0.0, 0.0, 0.0], 'norm'),
