@@ -36,6 +36,7 @@ from stewart_kinematics.kinematics import (
     jacobian,
     leg_lengths,
     leg_vectors,
+    twist_jacobian,
 )
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
@@ -46,6 +47,7 @@ from stewart_kinematics.rotations import (
     quaternion_to_matrix,
 )
 from stewart_kinematics.trajectory import Ramp
+from stewart_kinematics.velocities import leg_velocities, platform_twist
 
 __all__ = [
     'euler_zyx_to_matrix',
@@ -57,9 +59,12 @@ __all__ = [
     'jacobian',
     'leg_lengths',
     'leg_vectors',
+    'leg_velocities',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
+    'platform_twist',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'twist_jacobian',
 ]

@@ -342,3 +342,31 @@ def test_single_matrix_path_equals_the_batch_path():
     batch = matrix_to_quaternion(matrices)
     for matrix, expected in zip(matrices, batch):
         assert_allclose(matrix_to_quaternion(matrix), expected, rtol=0.0, atol=1e-15)
+
+
+def test_single_value_paths_equal_the_batch_paths():
+    """
+    One value (the nodes' float-arithmetic fast paths) gives what the batch path gives.
+
+    Covers Euler angles to matrix and to quaternion (including half turns, where w = 0 and the
+    sign rule matters), quaternion to matrix, normalisation and the angle between rotations.
+    """
+    angles = np.concatenate([random_angles(200, seed=3), [
+        [math.pi, 0.0, 0.0], [0.0, 0.0, math.pi], [0.0, math.pi / 2.0, 0.3],
+        [0.2, -math.pi / 2.0, -0.4]]])
+    matrices = euler_zyx_to_matrix(angles)
+    quaternions = euler_zyx_to_quaternion(angles)
+    scaled = quaternions * np.linspace(0.5, 3.0, len(quaternions))[:, None]
+    shifted = np.roll(matrices, 1, axis=0)
+    batch_angles = rotation_angle_between(matrices, shifted)
+    for k, triple in enumerate(angles):
+        assert_allclose(euler_zyx_to_matrix(triple), matrices[k], rtol=0.0, atol=1e-15)
+        single = euler_zyx_to_quaternion(triple)
+        assert single[3] >= 0.0
+        # q and -q are the same rotation; only w = 0 leaves the sign to rounding.
+        sign = 1.0 if abs(quaternions[k, 3]) > 1e-12 else np.sign(single @ quaternions[k])
+        assert_allclose(sign * single, quaternions[k], rtol=0.0, atol=1e-15)
+        assert_allclose(quaternion_to_matrix(scaled[k]), matrices[k], rtol=0.0, atol=1e-15)
+        assert_allclose(normalize_quaternion(scaled[k]), quaternions[k], rtol=0.0, atol=1e-15)
+        assert_allclose(rotation_angle_between(matrices[k], shifted[k]), batch_angles[k],
+                        rtol=0.0, atol=1e-12)

@@ -86,3 +86,13 @@ def test_jacobian_shape_and_bad_input():
         leg_velocities(GEOMETRY, POSES[0], [math.nan] * 6)
     with pytest.raises(ValueError, match='leg velocities'):
         platform_twist(GEOMETRY, POSES[0], [0.0] * 5)
+
+
+def test_twist_jacobian_of_one_pose_equals_its_batch_form():
+    """The one-pose path (float arithmetic) gives the batch path's Jacobian to 1e-15."""
+    rotations = euler_zyx_to_matrix(POSES[:, 3:])
+    batch = twist_jacobian(GEOMETRY, POSES[:, :3], rotations)
+    for pose, rotation, expected in zip(POSES, rotations, batch):
+        single = twist_jacobian(GEOMETRY, pose[:3], rotation)
+        assert single.shape == (6, 6)
+        assert_allclose(single, expected, rtol=0.0, atol=1e-15)
