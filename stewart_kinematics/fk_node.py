@@ -39,14 +39,18 @@ from std_msgs.msg import Float64MultiArray, Header
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import forward_kinematics
-from stewart_kinematics.message_accounting import MessageAccounting, violation_values
+from stewart_kinematics.message_accounting import (
+    MessageAccounting,
+    NodeDiagnostics,
+    violation_values,
+)
 from stewart_kinematics.message_conversions import (
     leg_lengths_from_message,
     legs_from_joint_state,
     pose_to_message,
     twist_to_message,
 )
-from stewart_kinematics.node_main import run_node
+from stewart_kinematics.node_main import create_output_publisher, run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.velocities import platform_twist
@@ -70,13 +74,14 @@ class FkNode(Node):
         # The last good solution itself: a solve from it reuses its Jacobian too.
         self.last_result = None
         depth = values['queue_depth']
-        self.pose_publisher = self.create_publisher(Pose, 'estimated_pose', depth)
-        self.stamped_publisher = self.create_publisher(
-            PoseStamped, 'estimated_pose_stamped', depth)
-        self.twist_publisher = self.create_publisher(Twist, 'estimated_twist', depth)
-        self.accounting = MessageAccounting(self, 'leg_lengths')
-        self.joint_state_accounting = MessageAccounting(self, 'joint_states')
-        self.velocity_accounting = MessageAccounting(self, 'leg_velocities')
+        self.pose_publisher = create_output_publisher(self, Pose, 'estimated_pose', depth)
+        self.stamped_publisher = create_output_publisher(
+            self, PoseStamped, 'estimated_pose_stamped', depth)
+        self.twist_publisher = create_output_publisher(self, Twist, 'estimated_twist', depth)
+        diagnostics = NodeDiagnostics(self)
+        self.accounting = diagnostics.accounting('leg_lengths')
+        self.joint_state_accounting = diagnostics.accounting('joint_states')
+        self.velocity_accounting = diagnostics.accounting('leg_velocities')
         self.create_subscription(Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
         self.create_subscription(JointState, 'joint_states', self.on_joint_states, depth)
         self.create_subscription(

@@ -38,7 +38,11 @@ from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import leg_lengths, twist_jacobian
 from stewart_kinematics.markers import platform_markers
-from stewart_kinematics.message_accounting import MessageAccounting, violation_values
+from stewart_kinematics.message_accounting import (
+    MessageAccounting,
+    NodeDiagnostics,
+    violation_values,
+)
 from stewart_kinematics.message_conversions import (
     joint_state_message,
     legs_to_message,
@@ -46,7 +50,7 @@ from stewart_kinematics.message_conversions import (
     QUATERNION_NORM_TOLERANCE,
     twist_from_message,
 )
-from stewart_kinematics.node_main import run_node
+from stewart_kinematics.node_main import create_output_publisher, run_node
 from stewart_kinematics.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
 from visualization_msgs.msg import MarkerArray
@@ -66,18 +70,21 @@ class IkNode(Node):
         self.last_marker_ns = None
         self.last_pose = None
         depth = values['queue_depth']
-        self.lengths_publisher = self.create_publisher(Float64MultiArray, 'leg_lengths', depth)
-        self.extensions_publisher = self.create_publisher(
-            Float64MultiArray, 'leg_extensions', depth)
+        self.lengths_publisher = create_output_publisher(
+            self, Float64MultiArray, 'leg_lengths', depth)
+        self.extensions_publisher = create_output_publisher(
+            self, Float64MultiArray, 'leg_extensions', depth)
         # Commands, not measurements: joint_states is left to the actuators' driver.
-        self.joint_command_publisher = self.create_publisher(
-            JointState, 'joint_commands', depth)
-        self.velocities_publisher = self.create_publisher(
-            Float64MultiArray, 'leg_velocities', depth)
-        self.marker_publisher = self.create_publisher(MarkerArray, 'platform_markers', depth)
-        self.accounting = MessageAccounting(self, 'target_pose')
-        self.stamped_accounting = MessageAccounting(self, 'target_pose_stamped')
-        self.twist_accounting = MessageAccounting(self, 'target_twist')
+        self.joint_command_publisher = create_output_publisher(
+            self, JointState, 'joint_commands', depth)
+        self.velocities_publisher = create_output_publisher(
+            self, Float64MultiArray, 'leg_velocities', depth)
+        self.marker_publisher = create_output_publisher(
+            self, MarkerArray, 'platform_markers', depth)
+        diagnostics = NodeDiagnostics(self)
+        self.accounting = diagnostics.accounting('target_pose')
+        self.stamped_accounting = diagnostics.accounting('target_pose_stamped')
+        self.twist_accounting = diagnostics.accounting('target_twist')
         self.create_subscription(Pose, 'target_pose', self.on_target_pose, depth)
         self.create_subscription(
             PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)

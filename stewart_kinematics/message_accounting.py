@@ -23,6 +23,8 @@ tools expect) with the reason; a summary with the counters follows every
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
+from stewart_kinematics.node_main import create_output_publisher
+
 #: Seconds between two log lines of the same warning.
 WARNING_PERIOD = 1.0
 #: Seconds between two summaries on /diagnostics.
@@ -31,23 +33,57 @@ SUMMARY_PERIOD = 1.0
 HARDWARE_ID = 'stewart_platform'
 
 
+class NodeDiagnostics:
+    """
+    A node's ``/diagnostics`` publisher and its summary timer, shared by all its inputs.
+
+    One publisher and one timer per node, not per input: rclpy's executor walks every
+    publisher's event handlers and every timer at each wait, so each one costs every message.
+
+    :param node: the rclpy node.
+    """
+
+    def __init__(self, node):
+        self.node = node
+        self.inputs = []
+        self.publisher = create_output_publisher(node, DiagnosticArray, '/diagnostics', 100)
+        node.create_timer(SUMMARY_PERIOD, self.publish_summary)
+
+    def accounting(self, input_topic: str) -> 'MessageAccounting':
+        """Return the accounting of one input topic, reported with the others."""
+        accounting = MessageAccounting(self, input_topic)
+        self.inputs.append(accounting)
+        return accounting
+
+    def publish_summary(self):
+        """Publish one status per input with its counters, in one array."""
+        self.send([accounting.summary() for accounting in self.inputs])
+
+    def send(self, statuses):
+        """Publish statuses as one DiagnosticArray stamped now."""
+        array = DiagnosticArray(status=statuses)
+        array.header.stamp = self.node.get_clock().now().to_msg()
+        self.publisher.publish(array)
+
+
 class MessageAccounting:
     """
     Count the messages a node receives, publishes and rejects, and report rejections.
 
-    :param node: the rclpy node.
+    Made by :meth:`NodeDiagnostics.accounting`.
+
+    :param diagnostics: the node's :class:`NodeDiagnostics`.
     :param input_topic: the topic whose messages are counted, for the status name.
     """
 
-    def __init__(self, node, input_topic: str):
-        self.node = node
+    def __init__(self, diagnostics: NodeDiagnostics, input_topic: str):
+        self.diagnostics = diagnostics
+        self.node = diagnostics.node
         self.topic = input_topic
-        self.status_name = f'{node.get_fully_qualified_name()}: {input_topic}'
+        self.status_name = f'{self.node.get_fully_qualified_name()}: {input_topic}'
         self.received = self.published = self.rejected = 0
         self.last_rejection = ''
         self.rejected_at_last_summary = 0
-        self.diagnostics = node.create_publisher(DiagnosticArray, '/diagnostics', 100)
-        node.create_timer(SUMMARY_PERIOD, self.publish_summary)
 
     def receive(self):
         """Count a message received."""
@@ -69,36 +105,34 @@ class MessageAccounting:
         self.last_rejection = reason
         self.node.get_logger().warning(
             f'{reason} ({self.rejected} rejected so far)', throttle_duration_sec=WARNING_PERIOD)
-        self._send(DiagnosticStatus.ERROR, reason, values)
+        self.diagnostics.send([self.status(DiagnosticStatus.ERROR, reason, values)])
 
     def warn(self, message: str, values=()):
         """Publish a WARN status about a message that was still used, and log it (throttled)."""
         self.node.get_logger().warning(message, throttle_duration_sec=WARNING_PERIOD)
-        self._send(DiagnosticStatus.WARN, message, values)
+        self.diagnostics.send([self.status(DiagnosticStatus.WARN, message, values)])
 
     def counters(self):
         """Return the counters as ``(key, value)`` pairs, for a status."""
         return (('received', self.received), ('published', self.published),
                 ('rejected', self.rejected))
 
-    def publish_summary(self):
-        """Publish the counters: OK, or WARN when messages were rejected since the last one."""
+    def summary(self) -> DiagnosticStatus:
+        """Return the counters' status: OK, or WARN when messages were rejected since the last."""
         new_rejections = self.rejected - self.rejected_at_last_summary
         self.rejected_at_last_summary = self.rejected
         if new_rejections:
-            self._send(DiagnosticStatus.WARN,
-                       f'{new_rejections} message(s) rejected; last: {self.last_rejection}')
-        else:
-            self._send(DiagnosticStatus.OK, 'running')
+            return self.status(
+                DiagnosticStatus.WARN,
+                f'{new_rejections} message(s) rejected; last: {self.last_rejection}')
+        return self.status(DiagnosticStatus.OK, 'running')
 
-    def _send(self, level, message, values=()):
-        status = DiagnosticStatus(
+    def status(self, level, message, values=()) -> DiagnosticStatus:
+        """Return a status of this input with the counters and ``values``."""
+        return DiagnosticStatus(
             level=level, name=self.status_name, message=message, hardware_id=HARDWARE_ID,
             values=[KeyValue(key=str(key), value=str(value))
                     for key, value in (*self.counters(), *values)])
-        array = DiagnosticArray(status=[status])
-        array.header.stamp = self.node.get_clock().now().to_msg()
-        self.diagnostics.publish(array)
 
 
 def violation_values(violations):

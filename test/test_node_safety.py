@@ -202,7 +202,7 @@ def start(ros, spin_until):
         recorded = {'/' + topic for topic, _ in outputs}
         watched = [p for p in node.publishers if p.topic_name in recorded]
         assert len(watched) == len(recorded)
-        watched.append(node.accounting.diagnostics)
+        watched.append(node.accounting.diagnostics.publisher)
         [subscription] = [s for s in node.subscriptions if s.topic_name == '/' + input_topic]
 
         def connected():
