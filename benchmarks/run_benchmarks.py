@@ -60,6 +60,8 @@ LATENCY_RATE = 200.0
 LATENCY_SECONDS = 3.0
 RATES = (250.0, 500.0, 750.0, 1000.0, 1250.0, 1500.0, 1750.0, 2000.0, 2500.0, 3000.0)
 RATE_SECONDS = 2.0
+#: The chain of both nodes: latency of a pose to the pose fk_node finds for its leg lengths.
+CHAIN = 'ik_node -> fk_node'
 
 
 def median_seconds(call, items, repeat=1):
@@ -426,7 +428,7 @@ class Probe:
         from rclpy.node import Node
         from rclpy.qos import QoSProfile, ReliabilityPolicy
         self.rclpy = rclpy
-        self.node = Node('benchmark_probe_' + in_topic)
+        self.node = Node('benchmark_probe_' + in_topic.replace('/', '_'))
         qos = QoSProfile(depth=QUEUE_DEPTH, reliability=ReliabilityPolicy.RELIABLE)
         self.publisher = self.node.create_publisher(in_type, in_topic, qos)
         self.node.create_subscription(out_type, out_topic, self.on_message, qos)
@@ -487,6 +489,9 @@ def node_benchmarks(table, geometry, ramp):
             NodeProcess('ik_node', ['--ros-args', *params]),
             # Its own input topic, so that it stays idle while ik_node is measured.
             NodeProcess('fk_node', ['--ros-args', *params, '-r', 'leg_lengths:=fk_lengths']),
+            # The chain pose -> ik_node -> leg lengths -> fk_node -> pose, in its own namespace.
+            NodeProcess('ik_node', ['--ros-args', *params, '-r', '__ns:=/chain']),
+            NodeProcess('fk_node', ['--ros-args', *params, '-r', '__ns:=/chain']),
         ]
         rclpy.init()
         try:
@@ -496,6 +501,8 @@ def node_benchmarks(table, geometry, ramp):
                             pose_messages),
                 'fk_node': (Probe(Float64MultiArray, 'fk_lengths', Pose, 'estimated_pose'),
                             length_messages),
+                CHAIN: (Probe(Pose, 'chain/target_pose', Pose, 'chain/estimated_pose'),
+                        pose_messages),
             }
             deadline = time.monotonic() + 30.0
             for name, (probe, messages) in probes.items():
@@ -517,7 +524,7 @@ def node_benchmarks(table, geometry, ramp):
             losing = set()
             for rate in RATES:
                 for name, (probe, messages) in probes.items():
-                    if name in losing:
+                    if name in losing or name == CHAIN:
                         continue
                     sends, arrivals, achieved = probe.run(messages, rate, RATE_SECONDS)
                     if len(arrivals) != len(sends):
@@ -529,12 +536,16 @@ def node_benchmarks(table, geometry, ramp):
             for process in processes:
                 process.stop()
     echo = results['bare echo node']
+    chain = results.pop(CHAIN)
     for name, (p50, p99, best) in results.items():
         ratio = '1.00' if name == 'bare echo node' else \
             f'latency p50 {p50 / echo[0]:.2f}x, rate {best / echo[2]:.2f}x echo'
         table.add('Node: publish -> receive', name,
                   f'p50 {p50 * 1e3:.2f} ms, p99 {p99 * 1e3:.2f} ms; loss-free up to '
                   f'{best:,.0f} Hz', ratio, '', '')
+    table.add('Node: pose -> FK pose', CHAIN,
+              f'p50 {chain[0] * 1e3:.2f} ms, p99 {chain[1] * 1e3:.2f} ms',
+              f'latency p50 {chain[0] / echo[0]:.2f}x echo', '', '')
     for name in ('ik_node', 'fk_node'):
         fraction = results[name][2] / echo[2] if echo[2] else 0.0
         table.target(f'{name} loss-free rate >= 80 % of the bare echo node', fraction >= 0.8,

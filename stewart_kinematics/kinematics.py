@@ -529,7 +529,7 @@ def _forward_kinematics_batch(constants, targets, poses, tolerance, max_iteratio
     poses[:, 3:] = matrix_to_euler_zyx(euler_zyx_to_matrix(poses[:, 3:]))
     return ForwardKinematicsResult(
         pose=poses, converged=converged, iterations=iterations, residual=residual,
-        reason=tuple(str(item) for item in reason))
+        reason=tuple(reason.tolist()))
 
 
 def _batch_legs(constants, poses):
