@@ -395,6 +395,30 @@ def test_signal_stops_node_cleanly(client, start_node, config_directory,
     assert 'Traceback' not in output, output
 
 
+@pytest.mark.parametrize('signal_number', [signal.SIGINT, signal.SIGTERM],
+                         ids=['SIGINT', 'SIGTERM'])
+def test_signal_stops_trajectory_node_cleanly(client, start_node, config_directory,
+                                              signal_number):
+    """SIGINT and SIGTERM stop trajectory_node mid-ramp with exit code 0 and no traceback."""
+    node = start_node('trajectory_node', [
+        '--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+        '--params-file', str(config_directory / 'table3_ramp.yaml'),
+        '-p', 'loop:=true', '-p', 'row_period:=0.05'])
+    client.wait(lambda: 'trajectory_node' in node_names(
+        client.node.get_publishers_info_by_topic('target_pose')),
+        'trajectory_node publishing target_pose', [node])
+
+    node.send_signal(signal_number)
+    try:
+        code = node.process.wait(DEADLINE)
+    except subprocess.TimeoutExpired:
+        code = None
+    output = node.output()
+
+    assert code == 0, f'trajectory_node exit code {code} after {signal_number!r}:\n{output}'
+    assert 'Traceback' not in output, output
+
+
 def test_ik_node_survives_bad_poses(client, start_node, config_directory):
     """
     A pose with NaN coordinates or a zero quaternion is rejected with a warning saying why.
