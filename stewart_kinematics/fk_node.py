@@ -175,8 +175,10 @@ class FkNode(Node):
         """Solve from the last good pose, then from the home pose if that fails."""
         options = {'tolerance': self.settings['tolerance'],
                    'max_iterations': self.settings['max_iterations']}
-        result = forward_kinematics(self.geometry, lengths, self.last_result or self.last_pose,
-                                    **options)
+        # The last result carries its Jacobian too, but only while it is the last pose.
+        last = self.last_result
+        start = last if last is not None and last.pose is self.last_pose else self.last_pose
+        result = forward_kinematics(self.geometry, lengths, start, **options)
         if not result.converged and not np.array_equal(self.last_pose, self.geometry.home_pose):
             result = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
                                         **options)

@@ -36,7 +36,7 @@ from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.kinematics import leg_lengths, twist_jacobian
+from stewart_kinematics.kinematics import as_leg_lengths, leg_lengths, twist_jacobian
 from stewart_kinematics.markers import platform_markers
 from stewart_kinematics.message_accounting import (
     MessageAccounting,
@@ -132,11 +132,12 @@ class IkNode(Node):
                 + '; '.join(str(violation) for violation in violations),
                 violation_values(violations))
             return
-        lengths = leg_lengths(self.geometry, position, rotation)
-        # Without a stroke limit check_pose skips the lengths: never command inf, NaN or 0.
-        if not (lengths.min() > 0.0 and lengths.max() < np.inf):
-            accounting.reject(f'{accounting.topic} rejected: its leg lengths '
-                              f'{lengths.tolist()} m are not finite and positive')
+        try:
+            # Without a stroke limit check_pose skips the lengths: never command inf, NaN or 0.
+            lengths = as_leg_lengths(leg_lengths(self.geometry, position, rotation),
+                                     'its leg lengths')
+        except ValueError as error:
+            accounting.reject(f'{accounting.topic} rejected: {error}')
             return
         self.last_pose = position, rotation
         accounting.publish(self.lengths_publisher, legs_to_message(lengths))

@@ -313,10 +313,7 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     if position.shape == (3,) and rotation.shape == (3, 3):
         return _single_twist_jacobian(_single_legs(
             _constants(geometry), position.tolist(), rotation.ravel().tolist()))
-    legs = leg_vectors(geometry, position, rotation)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
-    rotated = np.swapaxes(rotation @ geometry.platform_joints.T, -1, -2)
-    return np.concatenate([directions, np.cross(rotated, directions)], axis=-1)
+    return _batch_twist_jacobian(*_batch_legs_of(_constants(geometry), position, rotation))
 
 
 def _block_lengths(constants, poses, out):
@@ -355,24 +352,18 @@ def jacobian(geometry, poses) -> np.ndarray:
     :returns: shape (6, 6) or (N, 6, 6); columns in the order of the pose, rows leg 1..6;
         translation columns dimensionless, rotation columns in metres per radian.
     """
-    return _lengths_and_jacobian(geometry, as_poses(poses))[1]
-
-
-def _lengths_and_jacobian(geometry, poses) -> Tuple[np.ndarray, np.ndarray]:
-    rotation = euler_zyx_to_matrix(poses[..., 3:])
-    rotated_joints = np.swapaxes(rotation @ geometry.platform_joints.T, -1, -2)
-    legs = rotated_joints + poses[..., None, :3] - geometry.base_joints
-    lengths = np.linalg.norm(legs, axis=-1)
-    units = legs / lengths[..., None]
-    gamma = poses[..., 5]
+    poses = as_poses(poses)
+    jac = _batch_twist_jacobian(*_batch_legs(_constants(geometry), poses))
+    beta, gamma = poses[..., 4], poses[..., 5]
+    cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros(poses.shape[:-1] + (3, 3))
-    euler_rate_axes[..., :, 0] = rotation[..., :, 0]
-    euler_rate_axes[..., 0, 1] = -np.sin(gamma)
-    euler_rate_axes[..., 1, 1] = np.cos(gamma)
+    euler_rate_axes[..., :, 0] = np.stack(
+        [cos_gamma * cos_beta, sin_gamma * cos_beta, -np.sin(beta)], axis=-1)
+    euler_rate_axes[..., 0, 1] = -sin_gamma
+    euler_rate_axes[..., 1, 1] = cos_gamma
     euler_rate_axes[..., 2, 2] = 1.0
-    moment_arms = np.cross(rotated_joints, units)
-    jac = np.concatenate([units, moment_arms @ euler_rate_axes], axis=-1)
-    return lengths, jac
+    jac[..., 3:] = jac[..., 3:] @ euler_rate_axes
+    return jac
 
 
 @dataclass(frozen=True)
@@ -533,17 +524,20 @@ def _forward_kinematics_batch(constants, targets, poses, tolerance, max_iteratio
 
 
 def _batch_legs(constants, poses):
-    """
-    Legs of a batch of poses: the arrays of :func:`_single_legs`.
+    """Legs of poses ``[X, Y, Z, alpha, beta, gamma]`` (..., 6); see :func:`_batch_legs_of`."""
+    return _batch_legs_of(constants, poses[..., :3], euler_zyx_to_matrix(poses[..., 3:]))
 
-    :param poses: shape (n, 6).
-    :returns: ``(lengths (n, 6), legs (n, 6, 3), rotated joints R p_i (n, 6, 3))``, metres.
+
+def _batch_legs_of(constants, position, rotation):
     """
-    rotations = euler_zyx_to_matrix(poses[:, 3:])
-    rotated = rotations @ constants.platform_columns  # (n, 3, 6)
-    rotated = np.swapaxes(rotated, -1, -2)
-    legs = rotated + (poses[:, None, :3] - constants.base_columns.T)
-    lengths = np.sqrt(np.einsum('nij,nij->ni', legs, legs))
+    Legs of positions (..., 3) and rotations (..., 3, 3): the arrays of :func:`_single_legs`.
+
+    :returns: ``(lengths (..., 6), legs (..., 6, 3), rotated joints R p_i (..., 6, 3))``,
+        metres, base frame.
+    """
+    rotated = np.swapaxes(rotation @ constants.platform_columns, -1, -2)
+    legs = rotated + (position[..., None, :] - constants.base_columns.T)
+    lengths = np.sqrt(np.einsum('...ij,...ij->...i', legs, legs))
     return lengths, legs, rotated
 
 

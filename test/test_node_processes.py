@@ -372,17 +372,32 @@ def test_bad_parameter_file_stops_node_with_reason(start_node, tmp_path,
     assert 'Traceback' not in output, output
 
 
-@pytest.mark.parametrize('executable, input_topic', [
-    ('ik_node', 'target_pose'), ('fk_node', 'leg_lengths')])
+def trajectory_arguments(config_directory):
+    """Return a command line that keeps trajectory_node playing Table 3 (looping, fast rows)."""
+    return ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+            '--params-file', str(config_directory / 'table3_ramp.yaml'),
+            '-p', 'loop:=true', '-p', 'row_period:=0.05']
+
+
+@pytest.mark.parametrize('executable, arguments, topic, role', [
+    ('ik_node', kinematics_arguments, 'target_pose', 'subscriptions'),
+    ('fk_node', kinematics_arguments, 'leg_lengths', 'subscriptions'),
+    ('trajectory_node', trajectory_arguments, 'target_pose', 'publishers'),
+], ids=['ik_node', 'fk_node', 'trajectory_node'])
 @pytest.mark.parametrize('signal_number', [signal.SIGINT, signal.SIGTERM],
                          ids=['SIGINT', 'SIGTERM'])
 def test_signal_stops_node_cleanly(client, start_node, config_directory,
-                                   executable, input_topic, signal_number):
-    """SIGINT (Ctrl-C) and SIGTERM (what a supervisor sends) stop a node with exit code 0."""
-    node = start_node(executable, kinematics_arguments(config_directory))
-    client.wait(lambda: executable in node_names(
-        client.node.get_subscriptions_info_by_topic(input_topic)),
-        f'{executable} subscribed to {input_topic}', [node])
+                                   executable, arguments, topic, role, signal_number):
+    """
+    SIGINT (Ctrl-C) and SIGTERM (what a supervisor sends) stop a node with exit code 0.
+
+    Each node is running when the signal comes: ik_node and fk_node subscribed to their input,
+    trajectory_node playing its looping ramp.
+    """
+    node = start_node(executable, arguments(config_directory))
+    endpoints = getattr(client.node, f'get_{role}_info_by_topic')
+    client.wait(lambda: executable in node_names(endpoints(topic)),
+                f'{executable} among the {role} of {topic}', [node])
 
     node.send_signal(signal_number)
     try:
@@ -392,30 +407,6 @@ def test_signal_stops_node_cleanly(client, start_node, config_directory,
     output = node.output()
 
     assert code == 0, f'{executable} exit code {code} after {signal_number!r}:\n{output}'
-    assert 'Traceback' not in output, output
-
-
-@pytest.mark.parametrize('signal_number', [signal.SIGINT, signal.SIGTERM],
-                         ids=['SIGINT', 'SIGTERM'])
-def test_signal_stops_trajectory_node_cleanly(client, start_node, config_directory,
-                                              signal_number):
-    """SIGINT and SIGTERM stop trajectory_node mid-ramp with exit code 0 and no traceback."""
-    node = start_node('trajectory_node', [
-        '--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
-        '--params-file', str(config_directory / 'table3_ramp.yaml'),
-        '-p', 'loop:=true', '-p', 'row_period:=0.05'])
-    client.wait(lambda: 'trajectory_node' in node_names(
-        client.node.get_publishers_info_by_topic('target_pose')),
-        'trajectory_node publishing target_pose', [node])
-
-    node.send_signal(signal_number)
-    try:
-        code = node.process.wait(DEADLINE)
-    except subprocess.TimeoutExpired:
-        code = None
-    output = node.output()
-
-    assert code == 0, f'trajectory_node exit code {code} after {signal_number!r}:\n{output}'
     assert 'Traceback' not in output, output
 
 
