@@ -39,10 +39,10 @@ setup(
     extras_require={'test': ['pytest']},
     entry_points={
         'console_scripts': [
-            'ik_node = stewart_kinematics.ik_node:main',
-            'fk_node = stewart_kinematics.fk_node:main',
-            'trajectory_node = stewart_kinematics.trajectory_node:main',
-            'ramp_demo = stewart_kinematics.ramp_demo:main',
+            'ik_node = stewart_kinematics.ros.ik_node:main',
+            'fk_node = stewart_kinematics.ros.fk_node:main',
+            'trajectory_node = stewart_kinematics.ros.trajectory_node:main',
+            'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
         ],
     },
 )

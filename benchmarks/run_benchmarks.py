@@ -36,9 +36,10 @@ import warnings
 
 import numpy as np
 
-from stewart_kinematics import forward_kinematics, Geometry, inverse_kinematics
-from stewart_kinematics.node_processes import isolated_ros_environment, NodeProcess
+from stewart_kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
 from stewart_kinematics.trajectory import Ramp
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -472,7 +473,7 @@ def node_benchmarks(table, geometry, ramp):
     import rclpy
     from geometry_msgs.msg import Pose
     from std_msgs.msg import Float64MultiArray
-    from stewart_kinematics.message_conversions import legs_to_message, pose_to_message
+    from stewart_kinematics.ros.message_conversions import legs_to_message, pose_to_message
 
     poses = ramp.sample(np.linspace(0.0, 10.0, 2001), 10.0)
     poses = np.concatenate([poses, poses[::-1]])  # there and back: the FK warm start holds
@@ -576,7 +577,7 @@ def main(argv=None) -> int:
     parser.add_argument('--no-nodes', action='store_true', help='skip the node benchmarks')
     args = parser.parse_args(argv)
     start = time.monotonic()
-    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    geometry = load_geometry(PLATFORM_FILE)
     table = Table()
     ramp = kinematics_benchmarks(table, geometry, args.random_poses, args.batch)
     if not args.no_nodes:

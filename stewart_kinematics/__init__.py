@@ -15,11 +15,12 @@
 """
 Kinematics of a 6-6 Gough-Stewart platform, with ROS 2 nodes around it.
 
-The core (this package's root) imports only numpy and PyYAML::
+The core (this package's root modules) imports only numpy and PyYAML; the ROS nodes live in
+:mod:`stewart_kinematics.ros` and the demo and helpers in :mod:`stewart_kinematics.tools`::
 
-    from stewart_kinematics import Geometry, inverse_kinematics, forward_kinematics
+    from stewart_kinematics import forward_kinematics, inverse_kinematics, load_geometry
 
-    geometry = Geometry.from_yaml('config/paper_platform.yaml')
+    geometry = load_geometry('config/paper_platform.yaml')
     lengths = inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
     result = forward_kinematics(geometry, lengths)
     result.pose, result.converged, result.iterations, result.residual
@@ -38,6 +39,7 @@ from stewart_kinematics.kinematics import (
     leg_vectors,
     twist_jacobian,
 )
+from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -55,11 +57,13 @@ __all__ = [
     'forward_kinematics',
     'ForwardKinematicsResult',
     'Geometry',
+    'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
     'leg_lengths',
     'leg_vectors',
     'leg_velocities',
+    'load_geometry',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'platform_twist',

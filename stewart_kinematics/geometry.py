@@ -26,7 +26,6 @@ import math
 
 import numpy as np
 
-from stewart_kinematics import parameter_spec
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
 #: Two joints closer than this (metres) count as one: a leg pair would be degenerate.
@@ -58,7 +57,8 @@ class Geometry:
     The limits are checked by :mod:`stewart_kinematics.limits`.
 
     >>> from stewart_kinematics import Geometry
-    >>> geometry = Geometry.from_yaml('config/paper_platform.yaml')  # doctest: +SKIP
+    >>> from stewart_kinematics import load_geometry
+    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
     """
 
     base_joints: np.ndarray
@@ -113,53 +113,6 @@ class Geometry:
         if home_violations:
             raise ValueError('the home pose breaks the limits: '
                              + '; '.join(str(v) for v in home_violations))
-
-    @classmethod
-    def from_parameters(cls, values: dict) -> 'Geometry':
-        """
-        Build a geometry from ROS parameter values, as the nodes declare them.
-
-        :param values: parameter name -> value, with the names and units of
-            :data:`stewart_kinematics.parameter_spec.GEOMETRY_PARAMETERS` (flat joint lists in
-            metres, home orientation in degrees); a missing optional one takes its default.
-            With a ``pivot_point`` c, the geometry's platform joints are ``p_i - c``: poses
-            then place the pivot, and rotations turn the platform about it.
-        :raises ValueError: naming the parameter, if a value is missing or not allowed.
-        """
-        specs = parameter_spec.GEOMETRY_PARAMETERS
-        merged = parameter_spec.defaults(specs)
-        merged.update({key: value for key, value in values.items() if key in merged})
-        parameter_spec.check_values(specs, merged)
-        home_pose = np.concatenate([
-            np.asarray(merged['home_position'], dtype=float),
-            np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
-        return cls(
-            base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
-            platform_joints=np.reshape(
-                np.asarray(merged['platform_joints'], dtype=float), (6, 3))
-            - np.asarray(merged['pivot_point'], dtype=float),
-            home_pose=home_pose,
-            leg_length_min=float(merged['leg_length_min']),
-            leg_length_max=float(merged['leg_length_max']),
-            base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
-            platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
-            max_jacobian_condition=float(merged['max_jacobian_condition']))
-
-    @classmethod
-    def from_yaml(cls, path, node_name=None) -> 'Geometry':
-        """
-        Read a geometry from a ROS 2 parameter file, the same one the nodes are given.
-
-        :param path: YAML file with the geometry under ``/**:`` (or under ``node_name``).
-        :param node_name: also apply this node's section, as that node would see it.
-        :raises ValueError: if the file cannot be read or its geometry is not allowed.
-        """
-        values = parameter_spec.read_parameter_file(path, node_name)
-        try:
-            parameter_spec.check_known_names(values, 'the file')
-            return cls.from_parameters(values)
-        except ValueError as error:
-            raise ValueError(f'{path}: {error}') from error
 
 
 def _checked_array(name, value, shape):

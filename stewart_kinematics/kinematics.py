@@ -148,7 +148,7 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     :raises ValueError: if a pose has the wrong shape or a non-finite value.
 
     >>> from stewart_kinematics import Geometry, inverse_kinematics
-    >>> geometry = Geometry.from_yaml('config/paper_platform.yaml')  # doctest: +SKIP
+    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
     >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])  # doctest: +SKIP
     array([0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488])
     """

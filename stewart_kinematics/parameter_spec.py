@@ -17,8 +17,8 @@ Every ROS parameter of the package, declared once, and the reader of parameter f
 
 Each :class:`ParameterSpec` gives a parameter's name, type, default (``None``: required),
 description with its unit, read-only flag and validators. The nodes turn these specs into ROS
-declarations (:mod:`stewart_kinematics.ros_parameters`), the core reads the same names from YAML
-(:meth:`stewart_kinematics.Geometry.from_yaml`), and the README's parameter tables list them.
+declarations (:mod:`stewart_kinematics.ros.ros_parameters`), the core reads the same names
+from YAML (:func:`load_geometry`), and the README's parameter tables list them.
 
 A validator takes ``(name, value)`` and returns ``''`` when the value is allowed, else a sentence
 that names the parameter, the value and what is allowed. Nothing here imports ROS.
@@ -30,6 +30,9 @@ import difflib
 import math
 from typing import Any, Callable, Optional, Tuple
 
+import numpy as np
+
+from stewart_kinematics.geometry import Geometry
 import yaml
 
 Validator = Callable[[str, Any], str]
@@ -40,6 +43,7 @@ INTEGER = 'integer'
 DOUBLE = 'double'
 STRING = 'string'
 DOUBLE_ARRAY = 'double_array'
+STRING_ARRAY = 'string_array'
 
 _PYTHON_TYPES = {
     BOOL: (bool,),
@@ -48,6 +52,7 @@ _PYTHON_TYPES = {
     STRING: (str,),
     # rclpy hands double arrays from parameter services over as array.array('d').
     DOUBLE_ARRAY: (list, tuple, array.array),
+    STRING_ARRAY: (list, tuple),
 }
 
 
@@ -93,6 +98,8 @@ class ParameterSpec:
         if self.value_type == DOUBLE_ARRAY and not all(isinstance(item, float) for item in value):
             return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
                     f'{list(value)!r} (write 1.0, not 1)')
+        if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
+            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
         for validator in self.validators:
             reason = validator(self.name, value)
             if reason:
@@ -204,6 +211,30 @@ GEOMETRY_PARAMETERS = (
         "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
         default=math.inf, read_only=True, validators=(in_range(1.0, math.inf),),
         constraints='>= 1; .inf allowed'),
+)
+
+def distinct_names(name, value) -> str:
+    """Require non-empty, distinct strings (joint names)."""
+    if not all(value) or len(set(value)) != len(value):
+        return f"parameter '{name}' must hold distinct, non-empty names, got {list(value)!r}"
+    return ''
+
+
+#: The legs as the actuator interface sees them: shared by every JointState and
+#: JointTrajectory the package publishes or reads.
+ACTUATOR_PARAMETERS = (
+    ParameterSpec(
+        'joint_names', STRING_ARRAY,
+        'Names of the six leg actuators as prismatic joints, leg 1..6, on every JointState and '
+        'JointTrajectory the package publishes or reads',
+        default=['leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6'], read_only=True,
+        validators=(fixed_length(6), distinct_names), constraints='6 distinct, non-empty names'),
+    ParameterSpec(
+        'actuator_offsets', DOUBLE_ARRAY,
+        "Each actuator's zero as a leg length, metres, leg 1..6: an actuator position is its "
+        'leg length minus its offset',
+        default=[0.0, 0.0, 0.0, 0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(6), finite), constraints='6 finite values'),
 )
 
 SOLVER_PARAMETERS = (
@@ -336,8 +367,8 @@ RAMP_PARAMETERS = (
 
 def all_specs():
     """Return every parameter spec of the package, each name once."""
-    return (GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS + MARKER_PARAMETERS
-            + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+    return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS
+            + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
 
 
 def check_known_names(names, context: str) -> None:
@@ -415,6 +446,60 @@ def read_parameter_file(path, node_name: Optional[str] = None) -> dict:
                         f"section '{key}' of parameter file {path} has no ros__parameters map")
                 values.update(content['ros__parameters'])
     return values
+
+
+def geometry_from_parameters(values: dict) -> Geometry:
+    """
+    Build a geometry from ROS parameter values, as the nodes declare them.
+
+    :param values: parameter name -> value, with the names and units of
+        :data:`GEOMETRY_PARAMETERS` (flat joint lists in metres, home orientation in degrees);
+        a missing optional one takes its default. With a ``pivot_point`` c, the geometry's
+        platform joints are ``p_i - c``: poses then place the pivot, and rotations turn the
+        platform about it.
+    :raises ValueError: naming the parameter, if a value is missing or not allowed.
+    """
+    merged = defaults(GEOMETRY_PARAMETERS)
+    merged.update({key: value for key, value in values.items() if key in merged})
+    check_values(GEOMETRY_PARAMETERS, merged)
+    home_pose = np.concatenate([
+        np.asarray(merged['home_position'], dtype=float),
+        np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
+    return Geometry(
+        base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
+        platform_joints=np.reshape(np.asarray(merged['platform_joints'], dtype=float), (6, 3))
+        - np.asarray(merged['pivot_point'], dtype=float),
+        home_pose=home_pose,
+        leg_length_min=float(merged['leg_length_min']),
+        leg_length_max=float(merged['leg_length_max']),
+        base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
+        platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
+        max_jacobian_condition=float(merged['max_jacobian_condition']))
+
+
+def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
+    """
+    Read a geometry from ROS 2 parameter files, the same ones the nodes are given.
+
+    :param paths: a YAML file with the geometry under ``/**:`` (or under ``node_name``), or a
+        list of them applied in order, as repeated ``--params-file`` options are (for example
+        ``['config/paper_platform.yaml', 'config/example_limits.yaml']``).
+    :param node_name: also apply this node's sections, as that node would see them.
+    :raises ValueError: naming the file, if a file cannot be read or its geometry is not
+        allowed.
+
+    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
+    """
+    if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
+        paths = [paths]
+    values = {}
+    for path in paths:
+        values.update(read_parameter_file(path, node_name))
+    try:
+        check_known_names(values, 'the file')
+        return geometry_from_parameters(values)
+    except ValueError as error:
+        raise ValueError(f'{", ".join(map(str, paths))}: {error}') from error
 
 
 def markdown_table(specs) -> str:

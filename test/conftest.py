@@ -30,11 +30,14 @@ import time
 
 import pytest
 
-from stewart_kinematics.node_processes import isolated_ros_environment, NodeProcess
+from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 #: Seconds a test waits for data: DDS discovery on loopback has multi-second tails.
 DEADLINE = 20.0
+
+#: The test tiers of pytest.ini: each test carries exactly one.
+TIERS = ('core', 'node', 'process', 'lint')
 
 _environment = contextlib.ExitStack()
 
@@ -42,6 +45,19 @@ _environment = contextlib.ExitStack()
 def pytest_configure(config):
     """Isolate ROS before any test runs."""
     _environment.enter_context(isolated_ros_environment())
+
+
+def pytest_collection_modifyitems(config, items):
+    """Refuse a test without exactly one tier marker: `pytest -m core` must mean what it says."""
+    wrong = []
+    for item in items:
+        tiers = {marker.name for marker in item.iter_markers() if marker.name in TIERS}
+        if len(tiers) != 1:
+            wrong.append(f'{item.nodeid}: {sorted(tiers) or "no tier"}')
+    if wrong:
+        raise pytest.UsageError(
+            f'every test needs exactly one tier marker of {TIERS} (pytestmark = '
+            'pytest.mark.<tier> in its module):\n' + '\n'.join(wrong))
 
 
 def pytest_unconfigure(config):

@@ -27,8 +27,10 @@ import threading
 import pytest
 import rclpy
 
-from stewart_kinematics import fk_node, ik_node, trajectory_node
+from stewart_kinematics.ros import fk_node, ik_node, trajectory_node
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 PLATFORM_FILE = CONFIG_DIRECTORY / 'paper_platform.yaml'

@@ -35,6 +35,8 @@ from numpy.testing import assert_allclose
 import pytest
 from std_msgs.msg import Float64MultiArray
 
+pytestmark = pytest.mark.process
+
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'stewart_kinematics'
 EXECUTABLES = ('ik_node', 'fk_node', 'trajectory_node')

@@ -27,11 +27,13 @@ from numpy.testing import assert_allclose
 import pytest
 
 from stewart_kinematics import parameter_spec
-from stewart_kinematics.fk_node import FkNode
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.ik_node import IkNode
-from stewart_kinematics.trajectory_node import TrajectoryNode
+from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.ros.fk_node import FkNode
+from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
@@ -186,8 +188,8 @@ def test_ik_and_fk_see_the_same_geometry(nodes):
 
 
 def test_geometry_from_yaml_reads_the_paper_platform():
-    """Geometry.from_yaml reads Tables 1 and 2 (mm typed here, / 1000) and the home pose."""
-    geometry = Geometry.from_yaml(CONFIG_DIRECTORY / 'paper_platform.yaml')
+    """load_geometry reads Tables 1 and 2 (mm typed here, / 1000) and the home pose."""
+    geometry = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml')
     base_mm = [[48.6989, 219.6666, 0.0], [165.8874, 152.0078, 0.0],
                [165.8874, -152.0078, 0.0], [48.6989, -219.6666, 0.0],
                [-214.5863, -67.6588, 0.0], [-214.5863, 67.6588, 0.0]]
@@ -210,7 +212,7 @@ def test_geometry_from_yaml_reads_the_paper_platform():
 
 def test_geometry_from_yaml_with_a_node_name():
     """Reading the file as a named node applies /** as well (that node has no own section)."""
-    plain = Geometry.from_yaml(CONFIG_DIRECTORY / 'paper_platform.yaml')
-    as_ik = Geometry.from_yaml(CONFIG_DIRECTORY / 'paper_platform.yaml', node_name='ik_node')
+    plain = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml')
+    as_ik = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml', node_name='ik_node')
     assert_allclose(as_ik.base_joints, plain.base_joints, atol=0.0)
     assert_allclose(as_ik.home_leg_lengths, plain.home_leg_lengths, atol=0.0)

@@ -24,6 +24,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.lint
+
 PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 #: Output of colcon when it is run in this folder; folders starting with '.' or '_' are skipped
 #: too (.venv, .git, __pycache__), as the ament linters do.

@@ -33,9 +33,13 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from stewart_kinematics import fk_node, forward_kinematics, Geometry, inverse_kinematics
-from stewart_kinematics.fk_node import FkNode
+from stewart_kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.ros import fk_node
+from stewart_kinematics.ros.fk_node import FkNode
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
@@ -96,7 +100,7 @@ def lengths_message(values, data_offset=0, labelled=True):
 
 def table_lengths(row):
     """Return the leg lengths of a Table 3 row by closed-form inverse kinematics."""
-    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    geometry = load_geometry(PLATFORM_FILE)
     return inverse_kinematics(geometry, TABLE3[row])
 
 
@@ -175,7 +179,7 @@ def test_each_solve_starts_from_the_last_solution(start, spin_until):
     From the home pose the lengths of that half turn lead Newton-Raphson to another pose with
     the same lengths (another assembly mode): only a start from the last solution finds it.
     """
-    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    geometry = load_geometry(PLATFORM_FILE)
     turned = yawed_home(150.0)
     cold = forward_kinematics(geometry, inverse_kinematics(geometry, turned))
     assert not (cold.converged and np.allclose(cold.pose, turned, rtol=0.0, atol=1e-6)), (
@@ -191,7 +195,7 @@ def test_each_solve_starts_from_the_last_solution(start, spin_until):
 
 def test_a_failed_solve_falls_back_to_the_home_pose(start, spin_until):
     """From a turn of -60 degrees about z Table 3's last row diverges; from home it is found."""
-    geometry = Geometry.from_yaml(PLATFORM_FILE)
+    geometry = load_geometry(PLATFORM_FILE)
     turned = yawed_home(-60.0)
     end_lengths = table_lengths(10)
     warm = forward_kinematics(geometry, end_lengths, turned)

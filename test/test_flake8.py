@@ -19,6 +19,8 @@ from pathlib import Path
 from ament_flake8.main import main_with_errors
 import pytest
 
+pytestmark = pytest.mark.lint
+
 PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 
 

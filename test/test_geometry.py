@@ -27,6 +27,9 @@ from numpy.testing import assert_allclose
 import pytest
 
 from stewart_kinematics.geometry import Geometry
+from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+
+pytestmark = pytest.mark.core
 
 PAPER_PLATFORM_YAML = Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml'
 
@@ -97,20 +100,20 @@ def paper_yaml_section():
 
 def test_from_yaml_gives_table_1_base_joints_in_metres():
     """config/paper_platform.yaml holds Table 1 converted to metres."""
-    geometry = Geometry.from_yaml(PAPER_PLATFORM_YAML)
+    geometry = load_geometry(PAPER_PLATFORM_YAML)
     assert_allclose(geometry.base_joints, BASE_M, rtol=0.0, atol=1e-12)
 
 
 def test_from_yaml_gives_table_2_platform_joints_in_metres():
     """config/paper_platform.yaml holds Table 2 converted to metres, with p_3 z = 0.257."""
-    geometry = Geometry.from_yaml(PAPER_PLATFORM_YAML)
+    geometry = load_geometry(PAPER_PLATFORM_YAML)
     assert_allclose(geometry.platform_joints, PLATFORM_M, rtol=0.0, atol=1e-12)
     assert geometry.platform_joints[2, 2] == pytest.approx(0.257, abs=1e-12)
 
 
 def test_from_yaml_home_pose_and_limits():
     """The paper's home pose is [0, 0, 0.4325, 0, 0, 0] and the legs have no limits."""
-    geometry = Geometry.from_yaml(str(PAPER_PLATFORM_YAML))
+    geometry = load_geometry(str(PAPER_PLATFORM_YAML))
     assert_allclose(geometry.home_pose, [0.0, 0.0, HOME_Z, 0.0, 0.0, 0.0], rtol=0.0, atol=0.0)
     assert geometry.leg_length_min == 0.0
     assert geometry.leg_length_max == math.inf
@@ -118,7 +121,7 @@ def test_from_yaml_home_pose_and_limits():
 
 def test_home_leg_lengths_by_hand():
     """Home leg lengths equal sqrt((px-bx)^2 + (py-by)^2 + (0.4325+pz)^2) for each leg."""
-    geometry = Geometry.from_yaml(PAPER_PLATFORM_YAML)
+    geometry = load_geometry(PAPER_PLATFORM_YAML)
     expected = []
     for (bx, by, bz), (px, py, pz) in zip(TABLE_1_MM, TABLE_2_MM):
         bx, by, bz, px, py, pz = (value / 1000.0 for value in (bx, by, bz, px, py, pz))
@@ -273,7 +276,7 @@ def test_from_parameters_builds_the_paper_geometry():
     """Flat joint lists in metres and the home orientation in degrees are converted."""
     values = paper_parameters()
     values['home_orientation_deg'] = [0.0, 0.0, 90.0]
-    geometry = Geometry.from_parameters(values)
+    geometry = geometry_from_parameters(values)
     assert_allclose(geometry.base_joints, BASE_M, rtol=0.0, atol=0.0)
     assert_allclose(geometry.platform_joints, PLATFORM_M, rtol=0.0, atol=0.0)
     assert_allclose(geometry.home_pose, [0.0, 0.0, HOME_Z, 0.0, 0.0, math.pi / 2],
@@ -285,7 +288,7 @@ def test_from_parameters_uses_defaults_for_optional_values():
     values = paper_parameters()
     for name in ('home_orientation_deg', 'leg_length_min', 'leg_length_max'):
         del values[name]
-    geometry = Geometry.from_parameters(values)
+    geometry = geometry_from_parameters(values)
     assert_allclose(geometry.home_pose[3:], [0.0, 0.0, 0.0], rtol=0.0, atol=0.0)
     assert geometry.leg_length_min == 0.0
     assert geometry.leg_length_max == math.inf
@@ -297,7 +300,7 @@ def test_from_parameters_missing_required_parameter_names_it(name):
     values = paper_parameters()
     del values[name]
     with pytest.raises(ValueError, match=rf"parameter '{name}' is required"):
-        Geometry.from_parameters(values)
+        geometry_from_parameters(values)
 
 
 def test_from_parameters_bad_value_names_parameter_and_value():
@@ -305,35 +308,35 @@ def test_from_parameters_bad_value_names_parameter_and_value():
     values = paper_parameters()
     values['home_position'] = [0.0, 0.5]
     with pytest.raises(ValueError, match=r"'home_position'.*3 elements.*\[0\.0, 0\.5\]"):
-        Geometry.from_parameters(values)
+        geometry_from_parameters(values)
 
 
 def test_from_yaml_missing_file_raises_naming_the_path(tmp_path):
     """A missing file raises ValueError naming it."""
     path = tmp_path / 'absent.yaml'
     with pytest.raises(ValueError, match=r'cannot read parameter file .*absent\.yaml'):
-        Geometry.from_yaml(path)
+        load_geometry(path)
 
 
 def test_from_yaml_invalid_yaml_raises(tmp_path):
     """A file that is not YAML raises ValueError saying so."""
     path = write_file(tmp_path, '/**:\n  ros__parameters: [unclosed\n')
     with pytest.raises(ValueError, match='not valid YAML'):
-        Geometry.from_yaml(path)
+        load_geometry(path)
 
 
 def test_from_yaml_bad_value_names_parameter_and_value(tmp_path):
     """A negative leg_length_min raises ValueError naming the file, parameter and value."""
     path = write_file(tmp_path, paper_yaml_section() + '    leg_length_min: -0.25\n')
     with pytest.raises(ValueError, match=r"params\.yaml: parameter 'leg_length_min'.*-0\.25"):
-        Geometry.from_yaml(path)
+        load_geometry(path)
 
 
 def test_from_yaml_bad_geometry_names_file_and_problem(tmp_path):
     """Limits that exclude the home pose raise ValueError naming the file and the legs."""
     path = write_file(tmp_path, paper_yaml_section() + '    leg_length_max: 0.5\n')
     with pytest.raises(ValueError, match=r'params\.yaml: the home pose breaks the limits: leg'):
-        Geometry.from_yaml(path)
+        load_geometry(path)
 
 
 def test_from_yaml_node_section_overrides_wildcard(tmp_path):
@@ -342,11 +345,11 @@ def test_from_yaml_node_section_overrides_wildcard(tmp_path):
             + 'fk_node:\n  ros__parameters:\n    leg_length_max: 2.0\n'
             + '    home_position: [0.0, 0.0, 0.5]\n')
     path = write_file(tmp_path, text)
-    for_node = Geometry.from_yaml(path, node_name='fk_node')
+    for_node = load_geometry(path, node_name='fk_node')
     assert for_node.leg_length_max == 2.0
     assert_allclose(for_node.home_pose[:3], [0.0, 0.0, 0.5], rtol=0.0, atol=0.0)
     assert_allclose(for_node.base_joints, BASE_M, rtol=0.0, atol=1e-15)
-    shared = Geometry.from_yaml(path)
+    shared = load_geometry(path)
     assert shared.leg_length_max == math.inf
     assert_allclose(shared.home_pose[:3], [0.0, 0.0, HOME_Z], rtol=0.0, atol=0.0)
 
@@ -357,7 +360,7 @@ def test_from_yaml_refuses_a_misspelt_parameter_name(tmp_path):
     path = tmp_path / 'typo.yaml'
     path.write_text(text.replace('leg_length_max:', 'leg_length_mx:'), encoding='utf-8')
     with pytest.raises(ValueError, match="did you mean 'leg_length_max'"):
-        Geometry.from_yaml(path)
+        load_geometry(path)
 
 
 def test_pivot_point_makes_rotations_turn_about_it():
@@ -368,7 +371,7 @@ def test_pivot_point_makes_rotations_turn_about_it():
     pivot = [0.02, -0.01, 0.3]
     values['pivot_point'] = pivot
     values['home_position'] = [0.0, 0.0, 0.4325 + 0.3]
-    geometry = Geometry.from_parameters(values)
+    geometry = geometry_from_parameters(values)
     assert_allclose(geometry.platform_joints, PLATFORM_M - pivot, rtol=0, atol=1e-15)
     # Platform joints in the base frame, for the pivot at P and any rotation R, are
     # P + R (p_i - c): the pivot (p = c) stays at P.

@@ -32,9 +32,11 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import ik_node
-from stewart_kinematics.ik_node import IkNode
+from stewart_kinematics.ros import ik_node
+from stewart_kinematics.ros.ik_node import IkNode
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')

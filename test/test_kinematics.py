@@ -35,6 +35,8 @@ from stewart_kinematics.kinematics import (
     leg_vectors,
 )
 
+pytestmark = pytest.mark.core
+
 #: Table 1, base joints b_1..b_6, millimetres.
 TABLE_1_MM = [
     (48.6989, 219.6666, 0.0),

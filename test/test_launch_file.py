@@ -44,6 +44,8 @@ import types
 import pytest
 from rclpy.validate_namespace import validate_namespace
 
+pytestmark = pytest.mark.node
+
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'stewart_kinematics'
 LAUNCH_FILE = ROOT / 'launch' / 'stewart_kinematics.launch.py'

@@ -31,6 +31,8 @@ from stewart_kinematics import limits
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.limits import Violation
 
+pytestmark = pytest.mark.core
+
 #: Table 1 of the paper, base joints b_1..b_6, millimetres.
 TABLE_1_MM = [
     (48.6989, 219.6666, 0.0),

@@ -16,11 +16,11 @@
 Load and fault tests across processes: a sustained rate, a burst, signals and a crash.
 
 ``ik_node`` and ``fk_node`` run as child processes from their console scripts
-(:class:`stewart_kinematics.node_processes.NodeProcess`), as in test_node_processes.py. The
+(:class:`stewart_kinematics.tools.node_processes.NodeProcess`), as in test_node_processes.py. The
 test's rclpy client is spun by a background thread, so that the main thread can publish on a
 monotonic schedule (no drift) and wait for conditions with a deadline. Messages are counted on
 both sides: what the client sent and received, and the counters every node publishes on
-``/diagnostics`` (:mod:`stewart_kinematics.message_accounting`). Every publisher and
+``/diagnostics`` (:mod:`stewart_kinematics.ros.message_accounting`). Every publisher and
 subscription, the nodes' (``-p queue_depth:=1000``) and the client's, is reliable, keep-last,
 depth :data:`QUEUE_DEPTH`.
 
@@ -54,9 +54,11 @@ import pytest
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import inverse_kinematics
-from stewart_kinematics.node_processes import NodeProcess
+from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.tools.node_processes import NodeProcess
+
+pytestmark = pytest.mark.process
 
 #: Seconds to wait for discovery or data.
 DEADLINE = 20.0
@@ -359,7 +361,7 @@ def start_node():
 @pytest.fixture
 def paper_geometry(config_directory):
     """Return the paper's platform, read from the shipped parameter file."""
-    return Geometry.from_yaml(config_directory / 'paper_platform.yaml')
+    return load_geometry(config_directory / 'paper_platform.yaml')
 
 
 def good_lengths_messages(geometry, poses):

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Tests of stewart_kinematics.message_conversions: Pose and leg arrays to numpy and back.
+Tests of stewart_kinematics.ros.message_conversions: Pose and leg arrays to numpy and back.
 
 Expected quaternions are typed by hand or built with the textbook roll-pitch-yaw half-angle
 formula written out here, never with the package's own rotation functions.
@@ -27,13 +27,15 @@ from numpy.testing import assert_allclose
 import pytest
 from std_msgs.msg import Float64MultiArray, MultiArrayLayout
 
-from stewart_kinematics.message_conversions import (
+from stewart_kinematics.ros.message_conversions import (
     leg_lengths_from_message,
     legs_to_message,
     pose_from_message,
     pose_to_message,
     position_quaternion_from_message,
 )
+
+pytestmark = pytest.mark.node
 
 SQRT_HALF = 0.7071067811865476
 

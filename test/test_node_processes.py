@@ -16,7 +16,7 @@
 Multi-process tests: the console scripts started as ``ros2 run`` starts them, over real topics.
 
 ``ik_node``, ``fk_node`` and ``trajectory_node`` run as child processes
-(:class:`stewart_kinematics.node_processes.NodeProcess`) with the shipped parameter files; an
+(:class:`stewart_kinematics.tools.node_processes.NodeProcess`) with the shipped parameter files; an
 rclpy client in the test process publishes and subscribes on the same (private, local) ROS
 domain. The expected numbers come from the paper's Tables 1 to 3, typed in below in the paper's
 millimetres and degrees, and from the README's leg formula written out in plain Python, so that
@@ -39,8 +39,10 @@ from numpy.testing import assert_allclose
 import pytest
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.message_accounting import WARNING_PERIOD
-from stewart_kinematics.node_processes import NodeProcess
+from stewart_kinematics.ros.message_accounting import WARNING_PERIOD
+from stewart_kinematics.tools.node_processes import NodeProcess
+
+pytestmark = pytest.mark.process
 
 #: Seconds to wait for discovery or data.
 DEADLINE = 20.0
@@ -48,7 +50,7 @@ DEADLINE = 20.0
 SETTLE_TIME = 0.5
 #: Queue depth of the test client's publishers and subscriptions.
 CLIENT_DEPTH = 100
-#: Exit code of a node that could not start (stewart_kinematics.node_main.EXIT_START_FAILED).
+#: Exit code of a node that could not start (stewart_kinematics.ros.node_main.EXIT_START_FAILED).
 EXIT_START_FAILED = 1
 
 # The paper's Table 1: base joint centres b_1..b_6 in the base frame, millimetres.

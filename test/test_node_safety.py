@@ -40,12 +40,15 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import forward_kinematics, Geometry, inverse_kinematics
-from stewart_kinematics import trajectory_node
-from stewart_kinematics.fk_node import FkNode
-from stewart_kinematics.ik_node import IkNode
-from stewart_kinematics.trajectory_node import TrajectoryNode
+from stewart_kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.ros import trajectory_node
+from stewart_kinematics.ros.fk_node import FkNode
+from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
@@ -117,7 +120,7 @@ def lengths_message(values):
 
 def paper_geometry():
     """Return the paper's geometry, without limits."""
-    return Geometry.from_yaml(PLATFORM_FILE)
+    return load_geometry(PLATFORM_FILE)
 
 
 def lengths_of(pose):

@@ -33,6 +33,8 @@ from stewart_kinematics.parameter_spec import (
     SOLVER_PARAMETERS,
 )
 
+pytestmark = pytest.mark.core
+
 ALL_SPECS = GEOMETRY_PARAMETERS + SOLVER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS
 SPECS = {spec.name: spec for spec in ALL_SPECS}
 REQUIRED = ['base_joints', 'platform_joints', 'home_position']

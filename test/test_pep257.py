@@ -19,6 +19,8 @@ from pathlib import Path
 from ament_pep257.main import main
 import pytest
 
+pytestmark = pytest.mark.lint
+
 PACKAGE_ROOT = Path(__file__).resolve().parent.parent
 
 

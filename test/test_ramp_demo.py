@@ -28,7 +28,9 @@ import subprocess
 from numpy.testing import assert_allclose
 import pytest
 
-from stewart_kinematics.node_processes import NodeProcess
+from stewart_kinematics.tools.node_processes import NodeProcess
+
+pytestmark = pytest.mark.process
 
 #: Seconds the demo may take; it waits at most --timeout for the nodes and the ramp.
 DEMO_DEADLINE = 60.0

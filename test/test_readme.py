@@ -20,7 +20,10 @@ import re
 from numpy.testing import assert_allclose
 import pytest
 
-from stewart_kinematics import Geometry, parameter_spec
+from stewart_kinematics import parameter_spec
+from stewart_kinematics.parameter_spec import load_geometry
+
+pytestmark = pytest.mark.node
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / 'README.md').read_text(encoding='utf-8')
@@ -67,7 +70,7 @@ def test_leg_lengths_example_is_the_home_pose():
     example = re.search(r'Float64MultiArray \\\n\s+"\{data: \[([^\]]+)\]\}"', README)
     assert example, 'leg_lengths example not found'
     lengths = [float(value) for value in example.group(1).split(',')]
-    geometry = Geometry.from_yaml(ROOT / 'config' / 'paper_platform.yaml')
+    geometry = load_geometry(ROOT / 'config' / 'paper_platform.yaml')
     assert_allclose(lengths, geometry.home_leg_lengths, atol=1e-9)
 
 
@@ -89,9 +92,9 @@ def topic_rows(section, kind):
 @pytest.mark.parametrize('node_name', ['ik_node', 'fk_node', 'trajectory_node'])
 def test_topic_tables_match_the_nodes(ros, config_directory, node_name):
     """The README's subscribed and published topics are exactly the node's own."""
-    from stewart_kinematics.fk_node import FkNode
-    from stewart_kinematics.ik_node import IkNode
-    from stewart_kinematics.trajectory_node import TrajectoryNode
+    from stewart_kinematics.ros.fk_node import FkNode
+    from stewart_kinematics.ros.ik_node import IkNode
+    from stewart_kinematics.ros.trajectory_node import TrajectoryNode
     node_class = {'ik_node': IkNode, 'fk_node': FkNode, 'trajectory_node': TrajectoryNode}
     arguments = ['--ros-args']
     for name in ('paper_platform.yaml', 'solver.yaml', 'table3_ramp.yaml'):

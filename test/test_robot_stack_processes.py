@@ -36,6 +36,8 @@ from std_msgs.msg import Float64MultiArray, Header
 from visualization_msgs.msg import MarkerArray
 import yaml
 
+pytestmark = pytest.mark.process
+
 #: Seconds to spin after discovery shows every side, before the first message (a reliable,
 #: volatile reader may match a writer a moment after the writer matched it).
 SETTLE_TIME = 0.5

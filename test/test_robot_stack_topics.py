@@ -24,16 +24,19 @@ import pytest
 from rclpy.executors import SingleThreadedExecutor
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
-from stewart_kinematics import Geometry, inverse_kinematics
-from stewart_kinematics.fk_node import FkNode
-from stewart_kinematics.ik_node import IkNode
-from stewart_kinematics.message_conversions import pose_from_message, pose_to_message
+from stewart_kinematics import inverse_kinematics
+from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.ros.fk_node import FkNode
+from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.message_conversions import pose_from_message, pose_to_message
 from stewart_kinematics.velocities import leg_velocities
+
+pytestmark = pytest.mark.node
 
 CONFIG = Path(__file__).resolve().parent.parent / 'config'
 ARGS = ['--ros-args', '--params-file', str(CONFIG / 'paper_platform.yaml'),
         '--params-file', str(CONFIG / 'solver.yaml')]
-GEOMETRY = Geometry.from_yaml(CONFIG / 'paper_platform.yaml')
+GEOMETRY = load_geometry(CONFIG / 'paper_platform.yaml')
 POSE = np.array([0.05, 0.075, 0.4825, math.radians(7.5), math.radians(-7.5), math.radians(10)])
 TWIST = np.array([0.1, -0.2, 0.05, 0.3, -0.1, 0.2])
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Tests of stewart_kinematics.ros_parameters.declare_parameters on a plain rclpy Node.
+Tests of stewart_kinematics.ros.ros_parameters.declare_parameters on a plain rclpy Node.
 
 Values come from parameter files written to ``tmp_path`` (``--params-file``) or from
 ``parameter_overrides``, as rclpy's own tests do; nothing is mocked.
@@ -32,8 +32,10 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 
 from stewart_kinematics import parameter_spec
-from stewart_kinematics.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_parameters
 import yaml
+
+pytestmark = pytest.mark.node
 
 NODE_NAME = 'parameter_test_node'
 SPECS = (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS

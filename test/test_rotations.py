@@ -36,6 +36,8 @@ from stewart_kinematics.rotations import (
     rotation_angle_between,
 )
 
+pytestmark = pytest.mark.core
+
 ATOL = 1e-12
 SQRT_HALF = math.sqrt(0.5)
 

@@ -26,6 +26,8 @@ import pytest
 
 from stewart_kinematics.trajectory import Ramp
 
+pytestmark = pytest.mark.core
+
 #: Table 3 in metres (X, Y, Z) and degrees (alpha, beta, gamma), as from_table takes it.
 POSITION_START = [0.0, 0.0, 0.4325]
 POSITION_STEP = [0.01, 0.015, 0.01]

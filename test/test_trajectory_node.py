@@ -32,9 +32,11 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
-from stewart_kinematics import trajectory_node
-from stewart_kinematics.trajectory_node import TrajectoryNode
+from stewart_kinematics.ros import trajectory_node
+from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
+
+pytestmark = pytest.mark.node
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')

@@ -19,11 +19,14 @@ from pathlib import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from stewart_kinematics import Geometry, leg_lengths
+from stewart_kinematics import leg_lengths
+from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 from stewart_kinematics.velocities import leg_velocities, platform_twist, twist_jacobian
 
-GEOMETRY = Geometry.from_yaml(
+pytestmark = pytest.mark.core
+
+GEOMETRY = load_geometry(
     Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml')
 POSES = np.array([
     [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0],

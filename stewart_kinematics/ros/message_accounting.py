@@ -23,7 +23,7 @@ tools expect) with the reason; a summary with the counters follows every
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
-from stewart_kinematics.node_main import create_output_publisher
+from stewart_kinematics.ros.node_main import create_output_publisher
 
 #: Seconds between two log lines of the same warning.
 WARNING_PERIOD = 1.0

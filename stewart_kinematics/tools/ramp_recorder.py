@@ -21,7 +21,7 @@ import rclpy
 from rclpy.node import Node
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.message_conversions import leg_lengths_from_message, pose_from_message
+from stewart_kinematics.ros.message_conversions import leg_lengths_from_message, pose_from_message
 
 #: Queue depth of the recorder's subscriptions: deep enough for a whole ramp.
 RECORD_DEPTH = 1000

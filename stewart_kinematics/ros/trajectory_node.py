@@ -28,10 +28,10 @@ import numpy as np
 from rclpy.node import Node
 
 from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.message_conversions import pose_to_message
-from stewart_kinematics.node_main import run_node
-from stewart_kinematics.ros_parameters import declare_parameters
+from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.ros.message_conversions import pose_to_message
+from stewart_kinematics.ros.node_main import run_node
+from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.trajectory import Ramp
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
@@ -51,7 +51,7 @@ class TrajectoryNode(Node):
         self.settings = values
         self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
-        check_samples(Geometry.from_parameters(values), *self.planned_samples())
+        check_samples(geometry_from_parameters(values), *self.planned_samples())
         self.publisher = self.create_publisher(Pose, 'target_pose', values['queue_depth'])
         self.published = 0
         self.row_index = 0

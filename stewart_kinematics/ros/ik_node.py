@@ -25,7 +25,7 @@ change of the lengths for a twist at the last pose, m/s), and ``platform_markers
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
 break a limit in red, even for a refused pose). A pose that breaks a limit of the
 geometry is refused, never clamped: see :mod:`stewart_kinematics.limits` and
-:mod:`stewart_kinematics.message_accounting`.
+:mod:`stewart_kinematics.ros.message_accounting`.
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -35,23 +35,23 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import as_leg_lengths, leg_lengths, twist_jacobian
-from stewart_kinematics.markers import platform_markers
-from stewart_kinematics.message_accounting import (
+from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.ros.markers import platform_markers
+from stewart_kinematics.ros.message_accounting import (
     MessageAccounting,
     NodeDiagnostics,
     violation_values,
 )
-from stewart_kinematics.message_conversions import (
+from stewart_kinematics.ros.message_conversions import (
     joint_state_message,
     legs_to_message,
     position_quaternion_from_message,
     QUATERNION_NORM_TOLERANCE,
     twist_from_message,
 )
-from stewart_kinematics.node_main import create_output_publisher, run_node
-from stewart_kinematics.ros_parameters import declare_parameters
+from stewart_kinematics.ros.node_main import create_output_publisher, run_node
+from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
 from visualization_msgs.msg import MarkerArray
 
@@ -64,7 +64,7 @@ class IkNode(Node):
         values = declare_parameters(
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
             + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
-        self.geometry = Geometry.from_parameters(values)
+        self.geometry = geometry_from_parameters(values)
         self.base_frame = values['base_frame']
         self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
         self.last_marker_ns = None

@@ -37,21 +37,21 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import forward_kinematics
-from stewart_kinematics.message_accounting import (
+from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.ros.message_accounting import (
     MessageAccounting,
     NodeDiagnostics,
     violation_values,
 )
-from stewart_kinematics.message_conversions import (
+from stewart_kinematics.ros.message_conversions import (
     leg_lengths_from_message,
     legs_from_joint_state,
     pose_to_message,
     twist_to_message,
 )
-from stewart_kinematics.node_main import create_output_publisher, run_node
-from stewart_kinematics.ros_parameters import declare_parameters
+from stewart_kinematics.ros.node_main import create_output_publisher, run_node
+from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.velocities import platform_twist
 
@@ -68,7 +68,7 @@ class FkNode(Node):
             + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.settings.__setitem__)
         self.settings.update(values)
-        self.geometry = Geometry.from_parameters(values)
+        self.geometry = geometry_from_parameters(values)
         self.last_pose = self.geometry.home_pose
         self.last_lengths = None
         # The last good solution itself: a solve from it reuses its Jacobian too.

@@ -32,6 +32,7 @@ _ROS_TYPES = {
     parameter_spec.DOUBLE: Parameter.Type.DOUBLE,
     parameter_spec.STRING: Parameter.Type.STRING,
     parameter_spec.DOUBLE_ARRAY: Parameter.Type.DOUBLE_ARRAY,
+    parameter_spec.STRING_ARRAY: Parameter.Type.STRING_ARRAY,
 }
 
 

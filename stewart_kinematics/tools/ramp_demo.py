@@ -38,7 +38,7 @@ MAX_ORIENTATION_ERROR = 1e-9
 def default_config_directory() -> Path:
     """Find the installed ``share/stewart_kinematics/config``, else the source ``config/``."""
     candidates = [Path(sys.prefix) / 'share' / 'stewart_kinematics' / 'config',
-                  Path(__file__).resolve().parent.parent / 'config']
+                  Path(__file__).resolve().parents[2] / 'config']
     try:
         from ament_index_python.packages import get_package_share_directory
         candidates.insert(0, Path(get_package_share_directory('stewart_kinematics')) / 'config')
@@ -71,7 +71,7 @@ def parse_arguments(argv):
 def main(argv=None) -> int:
     """Run the demo; return 0 when all 11 poses made the round trip within 1e-9."""
     options = parse_arguments(argv)
-    from stewart_kinematics.node_processes import isolated_ros_environment
+    from stewart_kinematics.tools.node_processes import isolated_ros_environment
     with isolated_ros_environment() as domain:
         print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE='
               f'{os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}', flush=True)
@@ -89,8 +89,8 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
     """
     # Imported here so that --help works without a ROS environment.
     import rclpy
-    from stewart_kinematics.node_processes import NodeProcess
-    from stewart_kinematics.ramp_recorder import RampRecorder
+    from stewart_kinematics.tools.node_processes import NodeProcess
+    from stewart_kinematics.tools.ramp_recorder import RampRecorder
 
     platform = config_directory / 'paper_platform.yaml'
     solver = config_directory / 'solver.yaml'
@@ -130,7 +130,7 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
     # The ramp completed, so every row has its three messages.
     errors = float(run['position_error'].max()), float(run['orientation_error'].max())
     if figure_directory is not None:
-        from stewart_kinematics.plots import write_figures
+        from stewart_kinematics.tools.plots import write_figures
         run['times'] *= row_period
         paths = write_figures(figure_directory, run['times'], run['received'], run['lengths'],
                               run['estimates'], run['position_error'],
