@@ -252,7 +252,7 @@ class Ours:
 
     @staticmethod
     def pose_of(result):
-        """The pose of a tracking result."""
+        """Return the pose of a tracking result."""
         return result.pose
 
 
@@ -384,16 +384,16 @@ class Table:
         self.verdicts[name] = (met, detail)
 
     def results_markdown(self):
-        """The results table."""
-        header = ('Benchmark', 'Solver', 'Median / rate', f'Ratio (median of {self.rounds} rounds, '
-                  'range)', 'Success', 'Worst error')
+        """Return the results table."""
+        header = ('Benchmark', 'Solver', 'Median / rate',
+                  f'Ratio (median of {self.rounds} rounds, range)', 'Success', 'Worst error')
         lines = ['| ' + ' | '.join(header) + ' |', '| ' + ' | '.join('---' for _ in header)
                  + ' |']
         lines += ['| ' + ' | '.join(str(cell) for cell in row) + ' |' for row in self.rows]
         return '\n'.join(lines)
 
     def targets_markdown(self):
-        """Every target, met or not (not measured counts as not met, with the reason)."""
+        """Return every target, met or not (not measured counts as not met, with the reason)."""
         lines = [f'| Target | Met (median of {self.rounds} rounds) | This run: median (range) |',
                  '| --- | --- | --- |']
         for name in TARGETS:
@@ -403,7 +403,7 @@ class Table:
 
 
 def block(name, text):
-    """A block of results.md, between the markers scripts/update_readme_tables.py copies."""
+    """Return a block of results.md, between the markers update_readme_tables.py copies."""
     return f'<!-- benchmark: {name} -->\n{text}\n<!-- end benchmark -->\n'
 
 
@@ -444,7 +444,7 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
         paper_mismatch = paper_frame.ik_mismatch(poses, lengths)
         print(f'basic-robotics SP.IK vs ours over {len(poses)} poses: plate frame (top frame '
               f'T_paper @ Trans(0, 0, {PLATE_FRAME_OFFSET})) {plate_mismatch:.1e} m, paper '
-              f"frame {paper_mismatch:.1e} m", file=sys.stderr)
+              f'frame {paper_mismatch:.1e} m', file=sys.stderr)
         basic_solvers = (plate, tight, paper_frame)
     except Exception as error:  # noqa: B902 - any failure to install or import is reported
         plate = tight = paper_frame = None
@@ -516,8 +516,8 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
 
     # FK cold and warm: every ratio is taken within its round.
     def ratio_series(runs, name, reference):
-        return Series([a / b for a, b in zip(runs[name].seconds.values,
-                                              runs[reference].seconds.values)])
+        pairs = zip(runs[name].seconds.values, runs[reference].seconds.values)
+        return Series([a / b for a, b in pairs])
 
     for solver in fk_solvers:
         run = cold[solver.name]
@@ -675,7 +675,7 @@ class RateSearch:
     rung: int = 0
 
     def next_rate(self):
-        """The rate to try next, or None when done."""
+        """Return the rate to try next, or None when done."""
         if self.lost_at is None:
             return LADDER[self.rung] if self.rung < len(LADDER) else None
         if self.bisections == 0:
