@@ -16,7 +16,7 @@
 Where a cold forward-kinematics solve spends its time, against basic-robotics' compiled kernel.
 
 The figures behind the README's note on the compiled peer: ``cProfile`` of our cold solves
-(time per solve by function, calls per solve), ``timeit`` of the numpy calls a Newton step
+(time per solve by function with and without its callees, calls per solve), ``timeit`` of the numpy calls a Newton step
 makes on 6-element arrays, and ``timeit`` of basic-robotics' numba-compiled ``SPFKinSpaceR``
 stopped after one iteration and run to convergence (in its plate frame, see
 benchmarks/run_benchmarks.py). Run after ``scripts/run_benchmarks.sh`` has installed the
@@ -69,10 +69,12 @@ def main() -> int:
     print(f'cProfile of {POSES} cold solves from home ({iterations:.2f} Newton steps each; '
           f'{total / POSES * 1e6:.1f} us per solve under the profiler, which inflates small '
           'calls):')
-    print(f'{"us/solve":>9} {"calls/solve":>11}  function')
-    rows = sorted(stats.stats.items(), key=lambda item: -item[1][2])
-    for (path, line, name), (_, calls, tottime, _, _) in rows[:12]:
-        print(f'{tottime / POSES * 1e6:9.1f} {calls / POSES:11.1f}  '
+    print(f'{"share":>6} {"us/solve":>9} {"own us":>7} {"calls/solve":>11}  function '
+          '(share: of the time per solve, callees included; own: without them)')
+    rows = sorted(stats.stats.items(), key=lambda item: -item[1][3])
+    for (path, line, name), (_, calls, tottime, cumtime, _) in rows[:16]:
+        print(f'{100.0 * cumtime / total:5.0f}% {cumtime / POSES * 1e6:9.1f} '
+              f'{tottime / POSES * 1e6:7.1f} {calls / POSES:11.1f}  '
               f'{Path(path).name}:{line}({name})')
 
     matrix = np.eye(6) + 0.1 * rng.standard_normal((6, 6))
