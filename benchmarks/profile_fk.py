@@ -19,8 +19,8 @@ The figures behind the README's note on the compiled peer: ``cProfile`` of our c
 (time per solve by function with and without its callees, calls per solve), ``timeit`` of the
 numpy calls a Newton step makes on 6-element arrays, and ``timeit`` of basic-robotics'
 numba-compiled ``SPFKinSpaceR`` stopped after one iteration and run to convergence (in its
-plate frame, see benchmarks/run_benchmarks.py). Run after ``scripts/run_benchmarks.sh`` has installed the
-baselines: ``.venv/bin/python benchmarks/profile_fk.py``.
+plate frame, see benchmarks/run_benchmarks.py). Run after ``scripts/run_benchmarks.sh`` has
+installed the baselines: ``.venv/bin/python benchmarks/profile_fk.py``.
 """
 
 import cProfile
