@@ -62,8 +62,8 @@ def test_console_scripts_named_in_the_readme_are_declared():
     setup = (ROOT / 'setup.py').read_text(encoding='utf-8')
     for script in ('ik_node', 'fk_node', 'trajectory_node', 'ramp_demo'):
         assert f'`{script}`' in README
-        assert re.search(rf"'{script} = stewart_kinematics\.(ros|tools)\.{script}:main'", setup), \
-            script
+        pattern = rf"'{script} = stewart_kinematics\.(ros|tools)\.{script}:main'"
+        assert re.search(pattern, setup), script
 
 
 def test_leg_lengths_example_is_the_home_pose():
