@@ -36,7 +36,8 @@ setup(
         'Inverse and forward kinematics of a 6-6 Gough-Stewart platform (hexapod), '
         'with ROS 2 nodes'),
     license='Apache-2.0',
-    extras_require={'test': ['pytest']},
+    # matplotlib draws the figures of ramp_demo only (stewart_kinematics/tools/plots.py).
+    extras_require={'demo': ['matplotlib'], 'test': ['pytest']},
     entry_points={
         'console_scripts': [
             'ik_node = stewart_kinematics.ros.ik_node:main',

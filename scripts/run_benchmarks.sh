@@ -4,9 +4,18 @@
 #
 # Set up .venv/ if needed, add the baseline packages of benchmarks/requirements.txt (scipy,
 # basic-robotics; not needed otherwise), then run benchmarks/run_benchmarks.py on an isolated
-# ROS domain. Arguments go to it (try --help); exits with its code. Takes about a minute.
+# ROS domain: it prints the tables and writes them to benchmarks/results.md. Takes about three
+# minutes. With --update-readme (first argument), scripts/update_readme_tables.py then copies
+# the new tables into README.md. Other arguments go to run_benchmarks.py (try --help); exits
+# with its code.
 
 set -euo pipefail
+
+update_readme=false
+if [[ "${1:-}" == "--update-readme" ]]; then
+    update_readme=true
+    shift
+fi
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "${root}/scripts/setup_venv.sh"
@@ -23,4 +32,7 @@ rm -f "${log}"
 # shellcheck source=scripts/ros_env.sh
 source "${root}/scripts/ros_env.sh"
 cd "${root}"
-exec "${root}/.venv/bin/python" -W ignore "${root}/benchmarks/run_benchmarks.py" "$@"
+"${root}/.venv/bin/python" -W ignore "${root}/benchmarks/run_benchmarks.py" "$@"
+if [[ "${update_readme}" == true ]]; then
+    "${root}/.venv/bin/python" "${root}/scripts/update_readme_tables.py"
+fi

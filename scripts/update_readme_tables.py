@@ -13,12 +13,19 @@
 # limitations under the License.
 
 """
-Rewrite the parameter tables of README.md from the parameter specs.
+Rewrite the generated tables of README.md: parameters from the specs, benchmarks from results.
 
-Each table sits between ``<!-- parameters: GROUP -->`` and ``<!-- end parameters -->``, where
-GROUP names a tuple of :mod:`stewart_kinematics.parameter_spec` (``GEOMETRY``, ``SOLVER``,
-``QUEUE``, ``RAMP``). Run after changing a parameter: ``.venv/bin/python
-scripts/update_readme_tables.py``; test/test_readme.py fails until the README matches.
+Each parameter table sits between ``<!-- parameters: GROUP -->`` and
+``<!-- end parameters -->``, where GROUP names a tuple of
+:mod:`stewart_kinematics.parameter_spec` (``GEOMETRY``, ``SOLVER``, ``QUEUE``, ``RAMP``). Each
+benchmark block sits between ``<!-- benchmark: NAME -->`` and ``<!-- end benchmark -->`` (NAME:
+``machine``, ``results``, ``targets``) and is copied from the same block of
+``benchmarks/results.md``, which benchmarks/run_benchmarks.py writes.
+
+Run after changing a parameter or benchmarking: ``.venv/bin/python
+scripts/update_readme_tables.py`` (``scripts/run_benchmarks.sh --update-readme`` runs it after
+the benchmark); test/test_readme.py and test/test_benchmark_tables.py fail until the README
+matches.
 """
 
 from pathlib import Path
@@ -27,18 +34,39 @@ import sys
 
 from stewart_kinematics import parameter_spec
 
-README = Path(__file__).resolve().parent.parent / 'README.md'
+ROOT = Path(__file__).resolve().parent.parent
+README = ROOT / 'README.md'
+BENCHMARK_RESULTS = ROOT / 'benchmarks' / 'results.md'
 # The table between the markers may be empty (a new group): `.*?` then matches nothing.
 TABLE = re.compile(r'(<!-- parameters: (\w+) -->\n)(?:.*?\n)??(<!-- end parameters -->)',
                    re.DOTALL)
 
+BENCHMARK = re.compile(r'(<!-- benchmark: (\w+) -->\n)(?:.*?\n)??(<!-- end benchmark -->)',
+                       re.DOTALL)
 
-def render(text: str) -> str:
-    """Return ``text`` with every marked table regenerated."""
+
+def benchmark_blocks(text: str) -> dict:
+    """Return ``{name: content}`` of every benchmark block of ``text`` (without markers)."""
+    return {match.group(2): match.group(0)[len(match.group(1)):-len(match.group(3))]
+            for match in BENCHMARK.finditer(text)}
+
+
+def render(text: str, results: str = None) -> str:
+    """Return ``text`` with every marked table regenerated (benchmarks from ``results``)."""
     def table(match):
         specs = getattr(parameter_spec, f'{match.group(2)}_PARAMETERS')
         return match.group(1) + parameter_spec.markdown_table(specs) + '\n' + match.group(3)
-    return TABLE.sub(table, text)
+
+    if results is None:
+        results = BENCHMARK_RESULTS.read_text(encoding='utf-8')
+    blocks = benchmark_blocks(results)
+
+    def benchmark(match):
+        if match.group(2) not in blocks:
+            raise KeyError(f'{BENCHMARK_RESULTS} has no block {match.group(2)!r}')
+        return match.group(1) + blocks[match.group(2)] + match.group(3)
+
+    return BENCHMARK.sub(benchmark, TABLE.sub(table, text))
 
 
 def main() -> int:
