@@ -659,7 +659,12 @@ def _yaml_scalar(value) -> str:
         value = float(value)
         if math.isinf(value):
             return '.inf' if value > 0 else '-.inf'
-        return repr(value)
+        text = repr(value)
+        # YAML 1.1 (PyYAML) reads 1e-05 as a string: a float needs its dot, 1.0e-05.
+        mantissa, exponent = text.split('e') if 'e' in text else (text, None)
+        if '.' not in mantissa:
+            mantissa += '.0'
+        return mantissa if exponent is None else f'{mantissa}e{exponent}'
     return yaml.safe_dump(value, default_flow_style=True).strip().removesuffix('...').strip()
 
 

@@ -282,6 +282,12 @@ def test_calibrated_parameter_file_loads_as_the_calibrated_geometry(tmp_path,
     check_values(ACTUATOR_PARAMETERS, written)  # floats written as floats
     assert_allclose(written['actuator_offsets'], result.actuator_offsets, rtol=0.0, atol=0.0)
 
+    # Floats without a dot in Python's repr (1e-05) still load as floats, not strings.
+    tiny = tmp_path / 'tiny.yaml'
+    write_parameter_file(tiny, {'leg_length_min': 1e-05, 'actuator_offsets': [1e-05] * 6})
+    check_values(ACTUATOR_PARAMETERS, read_parameter_file(tiny))
+    assert read_parameter_file(tiny)['leg_length_min'] == 1e-05
+
 
 def test_measurement_files_round_trip_and_bad_ones_are_named(tmp_path):
     generator = np.random.default_rng(12)
