@@ -71,6 +71,8 @@ PARAMETER_NAMES = tuple(
 FINAL_TOLERANCE = 1e-14
 #: Largest number of residual evaluations of one least-squares fit (a good one takes 3 to 10).
 MAX_EVALUATIONS = 50
+#: measurement_poses: candidates whose smallest eigenvalue is computed exactly at each step.
+E_OPTIMAL_SHORTLIST = 200
 #: MAD to standard deviation of a normal distribution.
 _MAD_TO_SIGMA = 1.4826
 #: Column positions of leg i's seven parameters in the 42-vector.
@@ -369,8 +371,11 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
 
         def jac(x):
             return _jacobian(x, positions[mask], rotations[mask])
+        # Plain fits: MINPACK's Levenberg-Marquardt (compiled, fastest on small dense
+        # problems); robust losses need the trust-region reflective method.
+        method = 'lm' if fit_loss == 'linear' else 'trf'
         return least_squares(residuals, x0, jac=jac, loss=fit_loss, f_scale=scale,
-                             x_scale='jac', method='trf', ftol=tolerance, xtol=tolerance,
+                             x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
                              gtol=tolerance, max_nfev=MAX_EVALUATIONS)
 
     def refuse_misfit(error):
@@ -516,8 +521,19 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
             gain = np.einsum('cli,lij,clj->cl', rows, inverse, rows)
             score = np.sum(np.log1p(gain), axis=1)
         else:
-            updated = information + rows[:, :, :, None] * rows[:, :, None, :]
-            score = np.min(np.linalg.eigvalsh(updated)[..., 0], axis=1)
+            # The exact smallest eigenvalue after adding each candidate, computed for the
+            # candidates that add most along each leg's two weakest directions (a candidate
+            # adds (g . v)^2 along an eigenvector v to first order).
+            values, vectors = np.linalg.eigh(information)
+            along = np.einsum('cli,lik->clk', rows, vectors[:, :, :2]) ** 2
+            estimate = np.min(values[None, :, 0] + along[:, :, 0], axis=1) + np.min(
+                along[:, :, 1], axis=1) * 1e-3
+            estimate[~available] = -np.inf
+            shortlist = np.argsort(-estimate)[:E_OPTIMAL_SHORTLIST]
+            shortlist = shortlist[available[shortlist]]
+            updated = information + rows[shortlist, :, :, None] * rows[shortlist, :, None, :]
+            score = np.full(pool.shape[0], -np.inf)
+            score[shortlist] = np.min(np.linalg.eigvalsh(updated)[..., 0], axis=1)
         score[~available] = -np.inf
         best = int(np.argmax(score))
         chosen.append(best)

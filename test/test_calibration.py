@@ -306,3 +306,15 @@ def test_measurement_files_round_trip_and_bad_ones_are_named(tmp_path):
     path.write_text(header + '\n1' + ', 0.0' * 12 + '\n2, 0.0, zero' + ', 0.0' * 10 + '\n')
     with pytest.raises(ValueError, match='data row 2'):
         load_measurements(path)
+
+
+def test_calibration_is_exported_but_scipy_loads_only_when_used():
+    import subprocess
+    import sys
+    code = ('import sys, stewart_kinematics\n'
+            "assert 'scipy' not in sys.modules, 'importing the package loaded scipy'\n"
+            'from stewart_kinematics import calibrate, CalibrationError, measurement_poses\n'
+            "assert 'scipy' in sys.modules and calibrate.__module__.endswith('calibration')\n")
+    completed = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                               timeout=60)
+    assert completed.returncode == 0, completed.stderr

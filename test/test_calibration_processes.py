@@ -32,9 +32,8 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from std_msgs.msg import Float64MultiArray
-import yaml
-
 from stewart_kinematics.tools.node_processes import find_executable
+import yaml
 
 pytestmark = pytest.mark.process
 

@@ -28,8 +28,8 @@ import sys
 import numpy as np
 
 from stewart_kinematics.calibration import (
-    calibrate, calibrated_parameters, CalibrationError, load_measurements, measurement_poses,
-    MEASUREMENT_COLUMNS, predict_actuator_positions, write_parameter_file)
+    calibrate, calibrated_parameters, CalibrationError, load_measurements, MEASUREMENT_COLUMNS,
+    measurement_poses, predict_actuator_positions, write_parameter_file)
 from stewart_kinematics.parameter_spec import (
     ACTUATOR_PARAMETERS, check_known_names, check_values, geometry_from_parameters,
     read_parameter_file)
