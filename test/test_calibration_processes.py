@@ -126,6 +126,20 @@ def test_stewart_calibrate_reports_finds_the_outliers_and_writes_its_files(examp
     assert calibrated['leg_length_max'] == 0.9  # the nominal limits are kept
 
 
+def test_calibration_cuts_the_pose_error_of_the_built_platform(example):
+    directory, config, code, out, err = example
+    assert code == 0, out + err
+    code, out, err = run([sys.executable, '-m', 'stewart_kinematics.tools.calibration_example',
+                          str(directory), '--config-dir', str(config),
+                          '--check', str(directory / 'calibrated.yaml')], directory)
+    assert code == 0, out + err
+    (nominal_position, nominal_angle), (position, angle) = (
+        (float(match[0]), float(match[1])) for match in re.findall(
+            r'position +([\d.]+) um, worst .*orientation +([\d.]+) urad', out))
+    assert nominal_position > 1000.0 and nominal_angle > 1000.0
+    assert position < 10.0 and angle < 20.0
+
+
 def test_ik_node_runs_on_the_calibrated_file_and_publishes_its_lengths(
         example, client, start_node):
     directory, config, code, out, err = example

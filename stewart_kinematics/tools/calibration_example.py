@@ -27,7 +27,9 @@ mis-read tracker point, a glitching actuator). Writes to the output folder:
   layer on the nominal geometry;
 - ``true_platform.yaml``: the built platform's real parameters, to compare with the result.
 
-Run ``python -m stewart_kinematics.tools.calibration_example OUTPUT_DIR``.
+Run ``python -m stewart_kinematics.tools.calibration_example OUTPUT_DIR``; after calibrating,
+``... OUTPUT_DIR --check calibrated.yaml`` drives the built platform with the nominal and the
+calibrated model and prints the pose errors it reaches.
 """
 
 import argparse
@@ -39,8 +41,11 @@ import sys
 import numpy as np
 
 from stewart_kinematics.calibration import (
-    measurement_poses, predict_actuator_positions, write_measurements, write_parameter_file)
-from stewart_kinematics.parameter_spec import load_geometry
+    load_measurements, measurement_poses, predict_actuator_positions, write_measurements,
+    write_parameter_file)
+from stewart_kinematics.kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.parameter_spec import load_geometry, read_parameter_file
+from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.tools.ramp_demo import default_config_directory
 
 SEED = 2026
@@ -117,14 +122,61 @@ def write_example(directory: Path, config_directory: Path) -> dict:
     return paths
 
 
+def pose_errors(directory: Path, calibrated_file: Path, config_directory: Path) -> str:
+    """
+    Compare the pose errors of the built platform driven by the nominal and calibrated models.
+
+    For each pose of ``validation.csv`` (as commanded), each model gives the actuator positions
+    to command (its leg lengths minus its offsets); the built platform (``true_platform.yaml``)
+    then has those positions plus its real offsets as leg lengths, and reaches the pose that
+    its forward kinematics gives for them. Returns the report as text.
+    """
+    nominal = load_geometry([config_directory / 'paper_platform.yaml',
+                             config_directory / 'example_limits.yaml'])
+    truth = read_parameter_file(directory / 'true_platform.yaml')
+    built = replace(nominal, base_joints=np.reshape(truth['base_joints'], (6, 3)),
+                    platform_joints=np.reshape(truth['platform_joints'], (6, 3)))
+    calibrated = load_geometry(calibrated_file)
+    calibrated_offsets = np.array(read_parameter_file(calibrated_file)['actuator_offsets'])
+    commanded, _ = load_measurements(directory / 'validation.csv')
+    lines = [f'pose error of the built platform over {commanded.shape[0]} commanded poses '
+             '(RMS, worst)']
+    for name, model, offsets in (('nominal', nominal, np.full(6, NOMINAL_OFFSET)),
+                                 ('calibrated', calibrated, calibrated_offsets)):
+        # The model commands actuator positions; the built legs are those plus its offsets.
+        positions = predict_actuator_positions(model, offsets, commanded)
+        lengths = positions + np.asarray(truth['actuator_offsets'])
+        reached = forward_kinematics(built, lengths, commanded)
+        if not np.all(reached.converged):
+            raise RuntimeError(f'forward kinematics failed for the {name} model')
+        position = np.linalg.norm(reached.pose[:, :3] - commanded[:, :3], axis=1)
+        angle = rotation_angle_between(euler_zyx_to_matrix(reached.pose[:, 3:]),
+                                       euler_zyx_to_matrix(commanded[:, 3:]))
+        lines.append(f'  {name:10s}  position {_rms(position) * 1e6:9.2f} um, worst '
+                     f'{np.max(position) * 1e6:9.2f} um;  orientation '
+                     f'{_rms(angle) * 1e6:8.2f} urad, worst {np.max(angle) * 1e6:8.2f} urad')
+    return '\n'.join(lines)
+
+
+def _rms(values) -> float:
+    return float(np.sqrt(np.mean(np.square(values))))
+
+
 def main(argv=None) -> int:
-    """Write the example files; return the exit code."""
+    """Write the example files (or compare a calibration with the truth); return 0."""
     parser = argparse.ArgumentParser(description=__doc__.strip().split('\n\n')[0])
     parser.add_argument('output', type=Path, help='folder to write the files to')
     parser.add_argument('--config-dir', type=Path, default=None,
                         help='folder with paper_platform.yaml and example_limits.yaml')
+    parser.add_argument('--check', type=Path, metavar='CALIBRATED_YAML', default=None,
+                        help='instead, print the pose errors of the built platform driven by '
+                             'the nominal model and by this calibrated parameter file')
     arguments = parser.parse_args(argv)
-    write_example(arguments.output, arguments.config_dir or default_config_directory())
+    config_directory = arguments.config_dir or default_config_directory()
+    if arguments.check is not None:
+        print(pose_errors(arguments.output, arguments.check, config_directory))
+    else:
+        write_example(arguments.output, config_directory)
     return 0
 
 

@@ -136,6 +136,9 @@ def calibration_figure(path, result):
         worst = np.max(np.abs(result.residuals_after[outliers]), axis=1) * 1e6
         bottom.plot(outliers, np.minimum(worst, limit), 'kx', markersize=9,
                     label='outlier (worst leg, clipped)')
+        for index, value in zip(outliers, worst):
+            bottom.annotate(f' {value:.0f} um', (index, min(value, limit)), fontsize='small',
+                            va='center')
     bottom.set_xlabel('pose')
     bottom.set_ylabel('calibrated residual [um]')
     return _finish(figure, (top, bottom), 'Calibration: nominal against calibrated model', path)
