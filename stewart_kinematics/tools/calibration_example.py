@@ -43,7 +43,7 @@ import numpy as np
 from stewart_kinematics.calibration import (
     load_measurements, measurement_poses, predict_actuator_positions, write_measurements,
     write_parameter_file)
-from stewart_kinematics.kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.kinematics import forward_kinematics
 from stewart_kinematics.parameter_spec import load_geometry, read_parameter_file
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.tools.ramp_demo import default_config_directory
