@@ -140,6 +140,19 @@ def test_calibration_cuts_the_pose_error_of_the_built_platform(example):
     assert position < 10.0 and angle < 20.0
 
 
+def test_readme_worked_example_is_this_output(example):
+    # The README's excerpt of the worked example is the output of its commands.
+    from pathlib import Path
+    readme = (Path(__file__).resolve().parent.parent / 'README.md').read_text(encoding='utf-8')
+    excerpt = re.search(r'```text\n(poses: 50 measured.*?)```', readme, re.DOTALL)
+    assert excerpt, 'worked example excerpt not found in README.md'
+    _, _, code, out, err = example
+    assert code == 0, out + err
+    for line in excerpt.group(1).splitlines():
+        if line != '...':
+            assert line in out, f'README line not in the output: {line!r}'
+
+
 def test_ik_node_runs_on_the_calibrated_file_and_publishes_its_lengths(
         example, client, start_node):
     directory, config, code, out, err = example
