@@ -378,14 +378,19 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
                              x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
                              gtol=tolerance, max_nfev=MAX_EVALUATIONS)
 
-    def refuse_misfit(error):
-        noise = math.sqrt(float(np.sum(np.square(error))) / max(error.size - PARAMETER_COUNT, 1))
+    def refuse_misfit(error, robust=False):
+        if robust:  # a few gross outliers must not count: they are for the robust fit
+            noise = _MAD_TO_SIGMA * float(np.median(np.abs(error)))
+        else:
+            noise = math.sqrt(float(np.sum(np.square(error)))
+                              / max(error.size - PARAMETER_COUNT, 1))
         if not noise <= max_noise:
             raise CalibrationError(
                 f'the calibrated model leaves residuals of {noise * 1e3:.3g} mm (standard '
                 f'deviation), above {max_noise * 1e3:.3g} mm: the model does not fit the data; '
                 'check the units (metres, radians), the column order, the leg order and the '
-                'nominal geometry')
+                'nominal geometry' + (", or set the outliers aside (loss='soft_l1')"
+                                      if loss == 'linear' else ''))
         return noise
 
     inliers = np.ones(count, dtype=bool)
@@ -395,7 +400,7 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         # disturb little while they are few.
         rough = fit(start, inliers, 'linear')
         # Robust losses would be slow to crawl through data the model cannot fit at all.
-        refuse_misfit(rough.fun)
+        refuse_misfit(rough.fun, robust=True)
         rough = rough.x
         for _ in range(2):
             error = _predict(rough, positions, rotations) - readings

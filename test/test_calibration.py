@@ -171,22 +171,28 @@ def test_unknown_nominal_offsets_are_estimated_from_the_readings(nominal):
 def test_outliers_are_found_by_index_and_do_not_spoil_the_fit(nominal):
     hexapod = Hexapod(nominal, 6)
     poses, measured = hexapod.measure(hexapod.random_poses(nominal.home_pose, 50))
-    # Mis-read tracker points and a glitching actuator reading.
+    # Mis-read tracker points (one grossly, by 50 mm) and glitching actuator readings.
+    poses[3, 0] += 0.05
     poses[7, 0] += 2e-3
     poses[19, 4] += 1e-3
     poses[33, 2] -= 0.5e-3
     measured[41, 3] += 0.3e-3
+    measured[45, 0] -= 0.02
     result = calibrate(nominal, poses, measured, NOMINAL_OFFSETS)
-    assert result.outliers == (7, 19, 33, 41)
-    assert not result.inliers[[7, 19, 33, 41]].any() and result.inliers.sum() == 46
+    assert result.outliers == (3, 7, 19, 33, 41, 45)
+    assert not result.inliers[[3, 7, 19, 33, 41, 45]].any() and result.inliers.sum() == 44
     nominal_rms, calibrated_rms, floor = held_out_errors(nominal, hexapod, result)
     assert calibrated_rms < 1.25 * floor
-    assert 'outliers: [7, 19, 33, 41]' in result.report()
+    assert 'outliers: [3, 7, 19, 33, 41, 45]' in result.report()
 
-    # Plain least squares on the same data is pulled off by them.
-    plain = calibrate(nominal, poses, measured, NOMINAL_OFFSETS, loss='linear')
+    # Plain least squares is pulled off by the small ones, and refuses the gross ones.
+    small = np.ones(len(poses), dtype=bool)
+    small[[3, 45]] = False
+    plain = calibrate(nominal, poses[small], measured[small], NOMINAL_OFFSETS, loss='linear')
     assert plain.outliers == ()
     assert held_out_errors(nominal, hexapod, plain)[1] > 3 * floor
+    with pytest.raises(CalibrationError, match='does not fit.*set the outliers aside'):
+        calibrate(nominal, poses, measured, NOMINAL_OFFSETS, loss='linear')
 
 
 def test_too_few_poses_are_refused(nominal):
@@ -226,6 +232,11 @@ def test_data_the_model_cannot_fit_are_refused(nominal):
     poses, measured = hexapod.measure(hexapod.random_poses(nominal.home_pose, 40))
     with pytest.raises(CalibrationError, match='check the units'):
         calibrate(nominal, poses, measured * 1e3)
+    # A third of the poses spoilt is not a few outliers.
+    spoilt = measured.copy()
+    spoilt[::3, 0] += 5e-4
+    with pytest.raises(CalibrationError, match='14 of 40 poses do not fit the model'):
+        calibrate(nominal, poses, spoilt, NOMINAL_OFFSETS)
 
 
 def test_measurement_poses_beat_random_ones_and_stay_within_limits(config_directory_path):
