@@ -69,6 +69,8 @@ PARAMETER_NAMES = tuple(
     + [f'o{leg}' for leg in range(1, 7)])
 #: Relative tolerances (ftol, xtol, gtol) of the final least-squares fit.
 FINAL_TOLERANCE = 1e-14
+#: The losses of scipy's least_squares: 'linear' is plain least squares, the others robust.
+LOSSES = ('soft_l1', 'huber', 'cauchy', 'arctan', 'linear')
 #: Largest number of residual evaluations of one least-squares fit (a good one takes 3 to 10).
 MAX_EVALUATIONS = 50
 #: measurement_poses: candidates whose smallest eigenvalue is computed exactly at each step.
@@ -341,6 +343,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         beyond ``max_noise``.
     :raises ValueError: malformed arrays.
     """
+    if loss not in LOSSES:
+        raise ValueError(f"loss must be one of {', '.join(LOSSES)}; got {loss!r}")
     poses = np.atleast_2d(as_poses(poses))
     readings = np.atleast_2d(np.asarray(actuator_positions, dtype=float))
     if readings.shape != poses.shape:

@@ -203,3 +203,11 @@ def test_stewart_calibrate_proposes_measurement_poses(example, tmp_path):
     assert rows[0][:7] == ['X', 'Y', 'Z', 'alpha', 'beta', 'gamma', 'actuator_1']
     assert len(rows) == 13 and all(len(row) == 12 for row in rows)
     assert all(abs(float(row[2]) - 0.4325) <= 0.05 for row in rows[1:])
+
+
+def test_stewart_calibrate_help_documents_the_columns_and_units(tmp_path):
+    code, out, err = run([find_executable('stewart_calibrate'), '--help'], tmp_path)
+    assert code == 0, err
+    for text in ('X, Y, Z', 'alpha, beta, gamma', 'actuator_1..6', ', m', 'rad',
+                 '--params-file', 'exit codes'):
+        assert text in out, text

@@ -28,8 +28,8 @@ import sys
 import numpy as np
 
 from stewart_kinematics.calibration import (
-    calibrate, calibrated_parameters, CalibrationError, load_measurements, MEASUREMENT_COLUMNS,
-    measurement_poses, predict_actuator_positions, write_parameter_file)
+    calibrate, calibrated_parameters, CalibrationError, load_measurements, LOSSES,
+    MEASUREMENT_COLUMNS, measurement_poses, predict_actuator_positions, write_parameter_file)
 from stewart_kinematics.parameter_spec import (
     ACTUATOR_PARAMETERS, check_known_names, check_values, geometry_from_parameters,
     read_parameter_file)
@@ -68,8 +68,7 @@ def parse_arguments(argv):
     parser.add_argument('--validate', type=Path, default=None,
                         help='CSV of further measurements, not used for fitting: prints how '
                              'well the nominal and the calibrated model predict them')
-    parser.add_argument('--loss', default='soft_l1',
-                        choices=('soft_l1', 'huber', 'cauchy', 'arctan', 'linear'),
+    parser.add_argument('--loss', default='soft_l1', choices=LOSSES,
                         help="robust loss of the first fit; 'linear' keeps every pose "
                              '(default: %(default)s)')
     parser.add_argument('--outlier-threshold', type=float, default=5.0,
