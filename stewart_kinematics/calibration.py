@@ -370,17 +370,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         raise CalibrationError(report.problem())
 
     def fit(x0, mask, fit_loss, scale=1.0, tolerance=1e-8):
-        def residuals(x):
-            return (_predict(x, positions[mask], rotations[mask]) - readings[mask]).ravel()
-
-        def jac(x):
-            return _jacobian(x, positions[mask], rotations[mask])
-        # Plain fits: MINPACK's Levenberg-Marquardt (compiled, fastest on small dense
-        # problems); robust losses need the trust-region reflective method.
-        method = 'lm' if fit_loss == 'linear' else 'trf'
-        return least_squares(residuals, x0, jac=jac, loss=fit_loss, f_scale=scale,
-                             x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
-                             gtol=tolerance, max_nfev=MAX_EVALUATIONS)
+        return _fit_legs(x0, positions[mask], rotations[mask], readings[mask], fit_loss, scale,
+                         tolerance)
 
     def refuse_misfit(error, robust=False):
         if robust:  # a few gross outliers must not count: they are for the robust fit
@@ -436,12 +427,9 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         raise CalibrationError('after removing the outlier poses '
                                f'{np.flatnonzero(~inliers).tolist()}: ' + inlier_report.problem())
     noise = refuse_misfit(solution.fun)
-    jac = solution.jac
     standard_deviations = np.empty(PARAMETER_COUNT)
-    for columns in _LEG_COLUMNS:
-        block = jac[:, columns]
-        rows = np.any(block != 0.0, axis=1)
-        covariance = np.linalg.pinv(block[rows].T @ block[rows])
+    for columns, block in zip(_LEG_COLUMNS, solution.leg_jacobians):
+        covariance = np.linalg.pinv(block.T @ block)
         standard_deviations[columns] = noise * np.sqrt(np.diag(covariance))
     geometry = _geometry_of(nominal, parameters)
     return CalibrationResult(
@@ -709,28 +697,76 @@ def _geometry_of(nominal: Geometry, parameters) -> Geometry:
         raise CalibrationError(f'the calibrated geometry is not valid: {error}') from error
 
 
-def _legs(parameters, positions, rotations):
-    base = parameters[:18].reshape(6, 3)
-    platform = parameters[18:36].reshape(6, 3)
-    return np.einsum('kab,ib->kia', rotations, platform) + positions[:, None, :] - base
+@dataclass(frozen=True)
+class _Fit:
+    x: np.ndarray
+    fun: np.ndarray
+    leg_jacobians: Tuple[np.ndarray, ...]
+    nfev: int
+
+
+def _fit_legs(x0, positions, rotations, readings, loss, scale, tolerance) -> _Fit:
+    """
+    Fit each leg's seven parameters to its own readings: the legs decouple.
+
+    Six problems of N x 7 instead of one of 6N x 42 (block diagonal): far less work, and
+    matrices too small for a multi-threaded BLAS to stall on (it did, 10x, on a busy machine).
+    """
+    x = np.array(x0, dtype=float)
+    fun = np.empty(readings.shape)
+    jacobians = []
+    evaluations = 0
+    # Plain fits: MINPACK's Levenberg-Marquardt (compiled, fastest on small dense problems);
+    # robust losses need the trust-region reflective method.
+    method = 'lm' if loss == 'linear' else 'trf'
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        def residuals(values, leg=leg):
+            return _leg_lengths(values, positions, rotations) - values[6] - readings[:, leg]
+
+        def jac(values):
+            return _leg_jacobian(values, positions, rotations)
+        solution = least_squares(residuals, x[columns], jac=jac, loss=loss, f_scale=scale,
+                                 x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
+                                 gtol=tolerance, max_nfev=MAX_EVALUATIONS)
+        x[columns] = solution.x
+        fun[:, leg] = solution.fun
+        jacobians.append(jac(solution.x))
+        evaluations += solution.nfev
+    return _Fit(x, fun.ravel(), tuple(jacobians), evaluations)
+
+
+def _leg_vectors(values, positions, rotations):
+    # values: one leg's [b (3), p (3), o]; returns its leg vectors t + R p - b, (N, 3).
+    return np.einsum('kab,b->ka', rotations, values[3:6]) + positions - values[:3]
+
+
+def _leg_lengths(values, positions, rotations):
+    return np.linalg.norm(_leg_vectors(values, positions, rotations), axis=-1)
+
+
+def _leg_jacobian(values, positions, rotations):
+    # d|leg| / d b = -u; d|leg| / d p = R^T u; d a / d o = -1.
+    legs = _leg_vectors(values, positions, rotations)
+    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    jac = np.empty((positions.shape[0], PARAMETERS_PER_LEG))
+    jac[:, :3] = -directions
+    jac[:, 3:6] = np.einsum('kba,kb->ka', rotations, directions)
+    jac[:, 6] = -1.0
+    return jac
 
 
 def _predict(parameters, positions, rotations):
-    lengths = np.linalg.norm(_legs(parameters, positions, rotations), axis=-1)
-    return lengths - parameters[36:]
+    """Return the actuator positions (N, 6) of the 42 parameters at N poses."""
+    return np.stack([_leg_lengths(parameters[columns], positions, rotations)
+                     - parameters[columns[6]] for columns in _LEG_COLUMNS], axis=1)
 
 
 def _jacobian(parameters, positions, rotations):
-    legs = _legs(parameters, positions, rotations)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    """Return the identification Jacobian (6N, 42): leg blocks on its diagonal, row 6k + i."""
     count = positions.shape[0]
     jac = np.zeros((count, 6, PARAMETER_COUNT))
-    # d|leg| / d b_i = -u_i; d|leg| / d p_i = R^T u_i; d a_i / d o_i = -1.
-    rotated = np.einsum('kba,kib->kia', rotations, directions)
-    for leg in range(6):
-        jac[:, leg, 3 * leg:3 * leg + 3] = -directions[:, leg]
-        jac[:, leg, 18 + 3 * leg:18 + 3 * leg + 3] = rotated[:, leg]
-        jac[:, leg, 36 + leg] = -1.0
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        jac[:, leg, columns] = _leg_jacobian(parameters[columns], positions, rotations)
     return jac.reshape(count * 6, PARAMETER_COUNT)
 
 
