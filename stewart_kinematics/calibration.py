@@ -33,8 +33,8 @@ a base joint from its platform joint (``b_i + d`` and ``p_i + d`` fit alike), an
 a leg is told from its joints' positions along the leg only by how much the leg swings (the
 difference is second order in the swing angle).
 
-Fitting is :func:`scipy.optimize.least_squares` with the analytic Jacobian, a robust loss
-first, then poses with a residual far beyond the robust noise estimate are set aside as
+Fitting is :func:`scipy.optimize.least_squares` with the analytic Jacobian, leg by leg (the
+legs decouple), a robust loss first, then poses with a residual far beyond the robust noise estimate are set aside as
 outliers (reported by index) and the inliers are fitted with plain least squares, which gives
 the parameters' standard deviations.
 """
@@ -191,7 +191,8 @@ class CalibrationResult:
     :param noise: the residuals' standard deviation after the fit (degrees of freedom
         counted), metres: the measurement noise as the fit sees it.
     :param identifiability: the identifiability of the inlier poses at the solution.
-    :param iterations: function evaluations of the final least-squares solve.
+    :param iterations: residual evaluations of the final least-squares fit, summed over the
+        six legs.
     """
 
     geometry: Geometry
