@@ -28,7 +28,7 @@ setup(
         ('share/' + package_name + '/config', sorted(glob('config/*.yaml'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
-    install_requires=['setuptools', 'numpy', 'pyyaml'],
+    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy'],
     zip_safe=True,
     maintainer='stewart_kinematics developers',
     maintainer_email='maintainer@example.com',
@@ -44,6 +44,7 @@ setup(
             'fk_node = stewart_kinematics.ros.fk_node:main',
             'trajectory_node = stewart_kinematics.ros.trajectory_node:main',
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
+            'stewart_calibrate = stewart_kinematics.tools.calibrate:main',
         ],
     },
 )

@@ -52,6 +52,9 @@ from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist
 
 __all__ = [
+    'calibrate',
+    'CalibrationError',
+    'CalibrationResult',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
     'forward_kinematics',
@@ -66,9 +69,21 @@ __all__ = [
     'load_geometry',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
+    'measurement_poses',
     'platform_twist',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
     'twist_jacobian',
 ]
+
+#: Calibration needs scipy: imported on first use, so that the nodes start without loading it.
+_CALIBRATION_NAMES = ('calibrate', 'CalibrationError', 'CalibrationResult', 'measurement_poses')
+
+
+def __getattr__(name):
+    """Import the calibration names on first use (PEP 562)."""
+    if name in _CALIBRATION_NAMES:
+        from stewart_kinematics import calibration
+        return getattr(calibration, name)
+    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

@@ -100,3 +100,45 @@ def _finish(figure, axes_list, title, path):
     figure.savefig(path, dpi=100)
     plt.close(figure)
     return path
+
+
+def calibration_figure(path, result):
+    """
+    Write a PNG of a calibration's residuals per leg, before and after, and return its path.
+
+    Top: RMS and worst residual of each leg (inlier poses) for the nominal and the calibrated
+    model, on a log scale. Bottom: every calibrated residual by pose, outlier poses marked.
+
+    :param path: the PNG file to write.
+    :param result: a :class:`stewart_kinematics.calibration.CalibrationResult`.
+    """
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7))
+    legs = np.arange(1, 7)
+    width = 0.2
+    for shift, values, label, color in (
+            (-1.5, result.rms_before, 'RMS, nominal', 'tab:red'),
+            (-0.5, result.worst_before, 'worst, nominal', 'salmon'),
+            (0.5, result.rms_after, 'RMS, calibrated', 'tab:blue'),
+            (1.5, result.worst_after, 'worst, calibrated', 'lightblue')):
+        top.bar(legs + shift * width, values * 1e6, width, label=label, color=color)
+    top.set_yscale('log')
+    top.set_xticks(legs, [f'leg {leg}' for leg in legs])
+    top.set_ylabel('|predicted - measured| [um]')
+    top.set_title(f'Actuator position residuals, {int(result.inliers.sum())} poses '
+                  f'({len(result.outliers)} outliers set aside)')
+    poses = np.arange(result.inliers.size)
+    for leg in range(6):
+        bottom.plot(poses[result.inliers], result.residuals_after[result.inliers, leg] * 1e6,
+                    '.', label=f'leg {leg + 1}')
+    if result.outliers:
+        outliers = np.array(result.outliers)
+        limit = 4.0 * np.max(np.abs(result.residuals_after[result.inliers])) * 1e6
+        worst = np.max(np.abs(result.residuals_after[outliers]), axis=1) * 1e6
+        bottom.plot(outliers, np.minimum(worst, limit), 'kx', markersize=9,
+                    label='outlier (worst leg, clipped)')
+        for index, value in zip(outliers, worst):
+            bottom.annotate(f' {value:.0f} um', (index, min(value, limit)), fontsize='small',
+                            va='center')
+    bottom.set_xlabel('pose')
+    bottom.set_ylabel('calibrated residual [um]')
+    return _finish(figure, (top, bottom), 'Calibration: nominal against calibrated model', path)

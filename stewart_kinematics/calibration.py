@@ -1,0 +1,825 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Calibration: identify the real joints and actuator offsets of a built hexapod from measurements.
+
+The model is the field's standard one, 42 parameters: the six base joints ``b_i`` (base frame),
+the six platform joints ``p_i`` (platform frame, relative to the pivot point, as
+:class:`~stewart_kinematics.Geometry` holds them) and the six actuator offsets ``o_i``. At a
+measured pose ``[X, Y, Z, alpha, beta, gamma]`` (position of the pivot point and orientation of
+the platform frame in the base frame, as every pose of this package) actuator i reads
+
+    ``a_i = |t + R p_i - b_i| - o_i``     (metres)
+
+Gauge: the base frame and the platform frame are the frames the poses are measured in (a laser
+tracker, CMM or camera registered to reference marks on the base, and a target fixed to the
+platform). With full poses measured, the legs decouple: each leg's seven parameters are fitted
+to that leg's N readings, and all 42 are identifiable from enough varied poses. What a set of
+poses cannot determine is stated from the singular values of the scaled identification
+Jacobian (:func:`identifiability`): for example poses that never rotate the platform cannot tell
+a base joint from its platform joint (``b_i + d`` and ``p_i + d`` fit alike), and the offset of
+a leg is told from its joints' positions along the leg only by how much the leg swings (the
+difference is second order in the swing angle).
+
+Fitting is :func:`scipy.optimize.least_squares` with the analytic Jacobian, leg by leg (the
+legs decouple), a robust loss first, then poses with a residual far beyond the robust noise estimate are set aside as
+outliers (reported by index) and the inliers are fitted with plain least squares, which gives
+the parameters' standard deviations.
+"""
+
+import csv
+from dataclasses import dataclass, replace
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+from scipy.linalg import qr
+from scipy.optimize import least_squares
+
+from stewart_kinematics import limits
+from stewart_kinematics.geometry import Geometry
+from stewart_kinematics.kinematics import as_poses
+from stewart_kinematics.parameter_spec import (
+    ACTUATOR_PARAMETERS, all_specs, check_values, GEOMETRY_PARAMETERS)
+from stewart_kinematics.rotations import euler_zyx_to_matrix
+import yaml
+
+#: Parameters of one leg: base joint (3), platform joint (3), actuator offset (1).
+PARAMETERS_PER_LEG = 7
+#: All parameters: 18 base joint coordinates, 18 platform joint coordinates, 6 offsets.
+PARAMETER_COUNT = 6 * PARAMETERS_PER_LEG
+#: Fewer poses than this leave no redundancy to estimate the noise with (7 parameters per leg).
+MIN_POSES = PARAMETERS_PER_LEG + 1
+#: The names of the 42 parameters, in the order of :attr:`CalibrationResult.parameters`.
+PARAMETER_NAMES = tuple(
+    [f'b{leg}.{axis}' for leg in range(1, 7) for axis in 'xyz']
+    + [f'p{leg}.{axis}' for leg in range(1, 7) for axis in 'xyz']
+    + [f'o{leg}' for leg in range(1, 7)])
+#: Relative tolerances (ftol, xtol, gtol) of the final least-squares fit.
+FINAL_TOLERANCE = 1e-14
+#: The losses of scipy's least_squares: 'linear' is plain least squares, the others robust.
+LOSSES = ('soft_l1', 'huber', 'cauchy', 'arctan', 'linear')
+#: Largest number of residual evaluations of one least-squares fit (a good one takes 3 to 10).
+MAX_EVALUATIONS = 50
+#: measurement_poses: candidates whose smallest eigenvalue is computed exactly at each step.
+E_OPTIMAL_SHORTLIST = 200
+#: MAD to standard deviation of a normal distribution.
+_MAD_TO_SIGMA = 1.4826
+#: Column positions of leg i's seven parameters in the 42-vector.
+_LEG_COLUMNS = np.array([[3 * leg, 3 * leg + 1, 3 * leg + 2,
+                          18 + 3 * leg, 18 + 3 * leg + 1, 18 + 3 * leg + 2, 36 + leg]
+                         for leg in range(6)])
+#: Spread below which the poses count as not rotating / not moving, for the error's hints.
+_STILL_ANGLE = 1e-3
+_STILL_POSITION = 1e-4
+
+
+class CalibrationError(ValueError):
+    """The measurements cannot determine the parameters; the message says why."""
+
+
+@dataclass(frozen=True)
+class Combination:
+    """
+    A parameter combination that a set of poses determines badly (or not at all).
+
+    :param leg: the leg, 1..6 (the legs decouple, so a combination belongs to one leg).
+    :param coefficients: parameter name -> coefficient of the unit direction in scaled
+        parameters (each column of the Jacobian divided by its norm), largest first.
+    :param relative_singular_value: its singular value over the largest one of the scaled
+        identification Jacobian; 0 when the poses cannot determine it at all.
+    """
+
+    leg: int
+    coefficients: Tuple[Tuple[str, float], ...]
+    relative_singular_value: float
+
+    def __str__(self):
+        terms = ' '.join(f'{value:+.2f} {name}' for name, value in self.coefficients)
+        return (f'leg {self.leg}: {terms} '
+                f'(relative singular value {self.relative_singular_value:.1e})')
+
+
+@dataclass(frozen=True)
+class Identifiability:
+    """
+    What a set of poses can determine: singular values of the scaled identification Jacobian.
+
+    The identification Jacobian holds ``d a_ki / d parameter`` for every pose k and leg i
+    (6N rows, 42 columns); each column is divided by its norm (all parameters are metres, the
+    scaling only removes the effect of how many poses and how the legs point).
+
+    :param singular_values: (6, 7), per leg, largest first (the Jacobian is block diagonal).
+    :param condition_number: largest over smallest singular value of the whole scaled Jacobian
+        (``inf`` if a combination is undetermined).
+    :param weakest: the worst-determined combination of each leg, weakest leg first.
+    :param undetermined: combinations whose relative singular value is below
+        ``1 / max_condition``: the poses cannot determine them.
+    :param position_spread: largest minus smallest of X, Y, Z over the poses, metres.
+    :param angle_spread: the same for alpha, beta, gamma, radians.
+    """
+
+    singular_values: np.ndarray
+    condition_number: float
+    weakest: Tuple[Combination, ...]
+    undetermined: Tuple[Combination, ...]
+    position_spread: np.ndarray
+    angle_spread: np.ndarray
+
+    @property
+    def identifiable(self) -> bool:
+        """Whether every combination is determined (condition below the limit)."""
+        return not self.undetermined
+
+    def problem(self) -> str:
+        """Describe what the poses cannot determine and the likely cause; '' when none."""
+        if self.identifiable:
+            return ''
+        lines = [f'the poses cannot determine {len(self.undetermined)} parameter '
+                 f'combination(s) (scaled condition number {self.condition_number:.3g}):']
+        lines += [f'  {combination}' for combination in self.undetermined[:12]]
+        if len(self.undetermined) > 12:
+            lines.append(f'  ... and {len(self.undetermined) - 12} more')
+        if np.max(self.angle_spread) < _STILL_ANGLE:
+            lines.append('the poses never rotate the platform, so a base joint and its platform '
+                         'joint shifted alike (b_i + d, p_i + d) fit as well: add rotated poses')
+        elif np.min(self.angle_spread) < _STILL_ANGLE:
+            axes = [name for name, spread in zip(('alpha', 'beta', 'gamma'), self.angle_spread)
+                    if spread < _STILL_ANGLE]
+            lines.append(f'the poses never turn {", ".join(axes)}: vary every angle')
+        if np.max(self.position_spread) < _STILL_POSITION and np.max(
+                self.angle_spread) < _STILL_ANGLE:
+            lines.append('the poses are all (nearly) the same pose')
+        lines.append(
+            f'poses span {_format_spread(self.position_spread, 1e3, "mm")} in X, Y, Z and '
+            f'{_format_spread(self.angle_spread, 180.0 / math.pi, "deg")} in alpha, beta, '
+            'gamma; spread them over the workspace (measurement_poses proposes well-conditioned '
+            'ones)')
+        return '\n'.join(lines)
+
+
+@dataclass(frozen=True)
+class CalibrationResult:
+    """
+    The calibrated platform and how well it fits.
+
+    Residuals are predicted minus measured actuator positions, metres, shape (N, 6); the
+    statistics (``rms_*``, ``worst_*``) are per leg over the inlier poses.
+
+    :param geometry: the calibrated geometry (nominal home pose and limits).
+    :param actuator_offsets: calibrated offsets o_1..o_6, metres.
+    :param nominal: the nominal geometry the fit started from.
+    :param nominal_offsets: the offsets the "before" residuals use, metres.
+    :param parameters: the 42 calibrated parameters, in :data:`PARAMETER_NAMES` order, metres.
+    :param standard_deviations: their standard deviations from the fit, metres.
+    :param residuals_before: the nominal model's residuals, every pose.
+    :param residuals_after: the calibrated model's residuals, every pose.
+    :param inliers: boolean mask of the poses used in the final fit.
+    :param outliers: indices of the poses set aside (a mis-read measurement), ascending.
+    :param noise: the residuals' standard deviation after the fit (degrees of freedom
+        counted), metres: the measurement noise as the fit sees it.
+    :param identifiability: the identifiability of the inlier poses at the solution.
+    :param iterations: residual evaluations of the final least-squares fit, summed over the
+        six legs.
+    """
+
+    geometry: Geometry
+    actuator_offsets: np.ndarray
+    nominal: Geometry
+    nominal_offsets: np.ndarray
+    parameters: np.ndarray
+    standard_deviations: np.ndarray
+    residuals_before: np.ndarray
+    residuals_after: np.ndarray
+    inliers: np.ndarray
+    outliers: Tuple[int, ...]
+    noise: float
+    identifiability: Identifiability
+    iterations: int
+
+    @property
+    def condition_number(self) -> float:
+        """Scaled condition number of the identification Jacobian at the solution."""
+        return self.identifiability.condition_number
+
+    @property
+    def rms_before(self) -> np.ndarray:
+        """RMS residual of the nominal model per leg, inlier poses, metres, (6,)."""
+        return _rms(self.residuals_before[self.inliers])
+
+    @property
+    def rms_after(self) -> np.ndarray:
+        """RMS residual of the calibrated model per leg, inlier poses, metres, (6,)."""
+        return _rms(self.residuals_after[self.inliers])
+
+    @property
+    def worst_before(self) -> np.ndarray:
+        """Largest absolute residual of the nominal model per leg, inlier poses, metres."""
+        return np.max(np.abs(self.residuals_before[self.inliers]), axis=0)
+
+    @property
+    def worst_after(self) -> np.ndarray:
+        """Largest absolute residual of the calibrated model per leg, inlier poses, metres."""
+        return np.max(np.abs(self.residuals_after[self.inliers]), axis=0)
+
+    def report(self) -> str:
+        """Return the calibration report as text (micrometres for residuals)."""
+        count = self.inliers.size
+        lines = [f'poses: {count} measured, {int(np.sum(self.inliers))} used, '
+                 f'outliers: {list(self.outliers) if self.outliers else "none"}',
+                 '',
+                 'residuals (predicted - measured actuator position), micrometres',
+                 'leg        RMS before   worst before    RMS after  worst after']
+        for leg in range(6):
+            lines.append(f'{leg + 1:3d} {self.rms_before[leg] * 1e6:16.1f} '
+                         f'{self.worst_before[leg] * 1e6:14.1f} {self.rms_after[leg] * 1e6:12.2f} '
+                         f'{self.worst_after[leg] * 1e6:12.2f}')
+        inlier_before = self.residuals_before[self.inliers]
+        inlier_after = self.residuals_after[self.inliers]
+        lines.append(f'all {_rms(inlier_before.ravel()) * 1e6:16.1f} '
+                     f'{np.max(np.abs(inlier_before)) * 1e6:14.1f} '
+                     f'{_rms(inlier_after.ravel()) * 1e6:12.2f} '
+                     f'{np.max(np.abs(inlier_after)) * 1e6:12.2f}')
+        lines += ['', f'noise estimate: {self.noise * 1e6:.2f} um; scaled condition number of the '
+                  f'identification Jacobian: {self.condition_number:.3g}',
+                  '', 'parameter changes from nominal, millimetres (+- one standard deviation)',
+                  'leg   ' + ''.join(f'{name:>17s}' for name in (
+                      'b.x', 'b.y', 'b.z', 'p.x', 'p.y', 'p.z', 'offset'))]
+        nominal = _parameter_vector(self.nominal, self.nominal_offsets)
+        change = (self.parameters - nominal) * 1e3
+        deviation = self.standard_deviations * 1e3
+        for leg in range(6):
+            cells = [f'{change[column]:+9.3f}+-{deviation[column]:6.3f}'
+                     for column in _LEG_COLUMNS[leg]]
+            lines.append(f'{leg + 1:3d}   ' + ''.join(f'{cell:>17s}' for cell in cells))
+        lines += ['', 'worst-determined combination of each leg (scaled parameters):']
+        lines += [f'  {combination}' for combination in self.identifiability.weakest]
+        return '\n'.join(lines)
+
+
+def predict_actuator_positions(geometry: Geometry, actuator_offsets, poses) -> np.ndarray:
+    """
+    Predict actuator positions at poses: leg lengths minus the actuator offsets.
+
+    :param geometry: the platform.
+    :param actuator_offsets: o_1..o_6, metres, shape (6,).
+    :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (N, 6).
+    :returns: metres, shape (N, 6).
+    """
+    parameters = _parameter_vector(geometry, actuator_offsets)
+    poses = np.atleast_2d(as_poses(poses))
+    return _predict(parameters, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]))
+
+
+def identification_jacobian(geometry: Geometry, poses) -> np.ndarray:
+    """
+    Differentiate the N x 6 actuator positions by the 42 parameters (unscaled).
+
+    :param geometry: the platform whose parameters to differentiate at.
+    :param poses: shape (N, 6), metres and radians.
+    :returns: shape (6N, 42), row ``6 k + i`` for pose k and leg i, columns in
+        :data:`PARAMETER_NAMES` order (dimensionless: metres per metre).
+    """
+    poses = np.atleast_2d(as_poses(poses))
+    parameters = _parameter_vector(geometry, np.zeros(6))
+    return _jacobian(parameters, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]))
+
+
+def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) -> Identifiability:
+    """
+    Tell what the poses can determine of the 42 parameters, at ``geometry``.
+
+    :param geometry: the platform (nominal, or calibrated).
+    :param poses: the measurement poses, shape (N, 6), metres and radians.
+    :param max_condition: a combination whose scaled singular value is below the largest over
+        this counts as undetermined: the noise is amplified that much in it.
+    """
+    poses = np.atleast_2d(as_poses(poses))
+    rotations = euler_zyx_to_matrix(poses[:, 3:])
+    parameters = _parameter_vector(geometry, np.zeros(6))
+    return _identifiability(_jacobian(parameters, poses[:, :3], rotations), poses, max_condition)
+
+
+def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None, *,
+              loss: str = 'soft_l1', outlier_threshold: float = 5.0,
+              min_outlier_residual: float = 1e-6, max_outlier_fraction: float = 0.25,
+              max_condition: float = 1e5, max_noise: float = 1e-3) -> CalibrationResult:
+    """
+    Identify the 36 joint coordinates and 6 actuator offsets from measured poses.
+
+    :param nominal: the drawing's geometry: the starting point, and the home pose and limits
+        that the calibrated geometry keeps.
+    :param poses: measured poses ``[X, Y, Z, alpha, beta, gamma]`` of the platform in the base
+        frame (metres, radians; the position is the pivot point's), shape (N, 6), N >= 8.
+    :param actuator_positions: the six actuator readings at each pose, metres, shape (N, 6).
+    :param nominal_offsets: the nominal actuator offsets o_1..o_6, metres; ``None`` when
+        unknown: then each leg's mean of nominal length minus reading is used.
+    :param loss: scipy's robust loss for the first fit (``'soft_l1'``, ``'huber'``,
+        ``'cauchy'``, ``'arctan'``), or ``'linear'`` for plain least squares without outlier
+        rejection.
+    :param outlier_threshold: a pose is an outlier when one of its six residuals after the
+        robust fit exceeds this many robust standard deviations (1.4826 times the median
+        absolute residual) ...
+    :param min_outlier_residual: ... and this many metres (for noise-free data).
+    :param max_outlier_fraction: more outliers than this fraction of the poses means the
+        model does not fit the data (wrong units, columns or legs): refused.
+    :param max_condition: largest allowed scaled condition number of the identification
+        Jacobian (see :func:`identifiability`).
+    :param max_noise: a fit whose residuals' standard deviation exceeds this, metres, does not
+        describe the platform: refused.
+    :raises CalibrationError: too few poses, poses that cannot determine the parameters (the
+        message names the combinations and the likely cause), too many outliers, or residuals
+        beyond ``max_noise``.
+    :raises ValueError: malformed arrays.
+    """
+    if loss not in LOSSES:
+        raise ValueError(f"loss must be one of {', '.join(LOSSES)}; got {loss!r}")
+    poses = np.atleast_2d(as_poses(poses))
+    readings = np.atleast_2d(np.asarray(actuator_positions, dtype=float))
+    if readings.shape != poses.shape:
+        raise ValueError(f'actuator_positions must have shape {poses.shape} like the poses, '
+                         f'got {readings.shape}')
+    if not np.all(np.isfinite(readings)):
+        bad = np.unique(np.argwhere(~np.isfinite(readings))[:, 0])
+        raise ValueError(f'actuator_positions must be finite; pose(s) {bad[:10].tolist()} are not')
+    count = poses.shape[0]
+    if count < MIN_POSES:
+        raise CalibrationError(
+            f'too few poses: {count} given, at least {MIN_POSES} needed (each leg has '
+            f'{PARAMETERS_PER_LEG} parameters, and one more reading shows the noise); 30 to 60 '
+            'poses spread over the workspace are usual')
+    positions, rotations = poses[:, :3], euler_zyx_to_matrix(poses[:, 3:])
+    if nominal_offsets is None:
+        nominal_offsets = np.mean(
+            _predict(_parameter_vector(nominal, np.zeros(6)), positions, rotations) - readings,
+            axis=0)
+    start = _parameter_vector(nominal, nominal_offsets)
+    report = _identifiability(_jacobian(start, positions, rotations), poses, max_condition)
+    if not report.identifiable:
+        raise CalibrationError(report.problem())
+
+    def fit(x0, mask, fit_loss, scale=1.0, tolerance=1e-8):
+        return _fit_legs(x0, positions[mask], rotations[mask], readings[mask], fit_loss, scale,
+                         tolerance)
+
+    def refuse_misfit(error, robust=False):
+        if robust:  # a few gross outliers must not count: they are for the robust fit
+            noise = _MAD_TO_SIGMA * float(np.median(np.abs(error)))
+        else:
+            noise = math.sqrt(float(np.sum(np.square(error)))
+                              / max(error.size - PARAMETER_COUNT, 1))
+        if not noise <= max_noise:
+            raise CalibrationError(
+                f'the calibrated model leaves residuals of {noise * 1e3:.3g} mm (standard '
+                f'deviation), above {max_noise * 1e3:.3g} mm: the model does not fit the data; '
+                'check the units (metres, radians), the column order, the leg order and the '
+                'nominal geometry' + (", or set the outliers aside (loss='soft_l1')"
+                                      if loss == 'linear' else ''))
+        return noise
+
+    inliers = np.ones(count, dtype=bool)
+    x = start
+    if loss != 'linear':
+        # Robust fit; its scale: the robust noise of a first plain fit, which the outliers
+        # disturb little while they are few.
+        rough = fit(start, inliers, 'linear')
+        # Robust losses would be slow to crawl through data the model cannot fit at all.
+        refuse_misfit(rough.fun, robust=True)
+        rough = rough.x
+        for _ in range(2):
+            error = _predict(rough, positions, rotations) - readings
+            sigma = _MAD_TO_SIGMA * np.median(np.abs(error[inliers]))
+            scale = max(sigma, min_outlier_residual)
+            rough = fit(rough, inliers, loss, scale).x
+            error = _predict(rough, positions, rotations) - readings
+            sigma = _MAD_TO_SIGMA * np.median(np.abs(error))
+            threshold = max(outlier_threshold * sigma, min_outlier_residual)
+            inliers = np.max(np.abs(error), axis=1) <= threshold
+        x = rough
+        outlier_count = int(np.sum(~inliers))
+        if outlier_count > max_outlier_fraction * count:
+            raise CalibrationError(
+                f'{outlier_count} of {count} poses do not fit the model (residual above '
+                f'{threshold * 1e6:.1f} um): check the units (metres, radians), the column '
+                'order, the leg order and the nominal geometry')
+        if int(np.sum(inliers)) < MIN_POSES:
+            raise CalibrationError(
+                f'only {int(np.sum(inliers))} poses left after removing outliers; at least '
+                f'{MIN_POSES} needed')
+    # The final fit to the last digits: Gauss-Newton converges in a step or two from here.
+    solution = fit(x, inliers, 'linear', tolerance=FINAL_TOLERANCE)
+    parameters = solution.x
+    inlier_report = _identifiability(
+        _jacobian(parameters, positions[inliers], rotations[inliers]), poses[inliers],
+        max_condition)
+    if not inlier_report.identifiable:
+        raise CalibrationError('after removing the outlier poses '
+                               f'{np.flatnonzero(~inliers).tolist()}: ' + inlier_report.problem())
+    noise = refuse_misfit(solution.fun)
+    standard_deviations = np.empty(PARAMETER_COUNT)
+    for columns, block in zip(_LEG_COLUMNS, solution.leg_jacobians):
+        covariance = np.linalg.pinv(block.T @ block)
+        standard_deviations[columns] = noise * np.sqrt(np.diag(covariance))
+    geometry = _geometry_of(nominal, parameters)
+    return CalibrationResult(
+        geometry=geometry, actuator_offsets=parameters[36:].copy(), nominal=nominal,
+        nominal_offsets=np.asarray(nominal_offsets, dtype=float).copy(), parameters=parameters,
+        standard_deviations=standard_deviations,
+        residuals_before=_predict(start, positions, rotations) - readings,
+        residuals_after=_predict(parameters, positions, rotations) - readings,
+        inliers=inliers, outliers=tuple(int(index) for index in np.flatnonzero(~inliers)),
+        noise=noise, identifiability=inlier_report, iterations=int(solution.nfev))
+
+
+@dataclass(frozen=True)
+class MeasurementPoseSelection:
+    """
+    Poses proposed for measurement, and how much better they are than random ones.
+
+    :param poses: shape (n, 6), metres and radians, within the geometry's limits.
+    :param smallest_singular_value: of the unscaled identification Jacobian of these poses
+        (metres per metre): the noise amplification of the worst-determined combination is its
+        inverse.
+    :param condition_number: scaled condition number of these poses.
+    :param random_smallest_singular_value: median of the same over random draws of n poses
+        from the same candidates.
+    :param random_condition_number: median scaled condition number of those draws.
+    """
+
+    poses: np.ndarray
+    smallest_singular_value: float
+    condition_number: float
+    random_smallest_singular_value: float
+    random_condition_number: float
+
+    @property
+    def improvement(self) -> float:
+        """How many times larger the smallest singular value is than random poses' median."""
+        return self.smallest_singular_value / self.random_smallest_singular_value
+
+
+def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
+                      angle_range=math.radians(10.0), candidates: int = 2000,
+                      random_draws: int = 20, seed: Optional[int] = 0
+                      ) -> MeasurementPoseSelection:
+    """
+    Propose ``count`` measurement poses that make the identification well conditioned.
+
+    Candidates are drawn uniformly within ``home_pose +- range`` and kept where the geometry's
+    limits allow them; poses are then picked greedily: first for the largest determinant of
+    each leg's information matrix (D-optimal, until every leg is determined), then for the
+    largest smallest singular value of the identification Jacobian (E-optimal: the
+    worst-determined combination as well determined as possible).
+
+    :param geometry: the nominal platform (its limits bound the candidates).
+    :param count: number of poses, at least 8.
+    :param position_range: half-width of the candidates' X, Y, Z around home, metres (a float
+        or three).
+    :param angle_range: half-width of alpha, beta, gamma around home, radians (a float or three).
+    :param candidates: number of random candidates drawn.
+    :param random_draws: random selections of ``count`` candidates to compare with.
+    :param seed: random seed (the same seed, the same poses).
+    :raises ValueError: if ``count`` is below 8 or fewer candidates are within the limits.
+    """
+    if count < MIN_POSES:
+        raise ValueError(f'count must be at least {MIN_POSES}, got {count}')
+    generator = np.random.default_rng(seed)
+    half_width = np.concatenate([np.broadcast_to(np.asarray(position_range, dtype=float), (3,)),
+                                 np.broadcast_to(np.asarray(angle_range, dtype=float), (3,))])
+    pool = geometry.home_pose + generator.uniform(-1.0, 1.0, (candidates, 6)) * half_width
+    allowed = np.array([not violations for violations in limits.check_poses(geometry, pool)])
+    pool = pool[allowed]
+    if pool.shape[0] < 2 * count:
+        raise ValueError(
+            f'only {pool.shape[0]} of {candidates} candidate poses are within the limits; '
+            f'{2 * count} needed to choose {count}: widen the ranges or draw more candidates')
+    parameters = _parameter_vector(geometry, np.zeros(6))
+    jac = _jacobian(parameters, pool[:, :3], euler_zyx_to_matrix(pool[:, 3:]))
+    # Per candidate and leg, the row of the leg's 7 parameters: (C, 6, 7).
+    rows = np.stack([jac[leg::6, columns] for leg, columns in enumerate(_LEG_COLUMNS)], axis=1)
+    information = np.zeros((6, PARAMETERS_PER_LEG, PARAMETERS_PER_LEG))
+    regularisation = 1e-9 * np.eye(PARAMETERS_PER_LEG)
+    chosen = []
+    available = np.ones(pool.shape[0], dtype=bool)
+    for step in range(count):
+        if step < 2 * PARAMETERS_PER_LEG:
+            inverse = np.linalg.inv(information + regularisation)
+            gain = np.einsum('cli,lij,clj->cl', rows, inverse, rows)
+            score = np.sum(np.log1p(gain), axis=1)
+        else:
+            # The exact smallest eigenvalue after adding each candidate, computed for the
+            # candidates that add most along each leg's two weakest directions (a candidate
+            # adds (g . v)^2 along an eigenvector v to first order).
+            values, vectors = np.linalg.eigh(information)
+            along = np.einsum('cli,lik->clk', rows, vectors[:, :, :2]) ** 2
+            estimate = np.min(values[None, :, 0] + along[:, :, 0], axis=1) + np.min(
+                along[:, :, 1], axis=1) * 1e-3
+            estimate[~available] = -np.inf
+            shortlist = np.argsort(-estimate)[:E_OPTIMAL_SHORTLIST]
+            shortlist = shortlist[available[shortlist]]
+            updated = information + rows[shortlist, :, :, None] * rows[shortlist, :, None, :]
+            score = np.full(pool.shape[0], -np.inf)
+            score[shortlist] = np.min(np.linalg.eigvalsh(updated)[..., 0], axis=1)
+        score[~available] = -np.inf
+        best = int(np.argmax(score))
+        chosen.append(best)
+        available[best] = False
+        information += rows[best, :, :, None] * rows[best, :, None, :]
+    poses = pool[chosen]
+
+    def quality(indices):
+        block = jac.reshape(-1, 6, PARAMETER_COUNT)[indices].reshape(-1, PARAMETER_COUNT)
+        smallest = min(np.linalg.svd(block[leg::6][:, columns], compute_uv=False)[-1]
+                       for leg, columns in enumerate(_LEG_COLUMNS))
+        return smallest, _identifiability(block, pool[indices], math.inf).condition_number
+
+    random_quality = np.array([
+        quality(generator.choice(pool.shape[0], count, replace=False))
+        for _ in range(random_draws)])
+    smallest, condition = quality(np.array(chosen))
+    return MeasurementPoseSelection(
+        poses=poses, smallest_singular_value=float(smallest), condition_number=float(condition),
+        random_smallest_singular_value=float(np.median(random_quality[:, 0])),
+        random_condition_number=float(np.median(random_quality[:, 1])))
+
+
+def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[dict] = None
+                          ) -> dict:
+    """
+    Return the ROS parameters of the calibrated platform, as a ``/**`` section holds them.
+
+    :param result: a calibration.
+    :param nominal_values: the nominal parameter values (from the nominal parameter files);
+        every package parameter among them is kept (limits, ``pivot_point``, home pose,
+        ``base_frame``, ...), and ``base_joints``, ``platform_joints`` and
+        ``actuator_offsets`` are replaced. ``platform_joints`` is written relative to the
+        platform frame as the file's convention wants: the calibrated joints plus the nominal
+        ``pivot_point``, so that the loaded geometry is the calibrated one. Without nominal
+        values, the calibrated geometry's own home pose and limits are written.
+    :returns: parameter name -> value, floats as floats.
+    """
+    known = {spec.name for spec in all_specs()}
+    values = {key: value for key, value in (nominal_values or {}).items() if key in known}
+    geometry = result.geometry
+    if not values:
+        values = {
+            'pivot_point': [0.0, 0.0, 0.0],
+            'home_position': geometry.home_pose[:3].tolist(),
+            'home_orientation_deg': np.degrees(geometry.home_pose[3:]).tolist(),
+            'leg_length_min': geometry.leg_length_min,
+            'leg_length_max': geometry.leg_length_max,
+            'base_joint_max_angle_deg': math.degrees(geometry.base_joint_max_angle),
+            'platform_joint_max_angle_deg': math.degrees(geometry.platform_joint_max_angle),
+            'max_jacobian_condition': geometry.max_jacobian_condition,
+        }
+    pivot = np.asarray(values.get('pivot_point', [0.0, 0.0, 0.0]), dtype=float)
+    values['base_joints'] = [float(value) for value in geometry.base_joints.ravel()]
+    values['platform_joints'] = [float(value)
+                                 for value in (geometry.platform_joints + pivot).ravel()]
+    values['actuator_offsets'] = [float(value) for value in result.actuator_offsets]
+    check_values(GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS,
+                 {**{spec.name: spec.default for spec in GEOMETRY_PARAMETERS}, **values})
+    order = [spec.name for spec in all_specs()]
+    return {name: values[name] for name in order if name in values}
+
+
+def write_parameter_file(path, values: dict, comment: str = '') -> None:
+    """
+    Write parameters as a ROS 2 parameter file with one ``/**`` section every node matches.
+
+    :param path: the YAML file to write.
+    :param values: parameter name -> value (lists of floats, floats, strings, ...).
+    :param comment: text written first, each line as a YAML comment.
+    """
+    lines = [f'# {line}'.rstrip() for line in comment.splitlines()]
+    lines += ['/**:', '  ros__parameters:']
+    for name, value in values.items():
+        if isinstance(value, (list, tuple)) and len(value) % 3 == 0 and len(value) > 3:
+            lines.append(f'    {name}: [')
+            for start in range(0, len(value), 3):
+                lines.append('      ' + ', '.join(_yaml_scalar(item)
+                                                  for item in value[start:start + 3]) + ',')
+            lines.append('    ]')
+        elif isinstance(value, (list, tuple)):
+            lines.append(f'    {name}: [' + ', '.join(map(_yaml_scalar, value)) + ']')
+        else:
+            lines.append(f'    {name}: {_yaml_scalar(value)}')
+    with open(path, 'w', encoding='utf-8') as stream:
+        stream.write('\n'.join(lines) + '\n')
+
+
+#: The columns of a measurement CSV file, in this order (a header row names them).
+MEASUREMENT_COLUMNS = ('X', 'Y', 'Z', 'alpha', 'beta', 'gamma') + tuple(
+    f'actuator_{leg}' for leg in range(1, 7))
+
+
+def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
+    """
+    Read measured poses and actuator positions from a CSV file.
+
+    The file has a header row naming at least the columns of :data:`MEASUREMENT_COLUMNS`
+    (``X, Y, Z`` in metres, ``alpha, beta, gamma`` in radians, ``actuator_1`` .. ``actuator_6``
+    in metres), in any order, other columns ignored; lines starting with ``#`` are comments.
+
+    :returns: ``(poses, actuator_positions)``, each shape (N, 6).
+    :raises ValueError: naming the file and line, for a missing column or a bad number.
+    """
+    try:
+        with open(path, newline='', encoding='utf-8') as stream:
+            lines = [line for line in stream if line.strip() and not line.startswith('#')]
+    except OSError as error:
+        raise ValueError(f'cannot read measurement file {path}: {error.strerror}') from error
+    reader = csv.DictReader(lines, skipinitialspace=True)
+    missing = [name for name in MEASUREMENT_COLUMNS if name not in (reader.fieldnames or [])]
+    if missing:
+        raise ValueError(f'{path}: missing column(s) {", ".join(missing)}; the header must name '
+                         f'{", ".join(MEASUREMENT_COLUMNS)}')
+    rows = []
+    for number, row in enumerate(reader, start=2):
+        try:
+            rows.append([float(row[name]) for name in MEASUREMENT_COLUMNS])
+        except (TypeError, ValueError) as error:
+            raise ValueError(f'{path}: data row {number - 1}: {error}') from error
+    if not rows:
+        raise ValueError(f'{path}: no measurements')
+    data = np.array(rows)
+    return data[:, :6], data[:, 6:]
+
+
+def write_measurements(path, poses, actuator_positions, comment: str = '') -> None:
+    """Write poses and actuator positions as :func:`load_measurements` reads them."""
+    lines = [f'# {line}'.rstrip() for line in comment.splitlines()]
+    lines.append(','.join(MEASUREMENT_COLUMNS))
+    for pose, reading in zip(np.atleast_2d(poses), np.atleast_2d(actuator_positions)):
+        lines.append(','.join(repr(float(value)) for value in np.concatenate([pose, reading])))
+    with open(path, 'w', encoding='utf-8') as stream:
+        stream.write('\n'.join(lines) + '\n')
+
+
+def _yaml_scalar(value) -> str:
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        if math.isinf(value):
+            return '.inf' if value > 0 else '-.inf'
+        text = repr(value)
+        # YAML 1.1 (PyYAML) reads 1e-05 as a string: a float needs its dot, 1.0e-05.
+        mantissa, exponent = text.split('e') if 'e' in text else (text, None)
+        if '.' not in mantissa:
+            mantissa += '.0'
+        return mantissa if exponent is None else f'{mantissa}e{exponent}'
+    return yaml.safe_dump(value, default_flow_style=True).strip().removesuffix('...').strip()
+
+
+def _parameter_vector(geometry: Geometry, actuator_offsets) -> np.ndarray:
+    offsets = np.asarray(actuator_offsets, dtype=float)
+    if offsets.shape != (6,) or not np.all(np.isfinite(offsets)):
+        raise ValueError(f'actuator offsets must be 6 finite values (metres), got {offsets!r}')
+    return np.concatenate([geometry.base_joints.ravel(), geometry.platform_joints.ravel(),
+                           offsets])
+
+
+def _geometry_of(nominal: Geometry, parameters) -> Geometry:
+    try:
+        return replace(nominal, base_joints=parameters[:18].reshape(6, 3),
+                       platform_joints=parameters[18:36].reshape(6, 3))
+    except ValueError as error:
+        raise CalibrationError(f'the calibrated geometry is not valid: {error}') from error
+
+
+@dataclass(frozen=True)
+class _Fit:
+    x: np.ndarray
+    fun: np.ndarray
+    leg_jacobians: Tuple[np.ndarray, ...]
+    nfev: int
+
+
+def _fit_legs(x0, positions, rotations, readings, loss, scale, tolerance) -> _Fit:
+    """
+    Fit each leg's seven parameters to its own readings: the legs decouple.
+
+    Six problems of N x 7 instead of one of 6N x 42 (block diagonal): far less work, and
+    matrices too small for a multi-threaded BLAS to stall on (it did, 10x, on a busy machine).
+    """
+    x = np.array(x0, dtype=float)
+    fun = np.empty(readings.shape)
+    jacobians = []
+    evaluations = 0
+    # Plain fits: MINPACK's Levenberg-Marquardt (compiled, fastest on small dense problems);
+    # robust losses need the trust-region reflective method.
+    method = 'lm' if loss == 'linear' else 'trf'
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        def residuals(values, leg=leg):
+            return _leg_lengths(values, positions, rotations) - values[6] - readings[:, leg]
+
+        def jac(values):
+            return _leg_jacobian(values, positions, rotations)
+        solution = least_squares(residuals, x[columns], jac=jac, loss=loss, f_scale=scale,
+                                 x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
+                                 gtol=tolerance, max_nfev=MAX_EVALUATIONS)
+        x[columns] = solution.x
+        fun[:, leg] = solution.fun
+        jacobians.append(jac(solution.x))
+        evaluations += solution.nfev
+    return _Fit(x, fun.ravel(), tuple(jacobians), evaluations)
+
+
+def _leg_vectors(values, positions, rotations):
+    # values: one leg's [b (3), p (3), o]; returns its leg vectors t + R p - b, (N, 3).
+    return np.einsum('kab,b->ka', rotations, values[3:6]) + positions - values[:3]
+
+
+def _leg_lengths(values, positions, rotations):
+    return np.linalg.norm(_leg_vectors(values, positions, rotations), axis=-1)
+
+
+def _leg_jacobian(values, positions, rotations):
+    # d|leg| / d b = -u; d|leg| / d p = R^T u; d a / d o = -1.
+    legs = _leg_vectors(values, positions, rotations)
+    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    jac = np.empty((positions.shape[0], PARAMETERS_PER_LEG))
+    jac[:, :3] = -directions
+    jac[:, 3:6] = np.einsum('kba,kb->ka', rotations, directions)
+    jac[:, 6] = -1.0
+    return jac
+
+
+def _predict(parameters, positions, rotations):
+    """Return the actuator positions (N, 6) of the 42 parameters at N poses."""
+    return np.stack([_leg_lengths(parameters[columns], positions, rotations)
+                     - parameters[columns[6]] for columns in _LEG_COLUMNS], axis=1)
+
+
+def _jacobian(parameters, positions, rotations):
+    """Return the identification Jacobian (6N, 42): leg blocks on its diagonal, row 6k + i."""
+    count = positions.shape[0]
+    jac = np.zeros((count, 6, PARAMETER_COUNT))
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        jac[:, leg, columns] = _leg_jacobian(parameters[columns], positions, rotations)
+    return jac.reshape(count * 6, PARAMETER_COUNT)
+
+
+def _identifiability(jac, poses, max_condition) -> Identifiability:
+    norms = np.linalg.norm(jac, axis=0)
+    scaled = jac / np.where(norms > 0.0, norms, 1.0)
+    singular_values = np.empty((6, PARAMETERS_PER_LEG))
+    directions = []
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        _, values, right = np.linalg.svd(scaled[leg::6][:, columns])
+        if values.size < PARAMETERS_PER_LEG:
+            values = np.concatenate([values, np.zeros(PARAMETERS_PER_LEG - values.size)])
+        singular_values[leg] = values
+        directions.append(right)
+    largest = float(np.max(singular_values))
+    smallest = float(np.min(singular_values))
+    condition = largest / smallest if smallest > largest * 1e-300 else math.inf
+    combinations = []
+    undetermined = []
+    for leg, columns in enumerate(_LEG_COLUMNS):
+        relative = singular_values[leg] / largest
+        vectors = directions[leg].copy()
+        null = relative * max_condition < 1.0
+        if np.count_nonzero(null) > 1:
+            # Any basis of a null space fits; show the one with a unit coefficient on one
+            # parameter each (pivoted QR), which reads as "b_i.y and p_i.y shift together".
+            basis = vectors[null]
+            _, _, pivots = qr(basis, pivoting=True)
+            vectors[null] = np.linalg.solve(basis[:, pivots[:basis.shape[0]]], basis)
+        for index in range(PARAMETERS_PER_LEG):
+            vector = vectors[index] / np.linalg.norm(vectors[index])
+            if vector[np.argmax(np.abs(vector))] < 0.0:
+                vector = -vector
+            # Largest first; equal ones (to the digits shown) in parameter order.
+            order = np.lexsort((np.arange(vector.size), -np.round(np.abs(vector), 2)))
+            terms = tuple((PARAMETER_NAMES[columns[j]], float(vector[j])) for j in order
+                          if abs(vector[j]) >= 0.1)
+            combinations.append(Combination(leg + 1, terms, float(relative[index])))
+            if null[index]:
+                undetermined.append(combinations[-1])
+    weakest = tuple(sorted(
+        (combinations[PARAMETERS_PER_LEG * (leg + 1) - 1] for leg in range(6)),
+        key=lambda combination: combination.relative_singular_value))
+    return Identifiability(
+        singular_values=singular_values, condition_number=condition, weakest=weakest,
+        undetermined=tuple(undetermined), position_spread=np.ptp(poses[:, :3], axis=0),
+        angle_spread=np.ptp(poses[:, 3:], axis=0))
+
+
+def _rms(values):
+    return np.sqrt(np.mean(np.square(values), axis=0))
+
+
+def _format_spread(spread, factor, unit):
+    return ', '.join(f'{value * factor:.3g}' for value in spread) + f' {unit}'
