@@ -34,9 +34,9 @@ a leg is told from its joints' positions along the leg only by how much the leg 
 difference is second order in the swing angle).
 
 Fitting is :func:`scipy.optimize.least_squares` with the analytic Jacobian, leg by leg (the
-legs decouple), a robust loss first, then poses with a residual far beyond the robust noise estimate are set aside as
-outliers (reported by index) and the inliers are fitted with plain least squares, which gives
-the parameters' standard deviations.
+legs decouple), a robust loss first; then poses with a residual far beyond the robust noise
+estimate are set aside as outliers (reported by index) and the inliers are fitted with plain
+least squares, which gives the parameters' standard deviations.
 """
 
 import csv
