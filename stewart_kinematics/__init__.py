@@ -49,7 +49,7 @@ from stewart_kinematics.rotations import (
     quaternion_to_matrix,
 )
 from stewart_kinematics.trajectory import Ramp
-from stewart_kinematics.velocities import leg_velocities, platform_twist
+from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
 
 __all__ = [
     'euler_zyx_to_matrix',
@@ -70,5 +70,6 @@ __all__ = [
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'SingularPoseError',
     'twist_jacobian',
 ]
