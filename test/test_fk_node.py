@@ -31,6 +31,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import quaternion_from_euler
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from stewart_kinematics import forward_kinematics, inverse_kinematics
@@ -68,17 +69,6 @@ def counts(node):
     """Return the node's (received, published, rejected) message counters."""
     accounting = node.accounting
     return accounting.received, accounting.published, accounting.rejected
-
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
 
 
 def assert_pose_message(message, pose, tolerance):

@@ -52,6 +52,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
 from rclpy.executors import SingleThreadedExecutor
+from reference import quaternion_from_euler as quaternion
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.kinematics import inverse_kinematics
@@ -121,17 +122,6 @@ def to_si(pose_mm_deg):
 TABLE3 = tuple(
     to_si([start + row * step for start, step in zip(TABLE3_START_MM_DEG, TABLE3_STEP_MM_DEG)])
     for row in range(TABLE3_ROWS))
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``R = Rz(gamma) Ry(beta) Rx(alpha)``, angles in radians."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg,
-            ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg,
-            ca * cb * cg + sa * sb * sg)
 
 
 def rotation_angle(q, r):

@@ -37,6 +37,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import quaternion_from_euler as quaternion, quaternion_product
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros.message_accounting import WARNING_PERIOD
@@ -124,24 +125,6 @@ def expected_leg_lengths(pose):
                - base_joint[row] for row in range(3)]
         lengths.append(math.sqrt(sum(component * component for component in leg)))
     return lengths
-
-
-def quaternion_product(q, r):
-    """Hamilton product of two quaternions ``(x, y, z, w)``."""
-    qx, qy, qz, qw = q
-    rx, ry, rz, rw = r
-    return (qw * rx + qx * rw + qy * rz - qz * ry,
-            qw * ry - qx * rz + qy * rw + qz * rx,
-            qw * rz + qx * ry - qy * rx + qz * rw,
-            qw * rw - qx * rx - qy * ry - qz * rz)
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``R = Rz(gamma) Ry(beta) Rx(alpha)``: qz * qy * qx."""
-    qx = (math.sin(alpha / 2.0), 0.0, 0.0, math.cos(alpha / 2.0))
-    qy = (0.0, math.sin(beta / 2.0), 0.0, math.cos(beta / 2.0))
-    qz = (0.0, 0.0, math.sin(gamma / 2.0), math.cos(gamma / 2.0))
-    return quaternion_product(qz, quaternion_product(qy, qx))
 
 
 def rotation_angle(q, r):

@@ -38,6 +38,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics import forward_kinematics, inverse_kinematics
@@ -87,17 +88,6 @@ IMPOSSIBLE_LENGTHS = [0.9, 0.65, 0.9, 0.65, 0.9, 0.65]
 
 
 # Messages and poses ---------------------------------------------------------------------------
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
-
 
 def pose_message(position, quaternion):
     """Build a Pose from a position and a quaternion (x, y, z, w)."""

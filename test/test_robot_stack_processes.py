@@ -31,6 +31,7 @@ from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import quaternion_from_euler as quaternion, quaternion_matrix
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from visualization_msgs.msg import MarkerArray
@@ -101,23 +102,6 @@ def finite_difference_leg_velocities(geometry, pose, twist):
         return reference_lengths(geometry, position + twist[:3] * dt,
                                  rotation_about(twist[3:] * dt) @ rotation)
     return (lengths_after(h) - lengths_after(-h)) / (2.0 * h)
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
-
-
-def quaternion_matrix(x, y, z, w):
-    """Rotation matrix of a unit quaternion ``(x, y, z, w)``."""
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def pose_message(pose):

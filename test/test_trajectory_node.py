@@ -31,6 +31,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import quaternion_from_euler
 
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
@@ -61,17 +62,6 @@ TABLE3 = np.array([[v / 1000.0 for v in row[:3]] + [math.radians(v) for v in row
                    for row in TABLE3_MM_DEG])
 #: Seconds of silence that show a finished ramp has stopped (ten row periods of 0.05 s).
 QUIET_TIME = 0.5
-
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
 
 
 def position_of(message):
