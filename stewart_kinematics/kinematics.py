@@ -134,12 +134,15 @@ def _legs(rotation_entries, x, y, z, joints, sqrt):
     """
     r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation_entries
     legs = []
+    append = legs.append
     for px, py, pz, bx, by, bz in joints:
         ax = r11 * px + r12 * py + r13 * pz
         ay = r21 * px + r22 * py + r23 * pz
         az = r31 * px + r32 * py + r33 * pz
-        lx, ly, lz = ax + x - bx, ay + y - by, az + z - bz
-        legs.append((sqrt(lx * lx + ly * ly + lz * lz), lx, ly, lz, ax, ay, az))
+        lx = ax + x - bx
+        ly = ay + y - by
+        lz = az + z - bz
+        append((sqrt(lx * lx + ly * ly + lz * lz), lx, ly, lz, ax, ay, az))
     return legs
 
 
@@ -243,8 +246,9 @@ def _single_legs(constants, position, rotation_entries):
 def _single_euler_legs(constants, pose):
     """:func:`_legs` of a pose ``[X, Y, Z, alpha, beta, gamma]`` given as six floats."""
     x, y, z, alpha, beta, gamma = pose
-    return _legs(euler_zyx_matrix_entries(alpha, beta, gamma), x, y, z, constants.joint_pairs,
-                 math.sqrt)
+    cos, sin = math.cos, math.sin
+    return _legs(zyx_entries(cos(alpha), sin(alpha), cos(beta), sin(beta), cos(gamma),
+                             sin(gamma)), x, y, z, constants.joint_pairs, math.sqrt)
 
 
 def _float_inverse(entries):
