@@ -129,12 +129,11 @@ def _legs(rotation_entries, x, y, z, joints, sqrt):
     :param joints: per leg ``(px, py, pz, bx, by, bz)``, metres: platform joint (platform
         frame) and base joint (base frame); for a batch, one entry of six arrays (6,).
     :param sqrt: ``math.sqrt`` or ``numpy.sqrt``.
-    :returns: per entry of ``joints``, ``(l, lx, ly, lz, ax, ay, az)``: length, leg vector and
-        rotated platform joint, metres, base frame.
+    :returns: ``(lengths, vectors)``: per entry of ``joints``, the length ``l`` and
+        ``(lx, ly, lz, ax, ay, az)``, leg vector and rotated platform joint; metres, base frame.
     """
     r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation_entries
-    legs = []
-    append = legs.append
+    lengths, vectors = [], []
     for px, py, pz, bx, by, bz in joints:
         ax = r11 * px + r12 * py + r13 * pz
         ay = r21 * px + r22 * py + r23 * pz
@@ -142,11 +141,12 @@ def _legs(rotation_entries, x, y, z, joints, sqrt):
         lx = ax + x - bx
         ly = ay + y - by
         lz = az + z - bz
-        append((sqrt(lx * lx + ly * ly + lz * lz), lx, ly, lz, ax, ay, az))
-    return legs
+        lengths.append(sqrt(lx * lx + ly * ly + lz * lz))
+        vectors.append((lx, ly, lz, ax, ay, az))
+    return lengths, vectors
 
 
-def _twist_rows(legs):
+def _twist_rows(lengths, vectors):
     """
     Rows ``[u_i, R p_i x u_i]`` of the twist Jacobian, from :func:`_legs`; the one formula.
 
@@ -156,7 +156,7 @@ def _twist_rows(legs):
     :returns: the rows' entries one after the other, 6 per entry of ``legs``.
     """
     entries = []
-    for length, lx, ly, lz, ax, ay, az in legs:
+    for length, (lx, ly, lz, ax, ay, az) in zip(lengths, vectors):
         inverse = 1.0 / (length + (length == 0.0))
         ux, uy, uz = lx * inverse, ly * inverse, lz * inverse
         entries += (ux, uy, uz, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux)
@@ -217,7 +217,7 @@ class _GeometryConstants:
         # Newton-Raphson from the home pose: its first step is the same for every call.
         self.home_pose = tuple(geometry.home_pose.tolist())
         self.home_jacobian_inverse = _float_inverse(_twist_rows(
-            _single_euler_legs(self, self.home_pose)))
+            *_single_euler_legs(self, self.home_pose)))
 
 
 #: Constants of each geometry still alive; a Geometry is immutable, so they never go stale.
@@ -294,11 +294,13 @@ def _batch_legs(constants, position, rotation_entries):
     """
     :func:`_legs` of a batch: positions (n, 3) and rotation entries, nine arrays (n,).
 
-    :returns: ``(l, lx, ly, lz, ax, ay, az)``, seven arrays (n, 6).
+    :returns: ``(lengths, vectors)``: an array (n, 6) and ``(lx, ly, lz, ax, ay, az)``, six
+        arrays (n, 6).
     """
-    return _legs([entry[:, None] for entry in rotation_entries],
-                 *(position[:, axis, None] for axis in range(3)),
-                 constants.joint_columns, np.sqrt)[0]
+    lengths, vectors = _legs([entry[:, None] for entry in rotation_entries],
+                             *(position[:, axis, None] for axis in range(3)),
+                             constants.joint_columns, np.sqrt)
+    return lengths[0], vectors[0]
 
 
 def _batch_euler_legs(constants, poses):
@@ -325,9 +327,9 @@ def _broadcast_pose(position, rotation):
             np.broadcast_to(rotation, shape + (3, 3)))
 
 
-def _batch_twist_jacobian(legs):
+def _batch_twist_jacobian(lengths, vectors):
     """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays."""
-    return np.stack(_twist_rows([legs]), axis=-1)
+    return np.stack(_twist_rows([lengths], [vectors]), axis=-1)
 
 
 def _batch_euler_step(poses, twists):
@@ -376,10 +378,10 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[1:4] for leg in legs])
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(legs[1:4], axis=-1).reshape(shape + (6, 3))
+        _, vectors = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
+        return np.array([vector[:3] for vector in vectors])
+    shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+    return np.stack(vectors[:3], axis=-1).reshape(shape + (6, 3))
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -406,10 +408,10 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[0] for leg in legs])
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return legs[0].reshape(shape + (6,))
+        lengths, _ = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
+        return np.array(lengths)
+    shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+    return lengths.reshape(shape + (6,))
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -431,7 +433,7 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array([leg[0] for leg in _single_euler_legs(constants, values)])
+            return np.array(_single_euler_legs(constants, values)[0])
     poses = as_poses(poses)
     lengths = np.empty((poses.shape[0], 6))
     for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
@@ -480,10 +482,10 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_twist_rows(_single_legs(
+        return np.array(_twist_rows(*_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
     shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return _batch_twist_jacobian(legs).reshape(shape + (6, 6))
+    return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
 
 
 def jacobian(geometry, poses) -> np.ndarray:
@@ -500,7 +502,7 @@ def jacobian(geometry, poses) -> np.ndarray:
     """
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
-    jac = _batch_twist_jacobian(_batch_euler_legs(_constants(geometry), batch))
+    jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
     beta, gamma = batch[:, 4], batch[:, 5]
     cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros((len(batch), 3, 3))
@@ -745,8 +747,8 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
     reason = f'no convergence within {max_iterations} iterations'
     last_residual = math.inf
     for step in range(max_iterations + 1):
-        legs = _single_euler_legs(constants, pose)
-        errors = [leg[0] - length for leg, length in zip(legs, target)]
+        lengths, vectors = _single_euler_legs(constants, pose)
+        errors = [length - wanted for length, wanted in zip(lengths, target)]
         residual = max(map(abs, errors))
         if residual <= tolerance:
             reason = ''
@@ -754,7 +756,7 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         if step == max_iterations:
             break
         if jacobian_inverse is None or residual > JACOBIAN_REUSE_CONTRACTION * last_residual:
-            jacobian_inverse = _float_inverse(_twist_rows(legs))
+            jacobian_inverse = _float_inverse(_twist_rows(lengths, vectors))
             if jacobian_inverse is None:
                 reason = SINGULAR_JACOBIAN
                 break
@@ -804,8 +806,8 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         inverses[has_inverse] = constants.home_jacobian_inverse
     active = np.flatnonzero(valid_lengths & valid_guess)
     for step in range(max_iterations + 1):
-        legs = _batch_euler_legs(constants, poses[active])
-        errors = legs[0] - targets[active]
+        lengths, vectors = _batch_euler_legs(constants, poses[active])
+        errors = lengths - targets[active]
         residual[active] = np.max(np.abs(errors), axis=-1)
         going = residual[active] > tolerance
         reason[active[~going]] = ''
@@ -816,7 +818,8 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
             residual[active] > JACOBIAN_REUSE_CONTRACTION * last_residual[active])
         if np.any(refresh):
             rows = np.flatnonzero(going)[refresh]
-            new, invertible = _invert_each(_batch_twist_jacobian([leg[rows] for leg in legs]))
+            new, invertible = _invert_each(_batch_twist_jacobian(
+                lengths[rows], [vector[rows] for vector in vectors]))
             inverses[active[refresh]] = new
             has_inverse[active[refresh]] = invertible
             reason[active[refresh][~invertible]] = SINGULAR_JACOBIAN
