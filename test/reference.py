@@ -156,8 +156,10 @@ def rotation_angle(rotation_a, rotation_b):
 
 def quaternion_angle(q, r):
     """Angle in radians between the rotations of two unit quaternions ``(x, y, z, w)``."""
-    dot = abs(sum(a * b for a, b in zip(q, r)))
-    return 2.0 * math.acos(min(1.0, dot))
+    qx, qy, qz, qw = q
+    x, y, z, w = quaternion_product((-qx, -qy, -qz, qw), r)
+    # From the vector part: accurate near zero, where acos of w would lose half the digits.
+    return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), abs(w))
 
 
 def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):

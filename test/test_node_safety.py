@@ -38,7 +38,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from reference import quaternion_from_euler
+from reference import leg_lengths as plain_lengths, quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics import forward_kinematics, inverse_kinematics
@@ -524,22 +524,6 @@ def test_assembly_mode_jump_compares_with_the_last_solution(ros):
 
 
 # trajectory_node ------------------------------------------------------------------------------
-
-def plain_lengths(pose):
-    """Return |t + R p_i - b_i| of a pose, with R built from its three textbook factors."""
-    alpha, beta, gamma = pose[3:]
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rotation = (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-                @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-                @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
-    with open(PLATFORM_FILE, encoding='utf-8') as stream:
-        parameters = yaml.safe_load(stream)['/**']['ros__parameters']
-    base = np.reshape(parameters['base_joints'], (6, 3))
-    platform = np.reshape(parameters['platform_joints'], (6, 3))
-    return [float(np.linalg.norm(np.asarray(pose[:3]) + rotation @ p - b))
-            for b, p in zip(base, platform)]
-
 
 def ramp_pose(fraction):
     """Return the Table 3 ramp's pose a fraction 0..1 of the way from its start to its end."""

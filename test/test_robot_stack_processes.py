@@ -31,7 +31,11 @@ from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from reference import quaternion_from_euler as quaternion, quaternion_matrix
+from reference import (
+    quaternion_from_euler as quaternion,
+    quaternion_matrix,
+    rotation_zyx as rotation_matrix,
+)
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from visualization_msgs.msg import MarkerArray
@@ -62,16 +66,6 @@ def read_geometry(path):
         parameters = yaml.safe_load(stream)['/**']['ros__parameters']
     return (np.reshape(parameters['base_joints'], (6, 3)),
             np.reshape(parameters['platform_joints'], (6, 3)))
-
-
-def rotation_matrix(alpha, beta, gamma):
-    """Return ``R = Rz(gamma) Ry(beta) Rx(alpha)``, the README's rotation convention."""
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
 
 
 def reference_lengths(geometry, position, rotation):
