@@ -171,8 +171,8 @@ def _apply(matrix_rows, vector):
     """
     Product of a 6x6 matrix, given by rows, and a 6-vector, summed in index order.
 
-    For a batch, one row of six arrays (n, 6), the matrices' columns, and the vector as six
-    arrays (n, 1): every row of every matrix at once.
+    For a batch, one row of six arrays (6, n), the matrices' columns, and the vector as six
+    arrays (n,): every row of every matrix at once.
     """
     v0, v1, v2, v3, v4, v5 = vector
     return [m0 * v0 + m1 * v1 + m2 * v2 + m3 * v3 + m4 * v4 + m5 * v5
@@ -204,10 +204,10 @@ class _GeometryConstants:
         base = geometry.base_joints
         platform = geometry.platform_joints
         #: ``(px, py, pz, bx, by, bz)`` of each leg as Python floats, for :func:`_legs` on one
-        #: pose, and the same as six arrays (6,) for a batch.
+        #: pose, and the same as six arrays (6, 1) for a batch (legs along the first axis).
         self.joint_pairs = tuple(tuple(p) + tuple(b)
                                  for p, b in zip(platform.tolist(), base.tolist()))
-        self.joint_columns = (tuple(np.ascontiguousarray(column)
+        self.joint_columns = (tuple(np.ascontiguousarray(column[:, None])
                                     for column in np.hstack([platform, base]).T),)
         # Batched IK as one matrix product: [r11 .. r33, X, Y, Z] @ weights - base_flat gives
         # the leg vectors flattened as (leg, axis); see _block_lengths.
@@ -264,15 +264,6 @@ def _float_inverse(entries):
         return None
 
 
-def _single_euler_step(pose, twist):
-    """:func:`_euler_step` of one pose in floats; None where ``cos(beta) = 0``."""
-    beta, gamma = pose[4], pose[5]
-    cos_beta = math.cos(beta)
-    if cos_beta == 0.0:
-        return None
-    return _euler_step(pose, twist, cos_beta, math.sin(beta), math.cos(gamma), math.sin(gamma))
-
-
 def _single_canonical_angles(alpha, beta, gamma):
     """
     Euler angles of the same rotation in the canonical ranges (see :func:`zyx_angles`).
@@ -299,11 +290,13 @@ def _batch_legs(constants, position, rotation_entries):
     """
     :func:`_legs` of a batch: positions (n, 3) and rotation entries, nine arrays (n,).
 
-    :returns: ``(lengths, vectors)``: an array (n, 6) and ``(lx, ly, lz, ax, ay, az)``, six
-        arrays (n, 6).
+    The arrays are leg by pose, (6, n): with the poses along the last axis, every operation
+    runs one long loop per leg (with (n, 6), numpy would run n loops of six).
+
+    :returns: ``(lengths, vectors)``: an array (6, n) and ``(lx, ly, lz, ax, ay, az)``, six
+        arrays (6, n).
     """
-    lengths, vectors = _legs([entry[:, None] for entry in rotation_entries],
-                             *(position[:, axis, None] for axis in range(3)),
+    lengths, vectors = _legs(rotation_entries, *np.ascontiguousarray(position.T),
                              constants.joint_columns, np.sqrt)
     return lengths[0], vectors[0]
 
@@ -333,8 +326,8 @@ def _broadcast_pose(position, rotation):
 
 
 def _batch_twist_jacobian(lengths, vectors):
-    """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays."""
-    return np.stack(_twist_rows([lengths], [vectors]), axis=-1)
+    """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays (6, n)."""
+    return np.stack(_twist_rows([lengths], [vectors]), axis=-1).transpose(1, 0, 2)
 
 
 def _batch_euler_step(poses, twists):
@@ -386,7 +379,7 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
         _, vectors = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
         return np.array([vector[:3] for vector in vectors])
     shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(vectors[:3], axis=-1).reshape(shape + (6, 3))
+    return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -416,7 +409,7 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
         lengths, _ = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
         return np.array(lengths)
     shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return lengths.reshape(shape + (6,))
+    return lengths.T.reshape(shape + (6,))
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -766,10 +759,12 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
                 reason = SINGULAR_JACOBIAN
                 break
         last_residual = residual
-        stepped = _single_euler_step(pose, _apply(jacobian_inverse, errors))
-        if stepped is None:
+        cos_beta = math.cos(pose[4])
+        if cos_beta == 0.0:  # the Euler rate matrix is singular
             reason = SINGULAR_JACOBIAN
             break
+        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta,
+                              math.sin(pose[4]), math.cos(pose[5]), math.sin(pose[5]))
         # A diverging solve stops at its last plausible iterate, whose residual is known.
         if not all(abs(value) < DIVERGENCE_BOUND for value in stepped):
             reason = DIVERGED
@@ -811,12 +806,13 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         inverses[has_inverse] = constants.home_jacobian_inverse
     active = np.flatnonzero(valid_lengths & valid_guess)
     for step in range(max_iterations + 1):
+        # Leg by pose, (6, n): see _batch_legs.
         lengths, vectors = _batch_euler_legs(constants, poses[active])
-        errors = lengths - targets[active]
-        residual[active] = np.max(np.abs(errors), axis=-1)
+        errors = lengths - targets[active].T
+        residual[active] = np.max(np.abs(errors), axis=0)
         going = residual[active] > tolerance
         reason[active[~going]] = ''
-        active, errors = active[going], errors[going]
+        active, errors = active[going], errors[:, going]
         if active.size == 0 or step == max_iterations:
             break
         refresh = ~has_inverse[active] | (
@@ -824,18 +820,17 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         if np.any(refresh):
             rows = np.flatnonzero(going)[refresh]
             new, invertible = _invert_each(_batch_twist_jacobian(
-                lengths[rows], [vector[rows] for vector in vectors]))
+                lengths[:, rows], [vector[:, rows] for vector in vectors]))
             inverses[active[refresh]] = new
             has_inverse[active[refresh]] = invertible
             reason[active[refresh][~invertible]] = SINGULAR_JACOBIAN
             solvable = np.ones(active.size, dtype=bool)
             solvable[np.flatnonzero(refresh)[~invertible]] = False
-            active, errors = active[solvable], errors[solvable]
+            active, errors = active[solvable], errors[:, solvable]
         last_residual[active] = residual[active]
-        # _apply with the six rows of every pose as one row of arrays (n, 6).
-        inverse = inverses[active]
-        twists = _apply([[inverse[:, :, column] for column in range(6)]],
-                        [errors[:, column, None] for column in range(6)])[0].T
+        # _apply with the six rows of every pose as one row: its columns as arrays (6, n).
+        columns = np.ascontiguousarray(inverses[active].transpose(2, 1, 0))
+        twists = _apply([columns], errors)[0]
         stepped, defined = _batch_euler_step(poses[active], twists)
         reason[active[~defined]] = SINGULAR_JACOBIAN
         # A diverging solve stops at its last plausible iterate, whose residual is known.

@@ -634,5 +634,5 @@ def test_one_pose_paths_equal_the_batch_formulas(geometry):
         assert_allclose(inverse_kinematics(geometry, pose), ik_batch[k], rtol=1e-15, atol=0.0)
         assert_allclose(kinematics.jacobian(geometry, pose),
                         kinematics.jacobian(geometry, poses)[k], rtol=0.0, atol=0.0)
-    euler_batch = kinematics._batch_euler_legs(kinematics._constants(geometry), poses)[0]
+    euler_batch = kinematics._batch_euler_legs(kinematics._constants(geometry), poses)[0].T
     assert_allclose(ik_batch, euler_batch, rtol=1e-15, atol=0.0)
