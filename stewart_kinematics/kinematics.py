@@ -129,14 +129,14 @@ def _legs(rotation_entries, x, y, z, joints, sqrt, with_vectors=True):
     :param joints: per leg ``(px, py, pz, bx, by, bz)``, metres: platform joint (platform
         frame) and base joint (base frame); for a batch, one entry of six arrays (6,).
     :param sqrt: ``math.sqrt`` or ``numpy.sqrt``.
-    :param with_vectors: False to skip collecting the vectors (inverse kinematics of one pose
-        needs only the lengths: 0.3 us of its 4 us).
-    :returns: ``(lengths, vectors)``: per entry of ``joints``, the length ``l`` and
-        ``(lx, ly, lz, ax, ay, az)``, leg vector and rotated platform joint; metres, base frame.
+    :param with_vectors: False for the lengths alone (inverse kinematics of one pose needs
+        only them: 0.3 us of its 4 us).
+    :returns: per entry of ``joints``, ``(l, lx, ly, lz, ax, ay, az)``: length, leg vector and
+        rotated platform joint, metres, base frame; or, without ``with_vectors``, ``l`` alone.
     """
     r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation_entries
-    lengths, vectors = [], []
-    add_length, add_vector = lengths.append, vectors.append
+    legs = []
+    add = legs.append
     for px, py, pz, bx, by, bz in joints:
         ax = r11 * px + r12 * py + r13 * pz
         ay = r21 * px + r22 * py + r23 * pz
@@ -144,13 +144,12 @@ def _legs(rotation_entries, x, y, z, joints, sqrt, with_vectors=True):
         lx = ax + x - bx
         ly = ay + y - by
         lz = az + z - bz
-        add_length(sqrt(lx * lx + ly * ly + lz * lz))
-        if with_vectors:
-            add_vector((lx, ly, lz, ax, ay, az))
-    return lengths, vectors
+        length = sqrt(lx * lx + ly * ly + lz * lz)
+        add((length, lx, ly, lz, ax, ay, az) if with_vectors else length)
+    return legs
 
 
-def _twist_rows(lengths, vectors):
+def _twist_rows(legs):
     """
     Rows ``[u_i, R p_i x u_i]`` of the twist Jacobian, from :func:`_legs`; the one formula.
 
@@ -160,7 +159,7 @@ def _twist_rows(lengths, vectors):
     :returns: the rows' entries one after the other, 6 per entry of ``legs``.
     """
     entries = []
-    for length, (lx, ly, lz, ax, ay, az) in zip(lengths, vectors):
+    for length, lx, ly, lz, ax, ay, az in legs:
         inverse = 1.0 / (length + (length == 0.0))
         ux, uy, uz = lx * inverse, ly * inverse, lz * inverse
         entries += (ux, uy, uz, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux)
@@ -221,7 +220,7 @@ class _GeometryConstants:
         # Newton-Raphson from the home pose: its first step is the same for every call.
         self.home_pose = tuple(geometry.home_pose.tolist())
         self.home_jacobian_inverse = _float_inverse(_twist_rows(
-            *_single_euler_legs(self, self.home_pose)))
+            _single_euler_legs(self, self.home_pose)))
 
 
 #: Constants of each geometry still alive; a Geometry is immutable, so they never go stale.
@@ -296,9 +295,9 @@ def _batch_legs(constants, position, rotation_entries):
     :returns: ``(lengths, vectors)``: an array (6, n) and ``(lx, ly, lz, ax, ay, az)``, six
         arrays (6, n).
     """
-    lengths, vectors = _legs(rotation_entries, *np.ascontiguousarray(position.T),
-                             constants.joint_columns, np.sqrt)
-    return lengths[0], vectors[0]
+    (length, *vectors), = _legs(rotation_entries, *np.ascontiguousarray(position.T),
+                                constants.joint_columns, np.sqrt)
+    return length, vectors
 
 
 def _batch_euler_legs(constants, poses):
@@ -327,7 +326,7 @@ def _broadcast_pose(position, rotation):
 
 def _batch_twist_jacobian(lengths, vectors):
     """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays (6, n)."""
-    return np.stack(_twist_rows([lengths], [vectors]), axis=-1).transpose(1, 0, 2)
+    return np.stack(_twist_rows([(lengths, *vectors)]), axis=-1).transpose(1, 0, 2)
 
 
 def _batch_euler_step(poses, twists):
@@ -376,8 +375,8 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        _, vectors = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([vector[:3] for vector in vectors])
+        legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
+        return np.array([leg[1:4] for leg in legs])
     shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
     return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
 
@@ -406,8 +405,8 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        lengths, _ = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array(lengths)
+        legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
+        return np.array([leg[0] for leg in legs])
     shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
     return lengths.T.reshape(shape + (6,))
 
@@ -431,7 +430,7 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array(_single_euler_legs(constants, values, with_vectors=False)[0])
+            return np.array(_single_euler_legs(constants, values, with_vectors=False))
     poses = as_poses(poses)
     lengths = np.empty((poses.shape[0], 6))
     for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
@@ -480,7 +479,7 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_twist_rows(*_single_legs(
+        return np.array(_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
     shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
     return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
@@ -745,8 +744,8 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
     reason = f'no convergence within {max_iterations} iterations'
     last_residual = math.inf
     for step in range(max_iterations + 1):
-        lengths, vectors = _single_euler_legs(constants, pose)
-        errors = [length - wanted for length, wanted in zip(lengths, target)]
+        legs = _single_euler_legs(constants, pose)
+        errors = [leg[0] - length for leg, length in zip(legs, target)]
         residual = max(map(abs, errors))
         if residual <= tolerance:
             reason = ''
@@ -754,7 +753,7 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         if step == max_iterations:
             break
         if jacobian_inverse is None or residual > JACOBIAN_REUSE_CONTRACTION * last_residual:
-            jacobian_inverse = _float_inverse(_twist_rows(lengths, vectors))
+            jacobian_inverse = _float_inverse(_twist_rows(legs))
             if jacobian_inverse is None:
                 reason = SINGULAR_JACOBIAN
                 break
