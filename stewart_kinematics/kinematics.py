@@ -153,17 +153,26 @@ def _twist_rows(legs):
     """
     Rows ``[u_i, R p_i x u_i]`` of the twist Jacobian, from :func:`_legs`; the one formula.
 
-    A leg of zero length has no direction: its row is zero (its vector is divided by 1 instead
-    of 0), a singular Jacobian.
+    No length may be 0: callers give a leg of zero length the length 1 (:func:`_float_twist_rows`,
+    :func:`_batch_twist_jacobian`). It has no direction, and as its vector is zero, so is its
+    row: a singular Jacobian.
 
     :returns: the rows' entries one after the other, 6 per entry of ``legs``.
     """
     entries = []
     for length, lx, ly, lz, ax, ay, az in legs:
-        inverse = 1.0 / (length + (length == 0.0))
+        inverse = 1.0 / length
         ux, uy, uz = lx * inverse, ly * inverse, lz * inverse
         entries += (ux, uy, uz, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux)
     return entries
+
+
+def _float_twist_rows(legs):
+    """:func:`_twist_rows` of one pose's legs (floats), a leg of zero length included."""
+    try:
+        return _twist_rows(legs)
+    except ZeroDivisionError:
+        return _twist_rows([(leg[0] or 1.0,) + leg[1:] for leg in legs])
 
 
 def _apply(matrix_rows, vector):
@@ -210,7 +219,7 @@ class _GeometryConstants:
                                     for column in np.hstack([platform, base]).T),)
         # Newton-Raphson from the home pose: its first step is the same for every call.
         self.home_pose = tuple(geometry.home_pose.tolist())
-        self.home_jacobian_inverse = _float_inverse(_twist_rows(
+        self.home_jacobian_inverse = _float_inverse(_float_twist_rows(
             _single_euler_legs(self, self.home_pose)))
 
 
@@ -319,6 +328,7 @@ def _broadcast_pose(position, rotation):
 
 def _batch_twist_jacobian(lengths, vectors):
     """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays (6, n)."""
+    lengths = np.where(lengths == 0.0, 1.0, lengths)  # see _twist_rows
     return np.stack(_twist_rows([(lengths, *vectors)]), axis=-1).transpose(1, 0, 2)
 
 
@@ -451,7 +461,7 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_twist_rows(_single_legs(
+        return np.array(_float_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
     shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
     return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
@@ -725,7 +735,7 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         if step == max_iterations:
             break
         if jacobian_inverse is None or residual > JACOBIAN_REUSE_CONTRACTION * last_residual:
-            jacobian_inverse = _float_inverse(_twist_rows(legs))
+            jacobian_inverse = _float_inverse(_float_twist_rows(legs))
             if jacobian_inverse is None:
                 reason = SINGULAR_JACOBIAN
                 break
