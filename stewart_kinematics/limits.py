@@ -44,6 +44,9 @@ from stewart_kinematics.kinematics import (
 )
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
+#: How many failing samples :func:`check_samples` lists in full.
+LISTED_FAILURES = 10
+
 
 @dataclass(frozen=True)
 class Violation:
@@ -182,6 +185,30 @@ def check_poses(geometry, poses) -> List[List[Violation]]:
     rotations = euler_zyx_to_matrix(poses[:, 3:])
     return [check_pose(geometry, pose[:3], rotation)
             for pose, rotation in zip(poses, rotations)]
+
+
+def check_samples(geometry, times, poses):
+    """
+    Refuse a trajectory any of whose samples breaks a limit of ``geometry``.
+
+    trajectory_node checks every pose it would publish with this before it plays a ramp.
+
+    :param times: seconds from the start of a pass, shape (N,).
+    :param poses: the samples, ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
+    :raises ValueError: listing the failing samples (time, pose, every violation).
+    """
+    failures = [(index, violations) for index, violations
+                in enumerate(limits.check_poses(geometry, poses)) if violations]
+    if not failures:
+        return
+    lines = [
+        f'sample {index} at t={times[index]:.3f} s, pose '
+        f'{np.round(poses[index], 6).tolist()}: ' + '; '.join(map(str, violations))
+        for index, violations in failures[:LISTED_FAILURES]]
+    more = len(failures) - LISTED_FAILURES
+    raise ValueError(
+        f'ramp refused: {len(failures)} of {len(poses)} samples break the limits of the '
+        'geometry:\n  ' + '\n  '.join(lines) + (f'\n  ... and {more} more' if more > 0 else ''))
 
 
 def _angle_between(a, b):
