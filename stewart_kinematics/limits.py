@@ -38,9 +38,9 @@ import numpy as np
 from stewart_kinematics.kinematics import (
     as_leg_lengths,
     as_poses,
+    jacobian_condition,
     leg_lengths,
     leg_vectors,
-    twist_jacobian,
 )
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
@@ -117,26 +117,6 @@ def joint_angles(geometry, position, rotation):
                                -1, -2)
     platform_home = home @ home_rotation
     return _angle_between(directions, home), _angle_between(platform_now, platform_home)
-
-
-def jacobian_condition(geometry, position, rotation):
-    """
-    Condition number of the dimensionless Jacobian: how close the pose is to a singularity.
-
-    The rows are ``[u_i, (R p_i x u_i) / rho]``: leg directions and their moment arms divided
-    by ``rho``, the RMS distance of the platform joints from their centroid, so that
-    translation and rotation weigh alike. 1 is ideal; it grows without bound at a singularity,
-    where the platform gains a motion that no leg resists.
-
-    :param position: metres, shape (3,) or (N, 3).
-    :param rotation: shape (3, 3) or (N, 3, 3).
-    :returns: shape () or (N,); ``inf`` at an exact singularity.
-    """
-    jac = twist_jacobian(geometry, position, rotation)
-    jac[..., 3:] /= geometry.platform_radius
-    singular_values = np.linalg.svd(jac, compute_uv=False)
-    with np.errstate(divide='ignore'):
-        return singular_values[..., 0] / singular_values[..., -1]
 
 
 def check_pose(geometry, position, rotation) -> List[Violation]:

@@ -213,6 +213,7 @@ GEOMETRY_PARAMETERS = (
         constraints='>= 1; .inf allowed'),
 )
 
+
 def distinct_names(name, value) -> str:
     """Require non-empty, distinct strings (joint names)."""
     if not all(value) or len(set(value)) != len(value):
