@@ -122,7 +122,7 @@ class CommandCheck:
                 'a platform joint on its base joint, or a pose beyond any reach'))
         violations = tuple(limits.check_pose(self.geometry, position, rotation))
         if violations:
-            return LegCommand(None, violations, findings.out_of_limits('the pose', violations))
+            return LegCommand(None, violations, findings.out_of_limits('the pose is', violations))
         self.last_pose = position, rotation
         return LegCommand(lengths)
 

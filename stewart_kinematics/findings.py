@@ -94,11 +94,11 @@ def violation_details(violations) -> Tuple[Tuple[str, str], ...]:
 
 def out_of_limits(subject: str, violations) -> Finding:
     """
-    The refusal of something that breaks limits, listing every violation.
+    Build the refusal of something that breaks limits, listing every violation.
 
-    :param subject: what breaks them, such as ``'the pose'``.
+    :param subject: what breaks them, with its verb, such as ``'the pose is'``.
     :param violations: the :class:`~stewart_kinematics.limits.Violation` list, not empty.
     """
     return Finding(OUT_OF_LIMITS,
-                   f'{subject} is out of the limits: ' + '; '.join(map(str, violations)),
+                   f'{subject} out of the limits: ' + '; '.join(map(str, violations)),
                    violation_details(violations))

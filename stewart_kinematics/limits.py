@@ -178,7 +178,7 @@ def check_samples(geometry, times, poses):
     :raises ValueError: listing the failing samples (time, pose, every violation).
     """
     failures = [(index, violations) for index, violations
-                in enumerate(limits.check_poses(geometry, poses)) if violations]
+                in enumerate(check_poses(geometry, poses)) if violations]
     if not failures:
         return
     lines = [

@@ -45,7 +45,7 @@ import numpy as np
 
 from stewart_kinematics import findings, limits, parameter_spec
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.kinematics import as_poses, ForwardKinematicsResult, forward_kinematics
+from stewart_kinematics.kinematics import as_poses, forward_kinematics, ForwardKinematicsResult
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.velocities import platform_twist
 
@@ -163,7 +163,7 @@ class PoseTracker:
 
     def configure(self, **settings):
         """
-        Change settings by name, such as ``configure(tolerance=1e-10)``.
+        Change settings by name, such as the tolerance (``tolerance=1e-10``).
 
         :raises ValueError: for an unknown name or an invalid value; nothing changes then.
         """
@@ -191,7 +191,7 @@ class PoseTracker:
 
     def update(self, lengths) -> PoseEstimate:
         """
-        The pose of measured leg lengths, or the refusal with its reason.
+        Estimate the pose of measured leg lengths, or refuse them with the reason.
 
         :param lengths: leg lengths l_1..l_6, metres, shape (6,).
         :returns: a :class:`PoseEstimate`; an accepted one becomes the last solution.
@@ -220,9 +220,10 @@ class PoseTracker:
 
     def twist(self, velocities) -> TwistEstimate:
         """
-        The platform twist of leg velocities at the last accepted pose (home before any).
+        Estimate the platform twist of leg velocities at the last accepted pose.
 
-        Refused where the Jacobian's condition number exceeds the singularity margin, the
+        Before any pose was accepted, at the home pose (or the pose of :meth:`reset`). Refused
+        where the Jacobian's condition number exceeds the singularity margin, the
         smaller of ``near_singularity_condition`` and the geometry's
         ``max_jacobian_condition``: there the leg velocities hardly determine the twist, and
         their errors come out amplified as many times.
@@ -269,12 +270,16 @@ class PoseTracker:
                 (('iterations', str(solution.iterations)),
                  ('residual_m', f'{solution.residual:.3g}')))
         if not solution.pose_error_bound <= self.settings.pose_tolerance:
+            if solution.condition > self.settings.near_singularity_condition:
+                cause = 'the pose is too near a singularity for the lengths to fix it'
+            else:
+                cause = 'lower the tolerance, or raise pose_tolerance'
             return Finding(
                 findings.INACCURATE_POSE,
                 f'the pose of these leg lengths is known only to {solution.pose_error_bound:.3g} '
-                f'(pose_error_bound, m and rad) > pose_tolerance '
-                f'{self.settings.pose_tolerance:g}: too near a singularity (Jacobian condition '
-                f'number {solution.condition:.4g}) for the lengths to fix the pose',
+                f'm and rad (pose_error_bound) > pose_tolerance '
+                f'{self.settings.pose_tolerance:g}: the residual {solution.residual:.3g} m '
+                f'amplified by the Jacobian condition number {solution.condition:.4g}; {cause}',
                 (('iterations', str(solution.iterations)),
                  ('residual_m', f'{solution.residual:.3g}'),
                  ('jacobian_condition', f'{solution.condition:.4g}'),

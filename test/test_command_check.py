@@ -46,7 +46,7 @@ EXAMPLE_LIMITS = {'leg_length_min': 0.65, 'leg_length_max': 0.9,
 
 
 def geometry(**limits):
-    """The paper's platform with the given limits (cone angles in radians)."""
+    """Build the paper's platform with the given limits (cone angles in radians)."""
     return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=np.array(HOME),
                     **limits)
 
