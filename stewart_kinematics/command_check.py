@@ -168,10 +168,17 @@ def _invalid_pose(position, rotation) -> str:
                 f'{position.shape} and {rotation.shape}')
     if not all(map(math.isfinite, position.tolist())):
         return f'position must be finite (metres), got {position.tolist()}'
-    if not all(map(math.isfinite, rotation.ravel().tolist())):
+    entries = rotation.ravel().tolist()
+    if not all(map(math.isfinite, entries)):
         return f'rotation must be finite, got {rotation.tolist()}'
-    deviation = float(np.max(np.abs(rotation.T @ rotation - np.eye(3))))
-    if not deviation <= ROTATION_TOLERANCE or np.linalg.det(rotation) < 0.0:
+    # R^T R = I and det R = +1, in float arithmetic: numpy costs more on a 3 x 3 matrix.
+    columns = (entries[0::3], entries[1::3], entries[2::3])
+    deviation = max(abs(sum(a * b for a, b in zip(columns[i], columns[j])) - (i == j))
+                    for i in range(3) for j in range(i, 3))
+    (r11, r12, r13), (r21, r22, r23), (r31, r32, r33) = rotation.tolist()
+    determinant = (r11 * (r22 * r33 - r23 * r32) - r12 * (r21 * r33 - r23 * r31)
+                   + r13 * (r21 * r32 - r22 * r31))
+    if not deviation <= ROTATION_TOLERANCE or determinant < 0.0:
         return (f'rotation must be a rotation matrix (R^T R = I within '
                 f'{ROTATION_TOLERANCE:g}, determinant +1), got {rotation.tolist()}')
     return ''

@@ -119,12 +119,14 @@ def joint_angles(geometry, position, rotation):
     return _angle_between(directions, home), _angle_between(platform_now, platform_home)
 
 
-def check_pose(geometry, position, rotation) -> List[Violation]:
+def check_pose(geometry, position, rotation, condition=None) -> List[Violation]:
     """
     Every limit that one pose breaks; empty when the pose is allowed.
 
     :param position: platform position in the base frame, metres, shape (3,).
     :param rotation: platform-to-base rotation matrix, shape (3, 3).
+    :param condition: the pose's :func:`jacobian_condition` when already known (a forward
+        kinematics result carries it), so that it is not computed twice.
     :raises ValueError: if the position or the rotation is malformed or not finite.
     """
     position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
@@ -147,7 +149,8 @@ def check_pose(geometry, position, rotation) -> List[Violation]:
                 violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
                                             math.degrees(allowed), 'deg'))
     if math.isfinite(geometry.max_jacobian_condition):
-        condition = float(jacobian_condition(geometry, position, rotation))
+        if condition is None:
+            condition = float(jacobian_condition(geometry, position, rotation))
         if not condition <= geometry.max_jacobian_condition:
             violations.append(Violation('max_jacobian_condition', None, condition,
                                         geometry.max_jacobian_condition, ''))

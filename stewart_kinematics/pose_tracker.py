@@ -285,7 +285,8 @@ class PoseTracker:
                  ('jacobian_condition', f'{solution.condition:.4g}'),
                  ('pose_error_bound', f'{solution.pose_error_bound:.3g}')))
         violations = limits.check_pose(self.geometry, solution.pose[:3],
-                                       euler_zyx_to_matrix(solution.pose[3:]))
+                                       euler_zyx_to_matrix(solution.pose[3:]),
+                                       condition=solution.condition)
         if violations:
             return findings.out_of_limits('the pose of these leg lengths is', violations)
         if self.last_lengths is None:
