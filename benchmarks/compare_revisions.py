@@ -19,8 +19,9 @@ Each round runs one subprocess per checkout, alternately, with ``PYTHONPATH`` se
 checkout, so both see the same machine load. A subprocess times, on the paper's platform:
 IK of one pose, IK of a batch, FK of one pose from home (cold; the Table 3 rows and random
 poses within +-0.1 m and +-15 deg of home), FK tracking the Table 3 ramp at 1 kHz from the last
-result (warm) and FK of the whole set as one batch. The median over the rounds is printed for
-each, with the ratio new / old (below 1 is faster)::
+result (warm) and FK of the whole set as one batch, in processor time (one BLAS thread), so
+that other work on the machine weighs little. The median over the rounds is printed for each,
+with the ratio new / old (below 1 is faster)::
 
     git worktree add /tmp/base main
     .venv/bin/python benchmarks/compare_revisions.py /tmp/base . --rounds 5
@@ -70,7 +71,9 @@ def measure(random_count, batch_count):
     batch = geometry.home_pose + rng.uniform(-1.0, 1.0, (batch_count, 6)) * workspace
     tracking = inverse_kinematics(geometry, ramp.sample(np.arange(10001) * 1e-3, 10.0))
     home = geometry.home_pose
-    clock = time.perf_counter
+    # Processor time of this process: on a machine shared with other work, wall time would
+    # measure the other work too.
+    clock = time.process_time
 
     def median_each(call, items):
         times = []
@@ -113,7 +116,8 @@ def measure(random_count, batch_count):
 
 def run_checkout(checkout, random_count, batch_count):
     """Run :func:`measure` in a subprocess that imports the package from ``checkout``."""
-    environment = dict(os.environ, PYTHONPATH=str(Path(checkout).resolve()))
+    environment = dict(os.environ, PYTHONPATH=str(Path(checkout).resolve()),
+                       OPENBLAS_NUM_THREADS='1', OMP_NUM_THREADS='1')
     output = subprocess.run(
         [sys.executable, __file__, '--worker', str(random_count), str(batch_count)],
         env=environment, check=True, capture_output=True, text=True).stdout

@@ -56,7 +56,7 @@ from stewart_kinematics.rotations import (
     quaternion_to_matrix,
 )
 from stewart_kinematics.trajectory import Ramp
-from stewart_kinematics.velocities import leg_velocities, platform_twist
+from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
 
 __all__ = [
     'CommandCheck',
@@ -83,6 +83,7 @@ __all__ = [
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'SingularPoseError',
     'twist_jacobian',
     'TwistEstimate',
 ]

@@ -24,7 +24,9 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import leg_lengths as leg_lengths_of, singular_yaw
 
+from stewart_kinematics import kinematics
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -606,3 +608,101 @@ def test_forward_kinematics_accepts_any_sequence_of_six_numbers(geometry, length
     assert result.converged
     assert result.pose.shape == (6,)
     assert_allclose(result.pose, HOME, rtol=0.0, atol=1e-6)
+
+
+# A batch with bad rows, and single solves against batches ---------------------------------
+
+def test_a_batch_solves_its_valid_rows_and_reports_the_others(geometry):
+    # The defect: one NaN row made the whole batch raise ValueError.
+    good = inverse_kinematics(geometry, random_poses(3, seed=11))
+    lengths = np.array([good[0], [0.7, math.nan, 0.7, 0.7, 0.7, 0.7], good[1],
+                        [0.7, 0.7, 0.7, 0.7, 0.7, -0.7], [0.7, 0.7, 0.0, 0.7, 0.7, 0.7],
+                        [math.inf] * 6, good[2]])
+    result = forward_kinematics(geometry, lengths)
+    assert result.converged.tolist() == [True, False, True, False, False, False, True]
+    for row in (1, 3, 4, 5):
+        assert result.reason[row] == kinematics.INVALID_LENGTHS
+        assert 'finite and positive' in result.reason[row]
+        assert result.residual[row] == math.inf and result.iterations[row] == 0
+        assert_allclose(result.pose[row], HOME, rtol=0.0, atol=0.0)
+    for row, expected in zip((0, 2, 6), good):
+        single = forward_kinematics(geometry, expected)
+        assert result.reason[row] == '' and result.iterations[row] == single.iterations
+        assert_allclose(result.pose[row], single.pose, rtol=0.0, atol=1e-15)
+    with pytest.raises(ValueError, match='finite and positive'):
+        forward_kinematics(geometry, lengths[1])
+
+
+def test_a_batch_reports_a_row_whose_guess_is_not_finite(geometry):
+    lengths = inverse_kinematics(geometry, random_poses(2, seed=12))
+    guesses = np.array([HOME, [0.0, math.nan, 0.4, 0.0, 0.0, 0.0]])
+    result = forward_kinematics(geometry, lengths, guesses)
+    assert result.converged.tolist() == [True, False]
+    assert result.reason[1] == kinematics.INVALID_GUESS
+    with pytest.raises(ValueError, match='initial_guess'):
+        forward_kinematics(geometry, lengths[1], guesses[1])
+
+
+def assert_single_solves_equal_batch(geometry, lengths, guesses, **options):
+    """Solve each row alone and the rows as one batch; assert they agree in every field."""
+    batch = forward_kinematics(geometry, lengths, guesses, **options)
+    for k in range(len(lengths)):
+        single = forward_kinematics(geometry, lengths[k], guesses[k], **options)
+        assert (single.reason, single.converged, single.iterations) == (
+            batch.reason[k], batch.converged[k], batch.iterations[k]), k
+        # The same arithmetic: the same residual to the bit; the pose to rounding, as numpy's
+        # and the math module's atan2 may differ by one unit in the last place.
+        assert single.residual == batch.residual[k]
+        assert_allclose(single.pose, batch.pose[k], rtol=0.0, atol=1e-15)
+    return batch
+
+
+def test_single_and_batch_solves_agree_on_every_field_failures_included(geometry):
+    # The defect: lengths [10] * 6 gave 'no convergence' alone and 'diverged' in a batch, as
+    # the two solvers rounded differently and chaotic iterates drifted apart.
+    rng = np.random.default_rng(13)
+    reachable = inverse_kinematics(geometry, random_poses(150, seed=14))
+    unreachable = np.vstack([rng.uniform(0.2, 3.0, (150, 6)), [[10.0] * 6, [0.01] * 6]])
+    singular = np.array(HOME[:5] + (singular_yaw(),))
+    near_singular = np.array([leg_lengths_of(singular + np.array([0.0] * 5 + [offset]))
+                              for offset in (0.0, 1e-9, 1e-6, -1e-6, 1e-3)])
+    lengths = np.vstack([reachable, unreachable, near_singular])
+    guesses = np.vstack([np.broadcast_to(HOME, (len(reachable) + len(unreachable), 6)),
+                         np.broadcast_to(singular, (len(near_singular), 6))])
+    batch = assert_single_solves_equal_batch(geometry, lengths, guesses)
+    reasons = set(batch.reason)
+    assert '' in reasons and kinematics.DIVERGED in reasons
+    assert_single_solves_equal_batch(geometry, unreachable[:40], guesses[:40], max_iterations=7)
+
+
+def test_single_and_batch_solves_agree_at_a_singular_jacobian():
+    # A platform whose joints coincide at its home pose (every leg of zero length): the
+    # Jacobian there is zero, and both solvers say so.
+    joints = np.array(PLATFORM_M)
+    joints[:, 2] = 0.0
+    flat = Geometry(base_joints=joints, platform_joints=joints, home_pose=[0.0] * 6)
+    lengths = np.array([[0.2] * 6, [0.3] * 6])
+    batch = assert_single_solves_equal_batch(flat, lengths, np.zeros((2, 6)))
+    assert batch.reason == (kinematics.SINGULAR_JACOBIAN,) * 2
+
+
+def test_one_pose_paths_equal_the_batch_formulas(geometry):
+    # One formula each, run on floats for one pose and on arrays for a batch: the same
+    # operations in the same order, so the results are equal to the bit; the batched inverse
+    # kinematics (one matrix product) equals them to 1e-15 relative.
+    poses = np.vstack([random_poses(50, seed=15), [[0.0, 0.0, 0.0, 0.0, math.pi / 2, 0.0]]])
+    rotations = np.array([elementary_zyx(*pose[3:]) for pose in poses])
+    batch_lengths = leg_lengths(geometry, poses[:, :3], rotations)
+    batch_vectors = leg_vectors(geometry, poses[:, :3], rotations)
+    batch_jacobians = kinematics.twist_jacobian(geometry, poses[:, :3], rotations)
+    ik_batch = inverse_kinematics(geometry, poses)
+    for k, (pose, rotation) in enumerate(zip(poses, rotations)):
+        assert np.array_equal(leg_lengths(geometry, pose[:3], rotation), batch_lengths[k])
+        assert np.array_equal(leg_vectors(geometry, pose[:3], rotation), batch_vectors[k])
+        assert np.array_equal(kinematics.twist_jacobian(geometry, pose[:3], rotation),
+                              batch_jacobians[k])
+        assert_allclose(inverse_kinematics(geometry, pose), ik_batch[k], rtol=1e-15, atol=0.0)
+        assert_allclose(kinematics.jacobian(geometry, pose),
+                        kinematics.jacobian(geometry, poses)[k], rtol=0.0, atol=0.0)
+    euler_batch = kinematics._batch_euler_legs(kinematics._constants(geometry), poses)[0]
+    assert_allclose(ik_batch, euler_batch, rtol=1e-15, atol=0.0)

@@ -438,3 +438,53 @@ def test_geometry_accepts_limits_the_home_pose_keeps():
     assert (geometry.leg_length_min, geometry.leg_length_max) == (0.70, 0.72)
     assert geometry.max_jacobian_condition == 9.6
     assert geometry.base_joint_max_angle == pytest.approx(math.radians(1.0))
+
+
+# A platform joint on its base joint ---------------------------------------------------------
+
+#: The paper's joints rounded to multiples of 2^-20 m (about 1 um), so that the pose below puts
+#: a platform joint exactly on its base joint, without rounding: a leg of zero length.
+DYADIC = 2.0 ** 20
+DYADIC_BASE = np.round(BASE * DYADIC) / DYADIC
+DYADIC_PLATFORM = np.round(PLATFORM * DYADIC) / DYADIC
+#: Rotations whose entries are exact: none, and a quarter turn about z.
+EXACT_ROTATIONS = [np.eye(3), np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])]
+
+
+def dyadic_geometry(**limit_values):
+    """Return the paper's platform with dyadic joints and the given limits."""
+    return Geometry(base_joints=DYADIC_BASE, platform_joints=DYADIC_PLATFORM, home_pose=HOME,
+                    **limit_values)
+
+
+def joint_on_its_base_joint(leg, rotation):
+    """Return the position that puts platform joint ``leg`` exactly on base joint ``leg``."""
+    return DYADIC_BASE[leg] - rotation @ DYADIC_PLATFORM[leg]
+
+
+@pytest.mark.parametrize('leg', range(6))
+@pytest.mark.parametrize('rotation', EXACT_ROTATIONS)
+def test_a_leg_of_zero_length_breaks_the_singularity_margin_without_raising(leg, rotation):
+    # The defect: with only max_jacobian_condition set, this pose raised ZeroDivisionError
+    # (from the unit vector of the zero-length leg), which ended ik_node.
+    geometry = dyadic_geometry(max_jacobian_condition=50.0)
+    position = joint_on_its_base_joint(leg, rotation)
+    assert limits.leg_lengths(geometry, position, rotation)[leg] == 0.0
+    violations = limits.check_pose(geometry, position, rotation)
+    assert [(v.limit, v.value) for v in violations] == [('max_jacobian_condition', math.inf)]
+    assert float(limits.jacobian_condition(geometry, position, rotation)) == math.inf
+    batch = limits.jacobian_condition(geometry, position[None], rotation[None])
+    assert batch.shape == (1,) and batch[0] == math.inf
+
+
+@pytest.mark.parametrize('leg', range(6))
+def test_a_leg_of_zero_length_breaks_every_limit_set_and_nothing_raises(leg):
+    geometry = dyadic_geometry(leg_length_min=0.65, leg_length_max=0.90,
+                               base_joint_max_angle=math.radians(30.0),
+                               platform_joint_max_angle=math.radians(35.0),
+                               max_jacobian_condition=50.0)
+    rotation = EXACT_ROTATIONS[1]
+    position = joint_on_its_base_joint(leg, rotation)
+    broken = {(v.limit, v.leg) for v in limits.check_pose(geometry, position, rotation)}
+    assert {('leg_length_min', leg + 1), ('base_joint_max_angle', leg + 1),
+            ('platform_joint_max_angle', leg + 1), ('max_jacobian_condition', None)} <= broken

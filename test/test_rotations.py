@@ -24,7 +24,9 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import quaternion_from_euler, quaternion_matrix, rotation_angle, rotation_zyx
 
+from stewart_kinematics import kinematics
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -372,3 +374,48 @@ def test_single_value_paths_equal_the_batch_paths():
         assert_allclose(normalize_quaternion(scaled[k]), quaternions[k], rtol=0.0, atol=1e-15)
         assert_allclose(rotation_angle_between(matrices[k], shifted[k]), batch_angles[k],
                         rtol=0.0, atol=1e-12)
+
+
+def gimbal_band_cases():
+    """Random alpha, gamma with beta within 1e-12 to 1e-6 rad of +-90 degrees, shape (N, 3)."""
+    rng = np.random.default_rng(90)
+    offsets = 10.0 ** rng.uniform(-12.0, -6.0, 400)
+    signs = rng.choice([-1.0, 1.0], 400)
+    return np.column_stack([rng.uniform(-math.pi, math.pi, 400),
+                            signs * (0.5 * math.pi - offsets),
+                            rng.uniform(-math.pi, math.pi, 400)])
+
+
+def test_euler_angles_near_gimbal_lock_rebuild_the_rotation_to_rounding():
+    # The defect: within 1e-12..1e-6 rad of beta = +-90 degrees, alpha and gamma were taken
+    # each from entries of size cos(beta) that rounding had blurred; their rotation was up to
+    # 7e-4 rad away from the quaternion's.
+    cases = gimbal_band_cases()
+    quaternions = np.array([quaternion_from_euler(*angles) for angles in cases])
+    batch = quaternion_to_euler_zyx(quaternions)
+    worst = 0.0
+    for quaternion, angles in zip(quaternions, batch):
+        single = quaternion_to_euler_zyx(quaternion)
+        assert_allclose(single, angles, rtol=0.0, atol=1e-15)
+        expected = quaternion_matrix(*quaternion)
+        worst = max(worst, rotation_angle(rotation_zyx(*single), expected))
+        assert abs(single[1]) <= math.pi / 2 and np.all(np.abs(single) <= math.pi)
+    assert worst <= 1e-14
+
+
+def test_euler_angles_from_matrices_near_gimbal_lock_rebuild_them():
+    cases = gimbal_band_cases()
+    matrices = np.array([rotation_zyx(*angles) for angles in cases])
+    for matrix, angles in zip(matrices, matrix_to_euler_zyx(matrices)):
+        assert rotation_angle(rotation_zyx(*angles), matrix) <= 1e-14
+
+
+def test_scalar_canonical_angles_agree_with_the_batch_conversion_near_gimbal_lock():
+    # The forward solver's scalar twin of matrix_to_euler_zyx(euler_zyx_to_matrix(angles)),
+    # on angles out of the canonical ranges (so that they are converted).
+    cases = gimbal_band_cases() + [2.0 * math.pi, 0.0, -2.0 * math.pi]
+    expected = matrix_to_euler_zyx(euler_zyx_to_matrix(cases))
+    for angles, batch in zip(cases, expected):
+        single = kinematics._single_canonical_angles(*angles)
+        assert_allclose(single, batch, rtol=0.0, atol=1e-15)
+        assert rotation_angle(rotation_zyx(*single), rotation_zyx(*angles)) <= 1e-14
