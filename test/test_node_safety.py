@@ -33,7 +33,7 @@ from pathlib import Path
 import threading
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -43,7 +43,7 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import inverse_kinematics
+from stewart_kinematics import inverse_kinematics, platform_twist
 from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
@@ -573,6 +573,38 @@ def test_fk_refuses_a_jump_to_another_solution(start, spin_until):
     assert spin_until(executor, lambda: len(poses) >= 2)
     assert len(poses) == 2
     assert_pose_message(poses[1], TABLE3_ROW_1)
+
+
+def test_fk_refuses_a_twist_beyond_the_singularity_margin(start, spin_until):
+    """
+    Leg velocities at a pose beyond the margin give no twist, with the reason; within, one.
+
+    With near_singularity_condition 5 the home pose (condition about 9.5) is beyond the margin:
+    there the leg velocities would hardly determine the twist (the defect: 1 mm/s on every leg
+    turned into 4300 rad/s near the singularity, and fk_node published it).
+    """
+    node, probe, executor = start(FkNode, FK_ARGS, {'near_singularity_condition': 5.0},
+                                  Float64MultiArray, 'leg_velocities',
+                                  [('estimated_twist', Twist)])
+    refusals, _ = record_findings(node)
+    twists = probe.received['estimated_twist']
+    velocities = lengths_message([0.001] * 6)
+    probe.publisher.publish(velocities)
+    assert spin_until(executor, lambda: len(refusals) >= 1)
+    [refusal] = refusals
+    assert refusal.code == 'near_singularity'
+    assert 'above the limit 5 (the singularity margin' in refusal.message
+    [result] = node.set_parameters([Parameter('near_singularity_condition', value=100.0)])
+    assert result.successful, result.reason
+    probe.publisher.publish(velocities)
+    assert spin_until(executor, lambda: len(twists) >= 1)
+    assert len(twists) == 1
+    expected = platform_twist(paper_geometry(), HOME, [0.001] * 6)
+    twist = twists[0]
+    assert_allclose([twist.linear.x, twist.linear.y, twist.linear.z, twist.angular.x,
+                     twist.angular.y, twist.angular.z], expected, rtol=0.0, atol=1e-15)
+    accounting = node.velocity_accounting
+    assert (accounting.received, accounting.published, accounting.rejected) == (2, 1, 1)
 
 
 # trajectory_node ------------------------------------------------------------------------------
