@@ -118,7 +118,7 @@ def _valid_lengths(lengths):
 # entries and position of shape (n, 1), joints of shape (6,), so that one pass covers every
 # leg of every pose).
 
-def _legs(rotation_entries, x, y, z, joints, sqrt):
+def _legs(rotation_entries, x, y, z, joints, sqrt, with_vectors=True):
     """
     Legs of a pose: lengths, leg vectors ``t + R p_i - b_i`` and rotated joints ``R p_i``.
 
@@ -129,17 +129,23 @@ def _legs(rotation_entries, x, y, z, joints, sqrt):
     :param joints: per leg ``(px, py, pz, bx, by, bz)``, metres: platform joint (platform
         frame) and base joint (base frame); for a batch, one entry of six arrays (6,).
     :param sqrt: ``math.sqrt`` or ``numpy.sqrt``.
+    :param with_vectors: False for the lengths alone (inverse kinematics of one pose needs
+        only them: 0.3 us of its 4 us).
     :returns: per entry of ``joints``, ``(l, lx, ly, lz, ax, ay, az)``: length, leg vector and
-        rotated platform joint, metres, base frame.
+        rotated platform joint, metres, base frame; or, without ``with_vectors``, ``l`` alone.
     """
     r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation_entries
     legs = []
+    add = legs.append
     for px, py, pz, bx, by, bz in joints:
         ax = r11 * px + r12 * py + r13 * pz
         ay = r21 * px + r22 * py + r23 * pz
         az = r31 * px + r32 * py + r33 * pz
-        lx, ly, lz = ax + x - bx, ay + y - by, az + z - bz
-        legs.append((sqrt(lx * lx + ly * ly + lz * lz), lx, ly, lz, ax, ay, az))
+        lx = ax + x - bx
+        ly = ay + y - by
+        lz = az + z - bz
+        length = sqrt(lx * lx + ly * ly + lz * lz)
+        add((length, lx, ly, lz, ax, ay, az) if with_vectors else length)
     return legs
 
 
@@ -147,25 +153,34 @@ def _twist_rows(legs):
     """
     Rows ``[u_i, R p_i x u_i]`` of the twist Jacobian, from :func:`_legs`; the one formula.
 
-    A leg of zero length has no direction: its row is zero (its vector is divided by 1 instead
-    of 0), a singular Jacobian.
+    No length may be 0: callers give a leg of zero length the length 1 (:func:`_float_twist_rows`,
+    :func:`_batch_twist_jacobian`). It has no direction, and as its vector is zero, so is its
+    row: a singular Jacobian.
 
     :returns: the rows' entries one after the other, 6 per entry of ``legs``.
     """
     entries = []
     for length, lx, ly, lz, ax, ay, az in legs:
-        inverse = 1.0 / (length + (length == 0.0))
+        inverse = 1.0 / length
         ux, uy, uz = lx * inverse, ly * inverse, lz * inverse
         entries += (ux, uy, uz, ay * uz - az * uy, az * ux - ax * uz, ax * uy - ay * ux)
     return entries
+
+
+def _float_twist_rows(legs):
+    """:func:`_twist_rows` of one pose's legs (floats), a leg of zero length included."""
+    try:
+        return _twist_rows(legs)
+    except ZeroDivisionError:
+        return _twist_rows([(leg[0] or 1.0,) + leg[1:] for leg in legs])
 
 
 def _apply(matrix_rows, vector):
     """
     Product of a 6x6 matrix, given by rows, and a 6-vector, summed in index order.
 
-    For a batch, one row of six arrays (n, 6), the matrices' columns, and the vector as six
-    arrays (n, 1): every row of every matrix at once.
+    For a batch, one row of six arrays (6, n), the matrices' columns, and the vector as six
+    arrays (n,): every row of every matrix at once.
     """
     v0, v1, v2, v3, v4, v5 = vector
     return [m0 * v0 + m1 * v1 + m2 * v2 + m3 * v3 + m4 * v4 + m5 * v5
@@ -197,23 +212,14 @@ class _GeometryConstants:
         base = geometry.base_joints
         platform = geometry.platform_joints
         #: ``(px, py, pz, bx, by, bz)`` of each leg as Python floats, for :func:`_legs` on one
-        #: pose, and the same as six arrays (6,) for a batch.
+        #: pose, and the same as six arrays (6, 1) for a batch (legs along the first axis).
         self.joint_pairs = tuple(tuple(p) + tuple(b)
                                  for p, b in zip(platform.tolist(), base.tolist()))
-        self.joint_columns = (tuple(np.ascontiguousarray(column)
+        self.joint_columns = (tuple(np.ascontiguousarray(column[:, None])
                                     for column in np.hstack([platform, base]).T),)
-        # Batched IK as one matrix product: [r11 .. r33, X, Y, Z] @ weights - base_flat gives
-        # the leg vectors flattened as (leg, axis); see _block_lengths.
-        weights = np.zeros((12, 18))
-        for leg in range(6):
-            for axis in range(3):
-                weights[3 * axis:3 * axis + 3, 3 * leg + axis] = platform[leg]
-                weights[9 + axis, 3 * leg + axis] = 1.0
-        self.ik_weights = weights
-        self.base_flat = base.reshape(18).copy()
         # Newton-Raphson from the home pose: its first step is the same for every call.
         self.home_pose = tuple(geometry.home_pose.tolist())
-        self.home_jacobian_inverse = _float_inverse(_twist_rows(
+        self.home_jacobian_inverse = _float_inverse(_float_twist_rows(
             _single_euler_legs(self, self.home_pose)))
 
 
@@ -230,9 +236,10 @@ def _constants(geometry) -> _GeometryConstants:
         return constants
 
 
-# One pose, in float arithmetic. Against the batch path on one pose, with numpy's per-call
-# overhead, this saves (timeit, this machine): leg lengths 5.9 us -> 2.4 us, twist Jacobian
-# 29 us -> 6 us, a cold forward kinematics solve 260 us -> 80 us.
+# One pose, in float arithmetic: the same formulas as the batch path, which on one pose pays
+# numpy's per-call overhead (timeit, processor time, this machine: inverse kinematics 3.8 us
+# against 19 us, leg_lengths 4.0 against 30 us, twist_jacobian 6.2 against 41 us, a cold
+# forward kinematics solve 52 us against 660 us). Tests prove them equal to the batch path.
 
 def _single_legs(constants, position, rotation_entries):
     """:func:`_legs` of one pose, in floats."""
@@ -240,11 +247,13 @@ def _single_legs(constants, position, rotation_entries):
     return _legs(rotation_entries, x, y, z, constants.joint_pairs, math.sqrt)
 
 
-def _single_euler_legs(constants, pose):
+def _single_euler_legs(constants, pose, with_vectors=True):
     """:func:`_legs` of a pose ``[X, Y, Z, alpha, beta, gamma]`` given as six floats."""
     x, y, z, alpha, beta, gamma = pose
-    return _legs(euler_zyx_matrix_entries(alpha, beta, gamma), x, y, z, constants.joint_pairs,
-                 math.sqrt)
+    cos, sin = math.cos, math.sin
+    return _legs(zyx_entries(cos(alpha), sin(alpha), cos(beta), sin(beta), cos(gamma),
+                             sin(gamma)), x, y, z, constants.joint_pairs, math.sqrt,
+                 with_vectors)
 
 
 def _float_inverse(entries):
@@ -253,15 +262,6 @@ def _float_inverse(entries):
         return np.linalg.inv(np.array(entries).reshape(6, 6)).tolist()
     except np.linalg.LinAlgError:
         return None
-
-
-def _single_euler_step(pose, twist):
-    """:func:`_euler_step` of one pose in floats; None where ``cos(beta) = 0``."""
-    beta, gamma = pose[4], pose[5]
-    cos_beta = math.cos(beta)
-    if cos_beta == 0.0:
-        return None
-    return _euler_step(pose, twist, cos_beta, math.sin(beta), math.cos(gamma), math.sin(gamma))
 
 
 def _single_canonical_angles(alpha, beta, gamma):
@@ -286,22 +286,27 @@ _HALF_PI = 0.5 * math.pi
 
 # A batch, in numpy arrays.
 
-def _batch_legs(constants, position, rotation_entries):
+def _batch_legs(constants, position, rotation_entries, with_vectors=True):
     """
     :func:`_legs` of a batch: positions (n, 3) and rotation entries, nine arrays (n,).
 
-    :returns: ``(l, lx, ly, lz, ax, ay, az)``, seven arrays (n, 6).
+    The arrays are leg by pose, (6, n): with the poses along the last axis, every operation
+    runs one long loop per leg (with (n, 6), numpy would run n loops of six).
+
+    :returns: ``(lengths, vectors)``: an array (6, n) and ``(lx, ly, lz, ax, ay, az)``, six
+        arrays (6, n); without ``with_vectors``, the lengths alone.
     """
-    return _legs([entry[:, None] for entry in rotation_entries],
-                 *(position[:, axis, None] for axis in range(3)),
-                 constants.joint_columns, np.sqrt)[0]
+    (legs,) = _legs(rotation_entries, *np.ascontiguousarray(position.T), constants.joint_columns,
+                    np.sqrt, with_vectors)
+    return (legs[0], legs[1:]) if with_vectors else legs
 
 
-def _batch_euler_legs(constants, poses):
+def _batch_euler_legs(constants, poses, with_vectors=True):
     """:func:`_batch_legs` of poses ``[X, Y, Z, alpha, beta, gamma]``, shape (n, 6)."""
     cosines, sines = np.cos(poses[:, 3:]), np.sin(poses[:, 3:])
     return _batch_legs(constants, poses[:, :3], zyx_entries(
-        cosines[:, 0], sines[:, 0], cosines[:, 1], sines[:, 1], cosines[:, 2], sines[:, 2]))
+        cosines[:, 0], sines[:, 0], cosines[:, 1], sines[:, 1], cosines[:, 2], sines[:, 2]),
+        with_vectors)
 
 
 def _batch_rotation_legs(constants, position, rotation):
@@ -321,9 +326,10 @@ def _broadcast_pose(position, rotation):
             np.broadcast_to(rotation, shape + (3, 3)))
 
 
-def _batch_twist_jacobian(legs):
-    """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays."""
-    return np.stack(_twist_rows([legs]), axis=-1)
+def _batch_twist_jacobian(lengths, vectors):
+    """Twist Jacobians (n, 6, 6) of :func:`_batch_legs`'s arrays (6, n)."""
+    lengths = np.where(lengths == 0.0, 1.0, lengths)  # see _twist_rows
+    return np.stack(_twist_rows([(lengths, *vectors)]), axis=-1).transpose(1, 0, 2)
 
 
 def _batch_euler_step(poses, twists):
@@ -374,8 +380,8 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
         return np.array([leg[1:4] for leg in legs])
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(legs[1:4], axis=-1).reshape(shape + (6, 3))
+    shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+    return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -404,8 +410,8 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
         return np.array([leg[0] for leg in legs])
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return legs[0].reshape(shape + (6,))
+    shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+    return lengths.T.reshape(shape + (6,))
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -427,34 +433,13 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array([leg[0] for leg in _single_euler_legs(constants, values)])
+            return np.array(_single_euler_legs(constants, values, with_vectors=False))
     poses = as_poses(poses)
     lengths = np.empty((poses.shape[0], 6))
     for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
         stop = start + IK_BLOCK_SIZE
-        _block_lengths(constants, poses[start:stop], lengths[start:stop])
+        lengths[start:stop] = _batch_euler_legs(constants, poses[start:stop], False).T
     return lengths
-
-
-def _block_lengths(constants, poses, out):
-    """
-    Write the leg lengths of a block of poses (n, 6) into ``out`` (n, 6).
-
-    :func:`_legs` as one matrix product: ``[r11 .. r33, X, Y, Z] @ weights - base`` gives the
-    leg vectors of every leg of every pose at once. The batch fast path of inverse kinematics:
-    1.4x the throughput of :func:`_batch_legs` (timeit, blocks of 4096 poses), equal to it to
-    rounding (a test compares them).
-    """
-    angles = poses[:, 3:].T
-    cosines, sines = np.cos(angles), np.sin(angles)
-    coefficients = np.empty((12, poses.shape[0]))
-    coefficients[:9] = zyx_entries(cosines[0], sines[0], cosines[1], sines[1], cosines[2],
-                                   sines[2])
-    coefficients[9:] = poses[:, :3].T
-    legs = coefficients.T @ constants.ik_weights
-    legs -= constants.base_flat
-    np.square(legs, out=legs)
-    np.sqrt(legs.reshape(-1, 6, 3).sum(axis=-1), out=out)
 
 
 def twist_jacobian(geometry, position, rotation) -> np.ndarray:
@@ -476,10 +461,10 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     rotation = np.asarray(rotation, dtype=float)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_twist_rows(_single_legs(
+        return np.array(_float_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
     shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return _batch_twist_jacobian(legs).reshape(shape + (6, 6))
+    return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
 
 
 def jacobian(geometry, poses) -> np.ndarray:
@@ -496,7 +481,7 @@ def jacobian(geometry, poses) -> np.ndarray:
     """
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
-    jac = _batch_twist_jacobian(_batch_euler_legs(_constants(geometry), batch))
+    jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
     beta, gamma = batch[:, 4], batch[:, 5]
     cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros((len(batch), 3, 3))
@@ -750,15 +735,17 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         if step == max_iterations:
             break
         if jacobian_inverse is None or residual > JACOBIAN_REUSE_CONTRACTION * last_residual:
-            jacobian_inverse = _float_inverse(_twist_rows(legs))
+            jacobian_inverse = _float_inverse(_float_twist_rows(legs))
             if jacobian_inverse is None:
                 reason = SINGULAR_JACOBIAN
                 break
         last_residual = residual
-        stepped = _single_euler_step(pose, _apply(jacobian_inverse, errors))
-        if stepped is None:
+        cos_beta = math.cos(pose[4])
+        if cos_beta == 0.0:  # the Euler rate matrix is singular
             reason = SINGULAR_JACOBIAN
             break
+        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta,
+                              math.sin(pose[4]), math.cos(pose[5]), math.sin(pose[5]))
         # A diverging solve stops at its last plausible iterate, whose residual is known.
         if not all(abs(value) < DIVERGENCE_BOUND for value in stepped):
             reason = DIVERGED
@@ -800,30 +787,31 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         inverses[has_inverse] = constants.home_jacobian_inverse
     active = np.flatnonzero(valid_lengths & valid_guess)
     for step in range(max_iterations + 1):
-        legs = _batch_euler_legs(constants, poses[active])
-        errors = legs[0] - targets[active]
-        residual[active] = np.max(np.abs(errors), axis=-1)
+        # Leg by pose, (6, n): see _batch_legs.
+        lengths, vectors = _batch_euler_legs(constants, poses[active])
+        errors = lengths - targets[active].T
+        residual[active] = np.max(np.abs(errors), axis=0)
         going = residual[active] > tolerance
         reason[active[~going]] = ''
-        active, errors = active[going], errors[going]
+        active, errors = active[going], errors[:, going]
         if active.size == 0 or step == max_iterations:
             break
         refresh = ~has_inverse[active] | (
             residual[active] > JACOBIAN_REUSE_CONTRACTION * last_residual[active])
         if np.any(refresh):
             rows = np.flatnonzero(going)[refresh]
-            new, invertible = _invert_each(_batch_twist_jacobian([leg[rows] for leg in legs]))
+            new, invertible = _invert_each(_batch_twist_jacobian(
+                lengths[:, rows], [vector[:, rows] for vector in vectors]))
             inverses[active[refresh]] = new
             has_inverse[active[refresh]] = invertible
             reason[active[refresh][~invertible]] = SINGULAR_JACOBIAN
             solvable = np.ones(active.size, dtype=bool)
             solvable[np.flatnonzero(refresh)[~invertible]] = False
-            active, errors = active[solvable], errors[solvable]
+            active, errors = active[solvable], errors[:, solvable]
         last_residual[active] = residual[active]
-        # _apply with the six rows of every pose as one row of arrays (n, 6).
-        inverse = inverses[active]
-        twists = _apply([[inverse[:, :, column] for column in range(6)]],
-                        [errors[:, column, None] for column in range(6)])[0].T
+        # _apply with the six rows of every pose as one row: its columns as arrays (6, n).
+        columns = np.ascontiguousarray(inverses[active].transpose(2, 1, 0))
+        twists = _apply([columns], errors)[0]
         stepped, defined = _batch_euler_step(poses[active], twists)
         reason[active[~defined]] = SINGULAR_JACOBIAN
         # A diverging solve stops at its last plausible iterate, whose residual is known.

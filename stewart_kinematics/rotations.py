@@ -164,22 +164,16 @@ def quaternion_to_matrix(quaternion):
     """
     x, y, z, w = np.moveaxis(normalize_quaternion(quaternion), -1, 0)
     if np.ndim(x) == 0:
-        x, y, z, w = float(x), float(y), float(z), float(w)
-        return np.array((
-            (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)),
-            (2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)),
-            (2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y))))
-    rotation = np.empty(np.shape(x) + (3, 3))
-    rotation[..., 0, 0] = 1.0 - 2.0 * (y * y + z * z)
-    rotation[..., 0, 1] = 2.0 * (x * y - z * w)
-    rotation[..., 0, 2] = 2.0 * (x * z + y * w)
-    rotation[..., 1, 0] = 2.0 * (x * y + z * w)
-    rotation[..., 1, 1] = 1.0 - 2.0 * (x * x + z * z)
-    rotation[..., 1, 2] = 2.0 * (y * z - x * w)
-    rotation[..., 2, 0] = 2.0 * (x * z - y * w)
-    rotation[..., 2, 1] = 2.0 * (y * z + x * w)
-    rotation[..., 2, 2] = 1.0 - 2.0 * (x * x + y * y)
-    return rotation
+        # One quaternion (the nodes' case): floats cost less than numpy's per-call overhead.
+        return np.array(_quaternion_entries(float(x), float(y), float(z), float(w))).reshape(3, 3)
+    return np.stack(_quaternion_entries(x, y, z, w), axis=-1).reshape(np.shape(x) + (3, 3))
+
+
+def _quaternion_entries(x, y, z, w):
+    """Entries r11..r33 of the rotation of a unit quaternion; floats or arrays alike."""
+    return (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w),
+            2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w),
+            2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y))
 
 
 def matrix_to_quaternion(rotation):
@@ -254,15 +248,33 @@ def euler_zyx_to_quaternion(angles):
     :returns: shape (4,) or (..., 4).
     """
     angles = np.asarray(angles, dtype=float)
+    if angles.shape[-1:] != (3,):
+        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
     if angles.shape == (3,):
-        # One rotation: the product q_z(gamma) q_y(beta) q_x(alpha) of half-angle quaternions.
+        # One rotation (the nodes' case): floats cost less than numpy's per-call overhead.
         alpha, beta, gamma = (0.5 * angle for angle in angles.tolist())
-        ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
-        sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
-        quaternion = np.array([sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-                               ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+        quaternion = np.array(_half_angle_product(
+            math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta), math.cos(gamma),
+            math.sin(gamma)))
         return -quaternion if quaternion[3] < 0.0 else quaternion
-    return matrix_to_quaternion(euler_zyx_to_matrix(angles))
+    half = 0.5 * angles
+    cosines, sines = np.cos(half), np.sin(half)
+    quaternion = np.stack(_half_angle_product(
+        cosines[..., 0], sines[..., 0], cosines[..., 1], sines[..., 1], cosines[..., 2],
+        sines[..., 2]), axis=-1)
+    return np.where(quaternion[..., 3:] < 0.0, -quaternion, quaternion)
+
+
+def _half_angle_product(ca, sa, cb, sb, cg, sg):
+    """
+    ``q_z(gamma) q_y(beta) q_x(alpha)`` from the cosines and sines of the half angles.
+
+    The one formula of the quaternion of Euler ZYX angles, for floats or arrays alike.
+
+    :returns: ``(x, y, z, w)``.
+    """
+    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
 
 
 def quaternion_to_euler_zyx(quaternion):

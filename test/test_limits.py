@@ -26,6 +26,7 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import BASE_JOINTS, HOME, PLATFORM_JOINTS, rotation_zyx, TABLE_3_END
 
 from stewart_kinematics import limits
 from stewart_kinematics.geometry import Geometry
@@ -33,47 +34,15 @@ from stewart_kinematics.limits import Violation
 
 pytestmark = pytest.mark.core
 
-#: Table 1 of the paper, base joints b_1..b_6, millimetres.
-TABLE_1_MM = [
-    (48.6989, 219.6666, 0.0),
-    (165.8874, 152.0078, 0.0),
-    (165.8874, -152.0078, 0.0),
-    (48.6989, -219.6666, 0.0),
-    (-214.5863, -67.6588, 0.0),
-    (-214.5863, 67.6588, 0.0),
-]
-#: Table 2 of the paper, platform joints p_1..p_6, millimetres (p_3 z = 257 as printed).
-TABLE_2_MM = [
-    (-51.3030, 140.9539, 275.0),
-    (147.7212, 26.0472, 275.0),
-    (147.7212, -26.0472, 257.0),
-    (-51.3030, -140.9539, 275.0),
-    (-96.4181, -114.9067, 275.0),
-    (-96.4181, 114.9067, 275.0),
-]
-BASE = np.array(TABLE_1_MM) / 1000.0
-PLATFORM = np.array(TABLE_2_MM) / 1000.0
-HOME = np.array([0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
-#: Last row of Table 3: 100 mm, 150 mm, 532.5 mm, 15 deg, -15 deg, 20 deg.
-TABLE3_END = np.array([0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0),
-                       math.radians(20.0)])
+BASE, PLATFORM = BASE_JOINTS, PLATFORM_JOINTS
+HOME = np.array(HOME)
+TABLE3_END = np.array(TABLE_3_END)
 
 
 def paper_geometry(home_pose=HOME, **limit_values):
     """Build the paper's platform with the given home pose and limits (radians for cones)."""
     return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=home_pose,
                     **limit_values)
-
-
-def rotation_zyx(alpha, beta, gamma):
-    """Return R = Rz(gamma) Ry(beta) Rx(alpha) as the product of the three textbook matrices."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
 
 
 def legs_by_hand(base, platform, position, rotation):

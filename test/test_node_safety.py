@@ -41,6 +41,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import leg_lengths as plain_lengths, quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics import inverse_kinematics, platform_twist
@@ -90,17 +91,6 @@ IMPOSSIBLE_LENGTHS = [0.9, 0.65, 0.9, 0.65, 0.9, 0.65]
 
 
 # Messages and poses ---------------------------------------------------------------------------
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
-
 
 def pose_message(position, quaternion):
     """Build a Pose from a position and a quaternion (x, y, z, w)."""
@@ -608,22 +598,6 @@ def test_fk_refuses_a_twist_beyond_the_singularity_margin(start, spin_until):
 
 
 # trajectory_node ------------------------------------------------------------------------------
-
-def plain_lengths(pose):
-    """Return |t + R p_i - b_i| of a pose, with R built from its three textbook factors."""
-    alpha, beta, gamma = pose[3:]
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rotation = (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-                @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-                @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
-    with open(PLATFORM_FILE, encoding='utf-8') as stream:
-        parameters = yaml.safe_load(stream)['/**']['ros__parameters']
-    base = np.reshape(parameters['base_joints'], (6, 3))
-    platform = np.reshape(parameters['platform_joints'], (6, 3))
-    return [float(np.linalg.norm(np.asarray(pose[:3]) + rotation @ p - b))
-            for b, p in zip(base, platform)]
-
 
 def ramp_pose(fraction):
     """Return the Table 3 ramp's pose a fraction 0..1 of the way from its start to its end."""

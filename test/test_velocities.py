@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from reference import HOME, paper_geometry, singular_yaw
+from reference import HOME, paper_geometry, rotation_vector_matrix, singular_yaw
 
 from stewart_kinematics import leg_lengths, SingularPoseError
 from stewart_kinematics.limits import jacobian_condition
@@ -48,19 +48,9 @@ TWISTS = np.array([
 ])
 
 
-def axis_angle_matrix(vector):
-    """Return the rotation by |vector| radians about vector (Rodrigues), written out."""
-    angle = float(np.linalg.norm(vector))
-    if angle == 0.0:
-        return np.eye(3)
-    x, y, z = np.asarray(vector) / angle
-    skew = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * skew + (1.0 - math.cos(angle)) * skew @ skew
-
-
 def moved_lengths(pose, twist, dt):
     """Return the leg lengths after moving with ``twist`` for ``dt`` seconds from ``pose``."""
-    rotation = axis_angle_matrix(np.asarray(twist[3:]) * dt) @ euler_zyx_to_matrix(pose[3:])
+    rotation = rotation_vector_matrix(np.asarray(twist[3:]) * dt) @ euler_zyx_to_matrix(pose[3:])
     return leg_lengths(GEOMETRY, np.asarray(pose[:3]) + np.asarray(twist[:3]) * dt, rotation)
 
 
