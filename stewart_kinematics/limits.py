@@ -44,6 +44,9 @@ from stewart_kinematics.kinematics import (
 )
 from stewart_kinematics.rotations import euler_zyx_to_matrix
 
+#: How many failing samples :func:`check_samples` lists in full.
+LISTED_FAILURES = 10
+
 
 @dataclass(frozen=True)
 class Violation:
@@ -124,12 +127,14 @@ def joint_angles(geometry, position, rotation):
     return _angle_between(directions, home), _angle_between(platform_now, platform_home)
 
 
-def check_pose(geometry, position, rotation) -> List[Violation]:
+def check_pose(geometry, position, rotation, condition=None) -> List[Violation]:
     """
     Every limit that one pose breaks; empty when the pose is allowed.
 
     :param position: platform position in the base frame, metres, shape (3,).
     :param rotation: platform-to-base rotation matrix, shape (3, 3).
+    :param condition: the pose's :func:`jacobian_condition` when already known (a forward
+        kinematics result carries it), so that it is not computed twice.
     :raises ValueError: if the position or the rotation is malformed or not finite; any other
         pose gets its list, a platform joint on its base joint included (a leg of zero length
         breaks the singularity margin and the joint cones, having no direction).
@@ -157,7 +162,8 @@ def check_pose(geometry, position, rotation) -> List[Violation]:
                 violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
                                             math.degrees(allowed), 'deg'))
     if math.isfinite(geometry.max_jacobian_condition):
-        condition = float(jacobian_condition(geometry, position, rotation))
+        if condition is None:
+            condition = float(jacobian_condition(geometry, position, rotation))
         if not condition <= geometry.max_jacobian_condition:
             violations.append(Violation('max_jacobian_condition', None, condition,
                                         geometry.max_jacobian_condition, ''))
@@ -175,6 +181,30 @@ def check_poses(geometry, poses) -> List[List[Violation]]:
     rotations = euler_zyx_to_matrix(poses[:, 3:])
     return [check_pose(geometry, pose[:3], rotation)
             for pose, rotation in zip(poses, rotations)]
+
+
+def check_samples(geometry, times, poses):
+    """
+    Refuse a trajectory any of whose samples breaks a limit of ``geometry``.
+
+    trajectory_node checks every pose it would publish with this before it plays a ramp.
+
+    :param times: seconds from the start of a pass, shape (N,).
+    :param poses: the samples, ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
+    :raises ValueError: listing the failing samples (time, pose, every violation).
+    """
+    failures = [(index, violations) for index, violations
+                in enumerate(check_poses(geometry, poses)) if violations]
+    if not failures:
+        return
+    lines = [
+        f'sample {index} at t={times[index]:.3f} s, pose '
+        f'{np.round(poses[index], 6).tolist()}: ' + '; '.join(map(str, violations))
+        for index, violations in failures[:LISTED_FAILURES]]
+    more = len(failures) - LISTED_FAILURES
+    raise ValueError(
+        f'ramp refused: {len(failures)} of {len(poses)} samples break the limits of the '
+        'geometry:\n  ' + '\n  '.join(lines) + (f'\n  ... and {more} more' if more > 0 else ''))
 
 
 def _angle_between(a, b):
