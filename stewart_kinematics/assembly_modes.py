@@ -89,14 +89,20 @@ START_SEED = 20260
 FIRST_STEP = 0.05
 MAX_STEP = 0.2
 MIN_STEP = 1e-9
-GROW_AFTER = 2
 MAX_STEPS = 2000
+#: Step size control: the step grows by STEP_GROWTH after GROW_AFTER accepted steps in a row
+#: and shrinks by STEP_SHRINK after a refused one.
+GROW_AFTER = 2
+STEP_GROWTH = 2.0
+STEP_SHRINK = 0.5
 #: Newton corrector: iterations per step and the correction (relative to |z|) that ends it.
 CORRECTOR_ITERATIONS = 3
-CORRECTOR_TOLERANCE = 1e-9
+CORRECTOR_TOLERANCE = 1e-7
 #: A step is refused when the corrector moved the predicted point by more than this fraction
 #: of the step itself: the guard against jumping to a neighbouring path.
 CORRECTOR_STEP_FRACTION = 0.05
+#: Below this (relative to |z|) a first correction is rounding noise, never a jump.
+CORRECTOR_FLOOR = 1e-8
 #: Newton iterations polishing the ends at s = 1.
 END_ITERATIONS = 4
 #: Reasons a result is empty or incomplete.
@@ -261,25 +267,28 @@ def _refined_modes(geometry, lengths, candidates, reference):
     # A refinement that moved far went to another mode, which its own path finds.
     _, _, moved = pose_distance(geometry, poses, candidates[good])
     poses, residuals = poses[moved < 1e-4], residuals[moved < 1e-4]
-    _, _, from_reference = pose_distance(geometry, poses, reference)
-    order = np.argsort(from_reference, kind='stable')
-    kept = []
-    for index in order:
-        if all(pose_distance(geometry, poses[index], poses[other])[2] > DISTINCT_POSE
-               for other in kept):
-            kept.append(index)
-    modes = []
-    rotations = euler_zyx_to_matrix(poses[kept, 3:]) if kept else None
-    for row, index in enumerate(kept):
-        pose = poses[index]
-        position_distance, angle_distance, distance = pose_distance(geometry, pose, reference)
-        modes.append(AssemblyMode(
-            pose=pose, residual=float(residuals[index]),
-            condition=float(limits.jacobian_condition(geometry, pose[:3], rotations[row])),
-            violations=tuple(limits.check_pose(geometry, pose[:3], rotations[row])),
-            position_distance=float(position_distance), angle_distance=float(angle_distance),
-            distance=float(distance)))
-    return tuple(modes)
+    position_distance, angle_distance, distance = pose_distance(geometry, poses, reference)
+    order = np.argsort(distance, kind='stable')
+    poses, residuals = poses[order], residuals[order]
+    position_distance, angle_distance, distance = (
+        position_distance[order], angle_distance[order], distance[order])
+    rotations = euler_zyx_to_matrix(poses[:, 3:])
+    # Pairwise distances: a pose is kept unless an earlier (nearer) one is the same.
+    separation = np.hypot(
+        np.linalg.norm(poses[:, None, :3] - poses[None, :, :3], axis=-1),
+        geometry.platform_radius * rotation_angle_between(rotations[:, None],
+                                                          rotations[None, :]))
+    duplicate = np.any(np.tril(separation <= DISTINCT_POSE, k=-1), axis=-1)
+    kept = np.flatnonzero(~duplicate)
+    conditions = limits.jacobian_condition(geometry, poses[kept, :3], rotations[kept])
+    return tuple(
+        AssemblyMode(
+            pose=poses[index], residual=float(residuals[index]),
+            condition=float(condition),
+            violations=tuple(limits.check_pose(geometry, poses[index, :3], rotations[index])),
+            position_distance=float(position_distance[index]),
+            angle_distance=float(angle_distance[index]), distance=float(distance[index]))
+        for index, condition in zip(kept, np.atleast_1d(conditions)))
 
 
 class _NormalisedFrame:
@@ -488,28 +497,45 @@ def _count_distinct(points):
     return len(_merge_distinct(kept, points)) if len(points) else 0
 
 
-def _system(start, source, target, z, s):
+class _Homotopy:
     """
-    The homotopy's equations at points z (n, 8) and times s (n,).
+    The equations ``H(z, s)``: ``gamma (1 - s) Q_source + s Q_target`` for the legs, the Study
+    quadric and the chart, evaluated for many points at once.
+    """
 
-    :returns: ``(values (n, 8), Jacobians (n, 8, 8), d values / ds (n, 8))``.
-    """
-    source_z = np.einsum('kab,nb->nka', source, z)
-    target_z = np.einsum('kab,nb->nka', target, z)
-    weight = start.gamma * (1.0 - s)
-    mixed = weight[:, None, None] * source_z + s[:, None, None] * target_z
-    study_z = z @ start.basis.study
-    values = np.empty(z.shape, dtype=complex)
-    values[:, :6] = np.einsum('nka,na->nk', mixed, z)
-    values[:, 6] = np.sum(study_z * z, axis=-1)
-    values[:, 7] = z @ start.chart - 1.0
-    jacobians = np.empty(z.shape + (8,), dtype=complex)
-    jacobians[:, :6] = 2.0 * mixed
-    jacobians[:, 6] = 2.0 * study_z
-    jacobians[:, 7] = start.chart
-    rates = np.zeros(z.shape, dtype=complex)
-    rates[:, :6] = np.einsum('nka,na->nk', target_z - start.gamma * source_z, z)
-    return values, jacobians, rates
+    def __init__(self, start, source, target):
+        forms = np.concatenate([start.gamma * source, target, start.basis.study[None]])
+        #: All quadratic forms as one matrix, so that one product gives every ``Q z``.
+        self.forms = np.ascontiguousarray(forms.reshape(-1, 8).T)
+        self.chart = start.chart
+
+    def evaluate(self, z, s):
+        """
+        The equations at points z (n, 8) and times s (n,).
+
+        :returns: ``(values (n, 8), Jacobians (n, 8, 8), d values / ds (n, 8))``.
+        """
+        count = len(z)
+        products = (z @ self.forms).reshape(count, 13, 8)
+        forms = np.einsum('nka,na->nk', products, z)
+        source, target = (1.0 - s)[:, None], s[:, None]
+        values = np.empty((count, 8), dtype=complex)
+        values[:, :6] = source * forms[:, :6] + target * forms[:, 6:12]
+        values[:, 6] = forms[:, 12]
+        values[:, 7] = z @ self.chart - 1.0
+        jacobians = np.empty((count, 8, 8), dtype=complex)
+        jacobians[:, :6] = 2.0 * (source[:, :, None] * products[:, :6]
+                                  + target[:, :, None] * products[:, 6:12])
+        jacobians[:, 6] = 2.0 * products[:, 12]
+        jacobians[:, 7] = self.chart
+        rates = np.zeros((count, 8), dtype=complex)
+        rates[:, :6] = forms[:, 6:12] - forms[:, :6]
+        return values, jacobians, rates
+
+    def velocity(self, z, s):
+        """``dz/ds = -H_z^-1 H_s`` along the paths."""
+        _, jacobians, rates = self.evaluate(z, s)
+        return -_solve(jacobians, rates)
 
 
 def _solve(matrices, vectors):
@@ -526,11 +552,6 @@ def _solve(matrices, vectors):
         return result
 
 
-def _velocity(start, source, target, z, s):
-    _, jacobians, rates = _system(start, source, target, z, s)
-    return -_solve(jacobians, rates)
-
-
 def _track(start, target, points, source=None):
     """
     Track points from s = 0 (the source system, default the start system) to s = 1 (target).
@@ -543,7 +564,7 @@ def _track(start, target, points, source=None):
     :returns: ``(ends (n, 8), finished (n,))``; a path that did not reach s = 1 keeps its last
         point and is not finished.
     """
-    source = start.quadrics if source is None else source
+    homotopy = _Homotopy(start, start.quadrics if source is None else source, target)
     count = len(points)
     z = np.array(points, dtype=complex)
     s = np.zeros(count)
@@ -555,32 +576,35 @@ def _track(start, target, points, source=None):
             break
         za, sa = z[active], s[active]
         h = np.minimum(step[active], 1.0 - sa)
-        k1 = _velocity(start, source, target, za, sa)
-        k2 = _velocity(start, source, target, za + 0.5 * h[:, None] * k1, sa + 0.5 * h)
-        k3 = _velocity(start, source, target, za + 0.5 * h[:, None] * k2, sa + 0.5 * h)
-        k4 = _velocity(start, source, target, za + h[:, None] * k3, sa + h)
+        k1 = homotopy.velocity(za, sa)
+        k2 = homotopy.velocity(za + 0.5 * h[:, None] * k1, sa + 0.5 * h)
+        k3 = homotopy.velocity(za + 0.5 * h[:, None] * k2, sa + 0.5 * h)
+        k4 = homotopy.velocity(za + h[:, None] * k3, sa + h)
         predicted = za + (h / 6.0)[:, None] * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
         s_new = sa + h
         corrected = predicted.copy()
         first_correction = None
         for _ in range(CORRECTOR_ITERATIONS):
-            values, jacobians, _ = _system(start, source, target, corrected, s_new)
+            values, jacobians, _ = homotopy.evaluate(corrected, s_new)
             correction = _solve(jacobians, values)
             corrected -= correction
             size = np.linalg.norm(correction, axis=-1)
             if first_correction is None:
                 first_correction = size
+            elif np.all(size <= CORRECTOR_TOLERANCE * np.linalg.norm(corrected, axis=-1)):
+                break
         scale = np.linalg.norm(corrected, axis=-1)
         moved = np.linalg.norm(predicted - za, axis=-1)
         accepted = (np.isfinite(size) & (size <= CORRECTOR_TOLERANCE * scale)
-                    & (first_correction <= CORRECTOR_STEP_FRACTION * moved + 1e-12 * scale))
+                    & (first_correction <= np.maximum(CORRECTOR_STEP_FRACTION * moved,
+                                                      CORRECTOR_FLOOR * scale)))
         good, bad = active[accepted], active[~accepted]
         z[good], s[good] = corrected[accepted], s_new[accepted]
         successes[good] += 1
         grow = good[successes[good] >= GROW_AFTER]
-        step[grow] = np.minimum(2.0 * step[grow], MAX_STEP)
+        step[grow] = np.minimum(STEP_GROWTH * step[grow], MAX_STEP)
         successes[grow] = 0
-        step[bad] *= 0.5
+        step[bad] *= STEP_SHRINK
         successes[bad] = 0
         active = active[(s[active] < 1.0) & (step[active] >= MIN_STEP)]
     return z, s >= 1.0
@@ -590,10 +614,11 @@ def _newton(start, quadrics, points):
     """Polish points on the system ``quadrics`` (s = 1), END_ITERATIONS Newton steps."""
     if len(points) == 0:
         return points
+    homotopy = _Homotopy(start, quadrics, quadrics)
     ones = np.ones(len(points))
     z = np.array(points, dtype=complex)
     for _ in range(END_ITERATIONS):
-        values, jacobians, _ = _system(start, quadrics, quadrics, z, ones)
+        values, jacobians, _ = homotopy.evaluate(z, ones)
         correction = _solve(jacobians, values)
         z = np.where(np.isfinite(correction), z - correction, z)
     return z
@@ -603,7 +628,7 @@ def _polish(start, target, ends):
     """Polish the path ends; return them with their residuals and Jacobian condition numbers."""
     ends = _newton(start, target, ends)
     ones = np.ones(len(ends))
-    values, jacobians, _ = _system(start, target, target, ends, ones)
+    values, jacobians, _ = _Homotopy(start, target, target).evaluate(ends, ones)
     residuals = np.max(np.abs(values), axis=-1) / np.maximum(
         1.0, np.linalg.norm(ends, axis=-1) ** 2)
     conditions = np.linalg.cond(jacobians)
