@@ -29,6 +29,13 @@ Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
+from stewart_kinematics.assembly_modes import (
+    assembly_mode_margin,
+    assembly_modes,
+    AssemblyMode,
+    AssemblyModeMargin,
+    AssemblyModes,
+)
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -52,6 +59,11 @@ from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist
 
 __all__ = [
+    'assembly_mode_margin',
+    'assembly_modes',
+    'AssemblyMode',
+    'AssemblyModeMargin',
+    'AssemblyModes',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
     'forward_kinematics',

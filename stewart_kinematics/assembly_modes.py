@@ -79,9 +79,15 @@ DISTINCT_POSE = 1e-7
 #: A path end whose rotation and normalised position have imaginary parts below this is real
 #: (the refinement then checks it).
 REAL_IMAGINARY_PART = 1e-6
-#: A path end whose quaternion part ``e`` is below this, relative to ``|z|``, went to infinity:
-#: a solution that the platform lost (a degenerate platform has fewer than 40).
-AT_INFINITY = 1e-5
+#: A path that ends (or stalls within END_OF_PATH of its end) at a position this many times
+#: farther than any real pose can be goes to infinity: a solution that the platform lost (a
+#: degenerate platform has fewer than 40).
+FAR_AWAY = 1e3
+END_OF_PATH = 1e-3
+#: A path end is a solution when the equations' relative residual is below END_RESIDUAL and
+#: the Jacobian's condition number below SINGULAR_END.
+END_RESIDUAL = 1e-8
+SINGULAR_END = 1e12
 #: Seed of the random complex start system (any seed serves; a fixed one keeps runs equal).
 START_SEED = 20260
 #: Path tracking: first and largest step in s, smallest step before a path counts as failed,
@@ -106,7 +112,7 @@ CORRECTOR_FLOOR = 1e-8
 #: Newton iterations polishing the ends at s = 1.
 END_ITERATIONS = 4
 #: Reasons a result is empty or incomplete.
-NO_REAL_MODE = 'no real assembly mode: all {count} solutions of these lengths are complex'
+NO_REAL_MODE = 'no real assembly mode: the {count} solutions of these lengths are all complex'
 
 
 @dataclass(frozen=True)
@@ -137,7 +143,7 @@ class AssemblyMode:
 
     @property
     def within_limits(self) -> bool:
-        """True when the pose breaks no limit of the geometry."""
+        """Say whether the pose breaks no limit of the geometry."""
         return not self.violations
 
 
@@ -170,12 +176,12 @@ class AssemblyModes:
 
     @property
     def poses(self) -> np.ndarray:
-        """The poses of the modes, shape (n, 6), nearest first."""
+        """Give the poses of the modes, shape (n, 6), nearest first."""
         return np.array([mode.pose for mode in self.modes]).reshape(-1, 6)
 
     @property
     def within_limits(self) -> Tuple[AssemblyMode, ...]:
-        """The modes that break no limit: the physically reachable ones."""
+        """Give the modes that break no limit: the physically reachable ones."""
         return tuple(mode for mode in self.modes if mode.within_limits)
 
     def __len__(self):
@@ -213,31 +219,38 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
     start = start_system()
     target = _normalised_quadrics(start.basis, frame.platform_joints, frame.base_joints,
                                   lengths / frame.scale)
-    ends, finished = _track(start, target, start.solutions)
+    ends, reached = _track(start, target, start.solutions)
     ends, residuals, conditions = _polish(start, target, ends)
-    finite = np.linalg.norm(ends[:, :4], axis=-1) > AT_INFINITY * np.linalg.norm(ends, axis=-1)
-    solved = finished & finite & (residuals < 1e-8) & (conditions < 1e12)
-    failed = ~solved & ~(finished & ~finite)
-    positions, rotations, real = _real_poses(ends, frame)
+    positions, rotations, real, distance = _real_poses(ends, frame)
+    # Every real pose lies within reach of the base (|t| <= max l + max |p| + max |b|); a path
+    # near its end and a thousand times farther goes to infinity: a solution the platform
+    # lost, as a degenerate (planar) one does.
+    reach = (np.max(lengths) + np.max(np.linalg.norm(geometry.platform_joints, axis=-1))
+             + np.max(np.linalg.norm(geometry.base_joints, axis=-1)))
+    at_infinity = ~(distance < FAR_AWAY * reach) & (reached > 1.0 - END_OF_PATH)
+    solved = ((reached >= 1.0) & ~at_infinity & (residuals < END_RESIDUAL)
+              & (conditions < SINGULAR_END))
+    failed = ~solved & ~at_infinity
     real &= solved
     candidates = np.concatenate(
         [positions[real], matrix_to_euler_zyx(rotations[real])], axis=-1)
     modes = _refined_modes(geometry, lengths, candidates, reference)
-    distinct_ends = _count_distinct(ends[solved])
-    complete = not np.any(failed) and distinct_ends == int(np.count_nonzero(solved))
+    solutions = int(np.count_nonzero(solved))
+    distinct = _count_distinct(ends[solved]) == solutions
+    complete = not np.any(failed) and distinct
     reasons = []
     if not modes:
-        reasons.append(NO_REAL_MODE.format(count=int(np.count_nonzero(solved))))
+        reasons.append(NO_REAL_MODE.format(count=solutions))
     if np.any(failed):
         reasons.append(f'{int(np.count_nonzero(failed))} of {len(ends)} homotopy paths failed '
                        '(singular end or step size too small): modes may be missing')
-    if distinct_ends != int(np.count_nonzero(solved)):
+    if not distinct:
         reasons.append('two homotopy paths ended at the same solution: modes may be missing')
     return AssemblyModes(
         modes=modes, complete=complete, reason='; '.join(reasons), paths=len(ends),
         failed_paths=int(np.count_nonzero(failed)),
         complex_solutions=int(np.count_nonzero(solved & ~real)),
-        at_infinity=int(np.count_nonzero(finished & ~finite)))
+        at_infinity=int(np.count_nonzero(at_infinity)))
 
 
 def pose_distance(geometry, pose_a, pose_b):
@@ -328,7 +341,7 @@ def _quaternion_product(a, b):
 
 
 def _rotation_times_delta(e):
-    """``(e . e) R``: the rotation matrix of quaternion ``e`` times its squared norm, (..., 3, 3)."""
+    """``(e . e) R``: the rotation matrix of quaternion ``e`` times ``e . e``, (..., 3, 3)."""
     e0, e1, e2, e3 = np.moveaxis(e, -1, 0)
     return np.stack([
         np.stack([e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2 * (e1 * e2 - e0 * e3),
@@ -354,7 +367,7 @@ def _moment(z, axis):
 
 
 def _quadratic_form(polynomial):
-    """The symmetric matrix Q with ``polynomial(z) = z^T Q z``, by polarisation."""
+    """Find the symmetric matrix Q with ``polynomial(z) = z^T Q z``, by polarisation."""
     unit = np.eye(8)
     diagonal = polynomial(unit)
     pairs = polynomial(unit[:, None, :] + unit[None, :, :])
@@ -389,9 +402,11 @@ def _quadric_basis() -> _QuadricBasis:
 
 def _leg_quadrics(basis, platform_joints, base_joints, lengths_squared):
     """
-    The six legs' quadratic forms ``Q_i``: ``z^T Q_i z = (e . e) (|t + R p_i - b_i|^2 - l_i^2)``.
+    Build the six legs' quadratic forms Q_i.
 
-    Expanded on the Study quadric: ``(|p|^2 + |b|^2 - l^2) e.e + 4 g.g - 4 (g p).e
+    ``z^T Q_i z = (e . e) (|t + R p_i - b_i|^2 - l_i^2)``, expanded on the Study quadric:
+
+    ``(|p|^2 + |b|^2 - l^2) e.e + 4 g.g - 4 (g p).e
     - 2 b . (e.e) R p - 2 b . (e.e) t``. Works with complex joints and lengths too.
     """
     p, b = platform_joints, base_joints
@@ -432,7 +447,7 @@ class StartSystem:
 @functools.lru_cache(maxsize=None)
 def start_system(seed=START_SEED) -> StartSystem:
     """
-    The start system of the homotopies, built once per process and seed (about 0.3 s).
+    Build the start system of the homotopies, once per process and seed (about 1 s).
 
     A random complex platform (joints and lengths) is made to pass through a random complex
     pose, which is one solution; monodromy loops (its solutions tracked from this platform to
@@ -467,7 +482,8 @@ def start_system(seed=START_SEED) -> StartSystem:
         waypoints = [_random_quadrics(basis, complex_normal) for _ in range(2)]
         points, good = solutions, np.ones(len(solutions), dtype=bool)
         for source, target in zip([quadrics] + waypoints, waypoints + [quadrics]):
-            points, finished = _track(system, target, points[good], source=source)
+            points, reached = _track(system, target, points[good], source=source)
+            finished = reached >= 1.0
             good = finished
         new = points[good]
         solutions = _merge_distinct(solutions, _newton(system, quadrics, new))
@@ -499,8 +515,10 @@ def _count_distinct(points):
 
 class _Homotopy:
     """
-    The equations ``H(z, s)``: ``gamma (1 - s) Q_source + s Q_target`` for the legs, the Study
-    quadric and the chart, evaluated for many points at once.
+    The homotopy's equations, evaluated for many points at once.
+
+    ``H(z, s)`` is ``gamma (1 - s) Q_source + s Q_target`` for the legs, then the Study quadric
+    and the chart.
     """
 
     def __init__(self, start, source, target):
@@ -511,7 +529,7 @@ class _Homotopy:
 
     def evaluate(self, z, s):
         """
-        The equations at points z (n, 8) and times s (n,).
+        Evaluate the equations at points z (n, 8) and times s (n,).
 
         :returns: ``(values (n, 8), Jacobians (n, 8, 8), d values / ds (n, 8))``.
         """
@@ -561,8 +579,8 @@ def _track(start, target, points, source=None):
     the corrector converges within CORRECTOR_ITERATIONS and moved the prediction by less than
     CORRECTOR_STEP_FRACTION of the step; else it is halved and retried.
 
-    :returns: ``(ends (n, 8), finished (n,))``; a path that did not reach s = 1 keeps its last
-        point and is not finished.
+    :returns: ``(ends (n, 8), reached (n,))``: a path that did not reach s = 1 keeps its last
+        point, and ``reached`` says where it stopped.
     """
     homotopy = _Homotopy(start, start.quadrics if source is None else source, target)
     count = len(points)
@@ -607,7 +625,7 @@ def _track(start, target, points, source=None):
         step[bad] *= STEP_SHRINK
         successes[bad] = 0
         active = active[(s[active] < 1.0) & (step[active] >= MIN_STEP)]
-    return z, s >= 1.0
+    return z, s
 
 
 def _newton(start, quadrics, points):
@@ -639,7 +657,8 @@ def _real_poses(ends, frame):
     """
     Poses of path ends, in the geometry's frames, and which of them are real.
 
-    :returns: ``(positions (n, 3), rotations (n, 3, 3), real (n,))``, real parts.
+    :returns: ``(positions (n, 3), rotations (n, 3, 3), real (n,), distance (n,))``: real
+        parts, and the distance of the (complex) position from the base's centre, metres.
     """
     e = ends[:, :4]
     delta = np.sum(e * e, axis=-1)
@@ -649,9 +668,10 @@ def _real_poses(ends, frame):
     imaginary = np.maximum(np.max(np.abs(rotations.imag), axis=(-2, -1)),
                            np.max(np.abs(positions.imag), axis=-1))
     real = np.isfinite(imaginary) & (imaginary < REAL_IMAGINARY_PART)
+    distance = frame.scale * np.linalg.norm(positions, axis=-1)
     positions, rotations = np.nan_to_num(positions.real), np.nan_to_num(rotations.real)
     positions, rotations = frame.pose(positions, rotations)
-    return positions, rotations, real
+    return positions, rotations, real, distance
 
 
 @dataclass(frozen=True)
