@@ -219,14 +219,15 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
     start = start_system()
     target = _normalised_quadrics(start.basis, frame.platform_joints, frame.base_joints,
                                   lengths / frame.scale)
-    ends, reached = _track(start, target, start.solutions)
-    ends, residuals, conditions = _polish(start, target, ends)
-    positions, rotations, real, distance = _real_poses(ends, frame)
     # Every real pose lies within reach of the base (|t| <= max l + max |p| + max |b|); a path
     # near its end and a thousand times farther goes to infinity: a solution the platform
     # lost, as a degenerate (planar) one does.
     reach = (np.max(lengths) + np.max(np.linalg.norm(geometry.platform_joints, axis=-1))
              + np.max(np.linalg.norm(geometry.base_joints, axis=-1)))
+    ends, reached = _track(start, target, start.solutions,
+                           far=FAR_AWAY * reach / frame.scale)
+    ends, residuals, conditions = _polish(start, target, ends)
+    positions, rotations, real, distance = _real_poses(ends, frame)
     at_infinity = ~(distance < FAR_AWAY * reach) & (reached > 1.0 - END_OF_PATH)
     solved = ((reached >= 1.0) & ~at_infinity & (residuals < END_RESIDUAL)
               & (conditions < SINGULAR_END))
@@ -570,7 +571,7 @@ def _solve(matrices, vectors):
         return result
 
 
-def _track(start, target, points, source=None):
+def _track(start, target, points, source=None, far=np.inf):
     """
     Track points from s = 0 (the source system, default the start system) to s = 1 (target).
 
@@ -579,6 +580,8 @@ def _track(start, target, points, source=None):
     the corrector converges within CORRECTOR_ITERATIONS and moved the prediction by less than
     CORRECTOR_STEP_FRACTION of the step; else it is halved and retried.
 
+    :param far: a path that comes within END_OF_PATH of its end farther out than this (the
+        normalised position's norm) goes to infinity and is stopped there.
     :returns: ``(ends (n, 8), reached (n,))``: a path that did not reach s = 1 keeps its last
         point, and ``reached`` says where it stopped.
     """
@@ -625,6 +628,14 @@ def _track(start, target, points, source=None):
         step[bad] *= STEP_SHRINK
         successes[bad] = 0
         active = active[(s[active] < 1.0) & (step[active] >= MIN_STEP)]
+        if far < np.inf:
+            # Near its end, a path this far out goes to infinity: stop it there.
+            ending = s[active] > 1.0 - END_OF_PATH
+            if np.any(ending):
+                ends = z[active[ending]]
+                distance = np.linalg.norm(_translation_times_delta(ends), axis=-1) / np.abs(
+                    np.sum(ends[:, :4] ** 2, axis=-1))
+                active = np.concatenate([active[~ending], active[ending][~(distance > far)]])
     return z, s
 
 
@@ -726,3 +737,63 @@ def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyMo
     position, angle, distance = distances[nearest]
     return AssemblyModeMargin(float(position), float(angle), float(distance), others[nearest],
                               len(within), modes.complete, reason)
+
+
+@dataclass(frozen=True)
+class StartAmbiguity:
+    """
+    Whether a first solution (after a start or a reset) can be trusted to be the platform's.
+
+    :param ambiguous: True when more than one real mode lies within the limits and none is
+        near the last known pose: the lengths alone cannot tell which mode the platform is in.
+    :param reason: why it is ambiguous, or ``''``.
+    :param modes_within_limits: real modes within the limits.
+    :param near_known_pose: how many of them lie near the last known pose.
+    :param complete: whether the search for modes was complete.
+    """
+
+    ambiguous: bool
+    reason: str
+    modes_within_limits: int
+    near_known_pose: int
+    complete: bool
+
+
+def start_ambiguity(geometry, lengths, known_pose, position_change, angle_change,
+                    modes=None) -> StartAmbiguity:
+    """
+    Say whether the first solution of a tracker could be in the wrong assembly mode.
+
+    After a start or a reset, a tracker has no last solution to compare with: Newton-Raphson
+    from the last known pose (home, or the pose given to the reset) finds the mode that start
+    leads to. That is safe when only one real mode lies within the limits, or when one lies
+    near the known pose (within ``position_change`` and ``angle_change``); else the lengths
+    alone do not say which mode the platform is in.
+
+    :param geometry: a :class:`stewart_kinematics.Geometry`.
+    :param lengths: the measured leg lengths, metres, shape (6,).
+    :param known_pose: the last known pose ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians).
+    :param position_change: how far from it a mode counts as near, metres.
+    :param angle_change: how far it may be turned from it, radians.
+    :param modes: the :class:`AssemblyModes` of these lengths if already known.
+    :returns: a :class:`StartAmbiguity`.
+    """
+    known_pose = as_poses(known_pose, 'known_pose')
+    if modes is None:
+        modes = assembly_modes(geometry, lengths, reference_pose=known_pose)
+    within = modes.within_limits
+    position, angle, _ = pose_distance(geometry, modes.poses, known_pose)
+    near = int(np.count_nonzero((position <= position_change) & (angle <= angle_change)
+                                & np.array([mode.within_limits for mode in modes.modes],
+                                           dtype=bool)))
+    ambiguous = len(within) > 1 and near == 0
+    reason = ''
+    if ambiguous:
+        nearest = within[0]
+        reason = (
+            f'{len(within)} assembly modes lie within the limits for these leg lengths and '
+            f'none within {position_change:g} m and {math.degrees(angle_change):g} deg of the '
+            f'last known pose (the nearest is {nearest.position_distance:.4g} m and '
+            f'{math.degrees(nearest.angle_distance):.4g} deg away): the lengths do not tell '
+            'which one the platform is in')
+    return StartAmbiguity(ambiguous, reason, len(within), near, modes.complete)

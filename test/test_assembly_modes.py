@@ -307,3 +307,30 @@ def test_margin_to_the_nearest_other_mode(paper, paper_with_limits):
     limited = assembly_mode_margin(paper_with_limits, end)
     assert (limited.position, limited.angle, limited.nearest) == (math.inf, math.inf, None)
     assert limited.modes_within_limits == 1
+
+
+def test_a_start_is_ambiguous_when_two_modes_are_reachable_and_none_is_near(paper):
+    from stewart_kinematics.assembly_modes import start_ambiguity
+    end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
+    lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
+                         euler_zyx_to_matrix(end[3:]))
+    # From home, 0.21 m and 26 deg away, neither above-base mode is near: ambiguous.
+    check = start_ambiguity(paper, lengths, paper.home_pose, 0.05, math.radians(10.0))
+    assert check.ambiguous
+    assert (check.modes_within_limits, check.near_known_pose) == (4, 0)
+    assert '4 assembly modes lie within the limits' in check.reason
+    # Known to be near the end of the ramp: not ambiguous.
+    near_end = end + np.array([0.01, 0.0, 0.0, 0.0, 0.0, math.radians(3.0)])
+    check = start_ambiguity(paper, lengths, near_end, 0.05, math.radians(10.0))
+    assert not check.ambiguous and check.reason == '' and check.near_known_pose == 1
+
+
+def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
+    from stewart_kinematics.assembly_modes import start_ambiguity
+    geometry = paper_with_limits
+    end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
+    lengths = lengths_of(geometry.base_joints, geometry.platform_joints, end[:3],
+                         euler_zyx_to_matrix(end[3:]))
+    check = start_ambiguity(geometry, lengths, geometry.home_pose, 0.05, math.radians(10.0))
+    assert not check.ambiguous
+    assert (check.modes_within_limits, check.near_known_pose) == (1, 0)
