@@ -797,3 +797,76 @@ def start_ambiguity(geometry, lengths, known_pose, position_change, angle_change
             f'{math.degrees(nearest.angle_distance):.4g} deg away): the lengths do not tell '
             'which one the platform is in')
     return StartAmbiguity(ambiguous, reason, len(within), near, modes.complete)
+
+
+class AssemblyModeMarginMonitor:
+    """
+    The assembly-mode margin of a tracker's latest solution, computed in the background.
+
+    Finding every mode takes tens of milliseconds, too long for a message callback: fk_node
+    calls :meth:`request` at its status rate with the last solution, which starts one
+    computation in a worker thread unless one is running or the lengths have not changed, and
+    reads :attr:`latest` when it reports. The solutions keep flowing meanwhile.
+
+    :param geometry: a :class:`stewart_kinematics.Geometry`.
+    :param warning_distance: a margin (the combined distance of :func:`pose_distance`)
+        below this, metres, is worth a warning; 0 for none.
+    """
+
+    def __init__(self, geometry, warning_distance=0.0):
+        from concurrent.futures import ThreadPoolExecutor
+        self.geometry = geometry
+        self.warning_distance = float(warning_distance)
+        #: The last margin computed, or None; with the lengths it is for and its cost, seconds.
+        self.latest: Optional[AssemblyModeMargin] = None
+        self.latest_lengths = None
+        self.latest_seconds = None
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
+        self._running = None
+
+    def request(self, pose, lengths) -> bool:
+        """
+        Start computing the margin of ``pose`` (with its ``lengths``) unless one is running.
+
+        :returns: whether a computation started; none does for lengths already done.
+        """
+        self._collect()
+        if self._running is not None or lengths is None:
+            return False
+        lengths = np.array(lengths, dtype=float)
+        if self.latest_lengths is not None and np.array_equal(lengths, self.latest_lengths):
+            return False
+        self._running = self._pool.submit(self._compute, np.array(pose, dtype=float), lengths)
+        return True
+
+    def warning(self) -> str:
+        """Say why the latest margin deserves a warning, or return ``''``."""
+        self._collect()
+        margin = self.latest
+        if margin is None or not margin.distance < self.warning_distance:
+            return ''
+        return (f'another assembly mode within the limits lies {margin.position:.4g} m and '
+                f'{math.degrees(margin.angle):.4g} deg from the estimated pose '
+                f'(combined distance {margin.distance:.4g} m < {self.warning_distance:g} m): a '
+                'solver thrown that far would land in it')
+
+    def wait(self, timeout=None):
+        """Wait for the running computation, if any (for tests and shutdown)."""
+        if self._running is not None:
+            self._running.result(timeout)
+        self._collect()
+
+    def close(self):
+        """Stop the worker thread (a running computation finishes first)."""
+        self._pool.shutdown(wait=True)
+
+    def _compute(self, pose, lengths):
+        import time
+        start = time.perf_counter()
+        margin = assembly_mode_margin(self.geometry, pose, lengths)
+        return margin, lengths, time.perf_counter() - start
+
+    def _collect(self):
+        if self._running is not None and self._running.done():
+            future, self._running = self._running, None
+            self.latest, self.latest_lengths, self.latest_seconds = future.result()

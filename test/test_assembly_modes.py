@@ -342,3 +342,26 @@ def test_readme_table_of_the_modes_at_the_end_of_table_3_is_current():
     _, modes = table_3_end_modes()
     assert markdown_table(modes) in readme, (
         'README.md is out of date: run python -m stewart_kinematics.tools.assembly_modes_figure')
+
+
+def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper):
+    from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
+    end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
+    lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
+                         euler_zyx_to_matrix(end[3:]))
+    monitor = AssemblyModeMarginMonitor(paper, warning_distance=0.5)
+    try:
+        assert monitor.latest is None and monitor.warning() == ''
+        assert not monitor.request(end, None)
+        assert monitor.request(end, lengths)
+        assert not monitor.request(end, lengths)   # one at a time
+        monitor.wait(timeout=30.0)
+        assert monitor.latest.position == pytest.approx(0.2385, abs=1e-3)
+        assert monitor.latest_seconds > 0.0
+        assert not monitor.request(end, lengths)   # the same lengths: nothing new to compute
+        # 0.427 m combined < 0.5 m: a warning naming the distances.
+        assert '0.2385 m and 135.3 deg' in monitor.warning()
+        monitor.warning_distance = 0.1
+        assert monitor.warning() == ''
+    finally:
+        monitor.close()
