@@ -117,8 +117,8 @@ def main(argv=None):
               f'{baseline_seconds * 1e3:7.0f} {baseline_seconds / median:6.1f} '
               f'{"met" if met[-1] else "missed":>7}')
     print('known: the 40 that Dietmaier published; for the paper platform, at least the '
-          f'distinct modes that {MULTI_START} Newton starts find (multi-start: that count, its time in '
-          'this run, and the ratio of its time to the median)')
+          f'distinct modes that {MULTI_START} Newton starts find (multi-start: that count, its '
+          'time in this run, and the ratio of its time to the median)')
 
     paper = load_geometry(ROOT / 'config' / 'paper_platform.yaml')
     best, median, margin = timed(lambda: assembly_mode_margin(paper, TABLE_3_END), args.repeat)

@@ -298,7 +298,6 @@ class PoseTracker:
         return assembly_mode_jump(self.settings, self.last_pose, self.last_lengths,
                                   solution.pose, lengths)
 
-
     def _ambiguous_start(self, lengths) -> Optional[Finding]:
         """
         Say why a first solution cannot be trusted to be in the platform's mode, or return None.

@@ -77,7 +77,8 @@ class FkNode(Node):
         values = declare_parameters(
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-            + parameter_spec.ASSEMBLY_MODE_PARAMETERS + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+            + parameter_spec.ASSEMBLY_MODE_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change)
         self.geometry = geometry_from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)
@@ -221,8 +222,8 @@ class AssemblyModeMarginReport:
             elif margin.nearest is None:
                 message = 'no other assembly mode within the limits'
             else:
-                message = (f'nearest other assembly mode within the limits: '
-                           f'{margin.position:.4g} m and {math.degrees(margin.angle):.4g} deg away')
+                message = (f'nearest other assembly mode within the limits: {margin.position:.4g} '
+                           f'm and {math.degrees(margin.angle):.4g} deg away')
             if not margin.complete:
                 level = DiagnosticStatus.WARN
                 message += f'; the search was incomplete: {margin.reason}'

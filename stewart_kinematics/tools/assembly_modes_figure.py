@@ -56,7 +56,7 @@ def table_3_end_modes(limits_file=True):
 
 
 def markdown_table(modes):
-    """The modes as a Markdown table: pose, distance from the commanded pose, limits."""
+    """Return the modes as a Markdown table: pose, distance from the commanded pose, limits."""
     rows = ['| Mode | X [mm] | Y [mm] | Z [mm] | alpha [deg] | beta [deg] | gamma [deg] | '
             'Distance [mm] | Turned [deg] | Condition | Within example_limits.yaml |',
             '| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |']
