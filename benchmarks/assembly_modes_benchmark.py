@@ -75,6 +75,45 @@ def multi_start(geometry, lengths, starts, seed=0):
     return len(distinct)
 
 
+def tracking_cost(geometry, updates=2000):
+    """
+    The margin's cost to fk_node's message path: tracker updates alone, then with the margin.
+
+    fk_node computes the margin in a worker thread; what its messages feel is the competition
+    for the interpreter (the GIL) while one runs. Here the worker computes margins back to back
+    (the worst case: fk_node starts one at most once a second) while the tracker follows the
+    Table 3 ramp sampled at ``updates`` points.
+    """
+    from stewart_kinematics import PoseTracker
+    from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
+    fractions = np.linspace(0.0, 1.0, updates)[:, None]
+    lengths = inverse_kinematics(geometry, geometry.home_pose + fractions
+                                 * (TABLE_3_END - geometry.home_pose))
+
+    def run(monitor):
+        tracker = PoseTracker(geometry)
+        times = []
+        for row, target in enumerate(lengths):
+            if monitor is not None and row % 10 == 0:
+                monitor.request(tracker.last_pose, tracker.last_lengths)
+            start = time.perf_counter()
+            tracker.update(target)
+            times.append(time.perf_counter() - start)
+        return np.array(times)
+
+    alone = run(None)
+    monitor = AssemblyModeMarginMonitor(geometry)
+    try:
+        busy = run(monitor)
+    finally:
+        monitor.close()
+    print(f'tracker update (fk_node\'s work per message), {updates} along Table 3: median '
+          f'{np.median(alone) * 1e6:.0f} us alone, {np.median(busy) * 1e6:.0f} us while margins '
+          f'are computed back to back in the worker ({np.median(busy) / np.median(alone):.2f}x); '
+          f'99th percentile {np.percentile(alone, 99) * 1e6:.0f} us and '
+          f'{np.percentile(busy, 99) * 1e6:.0f} us')
+
+
 def cases(rng, random_poses):
     data = yaml.safe_load((ROOT / 'test' / 'resources' / 'dietmaier_40_modes.yaml').read_text())
     dietmaier = Geometry(np.array(data['base_joints']), np.array(data['platform_joints']),
@@ -130,6 +169,7 @@ def main(argv=None):
         lambda: forward_kinematics(paper, inverse_kinematics(paper, TABLE_3_END)), 200)
     print(f'one Newton-Raphson solve from home, for scale: median {solve_median * 1e6:.0f} us '
           f'({median / solve_median:.0f} solves per margin)')
+    tracking_cost(paper)
     print(f'target (all modes under {TARGET_SECONDS * 1e3:.0f} ms, median): '
           f'{"met" if all(met) else "missed"} in {sum(met)} of {len(met)} cases')
 
