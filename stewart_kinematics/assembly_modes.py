@@ -26,16 +26,19 @@ continuation, complete by construction rather than by the luck of a multi-start 
    every ``Q_i`` lies in one linear space of quadrics. With a random complex linear chart
    ``c . z = 1`` the system is 8 quadratic and linear equations in 8 unknowns, whose generic
    number of solutions is 40 (Raghavan 1993; Ronga and Vust 1995; Husty 1996).
-2. **Start system**, built once per process (about 0.3 s, :func:`start_system`): a random
-   complex platform with a known solution; monodromy loops (tracking that solution around
-   loops in the space of platforms) give the other 39.
-3. **Parameter homotopy** to the given platform and lengths: the 40 start solutions are
-   tracked along ``gamma (1 - s) Q_start + s Q_target`` for s from 0 to 1 (the "gamma trick":
-   with a random complex gamma the path meets no singular system before s = 1), all 40 paths
-   as one vectorised predictor-corrector (Runge-Kutta predictor, Newton corrector, step size
-   adapted per path). By the theory of coefficient-parameter homotopy (Morgan and Sommese
-   1989), the ends of the 40 paths include every isolated solution of the target, real or
-   complex.
+2. **Start systems.** Once per process (about 1 s, :func:`start_system`): a random complex
+   platform with a known solution; monodromy loops (tracking that solution around loops in the
+   space of platforms) give the other 39. Once per geometry (about 0.1 s,
+   :func:`geometry_start_system`): its 40 solutions tracked to the given geometry with random
+   complex leg lengths near its home lengths; a degenerate geometry keeps fewer (the others go
+   to infinity).
+3. **Parameter homotopy** to the given lengths: the geometry's start solutions are tracked
+   along ``gamma (1 - s) Q_start + s Q_target`` for s from 0 to 1 (only the lengths change;
+   the "gamma trick": with a random complex gamma the path meets no singular system before
+   s = 1), all paths as one vectorised predictor-corrector (Runge-Kutta predictor, Newton
+   corrector, step size adapted per path). By the theory of coefficient-parameter homotopy
+   (Morgan and Sommese 1989), the ends of the paths include every isolated solution of the
+   target, real or complex.
 4. **Real modes**: the path ends whose pose is real are refined by this package's
    Newton-Raphson (:func:`stewart_kinematics.forward_kinematics`) to 1e-12 m in leg lengths,
    deduplicated, checked against the geometry's limits and sorted by their distance from a
@@ -59,6 +62,7 @@ from dataclasses import dataclass
 import functools
 import math
 from typing import Optional, Tuple
+import weakref
 
 import numpy as np
 
@@ -158,10 +162,11 @@ class AssemblyModes:
         real assembly mode, by construction.
     :param reason: ``''`` when ``complete`` and at least one mode was found; else why not
         (no real solution, failed paths).
-    :param paths: homotopy paths tracked (40).
+    :param paths: homotopy paths tracked (40, or fewer for a degenerate geometry).
     :param failed_paths: paths that stopped before their end or ended at a singular point.
     :param complex_solutions: path ends that are complex solutions.
-    :param at_infinity: path ends at infinity (solutions a degenerate platform loses).
+    :param at_infinity: solutions at infinity or beyond any real pose's reach (a degenerate
+        platform loses some of the 40; a complex solution may lie far away).
     :param method: how the modes were found.
     """
 
@@ -172,7 +177,7 @@ class AssemblyModes:
     failed_paths: int
     complex_solutions: int
     at_infinity: int
-    method: str = 'homotopy continuation from a 40-solution start system'
+    method: str = 'parameter homotopy in Study parameters from the geometry\'s start system'
 
     @property
     def poses(self) -> np.ndarray:
@@ -216,7 +221,7 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
     if reference.shape != (6,):
         raise ValueError(f'reference_pose must have shape (6,), got {reference.shape}')
     frame = _NormalisedFrame(geometry)
-    start = start_system()
+    start, lost = geometry_start_system(geometry)
     target = _normalised_quadrics(start.basis, frame.platform_joints, frame.base_joints,
                                   lengths / frame.scale)
     # Every real pose lies within reach of the base (|t| <= max l + max |p| + max |b|); a path
@@ -251,7 +256,63 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
         modes=modes, complete=complete, reason='; '.join(reasons), paths=len(ends),
         failed_paths=int(np.count_nonzero(failed)),
         complex_solutions=int(np.count_nonzero(solved & ~real)),
-        at_infinity=int(np.count_nonzero(at_infinity)))
+        at_infinity=lost + int(np.count_nonzero(at_infinity)))
+
+
+#: The start systems of the geometries seen, by geometry (see geometry_start_system).
+_GEOMETRY_STARTS = weakref.WeakKeyDictionary()
+#: Leg lengths of a geometry's start system: the squares of the home leg lengths, each times
+#: 1 plus this times a random complex number (a start near the real lengths gives short
+#: paths; any generic complex start gives every solution).
+START_LENGTH_SPREAD = 0.2
+
+
+def geometry_start_system(geometry):
+    """
+    Build (once per geometry) its start system: its solutions for random complex lengths.
+
+    Tracked once from :func:`start_system` (the 40 paths of a general platform, about 0.1 s),
+    cached per geometry. The homotopies of :func:`assembly_modes` then change only the leg
+    lengths, a parameter homotopy within the geometry's own family, along paths two to four
+    times shorter; a degenerate geometry's lost solutions are not tracked again.
+
+    :returns: ``(StartSystem, lost)``: its solutions, and how many of the 40 went to infinity
+        for this geometry. Falls back to the general start system, with ``lost`` 0, if a path
+        failed.
+    """
+    cached = _GEOMETRY_STARTS.get(geometry)
+    if cached is None:
+        cached = _GEOMETRY_STARTS[geometry] = _build_geometry_start(geometry)
+    return cached
+
+
+def _build_geometry_start(geometry):
+    generic = start_system()
+    frame = _NormalisedFrame(geometry)
+    rng = np.random.default_rng(START_SEED + 1)
+    home = geometry.home_leg_lengths / frame.scale
+    lengths_squared = home ** 2 * (1.0 + START_LENGTH_SPREAD * (
+        rng.normal(size=6) + 1j * rng.normal(size=6)))
+    quadrics = _leg_quadrics(generic.basis, frame.platform_joints, frame.base_joints,
+                             lengths_squared)
+    quadrics /= np.linalg.norm(quadrics, axis=(-2, -1), keepdims=True)
+    reach = np.max(np.abs(home)) + np.max(np.linalg.norm(frame.platform_joints, axis=-1)) + (
+        np.max(np.linalg.norm(frame.base_joints, axis=-1)))
+    ends, reached = _track(generic, quadrics, generic.solutions, far=1e5 * reach)
+    ends, residuals, conditions = _polish(generic, quadrics, ends)
+    e = ends[:, :4]
+    with np.errstate(divide='ignore', invalid='ignore'):
+        distance = np.linalg.norm(_translation_times_delta(ends), axis=-1) / np.abs(
+            np.sum(e * e, axis=-1))
+    at_infinity = ~(distance < 1e5 * reach) & (reached > 1.0 - END_OF_PATH)
+    solved = ((reached >= 1.0) & ~at_infinity & (residuals < END_RESIDUAL)
+              & (conditions < SINGULAR_END))
+    if np.any(~solved & ~at_infinity) or _count_distinct(ends[solved]) != np.count_nonzero(
+            solved):
+        return generic, 0
+    gamma = complex(np.exp(2j * np.pi * rng.uniform()))
+    return StartSystem(quadrics, _newton(generic, quadrics, ends[solved]), generic.chart, gamma,
+                       generic.basis, 0), int(np.count_nonzero(at_infinity))
 
 
 def pose_distance(geometry, pose_a, pose_b):
@@ -510,8 +571,12 @@ def _merge_distinct(known, new):
 
 
 def _count_distinct(points):
-    kept = np.empty((0, 8), dtype=complex)
-    return len(_merge_distinct(kept, points)) if len(points) else 0
+    """How many of the points (n, 8) are distinct (farther apart than 1e-6 relative)."""
+    if len(points) == 0:
+        return 0
+    separation = np.linalg.norm(points[:, None, :] - points[None, :, :], axis=-1)
+    same = separation <= 1e-6 * np.linalg.norm(points, axis=-1)[None, :]
+    return int(np.count_nonzero(~np.any(np.tril(same, k=-1), axis=-1)))
 
 
 class _Homotopy:

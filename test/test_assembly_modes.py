@@ -65,7 +65,7 @@ def multi_start_modes(base, platform, lengths, starts=4000, seed=0):
 
     Starts: uniformly random rotations (normalised Gaussian quaternions) and positions
     uniform in the ball every solution lies in (|t| <= max l + max |p| + max |b|); each takes
-    60 damped Newton steps (:func:`newton`). Returns distinct solutions as (positions,
+    40 damped Newton steps (:func:`newton`). Returns distinct solutions as (positions,
     rotations).
     """
     rng = np.random.default_rng(seed)
@@ -82,7 +82,7 @@ def multi_start_modes(base, platform, lengths, starts=4000, seed=0):
     directions = rng.normal(size=(starts, 3))
     directions /= np.linalg.norm(directions, axis=-1, keepdims=True)
     positions = directions * reach * rng.uniform(size=(starts, 1)) ** (1 / 3)
-    positions, rotations = newton(base, platform, lengths, positions, rotations, 60, reach)
+    positions, rotations = newton(base, platform, lengths, positions, rotations, 40, reach)
     residual = np.max(np.abs(lengths_of_batch(base, platform, positions, rotations) - lengths),
                       axis=-1)
     solved = residual < 1e-10
