@@ -61,6 +61,7 @@ Units are metres and radians, frames and the rotation convention those of
 from dataclasses import dataclass
 import functools
 import math
+import threading
 from typing import Optional, Tuple
 import weakref
 
@@ -261,6 +262,7 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
 
 #: The start systems of the geometries seen, by geometry (see geometry_start_system).
 _GEOMETRY_STARTS = weakref.WeakKeyDictionary()
+_START_LOCK = threading.Lock()
 #: Leg lengths of a geometry's start system: the squares of the home leg lengths, each times
 #: 1 plus this times a random complex number (a start near the real lengths gives short
 #: paths; any generic complex start gives every solution).
@@ -280,10 +282,11 @@ def geometry_start_system(geometry):
         for this geometry. Falls back to the general start system, with ``lost`` 0, if a path
         failed.
     """
-    cached = _GEOMETRY_STARTS.get(geometry)
-    if cached is None:
-        cached = _GEOMETRY_STARTS[geometry] = _build_geometry_start(geometry)
-    return cached
+    with _START_LOCK:   # a second thread waits for the first one's build, not builds again
+        cached = _GEOMETRY_STARTS.get(geometry)
+        if cached is None:
+            cached = _GEOMETRY_STARTS[geometry] = _build_geometry_start(geometry)
+        return cached
 
 
 def _build_geometry_start(geometry):
@@ -887,6 +890,8 @@ class AssemblyModeMarginMonitor:
         self.latest_lengths = None
         self.latest_seconds = None
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
+        # Build the start systems now, in the background (about 1 s, once per process).
+        self._warm_up = self._pool.submit(geometry_start_system, geometry)
         self._running = None
 
     def request(self, pose, lengths) -> bool:
