@@ -83,7 +83,7 @@ def multi_start(geometry, lengths, starts, seed=0):
 
 def tracking_cost(geometry, updates=2000):
     """
-    The margin's cost to fk_node's message path: tracker updates alone, then with the margin.
+    Measure the margin's cost to fk_node's message path: tracker updates alone, then with it.
 
     fk_node computes the margin in a worker thread; what its messages feel is the competition
     for the interpreter (the GIL) while one runs. Here the worker computes margins back to back
@@ -113,11 +113,37 @@ def tracking_cost(geometry, updates=2000):
         busy = run(monitor)
     finally:
         monitor.close()
-    print(f'tracker update (fk_node\'s work per message), {updates} along Table 3: median '
+    print(f'tracker update (the work of fk_node per message), {updates} along Table 3: median '
           f'{np.median(alone) * 1e6:.0f} us alone, {np.median(busy) * 1e6:.0f} us while margins '
           f'are computed back to back in the worker ({np.median(busy) / np.median(alone):.2f}x); '
           f'99th percentile {np.percentile(alone, 99) * 1e6:.0f} us and '
           f'{np.percentile(busy, 99) * 1e6:.0f} us')
+
+
+def sweep(count, starts=6000, seed=11):
+    """
+    Random general platforms at random far poses: every mode against a multi-start search.
+
+    Each platform has Gaussian joints (base spread 1 x 1 x 0.4, platform 0.7 x 0.7 x 0.4), a
+    home pose 1.5 above the base and a target pose anywhere (position spread 0.5 x 0.5 x 1,
+    angles within +-3 rad), so the lengths are far from the home ones.
+    """
+    rng = np.random.default_rng(seed)
+    agreed = 0
+    for _ in range(count):
+        base = rng.normal(size=(6, 3)) * [1.0, 1.0, 0.4]
+        platform = rng.normal(size=(6, 3)) * [0.7, 0.7, 0.4]
+        home = np.concatenate([rng.normal(size=2) * 0.2, [1.5], rng.uniform(-0.3, 0.3, 3)])
+        geometry = Geometry(base, platform, home_pose=home)
+        pose = np.concatenate([rng.normal(size=3) * [0.5, 0.5, 1.0], rng.uniform(-3, 3, 3)])
+        lengths = inverse_kinematics(geometry, pose)
+        result = assembly_modes(geometry, lengths, reference_pose=pose)
+        found = multi_start(geometry, lengths, starts)
+        agreed += bool(result.complete and len(result) >= found
+                       and result.modes[0].distance < 1e-9)
+        print(f'  {len(result)} modes, complete {result.complete}; multi-start {found}')
+    print(f'sweep: {agreed} of {count} random platforms complete, with at least the modes '
+          f'{starts} Newton starts find and the pose the lengths came from')
 
 
 def cases(rng, random_poses):
@@ -138,6 +164,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[1])
     parser.add_argument('--repeat', type=int, default=10, help='calls timed per case')
     parser.add_argument('--random-poses', type=int, default=3)
+    parser.add_argument('--sweep', type=int, default=0, metavar='N',
+                        help='then compare with a multi-start on N random general platforms')
     args = parser.parse_args(argv)
 
     start = time.perf_counter()
@@ -181,6 +209,8 @@ def main(argv=None):
     print(f'one Newton-Raphson solve from home, for scale: median {solve_median * 1e6:.0f} us '
           f'({median / solve_median:.0f} solves per margin)')
     tracking_cost(paper)
+    if args.sweep:
+        sweep(args.sweep)
     print(f'target (all modes under {TARGET_SECONDS * 1e3:.0f} ms): met in '
           f'{sum(cpu for _, cpu in met)} of {len(met)} cases in processor time (the target '
           f'column), {sum(wall for wall, _ in met)} of {len(met)} in median wall time')

@@ -178,7 +178,7 @@ class AssemblyModes:
     failed_paths: int
     complex_solutions: int
     at_infinity: int
-    method: str = 'parameter homotopy in Study parameters from the geometry\'s start system'
+    method: str = 'parameter homotopy in Study parameters from a start system of the geometry'
 
     @property
     def poses(self) -> np.ndarray:
