@@ -102,7 +102,7 @@ class FkNode(Node):
             self.margin = AssemblyModeMarginReport(
                 self, diagnostics, AssemblyModeMarginMonitor(
                     self.geometry, values['assembly_mode_margin_warning']))
-            diagnostics.inputs.append(self.margin)   # reported with the inputs, once a second
+            diagnostics.reporters.append(self.margin)   # with the inputs, once a second
             self.create_timer(values['assembly_mode_margin_period'], self.on_margin_timer)
         self.get_logger().info(
             f'ready: tolerance {values["tolerance"]:g} m, '
