@@ -33,6 +33,13 @@ Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
+from stewart_kinematics.assembly_modes import (
+    assembly_mode_margin,
+    assembly_modes,
+    AssemblyMode,
+    AssemblyModeMargin,
+    AssemblyModes,
+)
 from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.geometry import Geometry
@@ -59,6 +66,11 @@ from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
 
 __all__ = [
+    'assembly_mode_margin',
+    'assembly_modes',
+    'AssemblyMode',
+    'AssemblyModeMargin',
+    'AssemblyModes',
     'calibrate',
     'CalibrationError',
     'CalibrationResult',
@@ -72,11 +84,11 @@ __all__ = [
     'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
-    'LegCommand',
-    'LegVelocityCommand',
     'leg_lengths',
     'leg_vectors',
     'leg_velocities',
+    'LegCommand',
+    'LegVelocityCommand',
     'load_geometry',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',

@@ -37,6 +37,8 @@ NO_POSE_YET = 'no_pose_yet'
 NO_SOLUTION = 'no_solution'
 INACCURATE_POSE = 'inaccurate_pose'
 ASSEMBLY_MODE_JUMP = 'assembly_mode_jump'
+AMBIGUOUS_ASSEMBLY_MODE = 'ambiguous_assembly_mode'
+ASSEMBLY_MODE_MARGIN = 'assembly_mode_margin'
 NEAR_SINGULARITY = 'near_singularity'
 
 

@@ -279,6 +279,33 @@ SOLVER_PARAMETERS = (
         'change of the lengths, degrees',
         default=10.0, validators=(finite, in_range(0.0, 180.0, low_inclusive=False)),
         constraints='in (0, 180]'),
+    ParameterSpec(
+        'refuse_ambiguous_start', BOOL,
+        'After a start or reset_tracker, refuse to publish while more than one assembly mode '
+        'lies within the limits and none within the two assembly-guard changes above of the '
+        'last known pose (home, or the reset pose): the lengths alone do not tell which mode '
+        'the platform is in. Costs one search for every mode (about 0.1 s) per new set of '
+        'lengths until a pose is accepted',
+        default=False, constraints='any'),
+)
+
+#: The assembly-mode margin that fk_node reports (see stewart_kinematics.assembly_modes).
+ASSEMBLY_MODE_PARAMETERS = (
+    ParameterSpec(
+        'assembly_mode_margin_period', DOUBLE,
+        'Time between two computations of the assembly-mode margin of the last solution '
+        '(the distance to the nearest other real mode within the limits, on /diagnostics), '
+        'seconds; each runs in a worker thread, and only when the lengths changed; 0.0 turns '
+        'the margin off',
+        default=1.0, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
+        constraints='in [0, 3600]'),
+    ParameterSpec(
+        'assembly_mode_margin_warning', DOUBLE,
+        'A margin below this gives a WARN status and a log line: another real assembly mode '
+        'within the limits lies this close to the estimated pose, metres, as '
+        'sqrt(position^2 + (rho angle)^2) with rho the RMS radius of the platform joints; '
+        '0.0 for no warning',
+        default=0.05, validators=(finite, in_range(0.0, 100.0)), constraints='in [0, 100]'),
 )
 
 FRAME_PARAMETERS = (
@@ -376,8 +403,9 @@ RAMP_PARAMETERS = (
 
 def all_specs():
     """Return every parameter spec of the package, each name once."""
-    return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS
-            + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+    return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
+            + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + MARKER_PARAMETERS
+            + QUEUE_PARAMETERS + RAMP_PARAMETERS)
 
 
 def check_known_names(names, context: str) -> None:

@@ -44,6 +44,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from stewart_kinematics import findings, limits, parameter_spec
+from stewart_kinematics.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.kinematics import as_poses, forward_kinematics, ForwardKinematicsResult
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
@@ -66,6 +67,7 @@ class TrackerSettings:
     assembly_guard_length_change: float = 0.005
     assembly_guard_position_change: float = 0.05
     assembly_guard_angle_change_deg: float = 10.0
+    refuse_ambiguous_start: bool = False
 
     def __post_init__(self):
         parameter_spec.check_values(
@@ -155,6 +157,8 @@ class PoseTracker:
         #: The forward kinematics result of the last accepted pose, whose Jacobian the next
         #: solve reuses; ``None`` after a reset.
         self.last_solution = None
+        #: After a start or reset: the last start_ambiguity check, with its lengths.
+        self._start_check = None
 
     @classmethod
     def from_parameters(cls, geometry, values: dict) -> 'PoseTracker':
@@ -188,6 +192,7 @@ class PoseTracker:
         self.last_pose = np.array(start)
         self.last_lengths = None
         self.last_solution = None
+        self._start_check = None
 
     def update(self, lengths) -> PoseEstimate:
         """
@@ -289,9 +294,33 @@ class PoseTracker:
         if violations:
             return findings.out_of_limits('the pose of these leg lengths is', violations)
         if self.last_lengths is None:
-            return None
+            return self._ambiguous_start(lengths) if self.settings.refuse_ambiguous_start else None
         return assembly_mode_jump(self.settings, self.last_pose, self.last_lengths,
                                   solution.pose, lengths)
+
+    def _ambiguous_start(self, lengths) -> Optional[Finding]:
+        """
+        Say why a first solution cannot be trusted to be in the platform's mode, or return None.
+
+        Runs :func:`stewart_kinematics.assembly_modes.start_ambiguity` from the last known
+        pose; its answer is kept while no leg changes by more than
+        ``assembly_guard_length_change``, so a platform at rest costs one search.
+        """
+        settings = self.settings
+        if self._start_check is not None and np.max(np.abs(
+                lengths - self._start_check[0])) <= settings.assembly_guard_length_change:
+            check = self._start_check[1]
+        else:
+            check = start_ambiguity(self.geometry, lengths, self.last_pose,
+                                    settings.assembly_guard_position_change,
+                                    math.radians(settings.assembly_guard_angle_change_deg))
+            self._start_check = (lengths, check)
+        if not check.ambiguous:
+            return None
+        return Finding(
+            findings.AMBIGUOUS_ASSEMBLY_MODE, check.reason,
+            (('modes_within_limits', str(check.modes_within_limits)),
+             ('search_complete', str(check.complete))))
 
 
 def assembly_mode_jump(settings: TrackerSettings, last_pose, last_lengths, pose,

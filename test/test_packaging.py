@@ -38,6 +38,8 @@ PACKAGE = 'stewart_kinematics'
 #: of the same name.
 PYTHON_ROSDEP_KEYS = {
     'matplotlib': 'python3-matplotlib',
+    # mpl_toolkits (mplot3d) ships inside matplotlib.
+    'mpl_toolkits': 'python3-matplotlib',
     'numpy': 'python3-numpy',
     'scipy': 'python3-scipy',
     'yaml': 'python3-yaml',

@@ -33,7 +33,8 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
     parameter_spec.GEOMETRY_PARAMETERS, parameter_spec.SOLVER_PARAMETERS,
     parameter_spec.FRAME_PARAMETERS, parameter_spec.MARKER_PARAMETERS,
     parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
-], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp'])
+    parameter_spec.ASSEMBLY_MODE_PARAMETERS,
+], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp', 'assembly_mode'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
     assert parameter_spec.markdown_table(specs) in README, (

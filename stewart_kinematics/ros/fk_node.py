@@ -28,8 +28,19 @@ home pose, for homing and restarts. What to publish and what to refuse is decide
 solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
 assembly mode); the node converts the messages, publishes, and counts each refusal and each
 warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
+
+Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
+nearest other real assembly mode within the limits is computed in a worker thread
+(:class:`stewart_kinematics.assembly_modes.AssemblyModeMarginMonitor`, only when the lengths
+changed) and reported with the other statuses, WARN when below
+``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
+solution (after a start or reset_tracker) when the lengths allow several modes within the
+limits and none near the last known pose.
 """
 
+import math
+
+from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
@@ -38,10 +49,16 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.parameter_spec import geometry_from_parameters
 from stewart_kinematics.pose_tracker import PoseTracker, SETTING_NAMES
-from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
+from stewart_kinematics.ros.message_accounting import (
+    LogThrottle,
+    MessageAccounting,
+    NodeDiagnostics,
+    WARNING_PERIOD,
+)
 from stewart_kinematics.ros.message_conversions import (
     leg_lengths_from_message,
     legs_from_joint_state,
@@ -60,7 +77,8 @@ class FkNode(Node):
         values = declare_parameters(
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-            + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+            + parameter_spec.ASSEMBLY_MODE_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change)
         self.geometry = geometry_from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)
@@ -79,6 +97,13 @@ class FkNode(Node):
         self.create_subscription(
             Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
         self.create_service(Trigger, 'reset_tracker', self.on_reset_tracker)
+        self.margin = None
+        if values['assembly_mode_margin_period'] > 0.0:
+            self.margin = AssemblyModeMarginReport(
+                self, diagnostics, AssemblyModeMarginMonitor(
+                    self.geometry, values['assembly_mode_margin_warning']))
+            diagnostics.reporters.append(self.margin)   # with the inputs, once a second
+            self.create_timer(values['assembly_mode_margin_period'], self.on_margin_timer)
         self.get_logger().info(
             f'ready: tolerance {values["tolerance"]:g} m, '
             f'at most {values["max_iterations"]} iterations')
@@ -87,6 +112,18 @@ class FkNode(Node):
         """Pass a solver parameter changed at run time (already validated) to the tracker."""
         if name in SETTING_NAMES:
             self.tracker.configure(**{name: value})
+        if name == 'assembly_mode_margin_warning' and self.margin is not None:
+            self.margin.monitor.warning_distance = value
+
+    def on_margin_timer(self):
+        """Start computing the assembly-mode margin of the last solution, in the background."""
+        self.margin.monitor.request(self.tracker.last_pose, self.tracker.last_lengths)
+
+    def destroy_node(self):
+        """Stop the margin's worker thread, then the node."""
+        if self.margin is not None:
+            self.margin.monitor.close()
+        return super().destroy_node()
 
     def on_leg_lengths(self, message: Float64MultiArray):
         """Solve for the pose of the received lengths and publish it, or say why not."""
@@ -152,6 +189,54 @@ class FkNode(Node):
             stamped_header = Header(stamp=header.stamp, frame_id=self.base_frame)
             self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
         return True
+
+
+class AssemblyModeMarginReport:
+    """
+    The assembly-mode margin as a diagnostic status, reported with the node's inputs.
+
+    :param node: the fk_node.
+    :param diagnostics: its :class:`NodeDiagnostics`.
+    :param monitor: the core's :class:`AssemblyModeMarginMonitor`, which decides the warning.
+    """
+
+    def __init__(self, node, diagnostics: NodeDiagnostics, monitor: AssemblyModeMarginMonitor):
+        self.monitor = monitor
+        self.status_name = f'{node.get_fully_qualified_name()}: assembly mode margin'
+        self.hardware_id = diagnostics.hardware_id
+        self._log_throttle = LogThrottle(node.get_logger(), WARNING_PERIOD)
+
+    def report(self) -> DiagnosticStatus:
+        """Return the latest margin: WARN with the core's reason when it is too small."""
+        warning = self.monitor.warning()
+        margin = self.monitor.latest
+        if warning:
+            self._log_throttle.log(findings.ASSEMBLY_MODE_MARGIN, warning)
+        values = []
+        if margin is None:
+            level, message = DiagnosticStatus.OK, 'no solution yet, or not computed yet'
+        else:
+            level = DiagnosticStatus.WARN if warning else DiagnosticStatus.OK
+            if warning:
+                message = warning
+            elif margin.nearest is None:
+                message = 'no other assembly mode within the limits'
+            else:
+                message = (f'nearest other assembly mode within the limits: {margin.position:.4g} '
+                           f'm and {math.degrees(margin.angle):.4g} deg away')
+            if not margin.complete:
+                level = DiagnosticStatus.WARN
+                message += f'; the search was incomplete: {margin.reason}'
+            values = [('margin_position_m', f'{margin.position:.6g}'),
+                      ('margin_angle_deg', f'{math.degrees(margin.angle):.6g}'),
+                      ('margin_distance_m', f'{margin.distance:.6g}'),
+                      ('modes_within_limits', str(margin.modes_within_limits)),
+                      ('search_complete', str(margin.complete)),
+                      ('computed_in_ms', f'{self.monitor.latest_seconds * 1e3:.1f}')]
+        return DiagnosticStatus(
+            level=level, name=self.status_name, message=message,
+            hardware_id=self.hardware_id,
+            values=[KeyValue(key=key, value=value) for key, value in values])
 
 
 def main(args=None) -> int:

@@ -55,6 +55,8 @@ class NodeDiagnostics:
     def __init__(self, node):
         self.node = node
         self.inputs = []
+        #: Other statuses in the same array: objects whose ``report()`` returns one.
+        self.reporters = []
         namespace = node.get_namespace()
         self.hardware_id = HARDWARE_ID + ('' if namespace == '/' else namespace)
         self.publisher = create_output_publisher(
@@ -68,8 +70,9 @@ class NodeDiagnostics:
         return accounting
 
     def publish_report(self):
-        """Publish one status per input, in one array stamped now."""
-        array = DiagnosticArray(status=[accounting.report() for accounting in self.inputs])
+        """Publish one status per input, then the other reporters', in one array stamped now."""
+        array = DiagnosticArray(status=[source.report()
+                                        for source in self.inputs + self.reporters])
         array.header.stamp = self.node.get_clock().now().to_msg()
         self.publisher.publish(array)
 
