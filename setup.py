@@ -42,6 +42,7 @@ setup(
             'ik_node = stewart_kinematics.ros.ik_node:main',
             'fk_node = stewart_kinematics.ros.fk_node:main',
             'trajectory_node = stewart_kinematics.ros.trajectory_node:main',
+            'stewart_platform = stewart_kinematics.ros.stewart_platform:main',
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
         ],
     },
