@@ -132,7 +132,9 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
         # The recorder and ik_node both subscribe target_pose: wait for both before playing.
         nodes.append(NodeProcess('trajectory_node', [
             '--ros-args', '--params-file', str(platform), '--params-file', str(ramp),
-            '-p', 'min_subscribers:=2', '-p', f'row_period:={row_period}']))
+            # Named for the node: a bare -p loses to the file's trajectory_node section.
+            '-p', 'trajectory_node:min_subscribers:=2',
+            '-p', f'trajectory_node:row_period:={row_period}']))
         if not recorder.spin_until(lambda: recorder.complete(row_count), deadline, nodes):
             return _fail(f'the ramp did not complete: {recorder.counts()} of {row_count} '
                          'poses, lengths, estimates received', nodes)
