@@ -24,8 +24,8 @@ arguments=None, **kwargs)`` with ``kwargs`` going to ``ExecuteProcess``;
 default_value=None, description=None, choices=None, **kwargs)``; ``IfCondition(
 predicate_expression)``, ``UnlessCondition(predicate_expression)``; ``GroupAction(actions, *,
 scoped=True, forwarding=True, launch_configurations=None, **kwargs)``;
-``LaunchDescription(initial_entities=None, *, deprecated_reason=None)``; ``get_package_share_directory(package_name, print_warning=True)``)
-and refuse what the real ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it
+``LaunchDescription(initial_entities=None, *, deprecated_reason=None)``;
+``get_package_share_directory(package_name, print_warning=True)``) and refuse what the real ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it
 applies the command-line arguments and the declared defaults, resolves the substitutions,
 evaluates the conditions and expands each node's namespace as ``launch_ros`` does.
 

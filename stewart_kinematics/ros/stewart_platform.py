@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""
+r"""
 The whole chain in one process: ik_node, fk_node and, if asked, trajectory_node.
 
 As a component container would run them: the same node classes, names, parameters and topics
