@@ -25,9 +25,10 @@ default_value=None, description=None, choices=None, **kwargs)``; ``IfCondition(
 predicate_expression)``, ``UnlessCondition(predicate_expression)``; ``GroupAction(actions, *,
 scoped=True, forwarding=True, launch_configurations=None, **kwargs)``;
 ``LaunchDescription(initial_entities=None, *, deprecated_reason=None)``;
-``get_package_share_directory(package_name, print_warning=True)``) and refuse what the real ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it
-applies the command-line arguments and the declared defaults, resolves the substitutions,
-evaluates the conditions and expands each node's namespace as ``launch_ros`` does.
+``get_package_share_directory(package_name, print_warning=True)``) and refuse what the real
+ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it applies the command-line
+arguments and the declared defaults, resolves the substitutions, evaluates the conditions and
+expands each node's namespace as ``launch_ros`` does.
 
 The package's share directory is a temporary folder holding what setup.py installs into it
 (``config/*.yaml``), so a parameter file that would not be installed is found missing.
