@@ -189,6 +189,46 @@ class FrameTree:
         tool = platform if self.tool_pose is IDENTITY else platform @ self.tool_pose
         return tool if reference is IDENTITY else reference.inverse() @ tool
 
+    def platform_in_base(self, position, rotation, frame_id: str = ''):
+        """
+        Like :meth:`platform_from_tool`, on a position (3,) and a rotation matrix (3, 3).
+
+        The hot path of a command stream: with no tool frame and a pose in the base frame it
+        returns its arguments untouched, at no cost.
+
+        :returns: ``(position, rotation)`` of the platform frame in the base frame.
+        :raises ValueError: for a frame :meth:`reference` does not accept, or a position or
+            rotation that is no rigid transform.
+        """
+        if self.tool_pose is IDENTITY and self.reference(frame_id) is IDENTITY:
+            return position, rotation
+        platform = self.platform_from_tool(Transform(position, rotation), frame_id)
+        return platform.position, platform.rotation
+
+    def tool_pose_vector(self, platform_pose, frame_id: str = ''):
+        """
+        Like :meth:`tool_from_platform`, on pose vectors ``[X, Y, Z, alpha, beta, gamma]``.
+
+        With no tool frame and the base frame asked for, returns ``platform_pose`` itself.
+
+        :raises ValueError: for a frame :meth:`reference` does not accept.
+        """
+        if self.tool_pose is IDENTITY and self.reference(frame_id) is IDENTITY:
+            return platform_pose
+        return self.tool_from_platform(Transform.from_pose(platform_pose), frame_id).as_pose()
+
+    def platform_pose_vectors(self, tool_poses):
+        """
+        Return the platform poses, shape (N, 6), that put the tool frame at ``tool_poses``.
+
+        :param tool_poses: poses of the tool frame in the base frame, shape (N, 6).
+        """
+        tool_poses = np.asarray(tool_poses, dtype=float)
+        if self.tool_pose is IDENTITY:
+            return tool_poses
+        return np.array([self.platform_from_tool(Transform.from_pose(pose)).as_pose()
+                         for pose in tool_poses]).reshape(tool_poses.shape)
+
     def static_transforms(self):
         """
         Return the fixed transforms of named frames, for ``/tf_static``.

@@ -588,6 +588,19 @@ def frames_from_parameters(values: dict) -> FrameTree:
                               merged['tool_frame_orientation_deg']))
 
 
+def frame_parameters_reason(values: dict) -> str:
+    """
+    Say why frame parameter values cannot make a frame tree, or return ``''``.
+
+    For a run-time change, where a rule between parameters (frame names must differ) decides.
+    """
+    try:
+        frames_from_parameters(values)
+    except ValueError as error:
+        return str(error)
+    return ''
+
+
 def _frame_pose(position, orientation_deg) -> Transform:
     """Return the transform of a position (metres) and Euler angles (degrees)."""
     return Transform.from_pose(np.concatenate([

@@ -158,3 +158,25 @@ def test_frames_from_parameters_reads_degrees_and_names():
     assert frames_from_parameters({}).tool_pose is IDENTITY
     with pytest.raises(ValueError, match="'tool_frame' must be a frame name"):
         frames_from_parameters({'tool_frame': '/tcp'})
+
+
+def test_the_array_forms_agree_with_the_transforms_and_skip_the_identity():
+    """platform_in_base, tool_pose_vector, platform_pose_vectors: same numbers, no-op cases."""
+    frames = tree(user_frame='work', user_pose=USER, tool_frame='tcp', tool_pose=TOOL)
+    tool = Transform.from_pose([0.1, 0.05, 0.3, 0.2, 0.1, -0.3])
+    position, rotation = frames.platform_in_base(tool.position, tool.rotation, 'work')
+    expected = frames.platform_from_tool(tool, 'work')
+    assert_allclose(position, expected.position, rtol=0, atol=1e-15)
+    assert_allclose(rotation, expected.rotation, rtol=0, atol=1e-15)
+    platform_pose = expected.as_pose()
+    assert_allclose(frames.tool_pose_vector(platform_pose, 'work'), tool.as_pose(), rtol=0,
+                    atol=1e-14)
+    assert_allclose(frames.platform_pose_vectors([tool.as_pose()] * 2),
+                    [frames.platform_from_tool(tool).as_pose()] * 2, rtol=0, atol=1e-15)
+
+    plain = tree()
+    pose = np.array([0.1, 0.0, 0.4, 0.0, 0.1, 0.0])
+    assert plain.tool_pose_vector(pose) is pose
+    assert plain.platform_in_base(pose[:3], rotation, '')[1] is rotation
+    with pytest.raises(ValueError, match="'camera'"):
+        plain.platform_in_base(pose[:3], rotation, 'camera')

@@ -103,6 +103,10 @@ class TransformBroadcaster:
             self._tf_static = create_output_publisher(
                 node, TFMessage, '/tf_static', TF_STATIC_QOS)
 
+    def has_listeners(self) -> bool:
+        """Whether anyone subscribes ``/tf``: a 1 kHz stream then skips building transforms."""
+        return self._tf is not None and self._tf.get_subscription_count() > 0
+
     def send(self, parent: str, child: str, transform: Transform, stamp):
         """Broadcast one transform on ``/tf`` with ``stamp`` (builtin_interfaces/msg/Time)."""
         if self._tf is not None:
