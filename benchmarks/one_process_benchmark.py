@@ -15,10 +15,11 @@
 """
 One process against three: memory and the pose -> FK pose latency of ik_node and fk_node.
 
-Starts the chain ``target_pose -> ik_node -> leg_lengths -> fk_node -> estimated_pose`` either
-as two console scripts (``ik_node``, ``fk_node``: the three-process layout without the
-trajectory node, which idles during a measurement) or as ``stewart_platform`` (every node in
-one process, one executor), and measures:
+Starts ik_node, fk_node and trajectory_node either as three console scripts or as
+``stewart_platform --play-ramp true`` (the three nodes in one process, one executor), with the
+shipped parameter files; the trajectory node waits for more subscribers than will come, so it
+is there (memory) but publishes nothing. The benchmark drives the chain
+``target_pose -> ik_node -> leg_lengths -> fk_node -> estimated_pose`` and measures:
 
 - memory: the resident set size (VmRSS) of the chain's processes, added up, after a warm-up;
 - latency: from publishing a pose to receiving the pose fk_node estimates from its lengths, at
@@ -32,6 +33,8 @@ the ratios one process / three processes. Run from the repository root::
 """
 
 import argparse
+import math
+import os
 from pathlib import Path
 import statistics
 import sys
@@ -42,6 +45,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 PLATFORM_FILE = ROOT / 'config' / 'paper_platform.yaml'
 SOLVER_FILE = ROOT / 'config' / 'solver.yaml'
+RAMP_FILE = ROOT / 'config' / 'table3_ramp.yaml'
+#: The trajectory node's min_subscribers: more than will come, so that the ramp never plays.
+IDLE_RAMP_SUBSCRIBERS = 1000
 #: Queue depth of the nodes and the probe: no loss at the rates measured.
 QUEUE_DEPTH = 100
 #: Seconds of publishing before a measurement (discovery settled, caches warm), not counted.
@@ -53,9 +59,19 @@ CONNECT_TIMEOUT = 30.0
 def layouts():
     """Return the two layouts: name -> list of (console script, extra arguments)."""
     return {
-        'three processes': [('ik_node', []), ('fk_node', [])],
-        'one process': [('stewart_platform', ['--play-ramp', 'false'])],
+        'three processes': [('ik_node', []), ('fk_node', []), ('trajectory_node', [])],
+        'one process': [('stewart_platform', ['--play-ramp', 'true'])],
     }
+
+
+def pose_key(message):
+    """
+    Return a pose message's position rounded to 1e-6 m: the same for a pose and its FK.
+
+    FK matches a pose to about 1e-13 m, and the benchmark's poses lie 1e-4 m apart.
+    """
+    position = message.position
+    return round(position.x, 6), round(position.y, 6), round(position.z, 6)
 
 
 def resident_kib(pid: int) -> int:
@@ -82,14 +98,26 @@ class Probe:
         self.executor.add_node(self.node)
         self.arrivals = []
 
-    def on_estimate(self, _message):
-        """Record the arrival time of one estimated pose."""
-        self.arrivals.append(time.perf_counter())
+    def on_estimate(self, message):
+        """Record the arrival time of one estimated pose, with the pose it answers."""
+        self.arrivals.append((time.perf_counter(), pose_key(message)))
 
     def connected(self) -> bool:
         """Whether ik_node subscribes target_pose and fk_node publishes estimated_pose."""
         return (self.publisher.get_subscription_count() >= 1
                 and self.node.count_publishers('/estimated_pose') >= 1)
+
+    def gone(self) -> bool:
+        """Whether no node of the chain is left in the graph (the last layout stopped)."""
+        return (self.publisher.get_subscription_count() == 0
+                and self.node.count_publishers('/estimated_pose') == 0)
+
+    def answered(self, message) -> bool:
+        """Publish ``message`` unless an estimate came back already; say whether one did."""
+        if not self.arrivals:
+            self.publisher.publish(message)
+            self.executor.spin_once(timeout_sec=0.05)
+        return bool(self.arrivals)
 
     def spin_until(self, condition, timeout, processes) -> bool:
         """Spin until ``condition()``, ``timeout`` seconds, or a process exits."""
@@ -104,11 +132,17 @@ class Probe:
         """
         Publish ``messages`` cyclically at ``rate`` for ``seconds``, then drain.
 
-        :returns: latencies in seconds, one per pose (``None`` if a pose was lost).
+        An estimate is paired with the oldest unanswered send of the same pose (each pose is
+        sent twice per cycle, there and back), so a straggler of an earlier run cannot pass
+        for an answer.
+
+        :returns: latencies in seconds, one per pose, and the number of poses lost (the
+            latencies are ``None`` when any was).
         """
         self.arrivals = []
         count = int(rate * seconds)
         sends = []
+        keys = [pose_key(messages[index % len(messages)]) for index in range(count)]
         start = time.perf_counter()
         for index in range(count):
             due = start + index / rate
@@ -117,44 +151,66 @@ class Probe:
             sends.append(time.perf_counter())
             self.publisher.publish(messages[index % len(messages)])
         end = time.perf_counter() + 2.0
-        while time.perf_counter() < end and len(self.arrivals) < count:
+        while time.perf_counter() < end and len(self.pair(keys, sends)) < count:
             self.executor.spin_once(timeout_sec=0.01)
-        if len(self.arrivals) != count:
-            return None
-        return np.array(self.arrivals) - np.array(sends)
+        latencies = self.pair(keys, sends)
+        if len(latencies) != count:
+            return None, count - len(latencies)
+        return np.array(latencies), 0
+
+    def pair(self, keys, sends):
+        """Return the latencies of the arrivals that answer a send, in seconds."""
+        waiting = {}
+        for index, key in enumerate(keys[:len(sends)]):
+            waiting.setdefault(key, []).append(index)
+        latencies = []
+        for arrival, key in self.arrivals:
+            # A straggler of an earlier run arrives before any send of its pose in this one.
+            if waiting.get(key) and arrival >= sends[waiting[key][0]]:
+                latencies.append(arrival - sends[waiting[key].pop(0)])
+        return latencies
 
 
 def measure(layout, probe, messages, rate, seconds):
     """
     Start one layout, measure its memory and latency, stop it.
 
-    :returns: ``(resident MiB of its processes, p50 s, p99 s)``.
+    :returns: ``(resident MiB of its processes, p50 s, p99 s, poses lost)``; the latencies
+        are NaN when poses were lost.
     """
     from stewart_kinematics.tools.node_processes import NodeProcess
     arguments = ['--ros-args', '--params-file', str(PLATFORM_FILE), '--params-file',
-                 str(SOLVER_FILE), '-p', f'queue_depth:={QUEUE_DEPTH}']
+                 str(SOLVER_FILE), '--params-file', str(RAMP_FILE),
+                 '-p', f'queue_depth:={QUEUE_DEPTH}',
+                 '-p', f'trajectory_node:min_subscribers:={IDLE_RAMP_SUBSCRIBERS}']
     processes = [NodeProcess(script, [*extra, *arguments]) for script, extra in layout]
     try:
-        if not probe.spin_until(probe.connected, CONNECT_TIMEOUT, processes):
+        probe.arrivals = []
+        # Discovered both ends, then a first round trip: ik_node -> fk_node is wired too.
+        if not (probe.spin_until(probe.connected, CONNECT_TIMEOUT, processes)
+                and probe.spin_until(lambda: probe.answered(messages[0]), CONNECT_TIMEOUT,
+                                     processes)):
             raise RuntimeError('the chain did not connect:\n'
                                + '\n'.join(process.output()[-2000:] for process in processes))
         probe.run(messages, rate, WARM_UP_SECONDS)
         resident = sum(resident_kib(process.process.pid) for process in processes) / 1024.0
-        latencies = probe.run(messages, rate, seconds)
+        latencies, lost = probe.run(messages, rate, seconds)
         if latencies is None:
-            raise RuntimeError(f'poses were lost at {rate:g} Hz')
+            return resident, math.nan, math.nan, lost
         p50, p99 = np.percentile(latencies, [50, 99])
-        return resident, p50, p99
+        return resident, p50, p99, 0
     finally:
         codes = [process.stop() for process in processes]
         if any(codes):
             print(f'warning: exit codes {codes}', file=sys.stderr)
+        # The next layout starts only once this one has left the graph.
+        probe.spin_until(probe.gone, CONNECT_TIMEOUT, [])
 
 
 def main(argv=None) -> int:
     """Measure both layouts in turns and print the table."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    parser.add_argument('--rate', type=float, default=200.0, help='poses a second (200)')
+    parser.add_argument('--rate', type=float, default=100.0, help='poses a second (100)')
     parser.add_argument('--seconds', type=float, default=5.0, help='per measurement (5)')
     parser.add_argument('--rounds', type=int, default=3, help='measurements per layout (3)')
     options = parser.parse_args(argv)
@@ -173,7 +229,8 @@ def main(argv=None) -> int:
     results = {name: [] for name in layouts()}
     with isolated_ros_environment() as domain:
         print(f'ROS_DOMAIN_ID={domain}; {options.rounds} rounds of {options.seconds:g} s at '
-              f'{options.rate:g} Hz per layout', file=sys.stderr)
+              f'{options.rate:g} Hz per layout; load average {os.getloadavg()[0]:.1f} on '
+              f'{os.cpu_count()} CPUs', file=sys.stderr)
         rclpy.init()
         try:
             probe = Probe()
@@ -181,20 +238,25 @@ def main(argv=None) -> int:
                 for name, layout in layouts().items():
                     results[name].append(measure(layout, probe, messages, options.rate,
                                                  options.seconds))
-                    print(f'round {round_index + 1} {name}: {results[name][-1][0]:.1f} MiB, '
-                          f'p50 {results[name][-1][1] * 1e3:.2f} ms, '
-                          f'p99 {results[name][-1][2] * 1e3:.2f} ms', file=sys.stderr)
+                    resident, p50, p99, lost = results[name][-1]
+                    print(f'round {round_index + 1} {name}: {resident:.1f} MiB, '
+                          f'p50 {p50 * 1e3:.2f} ms, p99 {p99 * 1e3:.2f} ms, {lost} lost',
+                          file=sys.stderr)
         finally:
             rclpy.try_shutdown()
-    medians = {name: [statistics.median(values) for values in zip(*runs)]
-               for name, runs in results.items()}
+    # Medians over the rounds without losses (NaN latencies sort last: excluded).
+    medians = {}
+    for name, runs in results.items():
+        complete = [run for run in runs if not run[3]] or runs
+        medians[name] = [statistics.median(values) for values in zip(*complete)]
+        medians[name][3] = sum(run[3] for run in runs)
     three, one = medians['three processes'], medians['one process']
-    print('| Layout | RSS total [MiB] | pose -> FK pose p50 [ms] | p99 [ms] |')
-    print('| --- | --- | --- | --- |')
-    for name, (resident, p50, p99) in medians.items():
-        print(f'| {name} | {resident:.1f} | {p50 * 1e3:.2f} | {p99 * 1e3:.2f} |')
+    print('| Layout | RSS total [MiB] | pose -> FK pose p50 [ms] | p99 [ms] | poses lost |')
+    print('| --- | --- | --- | --- | --- |')
+    for name, (resident, p50, p99, lost) in medians.items():
+        print(f'| {name} | {resident:.1f} | {p50 * 1e3:.2f} | {p99 * 1e3:.2f} | {lost} |')
     print(f'| one / three | {one[0] / three[0]:.2f}x | {one[1] / three[1]:.2f}x | '
-          f'{one[2] / three[2]:.2f}x |')
+          f'{one[2] / three[2]:.2f}x | |')
     return 0
 
 
