@@ -25,7 +25,6 @@ ramp going through them (trajectory_node -> target_pose -> ik_node -> leg_length
 from geometry_msgs.msg import Pose
 from numpy.testing import assert_allclose
 import pytest
-
 from reference import quaternion_from_euler, TABLE_3
 
 pytestmark = pytest.mark.process

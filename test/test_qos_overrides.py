@@ -28,9 +28,8 @@ from geometry_msgs.msg import Pose
 import pytest
 from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.qos import qos_profile_sensor_data
-from sensor_msgs.msg import JointState
-
 from reference import HOME, leg_lengths
+from sensor_msgs.msg import JointState
 
 pytestmark = pytest.mark.process
 

@@ -35,12 +35,16 @@ import pytest
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 from rcl_interfaces.srv import SetParameters
 from rclpy.qos import DurabilityPolicy, QoSProfile
+from reference import (
+    leg_lengths,
+    quaternion_from_euler,
+    quaternion_matrix,
+    rotation_zyx,
+    TABLE_3,
+)
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from tf2_msgs.msg import TFMessage
-
-from reference import leg_lengths, quaternion_from_euler, quaternion_matrix, rotation_zyx
-from reference import TABLE_3
 
 pytestmark = pytest.mark.process
 
