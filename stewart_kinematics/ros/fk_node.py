@@ -25,8 +25,8 @@ velocities, at the last pose), the platform frame on ``/tf`` (with the same stam
 and tool frames on ``/tf_static`` (see :mod:`stewart_kinematics.frames`). Each solve starts
 from the last good solution, since a platform moves continuously, and falls back to the home
 pose when that fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next
-solve start from the home pose, for homing and restarts. What to publish and what to refuse is decided by
-:class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
+solve start from the home pose, for homing and restarts. What to publish and what to refuse
+is decided by :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
 solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
 assembly mode); the node converts the messages, publishes, and counts each refusal and each
 warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
