@@ -17,19 +17,19 @@ Forward kinematics node: six leg lengths in, the platform pose out.
 
 Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), ``joint_states``
 (sensor_msgs/msg/JointState, legs ``leg_1`` .. ``leg_6``) and ``leg_velocities``
-(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool
-frame in the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped:
-the tool frame in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or
-the time of arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg
-velocities, at the last pose), the platform frame on ``/tf`` (with the same stamp) and the user
-and tool frames on ``/tf_static`` (see :mod:`stewart_kinematics.frames`). Each solve starts
-from the last good solution, since a platform moves continuously, and falls back to the home
-pose when that fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next
-solve start from the home pose, for homing and restarts. What to publish and what to refuse
-is decided by :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
+(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
+the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
+in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
+arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
+last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
+``/tf_static`` (see :mod:`stewart_kinematics.frames`). Each solve starts from the last good
+solution, since a platform moves continuously, and falls back to the home pose when that fails; the
+service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for
+homing and restarts. What to publish and what to refuse is decided by
+:class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
 solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
-assembly mode); the node converts the messages, publishes, and counts each refusal and each
-warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
+assembly mode); the node converts the messages, publishes, and counts each refusal and each warning
+(near a singularity) with the core's reason on the log and ``/diagnostics``.
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
