@@ -64,12 +64,12 @@ def table3_pose(elapsed):
 
 
 def stamp_ns(message):
-    """The header stamp of a message, nanoseconds."""
+    """Return the header stamp of a message, nanoseconds."""
     return message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec
 
 
 def as_vector(message: Pose):
-    """Position and quaternion of a Pose, as one array."""
+    """Return the position and quaternion of a Pose, as one array."""
     p, o = message.position, message.orientation
     return np.array([p.x, p.y, p.z, o.x, o.y, o.z, o.w])
 
