@@ -35,6 +35,7 @@ Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 
 from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.findings import Finding
+from stewart_kinematics.frames import FrameTree, Transform
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -45,7 +46,11 @@ from stewart_kinematics.kinematics import (
     leg_vectors,
     twist_jacobian,
 )
-from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+from stewart_kinematics.parameter_spec import (
+    frames_from_parameters,
+    geometry_from_parameters,
+    load_geometry,
+)
 from stewart_kinematics.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
@@ -65,6 +70,8 @@ __all__ = [
     'Finding',
     'forward_kinematics',
     'ForwardKinematicsResult',
+    'FrameTree',
+    'frames_from_parameters',
     'Geometry',
     'geometry_from_parameters',
     'inverse_kinematics',
@@ -83,6 +90,7 @@ __all__ = [
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'Transform',
     'twist_jacobian',
     'TwistEstimate',
 ]

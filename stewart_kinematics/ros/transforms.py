@@ -126,7 +126,9 @@ class TransformBroadcaster:
             return
         for parent, child, transform in transforms:
             self._static_transforms[child] = transform_stamped(parent, child, transform, stamp)
-        self._tf_static.publish(TFMessage(transforms=list(self._static_transforms.values())))
+        if self._static_transforms:   # nothing named: nothing to latch
+            self._tf_static.publish(
+                TFMessage(transforms=list(self._static_transforms.values())))
 
     def forget_static(self, child: str):
         """Stop including the static transform of ``child`` from the next broadcast on."""

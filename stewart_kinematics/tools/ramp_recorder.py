@@ -30,6 +30,7 @@ from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros.message_conversions import leg_lengths_from_message, pose_from_message
+from stewart_kinematics.ros.transforms import TF_QOS, TF_STATIC_QOS, TFMessage
 
 #: Queue depth of the recorder's subscriptions: deep enough for a whole ramp.
 RECORD_DEPTH = 1000
@@ -40,32 +41,38 @@ class RampRecorder(Node):
     Record ``target_pose``, ``leg_lengths`` and ``estimated_pose`` as arrays.
 
     :param bag_path: a rosbag2 folder (MCAP) to create and record every topic into, with
-        ``/diagnostics`` too; ``None`` records nothing to disk. Call :meth:`close` at the end.
+        ``/diagnostics``, and ``/tf`` and ``/tf_static`` where tf2_msgs is installed; ``None``
+        records nothing to disk. Call :meth:`close` at the end.
     """
 
     def __init__(self, bag_path=None, **kwargs):
         super().__init__('ramp_recorder', **kwargs)
         self.target_poses, self.leg_lengths, self.estimated_poses = [], [], []
         qos = QoSProfile(depth=RECORD_DEPTH)
-        topics = [  # topic, message class, where its decoded form goes
-            ('target_pose', Pose, lambda m: self.target_poses.append(pose_from_message(m))),
-            ('leg_lengths', Float64MultiArray,
+        topics = [  # topic, message class, QoS, where its decoded form goes
+            ('target_pose', Pose, qos,
+             lambda m: self.target_poses.append(pose_from_message(m))),
+            ('leg_lengths', Float64MultiArray, qos,
              lambda m: self.leg_lengths.append(leg_lengths_from_message(m))),
-            ('estimated_pose', Pose,
+            ('estimated_pose', Pose, qos,
              lambda m: self.estimated_poses.append(pose_from_message(m))),
-            ('/diagnostics', DiagnosticArray, None),
+            ('/diagnostics', DiagnosticArray, qos, None),
         ]
+        if TFMessage is not None:
+            topics += [('/tf', TFMessage, TF_QOS, None),
+                       ('/tf_static', TFMessage, TF_STATIC_QOS, None)]
         if bag_path is None:
-            topics = [entry for entry in topics if entry[2] is not None]
+            topics = [entry for entry in topics if entry[3] is not None]
             self.bag = None
         else:
             from stewart_kinematics.tools.bag_writer import BagWriter
-            self.bag = BagWriter(bag_path, [(self.resolve_topic_name(topic), message_type, qos)
-                                            for topic, message_type, _ in topics])
-        for topic, message_type, record in topics:
+            self.bag = BagWriter(bag_path, [
+                (self.resolve_topic_name(topic), message_type, profile)
+                for topic, message_type, profile, _ in topics])
+        for topic, message_type, profile, record in topics:
             self.create_subscription(
                 message_type, topic,
-                self._receiver(self.resolve_topic_name(topic), message_type, record), qos,
+                self._receiver(self.resolve_topic_name(topic), message_type, record), profile,
                 raw=True)
 
     def _receiver(self, topic, message_type, record):
@@ -95,7 +102,8 @@ class RampRecorder(Node):
         return (self.count_subscribers('target_pose') >= 2
                 and self.count_subscribers('leg_lengths') >= 2
                 and self.count_publishers('leg_lengths') >= 1
-                and self.count_publishers('estimated_pose') >= 1)
+                and self.count_publishers('estimated_pose') >= 1
+                and (TFMessage is None or self.count_publishers('/tf') >= 1))
 
     def spin_until(self, condition, deadline, processes=()) -> bool:
         """
