@@ -37,12 +37,13 @@ setup(
         'with ROS 2 nodes'),
     license='Apache-2.0',
     # matplotlib draws the figures of ramp_demo only (stewart_kinematics/tools/plots.py).
-    extras_require={'demo': ['matplotlib'], 'test': ['pytest']},
+    extras_require={'demo': ['matplotlib', 'rosbags'], 'test': ['pytest']},
     entry_points={
         'console_scripts': [
             'ik_node = stewart_kinematics.ros.ik_node:main',
             'fk_node = stewart_kinematics.ros.fk_node:main',
             'trajectory_node = stewart_kinematics.ros.trajectory_node:main',
+            'stewart_platform = stewart_kinematics.ros.stewart_platform:main',
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
             'stewart_calibrate = stewart_kinematics.tools.calibrate:main',
         ],

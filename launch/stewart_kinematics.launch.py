@@ -23,14 +23,18 @@ run side by side in two namespaces::
     ros2 launch stewart_kinematics stewart_kinematics.launch.py namespace:=platform_a
     ros2 launch stewart_kinematics stewart_kinematics.launch.py namespace:=platform_b \
         platform_config:=/path/to/platform_b.yaml play_ramp:=false
+
+With ``one_process:=true`` the same nodes, with the same names, parameters and topics, run in
+one process and one executor (the ``stewart_platform`` console script), as a component
+container would run them.
 """
 
 import os
 
 from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument
-from launch.conditions import IfCondition
+from launch.actions import DeclareLaunchArgument, GroupAction
+from launch.conditions import IfCondition, UnlessCondition
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
@@ -38,10 +42,13 @@ PACKAGE = 'stewart_kinematics'
 
 
 def generate_launch_description():
-    """Declare the launch arguments and the three nodes."""
+    """Declare the launch arguments and the three nodes, in three processes or in one."""
     config = os.path.join(get_package_share_directory(PACKAGE), 'config')
     namespace = LaunchConfiguration('namespace')
     platform_config = LaunchConfiguration('platform_config')
+    trajectory_config = LaunchConfiguration('trajectory_config')
+    play_ramp = LaunchConfiguration('play_ramp')
+    one_process = LaunchConfiguration('one_process')
     solver_config = os.path.join(config, 'solver.yaml')
     return LaunchDescription([
         DeclareLaunchArgument(
@@ -56,14 +63,25 @@ def generate_launch_description():
         DeclareLaunchArgument(
             'play_ramp', default_value='true', choices=['true', 'false'],
             description='Start trajectory_node; false when a planner publishes target_pose'),
+        DeclareLaunchArgument(
+            'one_process', default_value='false', choices=['true', 'false'],
+            description='Run the nodes in one process and one executor (stewart_platform)'),
+        GroupAction(condition=UnlessCondition(one_process), actions=[
+            Node(
+                package=PACKAGE, executable='ik_node', namespace=namespace,
+                parameters=[platform_config], output='screen'),
+            Node(
+                package=PACKAGE, executable='fk_node', namespace=namespace,
+                parameters=[platform_config, solver_config], output='screen'),
+            Node(
+                package=PACKAGE, executable='trajectory_node', namespace=namespace,
+                parameters=[platform_config, trajectory_config],
+                output='screen', condition=IfCondition(play_ramp)),
+        ]),
+        # Every node of the process reads the files: each takes its own section and /**.
         Node(
-            package=PACKAGE, executable='ik_node', namespace=namespace,
-            parameters=[platform_config], output='screen'),
-        Node(
-            package=PACKAGE, executable='fk_node', namespace=namespace,
-            parameters=[platform_config, solver_config], output='screen'),
-        Node(
-            package=PACKAGE, executable='trajectory_node', namespace=namespace,
-            parameters=[platform_config, LaunchConfiguration('trajectory_config')],
-            output='screen', condition=IfCondition(LaunchConfiguration('play_ramp'))),
+            package=PACKAGE, executable='stewart_platform', namespace=namespace,
+            parameters=[platform_config, solver_config, trajectory_config],
+            arguments=['--play-ramp', play_ramp], output='screen',
+            condition=IfCondition(one_process)),
     ])

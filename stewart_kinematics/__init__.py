@@ -42,6 +42,7 @@ from stewart_kinematics.assembly_modes import (
 )
 from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.findings import Finding
+from stewart_kinematics.frames import FrameTree, Transform
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -52,7 +53,11 @@ from stewart_kinematics.kinematics import (
     leg_vectors,
     twist_jacobian,
 )
-from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+from stewart_kinematics.parameter_spec import (
+    frames_from_parameters,
+    geometry_from_parameters,
+    load_geometry,
+)
 from stewart_kinematics.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
@@ -80,6 +85,8 @@ __all__ = [
     'Finding',
     'forward_kinematics',
     'ForwardKinematicsResult',
+    'FrameTree',
+    'frames_from_parameters',
     'Geometry',
     'geometry_from_parameters',
     'inverse_kinematics',
@@ -100,6 +107,7 @@ __all__ = [
     'quaternion_to_matrix',
     'Ramp',
     'SingularPoseError',
+    'Transform',
     'twist_jacobian',
     'TwistEstimate',
 ]

@@ -16,10 +16,10 @@
 Calibration: identify the real joints and actuator offsets of a built hexapod from measurements.
 
 The model is the field's standard one, 42 parameters: the six base joints ``b_i`` (base frame),
-the six platform joints ``p_i`` (platform frame, relative to the pivot point, as
-:class:`~stewart_kinematics.Geometry` holds them) and the six actuator offsets ``o_i``. At a
-measured pose ``[X, Y, Z, alpha, beta, gamma]`` (position of the pivot point and orientation of
-the platform frame in the base frame, as every pose of this package) actuator i reads
+the six platform joints ``p_i`` (platform frame, as :class:`~stewart_kinematics.Geometry`
+holds them) and the six actuator offsets ``o_i``. At a measured pose
+``[X, Y, Z, alpha, beta, gamma]`` (position and orientation of the platform frame in the base
+frame, as :class:`~stewart_kinematics.Geometry` takes poses) actuator i reads
 
     ``a_i = |t + R p_i - b_i| - o_i``     (metres)
 
@@ -322,7 +322,7 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
     :param nominal: the drawing's geometry: the starting point, and the home pose and limits
         that the calibrated geometry keeps.
     :param poses: measured poses ``[X, Y, Z, alpha, beta, gamma]`` of the platform in the base
-        frame (metres, radians; the position is the pivot point's), shape (N, 6), N >= 8.
+        frame (metres, radians; the platform frame's origin), shape (N, 6), N >= 8.
     :param actuator_positions: the six actuator readings at each pose, metres, shape (N, 6).
     :param nominal_offsets: the nominal actuator offsets o_1..o_6, metres; ``None`` when
         unknown: then each leg's mean of nominal length minus reading is used.
@@ -562,12 +562,11 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
 
     :param result: a calibration.
     :param nominal_values: the nominal parameter values (from the nominal parameter files);
-        every package parameter among them is kept (limits, ``pivot_point``, home pose,
-        ``base_frame``, ...), and ``base_joints``, ``platform_joints`` and
-        ``actuator_offsets`` are replaced. ``platform_joints`` is written relative to the
-        platform frame as the file's convention wants: the calibrated joints plus the nominal
-        ``pivot_point``, so that the loaded geometry is the calibrated one. Without nominal
-        values, the calibrated geometry's own home pose and limits are written.
+        every package parameter among them is kept (limits, home pose, frames such as
+        ``tool_frame_position``, ...), and ``base_joints``, ``platform_joints`` (platform
+        frame) and ``actuator_offsets`` are replaced, so that the loaded geometry is the
+        calibrated one. Without nominal values, the calibrated geometry's own home pose and
+        limits are written.
     :returns: parameter name -> value, floats as floats.
     """
     known = {spec.name for spec in all_specs()}
@@ -575,7 +574,6 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
     geometry = result.geometry
     if not values:
         values = {
-            'pivot_point': [0.0, 0.0, 0.0],
             'home_position': geometry.home_pose[:3].tolist(),
             'home_orientation_deg': np.degrees(geometry.home_pose[3:]).tolist(),
             'leg_length_min': geometry.leg_length_min,
@@ -584,10 +582,8 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
             'platform_joint_max_angle_deg': math.degrees(geometry.platform_joint_max_angle),
             'max_jacobian_condition': geometry.max_jacobian_condition,
         }
-    pivot = np.asarray(values.get('pivot_point', [0.0, 0.0, 0.0]), dtype=float)
     values['base_joints'] = [float(value) for value in geometry.base_joints.ravel()]
-    values['platform_joints'] = [float(value)
-                                 for value in (geometry.platform_joints + pivot).ravel()]
+    values['platform_joints'] = [float(value) for value in geometry.platform_joints.ravel()]
     values['actuator_offsets'] = [float(value) for value in result.actuator_offsets]
     check_values(GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS,
                  {**{spec.name: spec.default for spec in GEOMETRY_PARAMETERS}, **values})

@@ -32,6 +32,7 @@ from typing import Any, Callable, Optional, Tuple
 
 import numpy as np
 
+from stewart_kinematics.frames import FrameTree, Transform
 from stewart_kinematics.geometry import Geometry
 import yaml
 
@@ -163,13 +164,6 @@ GEOMETRY_PARAMETERS = (
         'x1, y1, z1, ..., x6, y6, z6',
         read_only=True, validators=(fixed_length(18), finite),
         constraints='18 finite values; 6 distinct, non-collinear joints'),
-    ParameterSpec(
-        'pivot_point', DOUBLE_ARRAY,
-        'Centre of rotation (pivot point) in the platform frame, metres: every pose, on the '
-        'topics and in home_position, places the frame at this point, so that a pure rotation '
-        'turns the platform about it',
-        default=[0.0, 0.0, 0.0], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
     ParameterSpec(
         'home_position', DOUBLE_ARRAY,
         'Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; '
@@ -308,12 +302,90 @@ ASSEMBLY_MODE_PARAMETERS = (
         default=0.05, validators=(finite, in_range(0.0, 100.0)), constraints='in [0, 100]'),
 )
 
+
+def frame_name(name, value) -> str:
+    """Require a tf frame name: no spaces, no leading slash (tf2 refuses those)."""
+    if value.startswith('/') or any(character.isspace() for character in value):
+        return (f"parameter '{name}' must be a frame name without spaces or a leading '/', "
+                f'got {value!r}')
+    return ''
+
+
+def non_empty(name, value) -> str:
+    """Require a non-empty string."""
+    return '' if value else f"parameter '{name}' must not be empty"
+
+
+#: The frame tree (stewart_kinematics.frames): names, and the user and tool frames' poses.
 FRAME_PARAMETERS = (
     ParameterSpec(
         'base_frame', STRING,
-        'Name of the base frame: the frame_id of published stamped poses; a stamped pose '
-        'received in another frame (not empty) is refused, since this package does no tf',
-        default='stewart_base', read_only=True, constraints='any'),
+        'Name of the base frame: the parent of the platform on /tf, and the frame of stamped '
+        'poses; a stamped target in a frame other than this one or user_frame is refused',
+        default='stewart_base', read_only=True, validators=(non_empty, frame_name),
+        constraints='a frame name'),
+    ParameterSpec(
+        'platform_frame', STRING,
+        'Name of the platform frame (the frame the platform joints are given in) on /tf',
+        default='stewart_platform', read_only=True, validators=(non_empty, frame_name),
+        constraints='a frame name'),
+    ParameterSpec(
+        'user_frame', STRING,
+        "Name of a user frame fixed to the base (a work piece's frame), on /tf_static, in "
+        "which stamped poses may be given; '' for none",
+        default='', read_only=True, validators=(frame_name,), constraints="a frame name or ''"),
+    ParameterSpec(
+        'user_frame_position', DOUBLE_ARRAY,
+        'Origin of user_frame in the base frame, X, Y, Z, metres',
+        default=[0.0, 0.0, 0.0], read_only=True, validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
+        'user_frame_orientation_deg', DOUBLE_ARRAY,
+        'Orientation of user_frame in the base frame, alpha, beta, gamma '
+        '(R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
+        constraints='3 values in [-180, 180]'),
+    ParameterSpec(
+        'tool_frame', STRING,
+        "Name of the tool frame fixed to the platform, on /tf_static; '' leaves it unnamed "
+        '(its pose below still applies)',
+        default='', validators=(frame_name,), constraints="a frame name or ''"),
+    ParameterSpec(
+        'tool_frame_position', DOUBLE_ARRAY,
+        'Origin of the tool frame in the platform frame, X, Y, Z, metres: the pivot point. '
+        'Commanded and estimated poses are those of the tool frame, so a pure rotation turns '
+        'the platform about this point',
+        default=[0.0, 0.0, 0.0], validators=(fixed_length(3), finite),
+        constraints='3 finite values'),
+    ParameterSpec(
+        'tool_frame_orientation_deg', DOUBLE_ARRAY,
+        'Orientation of the tool frame in the platform frame, alpha, beta, gamma '
+        '(R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
+        default=[0.0, 0.0, 0.0], validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
+        constraints='3 values in [-180, 180]'),
+)
+
+#: fk_node's broadcast of the estimated pose.
+FK_FRAME_PARAMETERS = (
+    ParameterSpec(
+        'publish_tf', BOOL,
+        'Broadcast the estimated pose on /tf (base_frame -> platform_frame, with the stamp '
+        'of the lengths it comes from) and the user and tool frames on /tf_static',
+        default=True, read_only=True),
+    ParameterSpec(
+        'estimated_pose_frame', STRING,
+        "Frame of estimated_pose_stamped: base_frame or user_frame; '' means base_frame",
+        default='', read_only=True, validators=(frame_name,),
+        constraints="'', base_frame or user_frame"),
+)
+
+#: ik_node's broadcast of the commanded pose.
+IK_FRAME_PARAMETERS = (
+    ParameterSpec(
+        'publish_commanded_tf', BOOL,
+        'Broadcast each accepted command on /tf as base_frame -> <platform_frame>_commanded',
+        default=False, read_only=True),
 )
 
 MARKER_PARAMETERS = (
@@ -404,8 +476,14 @@ RAMP_PARAMETERS = (
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
-            + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + MARKER_PARAMETERS
-            + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+            + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
+            + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+
+
+#: Parameters that were replaced, and what replaces them: named in the refusal of an old file.
+REPLACED_PARAMETERS = {
+    'pivot_point': "'tool_frame_position' (the tool frame's origin is the pivot point)",
+}
 
 
 def check_known_names(names, context: str) -> None:
@@ -419,10 +497,12 @@ def check_known_names(names, context: str) -> None:
     known = {spec.name for spec in all_specs()}
     unknown = sorted(set(names) - known)
     if unknown:
-        suggestions = {name: difflib.get_close_matches(name, known, n=1) for name in unknown}
-        described = ', '.join(
-            f"'{name}'" + (f" (did you mean '{suggestions[name][0]}'?)"
-                           if suggestions[name] else '') for name in unknown)
+        def hint(name):
+            if name in REPLACED_PARAMETERS:
+                return f' (replaced by {REPLACED_PARAMETERS[name]})'
+            close = difflib.get_close_matches(name, known, n=1)
+            return f" (did you mean '{close[0]}'?)" if close else ''
+        described = ', '.join(f"'{name}'{hint(name)}" for name in unknown)
         raise ValueError(f'unknown parameter(s) {described} in {context}; known parameters: '
                          + ', '.join(sorted(known)))
 
@@ -491,9 +571,8 @@ def geometry_from_parameters(values: dict) -> Geometry:
 
     :param values: parameter name -> value, with the names and units of
         :data:`GEOMETRY_PARAMETERS` (flat joint lists in metres, home orientation in degrees);
-        a missing optional one takes its default. With a ``pivot_point`` c, the geometry's
-        platform joints are ``p_i - c``: poses then place the pivot, and rotations turn the
-        platform about it.
+        a missing optional one takes its default. A pivot point is the tool frame's origin
+        (:func:`frames_from_parameters`), not part of the geometry.
     :raises ValueError: naming the parameter, if a value is missing or not allowed.
     """
     merged = defaults(GEOMETRY_PARAMETERS)
@@ -504,14 +583,55 @@ def geometry_from_parameters(values: dict) -> Geometry:
         np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
     return Geometry(
         base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
-        platform_joints=np.reshape(np.asarray(merged['platform_joints'], dtype=float), (6, 3))
-        - np.asarray(merged['pivot_point'], dtype=float),
+        platform_joints=np.reshape(np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
         home_pose=home_pose,
         leg_length_min=float(merged['leg_length_min']),
         leg_length_max=float(merged['leg_length_max']),
         base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
         platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
         max_jacobian_condition=float(merged['max_jacobian_condition']))
+
+
+def frames_from_parameters(values: dict) -> FrameTree:
+    """
+    Build the frame tree from ROS parameter values, as the nodes declare them.
+
+    :param values: parameter name -> value, with the names and units of
+        :data:`FRAME_PARAMETERS` (positions in metres, orientations in degrees); a missing one
+        takes its default.
+    :raises ValueError: naming the parameter, if a value is not allowed, or for frame names
+        that repeat.
+    """
+    merged = defaults(FRAME_PARAMETERS)
+    merged.update({key: value for key, value in values.items() if key in merged})
+    check_values(FRAME_PARAMETERS, merged)
+    return FrameTree(
+        base_frame=merged['base_frame'], platform_frame=merged['platform_frame'],
+        user_frame=merged['user_frame'],
+        user_pose=_frame_pose(merged['user_frame_position'],
+                              merged['user_frame_orientation_deg']),
+        tool_frame=merged['tool_frame'],
+        tool_pose=_frame_pose(merged['tool_frame_position'],
+                              merged['tool_frame_orientation_deg']))
+
+
+def frame_parameters_reason(values: dict) -> str:
+    """
+    Say why frame parameter values cannot make a frame tree, or return ``''``.
+
+    For a run-time change, where a rule between parameters (frame names must differ) decides.
+    """
+    try:
+        frames_from_parameters(values)
+    except ValueError as error:
+        return str(error)
+    return ''
+
+
+def _frame_pose(position, orientation_deg) -> Transform:
+    """Return the transform of a position (metres) and Euler angles (degrees)."""
+    return Transform.from_pose(np.concatenate([
+        np.asarray(position, dtype=float), np.radians(np.asarray(orientation_deg, dtype=float))]))
 
 
 def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:

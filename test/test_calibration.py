@@ -264,12 +264,11 @@ def test_measurement_poses_beat_random_ones_and_stay_within_limits(config_direct
 
 def test_calibrated_parameter_file_loads_as_the_calibrated_geometry(tmp_path,
                                                                     config_directory_path):
-    # A pivot point off the platform frame's origin: the file's platform_joints are relative
-    # to the frame, the geometry's to the pivot.
+    # A tool frame (pivot point) off the platform frame's origin: kept as it is, while the
+    # joints, in the platform frame, are the calibrated ones.
     values = read_parameter_file(config_directory_path / 'paper_platform.yaml')
     values.update(read_parameter_file(config_directory_path / 'example_limits.yaml'))
-    values['pivot_point'] = [0.01, -0.02, 0.25]
-    values['home_position'] = [0.01, -0.02, 0.4325 + 0.25]  # the same physical home pose
+    values['tool_frame_position'] = [0.01, -0.02, 0.25]
     nominal_file = tmp_path / 'nominal.yaml'
     write_parameter_file(nominal_file, values)
     nominal = load_geometry(nominal_file)
@@ -288,7 +287,7 @@ def test_calibrated_parameter_file_loads_as_the_calibrated_geometry(tmp_path,
     assert_allclose(loaded.home_pose, nominal.home_pose, rtol=0.0, atol=1e-15)
     assert loaded.leg_length_max == 0.9 and loaded.max_jacobian_condition == 50.0
     written = read_parameter_file(path)
-    assert written['pivot_point'] == [0.01, -0.02, 0.25]
+    assert written['tool_frame_position'] == [0.01, -0.02, 0.25]
     assert written['base_frame'] == 'stewart_base'
     check_values(ACTUATOR_PARAMETERS, written)  # floats written as floats
     assert_allclose(written['actuator_offsets'], result.actuator_offsets, rtol=0.0, atol=0.0)

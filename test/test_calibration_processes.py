@@ -61,10 +61,10 @@ def rotation_matrix(alpha, beta, gamma):
 
 
 def file_lengths(path, pose):
-    """Leg lengths of ``pose`` for the joints of a parameter file (pivot point at the origin)."""
+    """Leg lengths of ``pose`` (of the platform frame) for the joints of a parameter file."""
     with open(path, encoding='utf-8') as stream:
         parameters = yaml.safe_load(stream)['/**']['ros__parameters']
-    assert parameters.get('pivot_point', [0.0, 0.0, 0.0]) == [0.0, 0.0, 0.0]
+    assert 'pivot_point' not in parameters
     base = np.reshape(parameters['base_joints'], (6, 3))
     platform = np.reshape(parameters['platform_joints'], (6, 3))
     legs = pose[:3] + platform @ rotation_matrix(*pose[3:]).T - base

@@ -334,21 +334,10 @@ def test_from_yaml_refuses_a_misspelt_parameter_name(tmp_path):
         load_geometry(path)
 
 
-def test_pivot_point_makes_rotations_turn_about_it():
-    """With a pivot point, a pure rotation at the home position leaves that point in place."""
-    from stewart_kinematics import leg_vectors
-    from stewart_kinematics.rotations import euler_zyx_to_matrix
-    values = paper_parameters()
-    pivot = [0.02, -0.01, 0.3]
-    values['pivot_point'] = pivot
-    values['home_position'] = [0.0, 0.0, 0.4325 + 0.3]
-    geometry = geometry_from_parameters(values)
-    assert_allclose(geometry.platform_joints, PLATFORM_M - pivot, rtol=0, atol=1e-15)
-    # Platform joints in the base frame, for the pivot at P and any rotation R, are
-    # P + R (p_i - c): the pivot (p = c) stays at P.
-    rotation = euler_zyx_to_matrix([0.2, -0.1, 0.3])
-    position = np.array([0.0, 0.0, 0.7325])
-    legs = leg_vectors(geometry, position, rotation)
-    tops = legs + geometry.base_joints
-    expected = position + (rotation @ (PLATFORM_M - pivot).T).T
-    assert_allclose(tops, expected, rtol=0, atol=1e-15)
+def test_from_yaml_names_what_replaced_pivot_point(tmp_path):
+    """A file that still sets pivot_point is refused, naming the tool frame that replaced it."""
+    path = tmp_path / 'old.yaml'
+    path.write_text(PAPER_PLATFORM_YAML.read_text(encoding='utf-8').replace(
+        'home_position:', 'pivot_point: [0.0, 0.0, 0.0]\n    home_position:'), encoding='utf-8')
+    with pytest.raises(ValueError, match="'pivot_point' .replaced by 'tool_frame_position'"):
+        load_geometry(path)

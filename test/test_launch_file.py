@@ -22,11 +22,13 @@ namespace=None, exec_name=None, parameters=None, remappings=None, ros_arguments=
 arguments=None, **kwargs)`` with ``kwargs`` going to ``ExecuteProcess``;
 ``LaunchConfiguration(variable_name, *, default=None)``; ``DeclareLaunchArgument(name, *,
 default_value=None, description=None, choices=None, **kwargs)``; ``IfCondition(
-predicate_expression)``; ``LaunchDescription(initial_entities=None, *,
-deprecated_reason=None)``; ``get_package_share_directory(package_name, print_warning=True)``)
-and refuse what the real ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it
-applies the command-line arguments and the declared defaults, resolves the substitutions,
-evaluates the conditions and expands each node's namespace as ``launch_ros`` does.
+predicate_expression)``, ``UnlessCondition(predicate_expression)``; ``GroupAction(actions, *,
+scoped=True, forwarding=True, launch_configurations=None, **kwargs)``;
+``LaunchDescription(initial_entities=None, *, deprecated_reason=None)``;
+``get_package_share_directory(package_name, print_warning=True)``) and refuse what the real
+ones refuse. :func:`launch` then plays ``ros2 launch``'s part: it applies the command-line
+arguments and the declared defaults, resolves the substitutions, evaluates the conditions and
+expands each node's namespace as ``launch_ros`` does.
 
 The package's share directory is a temporary folder holding what setup.py installs into it
 (``config/*.yaml``), so a parameter file that would not be installed is found missing.
@@ -75,6 +77,23 @@ class IfCondition:
     def __init__(self, predicate_expression):
         """Keep the expression; :func:`launch` evaluates it as the real class does."""
         self.predicate_expression = predicate_expression
+
+
+class UnlessCondition(IfCondition):
+    """Stand-in for launch.conditions.UnlessCondition: IfCondition's opposite."""
+
+
+class GroupAction:
+    """Stand-in for launch.actions.GroupAction (Jazzy's signature)."""
+
+    def __init__(self, actions, *, scoped=True, forwarding=True, launch_configurations=None,
+                 **kwargs):
+        """Check the arguments as the real constructor does, and keep the actions."""
+        unknown = set(kwargs) - {'condition'}
+        if unknown:
+            raise TypeError(f'GroupAction got unexpected keyword arguments {unknown}')
+        self.actions = list(actions)
+        self.condition = kwargs.get('condition')
 
 
 class DeclareLaunchArgument:
@@ -143,8 +162,9 @@ def stub_modules(share_directory):
 
     contents = {
         'launch': {'LaunchDescription': LaunchDescription},
-        'launch.actions': {'DeclareLaunchArgument': DeclareLaunchArgument},
-        'launch.conditions': {'IfCondition': IfCondition},
+        'launch.actions': {'DeclareLaunchArgument': DeclareLaunchArgument,
+                           'GroupAction': GroupAction},
+        'launch.conditions': {'IfCondition': IfCondition, 'UnlessCondition': UnlessCondition},
         'launch.substitutions': {'LaunchConfiguration': LaunchConfiguration},
         'launch_ros': {},
         'launch_ros.actions': {'Node': Node},
@@ -207,14 +227,21 @@ def launch(stand_ins):
         description = launch_description()
         configurations = dict(arguments)
         nodes = []
-        for entity in description.entities:
-            if isinstance(entity, DeclareLaunchArgument):
-                declare(entity, configurations)
-            elif isinstance(entity, Node):
-                if entity.condition is None or evaluate(entity.condition, configurations):
+
+        def visit(entities):
+            for entity in entities:
+                if isinstance(entity, DeclareLaunchArgument):
+                    declare(entity, configurations)
+                elif entity.condition is not None and not evaluate(
+                        entity.condition, configurations):
+                    continue
+                elif isinstance(entity, Node):
                     nodes.append(expand(entity, configurations))
-            else:
-                raise AssertionError(f'unexpected launch entity {entity!r}')
+                elif isinstance(entity, GroupAction):
+                    visit(entity.actions)
+                else:
+                    raise AssertionError(f'unexpected launch entity {entity!r}')
+        visit(description.entities)
         unknown = set(arguments) - {e.name for e in description.entities
                                     if isinstance(e, DeclareLaunchArgument)}
         assert not unknown, f'launch arguments {unknown} are not declared'
@@ -250,11 +277,11 @@ def declare(argument, configurations):
 
 
 def evaluate(condition, configurations):
-    """Evaluate an IfCondition as launch does: 'true'/'1' or 'false'/'0', any case."""
+    """Evaluate an If/UnlessCondition as launch does: 'true'/'1' or 'false'/'0', any case."""
     assert isinstance(condition, IfCondition), f'unexpected condition {condition!r}'
     text = resolve(condition.predicate_expression, configurations).lower()
     assert text in ('true', '1', 'false', '0'), f"invalid condition expression '{text}'"
-    return text in ('true', '1')
+    return (text in ('true', '1')) != isinstance(condition, UnlessCondition)
 
 
 def expand(node, configurations):
@@ -271,7 +298,7 @@ def expand(node, configurations):
         'namespace': namespace,
         'parameter_files': [resolve(p, configurations) for p in node.parameters],
         'remappings': node.remappings,
-        'arguments': node.arguments,
+        'arguments': [resolve(argument, configurations) for argument in node.arguments],
     }
 
 
@@ -348,6 +375,21 @@ def test_platform_config_and_play_ramp_arguments(launch, share_directory, tmp_pa
     assert {node['namespace'] for node in nodes} == {'/platform_b'}
 
 
+@pytest.mark.parametrize('play_ramp', ['true', 'false'])
+def test_one_process_runs_the_nodes_in_stewart_platform(launch, share_directory, play_ramp):
+    """one_process:=true starts one stewart_platform with every file, and passes play_ramp."""
+    nodes = launch(one_process='true', namespace='platform_a', play_ramp=play_ramp)
+
+    config = share_directory / 'config'
+    assert [node['executable'] for node in nodes] == ['stewart_platform']
+    assert nodes[0]['executable'] in console_scripts()
+    assert nodes[0]['namespace'] == '/platform_a'
+    assert nodes[0]['parameter_files'] == [
+        str(config / 'paper_platform.yaml'), str(config / 'solver.yaml'),
+        str(config / 'table3_ramp.yaml')]
+    assert nodes[0]['arguments'] == ['--play-ramp', play_ramp]
+
+
 def test_play_ramp_accepts_only_true_or_false(launch):
     """play_ramp is declared with its choices, as ros2 launch checks them."""
     with pytest.raises(AssertionError, match='play_ramp'):
@@ -378,8 +420,9 @@ def test_readme_lists_the_launch_arguments_and_their_defaults(stand_ins, share_d
     lambda: Node(package=PACKAGE, executable='ik_node', parameters='config.yaml'),
     lambda: LaunchConfiguration('namespace', 'default'),
     lambda: DeclareLaunchArgument('play', default_value='yes', choices=['true', 'false']),
+    lambda: GroupAction([], UnlessCondition('true')),
 ], ids=['dashing_executable', 'dashing_namespace', 'parameters_not_a_list',
-        'default_not_keyword', 'default_not_a_choice'])
+        'default_not_keyword', 'default_not_a_choice', 'group_condition_not_keyword'])
 def test_stand_ins_refuse_what_launch_refuses(construct):
     """The stand-ins are strict: a launch file misusing the real API fails here too."""
     with pytest.raises((TypeError, RuntimeError)):

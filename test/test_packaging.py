@@ -44,6 +44,15 @@ PYTHON_ROSDEP_KEYS = {
     'scipy': 'python3-scipy',
     'yaml': 'python3-yaml',
 }
+#: Python libraries with no rosdep key, installed from PyPI only (import name -> distribution):
+#: package.xml cannot declare them, so setup.py and requirements.txt must.
+PYPI_ONLY = {
+    'mcap': 'mcap',
+    'mcap_ros2': 'mcap-ros2-support',
+    'rosbags': 'rosbags',
+    'ruckig': 'ruckig',
+    'toppra': 'toppra',
+}
 #: Dependency tags that make a package available at run time.
 RUN_DEPENDS = ('exec_depend', 'depend')
 
@@ -76,7 +85,7 @@ def required_keys():
     """``{rosdep key: files}`` that the imports require package.xml to declare."""
     required = {}
     for module, files in imported_modules().items():
-        if module in sys.stdlib_module_names or module == PACKAGE:
+        if module in sys.stdlib_module_names or module == PACKAGE or module in PYPI_ONLY:
             continue
         key = PYTHON_ROSDEP_KEYS.get(module, module)
         required.setdefault(key, set()).update(files)
@@ -92,6 +101,29 @@ def test_package_xml_declares_every_imported_package():
         f'package.xml: add <exec_depend>{key}</exec_depend> (imported by {", ".join(files)}; '
         f'a Python library needs its rosdep key in PYTHON_ROSDEP_KEYS of {Path(__file__).name})'
         for key, files in missing.items())
+
+
+def test_pypi_only_libraries_are_declared_in_setup_and_requirements():
+    """A library without a rosdep key is in setup.py (the core's or the demo's) and pinned."""
+    setup = (ROOT / 'setup.py').read_text(encoding='utf-8')
+    install = ast.literal_eval(re.search(r'install_requires=(\[.*?\]),', setup).group(1))
+    extras = ast.literal_eval(
+        re.search(r'extras_require=(\{.*?\}),\n', setup, re.DOTALL).group(1))
+    pinned = {line.split('==')[0].split('[')[0].strip().lower()
+              for line in (ROOT / 'requirements.txt').read_text(encoding='utf-8').splitlines()
+              if '==' in line and not line.startswith('#')}
+    imports = imported_modules()
+    for module, distribution in PYPI_ONLY.items():
+        users = imports.get(module)
+        if not users:
+            continue
+        tools_only = all(path.startswith(f'{PACKAGE}/tools/') for path in users)
+        declared = extras.get('demo', []) if tools_only else install
+        assert distribution in declared, (
+            f"setup.py: add '{distribution}' to "
+            f"{'extras_require demo' if tools_only else 'install_requires'} (imported by "
+            f'{", ".join(sorted(set(users)))})')
+        assert distribution.lower() in pinned, f'requirements.txt: pin {distribution}'
 
 
 def test_launch_file_dependencies_are_declared():

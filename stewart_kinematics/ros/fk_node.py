@@ -17,13 +17,15 @@ Forward kinematics node: six leg lengths in, the platform pose out.
 
 Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), ``joint_states``
 (sensor_msgs/msg/JointState, legs ``leg_1`` .. ``leg_6``) and ``leg_velocities``
-(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose, base frame,
-metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the stamp of the joint
-state it comes from, or the time of arrival) and ``estimated_twist`` (geometry_msgs/msg/Twist,
-base frame: from leg velocities, at the last pose). Each solve starts from the last
-good solution, since a platform moves continuously, and falls back to the home pose when that
-fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the
-home pose, for homing and restarts. What to publish and what to refuse is decided by
+(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
+the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
+in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
+arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
+last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
+``/tf_static`` (see :mod:`stewart_kinematics.frames`). Each solve starts from the last good
+solution, since a platform moves continuously, and falls back to the home pose when that fails; the
+service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for
+homing and restarts. What to publish and what to refuse is decided by
 :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
 solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
 assembly mode); the node converts the messages, publishes, and counts each refusal and each
@@ -51,7 +53,12 @@ from std_srvs.srv import Trigger
 from stewart_kinematics import findings, parameter_spec
 from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.frames import Transform
+from stewart_kinematics.parameter_spec import (
+    frame_parameters_reason,
+    frames_from_parameters,
+    geometry_from_parameters,
+)
 from stewart_kinematics.pose_tracker import PoseTracker, SETTING_NAMES
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
@@ -65,8 +72,13 @@ from stewart_kinematics.ros.message_conversions import (
     pose_to_message,
     twist_to_message,
 )
-from stewart_kinematics.ros.node_main import create_output_publisher, run_node
+from stewart_kinematics.ros.node_main import (
+    create_input_subscription,
+    create_output_publisher,
+    run_node,
+)
 from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.transforms import TransformBroadcaster
 
 
 class FkNode(Node):
@@ -78,24 +90,31 @@ class FkNode(Node):
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
             + parameter_spec.ASSEMBLY_MODE_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change)
+            + parameter_spec.FK_FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+            on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)
-        self.base_frame = values['base_frame']
+        # Replaced whole when a tool frame parameter changes: one tree per message.
+        self.frames = frames_from_parameters(values)
+        self.estimated_pose_frame = values['estimated_pose_frame'] or self.frames.base_frame
+        self.frames.reference(self.estimated_pose_frame)   # a ValueError stops the start
         depth = values['queue_depth']
         self.pose_publisher = create_output_publisher(self, Pose, 'estimated_pose', depth)
         self.stamped_publisher = create_output_publisher(
             self, PoseStamped, 'estimated_pose_stamped', depth)
         self.twist_publisher = create_output_publisher(self, Twist, 'estimated_twist', depth)
+        self.tf = TransformBroadcaster(self) if values['publish_tf'] else None
+        if self.tf is not None:
+            self.tf.send_static(self.frames.static_transforms(), self.get_clock().now().to_msg())
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
         self.velocity_accounting = diagnostics.accounting('leg_velocities')
-        self.create_subscription(Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
-        self.create_subscription(JointState, 'joint_states', self.on_joint_states, depth)
-        self.create_subscription(
-            Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
+        create_input_subscription(
+            self, Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
+        create_input_subscription(self, JointState, 'joint_states', self.on_joint_states, depth)
+        create_input_subscription(
+            self, Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
         self.create_service(Trigger, 'reset_tracker', self.on_reset_tracker)
         self.margin = None
         if values['assembly_mode_margin_period'] > 0.0:
@@ -109,7 +128,17 @@ class FkNode(Node):
             f'at most {values["max_iterations"]} iterations')
 
     def on_parameter_change(self, name, value):
-        """Pass a solver parameter changed at run time (already validated) to the tracker."""
+        """Pass a solver parameter (already validated) to the tracker; take a new tool frame."""
+        if name.startswith('tool_frame'):
+            old = self.frames
+            self.frames = frames_from_parameters(
+                {spec.name: self.get_parameter(spec.name).value
+                 for spec in parameter_spec.FRAME_PARAMETERS})
+            if self.tf is not None:
+                if old.tool_frame != self.frames.tool_frame:
+                    self.tf.forget_static(old.tool_frame)
+                self.tf.send_static(self.frames.static_transforms(),
+                                    self.get_clock().now().to_msg())
         if name in SETTING_NAMES:
             self.tracker.configure(**{name: value})
         if name == 'assembly_mode_margin_warning' and self.margin is not None:
@@ -174,7 +203,7 @@ class FkNode(Node):
         """
         Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
-        :param header: stamp to carry to ``estimated_pose_stamped``; its frame is base_frame.
+        :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``.
         :returns: whether a pose was published.
         """
         estimate = self.tracker.update(lengths)
@@ -183,11 +212,18 @@ class FkNode(Node):
         if not estimate.accepted:
             accounting.reject(estimate.refusal)
             return False
-        pose = pose_to_message(estimate.pose)
-        accounting.publish(self.pose_publisher, pose)
-        if self.stamped_publisher.get_subscription_count():  # only for a subscriber, as ik_node
-            stamped_header = Header(stamp=header.stamp, frame_id=self.base_frame)
-            self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
+        frames = self.frames
+        accounting.publish(self.pose_publisher,
+                           pose_to_message(frames.tool_pose_vector(estimate.pose)))
+        # The other forms only for a subscriber, as ik_node's.
+        if self.stamped_publisher.get_subscription_count():
+            stamped_header = Header(stamp=header.stamp, frame_id=self.estimated_pose_frame)
+            self.stamped_publisher.publish(PoseStamped(
+                header=stamped_header, pose=pose_to_message(
+                    frames.tool_pose_vector(estimate.pose, self.estimated_pose_frame))))
+        if self.tf is not None and self.tf.has_listeners():
+            self.tf.send(frames.base_frame, frames.platform_frame,
+                         Transform.from_pose(estimate.pose), header.stamp)
         return True
 
 

@@ -15,15 +15,18 @@
 """
 Inverse kinematics node: a commanded platform pose in, six leg lengths out.
 
-Subscribes ``target_pose`` (geometry_msgs/msg/Pose) or ``target_pose_stamped``
-(geometry_msgs/msg/PoseStamped), base frame, metres, and ``target_twist``
+Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame) or ``target_pose_stamped``
+(geometry_msgs/msg/PoseStamped, base frame or user frame), metres: the pose of the tool frame
+(:mod:`stewart_kinematics.frames`; by default the platform frame itself), and ``target_twist``
 (geometry_msgs/msg/Twist, base frame). Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray,
 metres, leg 1..6), ``leg_extensions`` (the same layout: each length minus its length at the
 home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, legs ``leg_1``
 .. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
 change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
-break a limit in red, even for a refused pose). What to command and what to refuse is
+break a limit in red, even for a refused pose), and, if ``publish_commanded_tf`` is set,
+the commanded platform frame on ``/tf`` as ``<platform_frame>_commanded``. A change of the
+tool frame at run time applies from the next message on. What to command and what to refuse is
 decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a limit of the
 geometry is refused, never clamped); the node converts the messages, publishes, and counts
 each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
@@ -38,7 +41,12 @@ from std_msgs.msg import Float64MultiArray, Header
 from stewart_kinematics import findings, parameter_spec
 from stewart_kinematics.command_check import CommandCheck
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.frames import Transform
+from stewart_kinematics.parameter_spec import (
+    frame_parameters_reason,
+    frames_from_parameters,
+    geometry_from_parameters,
+)
 from stewart_kinematics.ros.markers import platform_markers
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
@@ -48,13 +56,20 @@ from stewart_kinematics.ros.message_conversions import (
     QUATERNION_NORM_TOLERANCE,
     twist_from_message,
 )
-from stewart_kinematics.ros.node_main import create_output_publisher, run_node
+from stewart_kinematics.ros.node_main import (
+    create_input_subscription,
+    create_output_publisher,
+    run_node,
+)
 from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.rotations import quaternion_to_matrix
 from visualization_msgs.msg import MarkerArray
 
-#: Code of the refusal of a stamped pose in a frame other than base_frame.
+#: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
 WRONG_FRAME = 'wrong_frame'
+#: Suffix of the commanded platform frame's name on /tf.
+COMMANDED_SUFFIX = '_commanded'
 
 
 class IkNode(Node):
@@ -64,9 +79,13 @@ class IkNode(Node):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            + parameter_spec.IK_FRAME_PARAMETERS + parameter_spec.MARKER_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS,
+            on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
         self.check = CommandCheck(self.geometry)
+        # Replaced whole when a tool frame parameter changes: one tree per message.
+        self.frames = frames_from_parameters(values)
         self.base_frame = values['base_frame']
         self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
         self.last_marker_ns = None
@@ -82,37 +101,51 @@ class IkNode(Node):
             self, Float64MultiArray, 'leg_velocities', depth)
         self.marker_publisher = create_output_publisher(
             self, MarkerArray, 'platform_markers', depth)
+        self.tf = TransformBroadcaster(self, static=False) if (
+            values['publish_commanded_tf']) else None
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('target_pose')
         self.stamped_accounting = diagnostics.accounting('target_pose_stamped')
         self.twist_accounting = diagnostics.accounting('target_twist')
-        self.create_subscription(Pose, 'target_pose', self.on_target_pose, depth)
-        self.create_subscription(
-            PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
-        self.create_subscription(Twist, 'target_twist', self.on_target_twist, depth)
+        create_input_subscription(self, Pose, 'target_pose', self.on_target_pose, depth)
+        create_input_subscription(
+            self, PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
+        create_input_subscription(self, Twist, 'target_twist', self.on_target_twist, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
+
+    def on_parameter_change(self, name, value):
+        """Take a new tool frame (already validated) from the next message on."""
+        if name.startswith('tool_frame'):
+            self.frames = frames_from_parameters(
+                {spec.name: self.get_parameter(spec.name).value
+                 for spec in parameter_spec.FRAME_PARAMETERS})
 
     def on_target_pose(self, message: Pose):
         """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""
         self.accounting.receive()
         header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-        self.command(message, header, self.accounting)
+        self.command(message, header, self.accounting, self.frames)
 
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
         self.stamped_accounting.receive()
-        frame = message.header.frame_id
-        if frame and frame != self.base_frame:
-            self.stamped_accounting.reject(Finding(
-                WRONG_FRAME, f"it is in frame '{frame}', not in base_frame "
-                f"'{self.base_frame}'; transform it first"))
+        frames = self.frames
+        try:
+            frames.reference(message.header.frame_id)
+        except ValueError as error:
+            self.stamped_accounting.reject(Finding(WRONG_FRAME, str(error)))
             return
-        self.command(message.pose, message.header, self.stamped_accounting)
+        self.command(message.pose, message.header, self.stamped_accounting, frames)
 
-    def command(self, pose: Pose, header: Header, accounting: MessageAccounting):
-        """Publish the leg lengths, extensions and joint states of a pose, or reject it."""
+    def command(self, pose: Pose, header: Header, accounting: MessageAccounting, frames):
+        """
+        Publish the leg lengths, extensions and joint states of a pose, or reject it.
+
+        :param pose: the tool frame's pose, in ``header.frame_id`` (base or user frame).
+        :param frames: the frame tree to apply, the same for the whole message.
+        """
         try:
             position, quaternion, norm = position_quaternion_from_message(pose)
         except ValueError as error:
@@ -122,7 +155,9 @@ class IkNode(Node):
             self.get_logger().warning(
                 f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
                 '(said once)', once=True)
-        command = self.check.pose_quaternion(position, quaternion)
+        position, rotation = frames.platform_in_base(
+            position, quaternion_to_matrix(quaternion), header.frame_id)
+        command = self.check.pose(position, rotation)
         if command.violations or command.accepted:
             self.publish_markers(header, position, quaternion, command.violations)
         if not command.accepted:
@@ -137,6 +172,9 @@ class IkNode(Node):
                 legs_to_message(lengths - self.geometry.home_leg_lengths))
         if self.joint_command_publisher.get_subscription_count():
             self.joint_command_publisher.publish(joint_state_message(header, lengths))
+        if self.tf is not None:
+            self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
+                         Transform(position, rotation), header.stamp)
 
     def publish_markers(self, header, position, quaternion, violations):
         """

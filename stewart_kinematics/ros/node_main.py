@@ -12,7 +12,13 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""What the nodes share: ``main()`` (start-up, spinning, a clean stop) and publishers."""
+"""
+What the nodes share: ``main()`` (start-up, spinning, a clean stop), publishers, subscriptions.
+
+Every publisher and subscription of the package is created here, with
+``QoSOverridingOptions.with_default_policies()``: the standard ``qos_overrides.<topic>.
+<publisher|subscription>.<reliability|history|depth>`` parameters then apply to it.
+"""
 
 import signal
 
@@ -22,6 +28,7 @@ from rclpy._rclpy_pybind11 import RCLError, UnknownROSArgsError
 from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
 
 #: Exit code of a node that could not start (bad parameters, bad arguments).
@@ -36,14 +43,26 @@ def run_node(node_class, name: str, args=None) -> int:
     """
     Initialise rclpy, build and spin a node until SIGINT or SIGTERM, then shut down.
 
+    :param node_class: the node's class, constructed without arguments.
+    :param name: the node's default name, for the log of a failed start.
+    :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
+    :returns: as :func:`run_nodes`.
+    """
+    return run_nodes([node_class], name, args)
+
+
+def run_nodes(node_classes, name: str, args=None) -> int:
+    """
+    Initialise rclpy, build nodes and spin them in one executor until SIGINT or SIGTERM.
+
     The signals only set a flag, checked between two slices of spinning: neither a
     KeyboardInterrupt nor a context shut down from rclpy's signal thread can land in the
     middle of a callback, of a take or of the clean-up.
 
-    :param node_class: the node's class, constructed without arguments.
-    :param name: the node's default name, for the log of a failed start.
+    :param node_classes: the nodes' classes, each constructed without arguments, in order.
+    :param name: the process's name, for the log of a failed start.
     :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
-    :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when the node could not be
+    :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a node could not be
         built, with a fatal log that says why.
     """
     stop_requests = []
@@ -55,21 +74,27 @@ def run_node(node_class, name: str, args=None) -> int:
         except (RCLError, UnknownROSArgsError) as error:
             rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
             return EXIT_START_FAILED
+        nodes = []
         try:
-            node = node_class()
+            for node_class in node_classes:
+                nodes.append(node_class())
         except (ParameterException, ValueError) as error:
             rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
+            for node in nodes:
+                node.destroy_node()
             rclpy.try_shutdown()
             return EXIT_START_FAILED
         try:
             executor = SingleThreadedExecutor()
-            executor.add_node(node)
+            for node in nodes:
+                executor.add_node(node)
             while not stop_requests and rclpy.ok():
                 executor.spin_once(timeout_sec=SPIN_SLICE)
         except ExternalShutdownException:
             pass
         finally:
-            node.destroy_node()
+            for node in nodes:
+                node.destroy_node()
             rclpy.try_shutdown()
         return 0
     finally:
@@ -77,18 +102,34 @@ def run_node(node_class, name: str, args=None) -> int:
             signal.signal(number, handler)
 
 
-def create_output_publisher(node, message_type, topic: str, depth: int):
+def create_output_publisher(node, message_type, topic: str, qos):
     """
-    Create a reliable, keep-last publisher without rclpy's default QoS event handlers.
+    Create a publisher (by default reliable, keep-last) without rclpy's default event handlers.
 
     rclpy's executor visits every event handler of a node at each wait, two per publisher by
     default (incompatible QoS, incompatible type), and on a 1 kHz input that work costs the
     node a third of its rate. A subscriber whose QoS does not match still reports it on its
     own side; the nodes' subscriptions keep their handlers, so a mismatched input is reported
-    here.
+    here. The ``qos_overrides`` parameters of the topic's publisher apply.
 
-    :param depth: queue depth, messages.
+    :param qos: queue depth (messages), or a QoSProfile.
     """
     return node.create_publisher(
-        message_type, topic, depth,
-        event_callbacks=PublisherEventCallbacks(use_default_callbacks=False))
+        message_type, topic, qos,
+        event_callbacks=PublisherEventCallbacks(use_default_callbacks=False),
+        qos_overriding_options=QoSOverridingOptions.with_default_policies())
+
+
+def create_input_subscription(node, message_type, topic: str, callback, qos):
+    """
+    Create a subscription (by default reliable, keep-last) whose QoS the user may override.
+
+    The ``qos_overrides`` parameters of the topic's subscription apply: for example
+    ``qos_overrides./joint_states.subscription.reliability: best_effort`` for a driver that
+    publishes best effort. rclpy's default event handlers stay: a mismatch is logged.
+
+    :param qos: queue depth (messages), or a QoSProfile.
+    """
+    return node.create_subscription(
+        message_type, topic, callback, qos,
+        qos_overriding_options=QoSOverridingOptions.with_default_policies())

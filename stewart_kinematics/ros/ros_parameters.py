@@ -46,7 +46,7 @@ def descriptor(spec: parameter_spec.ParameterSpec) -> ParameterDescriptor:
         read_only=spec.read_only)
 
 
-def declare_parameters(node, specs, on_change=None) -> dict:
+def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     """
     Declare ``specs`` on ``node`` with validation, and return their values.
 
@@ -54,6 +54,9 @@ def declare_parameters(node, specs, on_change=None) -> dict:
     :param specs: the :class:`~stewart_kinematics.parameter_spec.ParameterSpec` to declare.
     :param on_change: called as ``on_change(name, value)`` after a run-time change of one of
         them has been accepted.
+    :param check: called at run time as ``check(values)`` with every value of ``specs`` as it
+        would be after a change; returns ``''`` to accept it, else the reason to refuse it (for
+        rules between parameters, such as distinct frame names).
     :returns: parameter name -> value, as set by parameter files, overrides or defaults.
     :raises rclpy.exceptions.ParameterException: if a value has the wrong type or is not
         allowed; the message gives the spec's reason.
@@ -74,6 +77,13 @@ def declare_parameters(node, specs, on_change=None) -> dict:
                 # Not ours, or a required parameter nobody set: reported after declaring.
                 continue
             reason = spec.check(parameter.value)
+            if reason:
+                return SetParametersResult(successful=False, reason=reason)
+        if check is not None and all(node.has_parameter(name) for name in by_name):
+            values = {name: node.get_parameter(name).value for name in by_name}
+            values.update({parameter.name: parameter.value for parameter in parameters
+                           if parameter.name in by_name})
+            reason = check(values)
             if reason:
                 return SetParametersResult(successful=False, reason=reason)
         return SetParametersResult(successful=True)

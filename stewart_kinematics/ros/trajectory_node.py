@@ -28,9 +28,9 @@ import numpy as np
 from rclpy.node import Node
 
 from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.parameter_spec import geometry_from_parameters
+from stewart_kinematics.parameter_spec import frames_from_parameters, geometry_from_parameters
 from stewart_kinematics.ros.message_conversions import pose_to_message
-from stewart_kinematics.ros.node_main import run_node
+from stewart_kinematics.ros.node_main import create_output_publisher, run_node
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.trajectory import Ramp
 
@@ -44,13 +44,17 @@ class TrajectoryNode(Node):
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS)
+            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+            + parameter_spec.RAMP_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
         self.settings = values
         self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
-        limits.check_samples(geometry_from_parameters(values), *self.planned_samples())
-        self.publisher = self.create_publisher(Pose, 'target_pose', values['queue_depth'])
+        # The ramp's poses are the tool frame's, as ik_node reads them: check where they put
+        # the platform.
+        times, poses = self.planned_samples()
+        limits.check_samples(geometry_from_parameters(values), times,
+                             frames_from_parameters(values).platform_pose_vectors(poses))
+        self.publisher = create_output_publisher(self, Pose, 'target_pose', values['queue_depth'])
         self.published = 0
         self.row_index = 0
         self.start_time = None

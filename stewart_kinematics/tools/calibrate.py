@@ -37,7 +37,7 @@ from stewart_kinematics.parameter_spec import (
 EPILOG = """\
 measurement CSV: a header row naming the columns, then one row per measured pose; other
 columns are ignored and lines starting with # are comments. SI units:
-  X, Y, Z              measured position of the platform (its pivot point) in the base frame, m
+  X, Y, Z              measured position of the platform frame's origin in the base frame, m
   alpha, beta, gamma   measured orientation, rad (R = Rz(gamma) Ry(beta) Rx(alpha))
   actuator_1..6        actuator positions read at that pose, m (leg length minus the offset)
 The base and platform frames are the frames the poses are measured in (see README,
@@ -131,8 +131,7 @@ def main(argv=None) -> int:
                f'RMS residual {_rms(result.residuals_before[result.inliers]) * 1e6:.1f} um '
                f'nominal, {_rms(result.residuals_after[result.inliers]) * 1e6:.2f} um '
                'calibrated.\n'
-               'platform_joints are in the platform frame (pivot_point is subtracted on '
-               'loading),\nas in the nominal file; '
+               'platform_joints are in the platform frame, as in the nominal file;\n'
                'actuator_offsets: an actuator position is its leg length minus its offset.')
     arguments.output.parent.mkdir(parents=True, exist_ok=True)
     write_parameter_file(arguments.output, calibrated_parameters(result, values), comment)

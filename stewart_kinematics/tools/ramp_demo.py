@@ -19,7 +19,9 @@ Starts ``ik_node``, ``fk_node`` and ``trajectory_node`` as separate processes wi
 parameter files, as ``ros2 run`` would, records ``target_pose``, ``leg_lengths`` and
 ``estimated_pose``, and prints for each of the 11 table poses the input pose, the six leg
 lengths, the FK pose and the round-trip error: the paper's Figures 5, 7 and 9 as tables.
-Exits 0 when every pose came back within the required error.
+The run is also recorded as a rosbag2 folder in MCAP format (with ``/diagnostics``), for
+``ros2 bag``, Foxglove or PlotJuggler. Exits 0 when every pose came back within the required
+error.
 """
 
 import argparse
@@ -65,6 +67,10 @@ def parse_arguments(argv):
                         help='folder for the PNG figures (default demo_output/)')
     parser.add_argument('--no-figures', action='store_true',
                         help='print the tables only')
+    parser.add_argument('--bag', type=Path, default=Path('demo_output') / 'ramp_demo',
+                        help='rosbag2 folder (MCAP) to record the run to, replacing an earlier '
+                             'recording there (default demo_output/ramp_demo/)')
+    parser.add_argument('--no-bag', action='store_true', help='record no rosbag2 folder')
     return parser.parse_args(argv)
 
 
@@ -77,15 +83,18 @@ def main(argv=None) -> int:
               f'{os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}', flush=True)
         return run_demo(options.config_dir or default_config_directory(),
                         options.row_period, options.timeout,
-                        None if options.no_figures else options.figures)
+                        None if options.no_figures else options.figures,
+                        None if options.no_bag else options.bag)
 
 
 def run_demo(config_directory: Path, row_period: float, timeout: float,
-             figure_directory=None) -> int:
+             figure_directory=None, bag_path=None) -> int:
     """
     Start the nodes, play the ramp, print the tables; see the module docstring.
 
     :param figure_directory: where to write the PNG figures, or ``None`` for none.
+    :param bag_path: the rosbag2 folder to record to (an earlier recording there is replaced),
+        or ``None`` for none.
     """
     # Imported here so that --help works without a ROS environment.
     import rclpy
@@ -103,8 +112,14 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
     row_count = len(table_rows)
     print(f'config: {config_directory}', flush=True)
 
+    if bag_path is not None:
+        try:
+            bag_path = _prepare_bag(bag_path)
+        except FileExistsError as error:
+            print(f'error: {error} (choose another with --bag, or --no-bag)', file=sys.stderr)
+            return 1
     rclpy.init(args=[])
-    recorder = RampRecorder()
+    recorder = RampRecorder(bag_path)
     nodes = []
     try:
         kinematics_args = ['--ros-args', '--params-file', str(platform),
@@ -117,12 +132,15 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
         # The recorder and ik_node both subscribe target_pose: wait for both before playing.
         nodes.append(NodeProcess('trajectory_node', [
             '--ros-args', '--params-file', str(platform), '--params-file', str(ramp),
-            '-p', 'min_subscribers:=2', '-p', f'row_period:={row_period}']))
+            # Named for the node: a bare -p loses to the file's trajectory_node section.
+            '-p', 'trajectory_node:min_subscribers:=2',
+            '-p', f'trajectory_node:row_period:={row_period}']))
         if not recorder.spin_until(lambda: recorder.complete(row_count), deadline, nodes):
             return _fail(f'the ramp did not complete: {recorder.counts()} of {row_count} '
                          'poses, lengths, estimates received', nodes)
     finally:
         exit_codes = [node.stop() for node in nodes]
+        recorder.close()
         recorder.destroy_node()
         rclpy.try_shutdown()
 
@@ -136,6 +154,9 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
                               run['estimates'], run['position_error'],
                               run['orientation_error'])
         print('\nfigures: ' + ', '.join(str(path) for path in paths))
+    if recorder.bag is not None:
+        print(f'\nrecorded (rosbag2, MCAP): {recorder.bag.path}: ' + ', '.join(
+            f'{topic} {count}' for topic, count in recorder.bag.counts.items()) + ' messages')
     stopped = all(code == 0 for code in exit_codes)
     passed = (errors[0] <= MAX_POSITION_ERROR and errors[1] <= MAX_ORIENTATION_ERROR
               and stopped)
@@ -145,6 +166,26 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
     print('nodes stopped cleanly' if stopped else f'node exit codes: {exit_codes}')
     print('PASS' if passed else 'FAIL')
     return 0 if passed else 1
+
+
+def _prepare_bag(bag_path):
+    """
+    Make room for a new recording at ``bag_path``.
+
+    :returns: ``bag_path``, or ``None`` when rosbags is missing (the demo then runs without a
+        recording, and says so).
+    :raises FileExistsError: when the path holds something other than a rosbag2 folder.
+    """
+    from stewart_kinematics.tools.bag_writer import remove_previous_bag
+    try:
+        import rosbags  # noqa: F401  (only to know whether the recording can be written)
+    except ImportError:
+        print('note: rosbags is not installed (pip install rosbags): no recording',
+              file=sys.stderr)
+        return None
+    remove_previous_bag(bag_path)
+    bag_path.parent.mkdir(parents=True, exist_ok=True)
+    return bag_path
 
 
 def _ramp_rows(ramp_file):

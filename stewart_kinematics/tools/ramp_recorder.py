@@ -12,36 +12,82 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""A node that records what the ramp demo's nodes publish, in order of arrival."""
+"""
+A node that records what the ramp demo's nodes publish, in order of arrival.
+
+One subscription per topic, taking the serialised message (``raw=True``): the bytes go
+untouched to the rosbag2 recording when there is one, and are decoded for the demo's tables.
+"""
 
 import time
 
+from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Pose
 import rclpy
 from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros.message_conversions import leg_lengths_from_message, pose_from_message
+from stewart_kinematics.ros.transforms import TF_QOS, TF_STATIC_QOS, TFMessage
 
 #: Queue depth of the recorder's subscriptions: deep enough for a whole ramp.
 RECORD_DEPTH = 1000
 
 
 class RampRecorder(Node):
-    """Record ``target_pose``, ``leg_lengths`` and ``estimated_pose`` as arrays."""
+    """
+    Record ``target_pose``, ``leg_lengths`` and ``estimated_pose`` as arrays.
 
-    def __init__(self, **kwargs):
+    :param bag_path: a rosbag2 folder (MCAP) to create and record every topic into, with
+        ``/diagnostics``, and ``/tf`` and ``/tf_static`` where tf2_msgs is installed; ``None``
+        records nothing to disk. Call :meth:`close` at the end.
+    """
+
+    def __init__(self, bag_path=None, **kwargs):
         super().__init__('ramp_recorder', **kwargs)
         self.target_poses, self.leg_lengths, self.estimated_poses = [], [], []
-        self.create_subscription(
-            Pose, 'target_pose', lambda m: self.target_poses.append(pose_from_message(m)),
-            RECORD_DEPTH)
-        self.create_subscription(
-            Float64MultiArray, 'leg_lengths',
-            lambda m: self.leg_lengths.append(leg_lengths_from_message(m)), RECORD_DEPTH)
-        self.create_subscription(
-            Pose, 'estimated_pose', lambda m: self.estimated_poses.append(pose_from_message(m)),
-            RECORD_DEPTH)
+        qos = QoSProfile(depth=RECORD_DEPTH)
+        topics = [  # topic, message class, QoS, where its decoded form goes
+            ('target_pose', Pose, qos,
+             lambda m: self.target_poses.append(pose_from_message(m))),
+            ('leg_lengths', Float64MultiArray, qos,
+             lambda m: self.leg_lengths.append(leg_lengths_from_message(m))),
+            ('estimated_pose', Pose, qos,
+             lambda m: self.estimated_poses.append(pose_from_message(m))),
+            ('/diagnostics', DiagnosticArray, qos, None),
+        ]
+        if TFMessage is not None:
+            topics += [('/tf', TFMessage, TF_QOS, None),
+                       ('/tf_static', TFMessage, TF_STATIC_QOS, None)]
+        if bag_path is None:
+            topics = [entry for entry in topics if entry[3] is not None]
+            self.bag = None
+        else:
+            from stewart_kinematics.tools.bag_writer import BagWriter
+            self.bag = BagWriter(bag_path, [
+                (self.resolve_topic_name(topic), message_type, profile)
+                for topic, message_type, profile, _ in topics])
+        for topic, message_type, profile, record in topics:
+            self.create_subscription(
+                message_type, topic,
+                self._receiver(self.resolve_topic_name(topic), message_type, record), profile,
+                raw=True)
+
+    def _receiver(self, topic, message_type, record):
+        """Return the callback of ``topic``: to the bag as received, then to ``record``."""
+        def receive(data: bytes):
+            if self.bag is not None:
+                self.bag.write(topic, self.get_clock().now().nanoseconds, data)
+            if record is not None:
+                record(deserialize_message(data, message_type))
+        return receive
+
+    def close(self):
+        """Complete the recording, if any (its metadata.yaml is written now)."""
+        if self.bag is not None:
+            self.bag.close()
 
     def counts(self):
         """Numbers of target poses, leg lengths and estimated poses received."""
@@ -56,7 +102,8 @@ class RampRecorder(Node):
         return (self.count_subscribers('target_pose') >= 2
                 and self.count_subscribers('leg_lengths') >= 2
                 and self.count_publishers('leg_lengths') >= 1
-                and self.count_publishers('estimated_pose') >= 1)
+                and self.count_publishers('estimated_pose') >= 1
+                and (TFMessage is None or self.count_publishers('/tf') >= 1))
 
     def spin_until(self, condition, deadline, processes=()) -> bool:
         """

@@ -1,0 +1,135 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The frame tree on ``/tf`` and ``/tf_static``, and frame transforms to and from messages.
+
+Broadcasts as tf2_ros's broadcasters do (same topics, message and QoS) without depending on
+tf2_ros: ``/tf`` reliable with depth 100, ``/tf_static`` reliable, transient local, depth 1,
+with every static transform of the node in each message. tf2_msgs comes with every ROS 2
+installation; where it is missing (ROS from PyPI wheels), nothing is broadcast and the node
+says so once in its log, the rest works as before.
+"""
+
+from geometry_msgs.msg import Pose, Transform as TransformMessage, TransformStamped
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from std_msgs.msg import Header
+
+from stewart_kinematics.frames import Transform
+from stewart_kinematics.ros.message_conversions import position_quaternion_from_message
+from stewart_kinematics.ros.node_main import create_output_publisher
+from stewart_kinematics.rotations import matrix_to_quaternion, quaternion_to_matrix
+
+try:
+    from tf2_msgs.msg import TFMessage
+except ImportError:  # ROS from PyPI wheels: tf2_msgs is not among them
+    TFMessage = None
+
+#: tf2_ros's DynamicBroadcasterQoS and StaticBroadcasterQoS.
+TF_QOS = QoSProfile(depth=100)
+TF_STATIC_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+#: What the log says once when tf2_msgs cannot be imported.
+TF2_MSGS_MISSING = (
+    'tf2_msgs is not installed, so nothing is broadcast on /tf and /tf_static; every other '
+    'topic works. It comes with every ROS 2 installation (source /opt/ros/jazzy/setup.bash); '
+    'without one, scripts/build_tf2_msgs.sh builds it into a venv')
+
+
+def transform_from_pose_message(message: Pose) -> Transform:
+    """
+    Return the transform a geometry_msgs/msg/Pose places (the frame's pose in its parent).
+
+    :returns: the transform and the norm of the message's quaternion (it is normalised).
+    :raises ValueError: for a coordinate that is not finite, or a zero or non-finite
+        quaternion.
+    """
+    position, quaternion, norm = position_quaternion_from_message(message)
+    return Transform(position, quaternion_to_matrix(quaternion)), norm
+
+
+def pose_message_from_transform(transform: Transform) -> Pose:
+    """Return the geometry_msgs/msg/Pose of a transform (unit quaternion, ``w >= 0``)."""
+    message = Pose()
+    message.position.x, message.position.y, message.position.z = transform.position.tolist()
+    orientation = message.orientation
+    orientation.x, orientation.y, orientation.z, orientation.w = (
+        matrix_to_quaternion(transform.rotation).tolist())
+    return message
+
+
+def transform_stamped(parent: str, child: str, transform: Transform, stamp) -> TransformStamped:
+    """Return the geometry_msgs/msg/TransformStamped placing ``child`` in ``parent``."""
+    message = TransformMessage()
+    message.translation.x, message.translation.y, message.translation.z = (
+        transform.position.tolist())
+    rotation = message.rotation
+    rotation.x, rotation.y, rotation.z, rotation.w = (
+        matrix_to_quaternion(transform.rotation).tolist())
+    return TransformStamped(header=Header(stamp=stamp, frame_id=parent), child_frame_id=child,
+                            transform=message)
+
+
+class TransformBroadcaster:
+    """
+    A node's publishers of ``/tf`` and ``/tf_static``; inert, with one log line, without tf2_msgs.
+
+    :param node: the broadcasting node.
+    :param dynamic: create the ``/tf`` publisher.
+    :param static: create the ``/tf_static`` publisher.
+    """
+
+    def __init__(self, node, *, dynamic=True, static=True):
+        self.available = TFMessage is not None
+        self._tf = self._tf_static = None
+        self._static_transforms = {}
+        if not self.available:
+            if dynamic or static:
+                node.get_logger().warning(TF2_MSGS_MISSING)
+            return
+        if dynamic:
+            self._tf = create_output_publisher(node, TFMessage, '/tf', TF_QOS)
+        if static:
+            self._tf_static = create_output_publisher(
+                node, TFMessage, '/tf_static', TF_STATIC_QOS)
+
+    def has_listeners(self) -> bool:
+        """Whether anyone subscribes ``/tf``: a 1 kHz stream then skips building transforms."""
+        return self._tf is not None and self._tf.get_subscription_count() > 0
+
+    def send(self, parent: str, child: str, transform: Transform, stamp):
+        """Broadcast one transform on ``/tf`` with ``stamp`` (builtin_interfaces/msg/Time)."""
+        if self._tf is not None:
+            self._tf.publish(TFMessage(transforms=[
+                transform_stamped(parent, child, transform, stamp)]))
+
+    def send_static(self, transforms, stamp):
+        """
+        Broadcast fixed transforms on ``/tf_static``, replacing earlier ones of the same child.
+
+        As tf2_ros's static broadcaster does, each message holds every static transform the
+        node has sent (the topic keeps one message per publisher for late joiners).
+
+        :param transforms: ``(parent, child, transform)`` triples.
+        """
+        if self._tf_static is None:
+            return
+        for parent, child, transform in transforms:
+            self._static_transforms[child] = transform_stamped(parent, child, transform, stamp)
+        if self._static_transforms:   # nothing named: nothing to latch
+            self._tf_static.publish(
+                TFMessage(transforms=list(self._static_transforms.values())))
+
+    def forget_static(self, child: str):
+        """Stop including the static transform of ``child`` from the next broadcast on."""
+        self._static_transforms.pop(child, None)
