@@ -305,9 +305,19 @@ def rotation_vector_to_matrix(rotation_vector):
     first = np.where(small, 1.0 - squared / 6.0 + squared * squared / 120.0, np.sin(safe) / safe)
     second = np.where(small, 0.5 - squared / 24.0 + squared * squared / 720.0,
                       (1.0 - np.cos(safe)) / (safe * safe))
-    cross = _cross_matrix(vector)
-    identity = np.broadcast_to(np.eye(3), cross.shape)
-    return identity + first[..., None, None] * cross + second[..., None, None] * (cross @ cross)
+    # R = I + first [r]x + second [r]x^2, with [r]x^2 = r r^T - |r|^2 I, entry by entry.
+    rotation = second[..., None, None] * vector[..., :, None] * vector[..., None, :]
+    diagonal = 1.0 - second * squared
+    for axis in range(3):
+        rotation[..., axis, axis] += diagonal
+    x, y, z = (first * vector[..., axis] for axis in range(3))
+    rotation[..., 0, 1] -= z
+    rotation[..., 1, 0] += z
+    rotation[..., 0, 2] += y
+    rotation[..., 2, 0] -= y
+    rotation[..., 1, 2] -= x
+    rotation[..., 2, 1] += x
+    return rotation
 
 
 def matrix_to_rotation_vector(rotation):
@@ -326,11 +336,3 @@ def matrix_to_rotation_vector(rotation):
                      2.0 * np.arctan2(norm, w) / np.where(small, 1.0, norm))
     return vector * scale[..., None]
 
-
-def _cross_matrix(vector):
-    """Return ``[v]x``, the matrix of the cross product ``v x .``, shape (..., 3, 3)."""
-    x, y, z = vector[..., 0], vector[..., 1], vector[..., 2]
-    zero = np.zeros_like(x)
-    return np.stack([np.stack([zero, -z, y], axis=-1),
-                     np.stack([z, zero, -x], axis=-1),
-                     np.stack([-y, x, zero], axis=-1)], axis=-2)
