@@ -26,11 +26,17 @@ for timed motion, imported where used); the ROS nodes live in
     result = forward_kinematics(geometry, lengths)
     result.pose, result.converged, result.iterations, result.residual
 
+The decisions the nodes take, for a Python user's own loop: :class:`CommandCheck` (a commanded
+pose in, safe leg lengths or every reason out) and :class:`PoseTracker` (measured leg lengths
+in, a trusted pose or the reason out).
+
 Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
 from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -42,6 +48,7 @@ from stewart_kinematics.kinematics import (
     twist_jacobian,
 )
 from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+from stewart_kinematics.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -69,9 +76,11 @@ __all__ = [
     'ActuatorInterface',
     'ActuatorLimits',
     'check_trajectory',
+    'CommandCheck',
     'CommandFilter',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
+    'Finding',
     'forward_kinematics',
     'FilteredCommand',
     'ForwardKinematicsResult',
@@ -79,6 +88,8 @@ __all__ = [
     'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
+    'LegCommand',
+    'LegVelocityCommand',
     'leg_lengths',
     'leg_trajectory',
     'LegTrajectory',
@@ -90,6 +101,8 @@ __all__ = [
     'MotionPlan',
     'plan_motion',
     'platform_twist',
+    'PoseEstimate',
+    'PoseTracker',
     'PoseTrajectory',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
@@ -98,4 +111,5 @@ __all__ = [
     'TimedTrajectory',
     'TrajectoryCheck',
     'twist_jacobian',
+    'TwistEstimate',
 ]
