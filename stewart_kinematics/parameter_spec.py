@@ -361,9 +361,10 @@ RAMP_PARAMETERS = (
         'mode', STRING,
         "'table': publish the table's rows, one every row_period; 'interpolate': sample the "
         "ramp in time, like the paper's clock-driven lookup tables, at publish_rate over "
-        'duration',
-        default='table', read_only=True, validators=(one_of('table', 'interpolate'),),
-        constraints="'table' or 'interpolate'"),
+        "duration; 'off': no ramp, only the trajectories received on pose_trajectory and "
+        'pose_path',
+        default='table', read_only=True, validators=(one_of('table', 'interpolate', 'off'),),
+        constraints="'table', 'interpolate' or 'off'"),
     ParameterSpec(
         'row_period', DOUBLE, "Time between two rows in 'table' mode, seconds",
         default=1.0, read_only=True, validators=(finite, in_range(1e-3, 3600.0)),

@@ -42,8 +42,9 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import limits
+from stewart_kinematics import findings, limits
 from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.findings import Finding, violation_details
 from stewart_kinematics.kinematics import leg_vectors
 from stewart_kinematics.limits import Violation
 from stewart_kinematics.rotations import (
@@ -52,6 +53,15 @@ from stewart_kinematics.rotations import (
     rotation_vector_to_matrix,
 )
 
+#: Codes of the refusals of a trajectory (:class:`~stewart_kinematics.findings.Finding`): a
+#: pose limit broken, a leg velocity or acceleration limit broken, no timing found, and a
+#: trajectory that is malformed (for a caller that converts messages).
+OUT_OF_LIMITS = findings.OUT_OF_LIMITS
+TOO_FAST = 'too_fast'
+RETIMING_FAILED = 'retiming_failed'
+INVALID_TRAJECTORY = 'invalid_trajectory'
+#: The leg speed limits, as :class:`~stewart_kinematics.limits.Violation` names them.
+SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 #: Default sampling rate of the whole-trajectory check, hertz.
 DEFAULT_VALIDATION_RATE = 1000.0
 #: Samples checked at once: bounds the memory of a long trajectory's check.
@@ -635,6 +645,27 @@ class MotionPlan:
     trajectory: Optional[TimedTrajectory]
     check: Optional[TrajectoryCheck]
     retimed: bool = False
+
+    @property
+    def refusal(self) -> Optional[Finding]:
+        """
+        Return why the trajectory is refused, as a finding to count and report; ``None``.
+
+        Its code is :data:`OUT_OF_LIMITS` (stroke, cones, singularity margin), :data:`TOO_FAST`
+        (only leg velocity or acceleration broken) or :data:`RETIMING_FAILED`; its details
+        give the time, the segment and every violated limit.
+        """
+        if self.accepted:
+            return None
+        check = self.check
+        if check is None or check.accepted or not check.violations:
+            return Finding(RETIMING_FAILED, self.reason)
+        code = TOO_FAST if all(violation.limit in SPEED_LIMITS
+                               for violation in check.violations) else OUT_OF_LIMITS
+        return Finding(code, self.reason, (
+            ('time_s', f'{check.time:.4f}'),
+            ('segment', f'points {check.segment[0]} and {check.segment[1]}'),
+        ) + violation_details(check.violations))
 
 
 def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[ActuatorLimits] = None,

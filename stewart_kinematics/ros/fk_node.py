@@ -38,6 +38,7 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.actuators import ActuatorInterface
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.parameter_spec import geometry_from_parameters
 from stewart_kinematics.pose_tracker import PoseTracker, SETTING_NAMES
@@ -59,10 +60,12 @@ class FkNode(Node):
         super().__init__('fk_node', **kwargs)
         values = declare_parameters(
             self,
-            parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-            + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+            parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+            + parameter_spec.SOLVER_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change)
         self.geometry = geometry_from_parameters(values)
+        self.actuators = ActuatorInterface.from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)
         self.base_frame = values['base_frame']
         depth = values['queue_depth']
@@ -103,7 +106,7 @@ class FkNode(Node):
         """Solve for the pose of a joint state; with leg velocities, publish the twist too."""
         self.joint_state_accounting.receive()
         try:
-            lengths, velocities = legs_from_joint_state(message)
+            lengths, velocities = legs_from_joint_state(message, self.actuators)
         except ValueError as error:
             self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
