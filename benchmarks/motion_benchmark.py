@@ -61,7 +61,7 @@ COMMAND_PERIOD = 0.002
 
 
 def median_time(function, repeats):
-    """Median wall time of ``function()`` over ``repeats`` calls, seconds."""
+    """Return the median wall time of ``function()`` over ``repeats`` calls, seconds."""
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
@@ -71,7 +71,7 @@ def median_time(function, repeats):
 
 
 def ten_second_trajectory(geometry):
-    """100 waypoints over 10 s, within the example limits as timed."""
+    """Build 100 waypoints over 10 s, within the example limits as timed."""
     times = np.linspace(0.0, 10.0, 100)
     # 1 - cos(k pi t / 10): at rest at both ends, as the interpolation starts and ends.
     amplitudes = np.array([0.015, 0.015, 0.01, math.radians(4.0), math.radians(4.0),
@@ -82,7 +82,7 @@ def ten_second_trajectory(geometry):
 
 
 def table_3_path():
-    """The paper's Table 3, one row a second, as the ramp plays it in 'table' mode."""
+    """Build the paper's Table 3, one row a second, as the ramp plays it in 'table' mode."""
     rows = Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
                            [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0]).rows
     return PoseTrajectory.from_poses(np.arange(11.0), rows)

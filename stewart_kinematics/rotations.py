@@ -335,4 +335,3 @@ def matrix_to_rotation_vector(rotation):
     scale = np.where(small, 2.0 / np.where(small, w, 1.0),
                      2.0 * np.arctan2(norm, w) / np.where(small, 1.0, norm))
     return vector * scale[..., None]
-

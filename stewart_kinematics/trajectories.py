@@ -541,6 +541,17 @@ def _conditions_to_check(geometry, poses: PoseSamples, bound: float) -> np.ndarr
     return conditions
 
 
+def load_retiming() -> None:
+    """
+    Import toppra (and scipy) now: the first import takes seconds, too long for a callback.
+
+    A node that will retime calls this at start-up, so that its first trajectory is answered
+    as fast as the next ones.
+    """
+    import toppra.algorithm  # noqa: F401
+    import toppra.constraint  # noqa: F401
+
+
 def retime(path: PoseTrajectory, geometry, actuator_limits: ActuatorLimits,
            speed_scale: float = 1.0) -> TimedTrajectory:
     """

@@ -103,7 +103,14 @@ class FkNode(Node):
         self.estimate(lengths, header, self.accounting)
 
     def on_joint_states(self, message: JointState):
-        """Solve for the pose of a joint state; with leg velocities, publish the twist too."""
+        """
+        Solve for the pose of a joint state; with leg velocities, publish the twist too.
+
+        A joint state that names none of this platform's joints belongs to another (two
+        hexapods may share one ``joint_states``): it is skipped, and not counted.
+        """
+        if not any(name in message.name for name in self.actuators.joint_names):
+            return
         self.joint_state_accounting.receive()
         try:
             lengths, velocities = legs_from_joint_state(message, self.actuators)

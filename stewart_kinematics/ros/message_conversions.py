@@ -27,7 +27,6 @@ from nav_msgs.msg import Path
 import numpy as np
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 from stewart_kinematics.actuators import ActuatorInterface
 from stewart_kinematics.kinematics import as_leg_lengths
@@ -38,6 +37,7 @@ from stewart_kinematics.rotations import (
     quaternion_to_euler_zyx,
 )
 from stewart_kinematics.trajectories import LegTrajectory
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 #: Label of the one layout dimension of a leg array message.
 LEG_DIMENSION_LABEL = 'leg'
@@ -259,9 +259,10 @@ def _quaternion(orientation, index):
 
 def joint_trajectory_message(header, trajectory: LegTrajectory) -> JointTrajectory:
     """
-    trajectory_msgs/msg/JointTrajectory of a leg trajectory, as joint_trajectory_controller
-    takes it: joint names, and per point the actuator positions, velocities, accelerations
-    and time_from_start.
+    trajectory_msgs/msg/JointTrajectory of a leg trajectory, for joint_trajectory_controller.
+
+    Joint names, and per point the actuator positions, velocities, accelerations and
+    time_from_start, as the controller takes them on its ``joint_trajectory`` topic.
     """
     message = JointTrajectory(header=header, joint_names=list(trajectory.joint_names))
     message.points = [

@@ -36,7 +36,6 @@ from nav_msgs.msg import Path
 import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
-from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 from stewart_kinematics import limits, parameter_spec
 from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
@@ -56,10 +55,12 @@ from stewart_kinematics.rotations import quaternion_to_matrix
 from stewart_kinematics.trajectories import (
     INVALID_TRAJECTORY,
     leg_trajectory,
+    load_retiming,
     plan_motion,
     PoseTrajectory,
 )
 from stewart_kinematics.trajectory import Ramp
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
@@ -82,6 +83,7 @@ class TrajectoryNode(Node):
         self.rows = self.ramp.rows
         if values['mode'] != 'off':
             limits.check_samples(self.geometry, *self.planned_samples())
+        load_retiming()  # paths are always retimed: import toppra now, not in a callback
         depth = values['queue_depth']
         self.publisher = self.create_publisher(Pose, 'target_pose', depth)
         self.leg_trajectory_publisher = create_output_publisher(
@@ -195,7 +197,7 @@ class TrajectoryNode(Node):
         self.plan(path, True, self.path_accounting)
 
     def plan(self, path, retime, accounting):
-        """Publish the leg trajectory of an accepted plan (and play it), or count the refusal."""
+        """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
         plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
                            speed_scale=self.settings['speed_scale'],
                            validation_rate=self.settings['validation_rate'])
