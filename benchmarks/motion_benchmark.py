@@ -168,7 +168,7 @@ def main() -> int:
     print('Table 3 ramp under config/example_limits.yaml '
           f'(leg_velocity_max {actuator_limits.velocity_max:g} m/s, leg_acceleration_max '
           f'{actuator_limits.acceleration_max:g} m/s^2)')
-    for name, plan in (('one row a second (as played now)', ramp_given),
+    for name, plan in (('rows 1 s apart, interpolated', ramp_given),
                        ('retimed (toppra)', ramp_retimed)):
         print(f'  {name:<34} {plan.trajectory.duration:6.2f} s, peak leg velocity '
               f'{plan.check.peak_velocity_ratio * 100:5.1f} % and acceleration '
