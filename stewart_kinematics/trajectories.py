@@ -45,9 +45,10 @@ import numpy as np
 from stewart_kinematics import findings, limits
 from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.findings import Finding, violation_details
-from stewart_kinematics.kinematics import leg_vectors
+from stewart_kinematics.kinematics import leg_vectors, twist_jacobian
 from stewart_kinematics.limits import Violation
 from stewart_kinematics.rotations import (
+    euler_zyx_to_matrix,
     matrix_to_rotation_vector,
     quaternion_to_matrix,
     rotation_vector_to_matrix,
@@ -157,6 +158,10 @@ class PoseTrajectory:
     :raises ValueError: on a wrong shape, a non-finite value, a rotation that is not one,
         times that do not increase, or two waypoints that differ by half a turn or more (the
         way between them would be ambiguous).
+
+    Attributes: ``times``, ``positions``, ``rotations``, ``velocities`` as given or
+    estimated, and ``body_rates``, the angular velocity at each waypoint in the platform
+    frame (rad/s), all read-only arrays.
     """
 
     def __init__(self, times, positions, rotations, velocities=None, angular_velocities=None):
@@ -212,7 +217,6 @@ class PoseTrajectory:
 
         Euler angles only describe the waypoints: the path between them is on SO(3).
         """
-        from stewart_kinematics.rotations import euler_zyx_to_matrix
         poses = _array('poses', poses, (None, 6))
         return cls(times, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]), velocities,
                    angular_velocities)
@@ -519,7 +523,6 @@ def _conditions_to_check(geometry, poses: PoseSamples, bound: float) -> np.ndarr
 
     :returns: shape (M,): the condition number, or NaN where it is proved below ``bound``.
     """
-    from stewart_kinematics.kinematics import twist_jacobian
     jac = twist_jacobian(geometry, poses.positions, poses.rotations)
     jac[..., 3:] /= geometry.platform_radius
     gram = np.swapaxes(jac, -1, -2) @ jac

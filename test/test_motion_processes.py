@@ -312,6 +312,15 @@ def test_streamed_commands_and_two_hexapods_on_one_joint_states(
     recorder.client.wait(lambda: any(
         m.name[0] == 'b_leg_1' for m in recorder.received['/joint_states']), '/b command', nodes)
 
+    # A refused target (beyond the stroke) leaves the command where it was heading.
+    refused = target_a + [0.0, 0.0, 0.3, 0.0, 0.0, 0.0]
+    recorder.publishers['/a/target_pose'].publish(pose_message(refused))
+    count = len(recorder.received['/joint_states'])
+    recorder.client.wait(lambda: len(recorder.received['/joint_states']) > count + 20,
+                         '20 more commands', nodes)
+    assert_allclose(recorder.received['/joint_states'][-1].position, expected_a, atol=1e-12)
+    assert all(m.name[0] == 'a_leg_1' for m in recorder.received['/joint_states'][count:])
+
     streamed = [m for m in recorder.received['/joint_states'] if m.name[0] == 'a_leg_1']
     direct = [m for m in recorder.received['/joint_states'] if m.name[0] == 'b_leg_1']
     assert list(streamed[0].name) == [f'a_leg_{leg}' for leg in range(1, 7)]
