@@ -189,8 +189,8 @@ def test_trajectories_checked_timed_and_refused(client, start_node, config_direc
     /given: Table 3 one row a second in, leg_trajectory out whose positions at the waypoints
     are the IK of the waypoints (1e-9 m) and whose velocities and accelerations match finite
     differences; a too-fast segment and an unreachable waypoint refused with their reasons
-    and nothing published. /retimed: a too-fast trajectory and a path without timing, both
-    retimed within every leg limit at every point.
+    and nothing published. /retimed (with play): a too-fast trajectory and a path without
+    timing, both retimed within every leg limit at every point, and played on target_pose.
     """
     geometry = read_geometry(config_directory / 'paper_platform.yaml')
     names = {'given': [f'given_{leg}' for leg in range(1, 7)],
@@ -198,13 +198,15 @@ def test_trajectories_checked_timed_and_refused(client, start_node, config_direc
     nodes = [start_node('trajectory_node', config_args(
         config_directory, '-r', f'__ns:=/{namespace}', '-p', "mode:='off'",
         '-p', f'publish_rate:={POINT_RATE}', '-p', f'retime:={str(retime).lower()}',
-        '-p', 'joint_names:=[' + ', '.join(f"'{n}'" for n in names[namespace]) + ']'))
+        '-p', 'joint_names:=[' + ', '.join(f"'{n}'" for n in names[namespace]) + ']',
+        '-p', f'play:={str(retime).lower()}'))
         for namespace, retime in (('given', False), ('retimed', True))]
     recorder = Recorder(client, nodes)
     for namespace in names:
         recorder.subscribe(JointTrajectory, f'/{namespace}/leg_trajectory')
         recorder.advertise(MultiDOFJointTrajectory, f'/{namespace}/pose_trajectory')
     recorder.advertise(Path, '/retimed/pose_path')
+    recorder.subscribe(Pose, '/retimed/target_pose')
     recorder.connect()
 
     # As timed: Table 3, one row a second.
@@ -265,6 +267,14 @@ def test_trajectories_checked_timed_and_refused(client, start_node, config_direc
         assert speeds.max() <= VELOCITY_MAX * (1 + 1e-9)
     # Table 3 retimed: about 3 s instead of 10; the lift no faster than its limits allow.
     assert 2.5 < point_arrays(table_out)[0][-1] < 4.0
+    # With play, the path's poses follow on target_pose and end at its last waypoint.
+    played = recorder.received['/retimed/target_pose']
+
+    def at_the_end():
+        return played and np.allclose([played[-1].position.x, played[-1].position.y,
+                                       played[-1].position.z], TABLE_3[-1][:3], atol=1e-9)
+    recorder.client.wait(at_the_end, 'the played path at its last waypoint', nodes)
+    assert len(played) > 100
     for node in nodes:
         assert node.running()
 
