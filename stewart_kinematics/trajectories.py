@@ -130,17 +130,33 @@ def leg_states(geometry, poses: PoseSamples) -> LegStates:
     """
     legs = leg_vectors(geometry, poses.positions, poses.rotations)
     arms = legs - poses.positions[:, None, :] + geometry.base_joints    # r_i = R p_i
-    lengths = np.linalg.norm(legs, axis=-1)
+    lengths = np.sqrt(_dot(legs, legs))
     directions = legs / lengths[..., None]
     omega = poses.angular_velocities[:, None, :]
-    joint_velocities = poses.velocities[:, None, :] + np.cross(omega, arms)
+    joint_velocities = poses.velocities[:, None, :] + _cross(omega, arms)
     joint_accelerations = (poses.accelerations[:, None, :]
-                           + np.cross(poses.angular_accelerations[:, None, :], arms)
-                           + np.cross(omega, np.cross(omega, arms)))
-    velocities = np.sum(directions * joint_velocities, axis=-1)
-    accelerations = (np.sum(directions * joint_accelerations, axis=-1)
-                     + (np.sum(joint_velocities ** 2, axis=-1) - velocities ** 2) / lengths)
+                           + _cross(poses.angular_accelerations[:, None, :], arms)
+                           + _cross(omega, _cross(omega, arms)))
+    velocities = _dot(directions, joint_velocities)
+    accelerations = (_dot(directions, joint_accelerations)
+                     + (_dot(joint_velocities, joint_velocities) - velocities ** 2) / lengths)
     return LegStates(lengths, velocities, accelerations)
+
+
+def _cross(a, b):
+    """Cross products over the last axis, broadcast; twice as fast as numpy.cross here."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    product = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    product[..., 0] = a1 * b2 - a2 * b1
+    product[..., 1] = a2 * b0 - a0 * b2
+    product[..., 2] = a0 * b1 - a1 * b0
+    return product
+
+
+def _dot(a, b):
+    """Dot products over the last axis (same shapes)."""
+    return np.einsum('...i,...i->...', a, b)
 
 
 class PoseTrajectory:
@@ -297,9 +313,9 @@ class PoseTrajectory:
         columns = [np.einsum('mij,mj->mi', frame, wj) for frame, wj in zip(frames, w)]
         omega = sum(b1 * column for b1, column in zip(beta_1, columns))
         alpha = sum(b2 * column for b2, column in zip(beta_2, columns))
-        alpha = alpha + beta_1[0] * beta_1[1] * np.einsum('mij,mj->mi', a2, np.cross(w[0], w[1]))
+        alpha = alpha + beta_1[0] * beta_1[1] * np.einsum('mij,mj->mi', a2, _cross(w[0], w[1]))
         inner = beta_1[0] * np.einsum('mji,mj->mi', exps[1], w[0]) + beta_1[1] * w[1]
-        alpha = alpha + beta_1[2] * np.einsum('mij,mj->mi', a3, np.cross(inner, w[2]))
+        alpha = alpha + beta_1[2] * np.einsum('mij,mj->mi', a3, _cross(inner, w[2]))
         # Outside [t_0, t_N-1] the platform rests at the first or last waypoint.
         outside = ((times < self.times[0]) | (times > self.times[-1]))[:, None]
         return PoseSamples(

@@ -31,6 +31,8 @@ actuators' positions, velocities and accelerations, for joint_trajectory_control
 reason (time, segment, leg, limit) goes to the log and ``/diagnostics``.
 """
 
+import threading
+
 from geometry_msgs.msg import Pose
 from nav_msgs.msg import Path
 import numpy as np
@@ -83,7 +85,10 @@ class TrajectoryNode(Node):
         self.rows = self.ramp.rows
         if values['mode'] != 'off':
             limits.check_samples(self.geometry, *self.planned_samples())
-        load_retiming()  # paths are always retimed: import toppra now, not in a callback
+        # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
+        # and the ramp, not in the first callback; a callback that needs them meanwhile waits
+        # for the import to finish (Python's import lock).
+        threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
         depth = values['queue_depth']
         self.publisher = self.create_publisher(Pose, 'target_pose', depth)
         self.leg_trajectory_publisher = create_output_publisher(
