@@ -28,7 +28,7 @@ setup(
         ('share/' + package_name + '/config', sorted(glob('config/*.yaml'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
-    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy'],
+    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig'],
     zip_safe=True,
     maintainer='stewart_kinematics developers',
     maintainer_email='maintainer@example.com',

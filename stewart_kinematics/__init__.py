@@ -15,7 +15,8 @@
 """
 Kinematics of a 6-6 Gough-Stewart platform, with ROS 2 nodes around it.
 
-The core (this package's root modules) imports only numpy and PyYAML; the ROS nodes live in
+The core (this package's root modules) imports only numpy and PyYAML (toppra and ruckig
+for timed motion, imported where used); the ROS nodes live in
 :mod:`stewart_kinematics.ros` and the demo and helpers in :mod:`stewart_kinematics.tools`::
 
     from stewart_kinematics import forward_kinematics, inverse_kinematics, load_geometry
@@ -33,6 +34,7 @@ Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
+from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.assembly_modes import (
     assembly_mode_margin,
     assembly_modes,
@@ -67,10 +69,24 @@ from stewart_kinematics.rotations import (
     quaternion_to_euler_zyx,
     quaternion_to_matrix,
 )
+from stewart_kinematics.streaming import CommandFilter, FilteredCommand
+from stewart_kinematics.trajectories import (
+    check_trajectory,
+    leg_trajectory,
+    LegTrajectory,
+    MotionPlan,
+    plan_motion,
+    PoseTrajectory,
+    retime,
+    TimedTrajectory,
+    TrajectoryCheck,
+)
 from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
 
 __all__ = [
+    'ActuatorInterface',
+    'ActuatorLimits',
     'assembly_mode_margin',
     'assembly_modes',
     'AssemblyMode',
@@ -79,34 +95,45 @@ __all__ = [
     'calibrate',
     'CalibrationError',
     'CalibrationResult',
+    'check_trajectory',
     'CommandCheck',
+    'CommandFilter',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
+    'FilteredCommand',
     'Finding',
     'forward_kinematics',
     'ForwardKinematicsResult',
-    'FrameTree',
     'frames_from_parameters',
+    'FrameTree',
     'Geometry',
     'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
     'leg_lengths',
+    'leg_trajectory',
     'leg_vectors',
     'leg_velocities',
     'LegCommand',
+    'LegTrajectory',
     'LegVelocityCommand',
     'load_geometry',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'measurement_poses',
+    'MotionPlan',
+    'plan_motion',
     'platform_twist',
     'PoseEstimate',
     'PoseTracker',
+    'PoseTrajectory',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'retime',
     'SingularPoseError',
+    'TimedTrajectory',
+    'TrajectoryCheck',
     'Transform',
     'twist_jacobian',
     'TwistEstimate',

@@ -205,6 +205,27 @@ GEOMETRY_PARAMETERS = (
         "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
         default=math.inf, read_only=True, validators=(in_range(1.0, math.inf),),
         constraints='>= 1; .inf allowed'),
+    ParameterSpec(
+        'leg_velocity_max', DOUBLE,
+        'Largest speed of a leg (actuator), metres per second: timed trajectories are refused '
+        'or retimed to keep within it, streamed commands are limited to it; .inf for no limit',
+        default=math.inf, read_only=True,
+        validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> 0; .inf allowed'),
+    ParameterSpec(
+        'leg_acceleration_max', DOUBLE,
+        'Largest acceleration of a leg, metres per second squared, as leg_velocity_max; '
+        '.inf for no limit',
+        default=math.inf, read_only=True,
+        validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> 0; .inf allowed'),
+    ParameterSpec(
+        'leg_jerk_max', DOUBLE,
+        'Largest jerk of a leg, metres per second cubed, for streamed commands (command_rate); '
+        '.inf for no limit',
+        default=math.inf, read_only=True,
+        validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> 0; .inf allowed'),
 )
 
 
@@ -439,15 +460,19 @@ RAMP_PARAMETERS = (
         'mode', STRING,
         "'table': publish the table's rows, one every row_period; 'interpolate': sample the "
         "ramp in time, like the paper's clock-driven lookup tables, at publish_rate over "
-        'duration',
-        default='table', read_only=True, validators=(one_of('table', 'interpolate'),),
-        constraints="'table' or 'interpolate'"),
+        "duration; 'off': no ramp, only the trajectories received on pose_trajectory and "
+        'pose_path',
+        default='table', read_only=True, validators=(one_of('table', 'interpolate', 'off'),),
+        constraints="'table', 'interpolate' or 'off'"),
     ParameterSpec(
         'row_period', DOUBLE, "Time between two rows in 'table' mode, seconds",
         default=1.0, read_only=True, validators=(finite, in_range(1e-3, 3600.0)),
         constraints='in [0.001, 3600]'),
     ParameterSpec(
-        'publish_rate', DOUBLE, "Rate of the samples in 'interpolate' mode, hertz",
+        'publish_rate', DOUBLE,
+        "Rate of the samples in 'interpolate' mode; for a received trajectory, rate of the "
+        'points of leg_trajectory (every waypoint is a point too) and of the poses played on '
+        'target_pose, hertz',
         default=50.0, read_only=True, validators=(finite, in_range(1e-3, 1000.0)),
         constraints='in [0.001, 1000]'),
     ParameterSpec(
@@ -473,11 +498,51 @@ RAMP_PARAMETERS = (
 )
 
 
+#: trajectory_node: trajectories and paths received on pose_trajectory and pose_path.
+MOTION_PARAMETERS = (
+    ParameterSpec(
+        'retime', BOOL,
+        'Retime every received trajectory to the fastest timing within the leg velocity and '
+        'acceleration limits (toppra), instead of refusing one whose own timing breaks them; '
+        'a path (pose_path) is always retimed',
+        default=False),
+    ParameterSpec(
+        'speed_scale', DOUBLE,
+        'Fraction of the fastest speed: a trajectory is played 1 / speed_scale times as long '
+        '(retimed: at speed_scale of the leg velocity limit, speed_scale^2 of the acceleration '
+        'limit)',
+        default=1.0, validators=(finite, in_range(0.0, 1.0, low_inclusive=False)),
+        constraints='in (0, 1]'),
+    ParameterSpec(
+        'validation_rate', DOUBLE,
+        'Samples per second at which a whole trajectory is checked against every limit before '
+        'anything is published, hertz',
+        default=1000.0, validators=(finite, in_range(1.0, 100000.0)),
+        constraints='in [1, 100000]'),
+    ParameterSpec(
+        'play', BOOL,
+        'Also play an accepted trajectory on target_pose at publish_rate, for the ik_node chain',
+        default=False),
+)
+
+#: ik_node: commands streamed through the jerk-limited filter.
+STREAMING_PARAMETERS = (
+    ParameterSpec(
+        'command_rate', DOUBLE,
+        'Rate of joint_commands, hertz: each command moves from the last toward the latest '
+        'accepted target within leg_velocity_max, leg_acceleration_max and leg_jerk_max '
+        '(ruckig; the first two must be set); 0.0: one command per accepted pose, unfiltered',
+        default=0.0, read_only=True, validators=(finite, in_range(0.0, 10000.0)),
+        constraints='in [0, 10000]'),
+)
+
+
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
-            + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+            + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS
+            + MOTION_PARAMETERS + STREAMING_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

@@ -338,3 +338,53 @@ def rotation_angle_between(rotation_a, rotation_b):
         return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), w)
     quaternion = matrix_to_quaternion(relative)
     return 2.0 * np.arctan2(np.linalg.norm(quaternion[..., :3], axis=-1), quaternion[..., 3])
+
+
+def rotation_vector_to_matrix(rotation_vector):
+    """
+    Rotation matrix of a rotation vector (the exponential map of SO(3), Rodrigues' formula).
+
+    :param rotation_vector: axis times angle in radians, shape (3,) or (..., 3).
+    :returns: ``exp([r]x)``, shape (3, 3) or (..., 3, 3); exact to rounding near zero too.
+    """
+    vector = np.asarray(rotation_vector, dtype=float)
+    if vector.shape[-1:] != (3,):
+        raise ValueError(f'rotation vectors must have shape (..., 3), got {vector.shape}')
+    squared = np.sum(vector * vector, axis=-1)
+    angle = np.sqrt(squared)
+    small = angle < 1e-4
+    safe = np.where(small, 1.0, angle)
+    # sin(t)/t and (1 - cos(t))/t^2, by their series where t is small (error below 1e-17).
+    first = np.where(small, 1.0 - squared / 6.0 + squared * squared / 120.0, np.sin(safe) / safe)
+    second = np.where(small, 0.5 - squared / 24.0 + squared * squared / 720.0,
+                      (1.0 - np.cos(safe)) / (safe * safe))
+    # R = I + first [r]x + second [r]x^2, with [r]x^2 = r r^T - |r|^2 I, entry by entry.
+    rotation = second[..., None, None] * vector[..., :, None] * vector[..., None, :]
+    diagonal = 1.0 - second * squared
+    for axis in range(3):
+        rotation[..., axis, axis] += diagonal
+    x, y, z = (first * vector[..., axis] for axis in range(3))
+    rotation[..., 0, 1] -= z
+    rotation[..., 1, 0] += z
+    rotation[..., 0, 2] += y
+    rotation[..., 2, 0] -= y
+    rotation[..., 1, 2] -= x
+    rotation[..., 2, 1] += x
+    return rotation
+
+
+def matrix_to_rotation_vector(rotation):
+    """
+    Rotation vector of a rotation matrix (the logarithm of SO(3)): axis times angle.
+
+    :param rotation: shape (3, 3) or (..., 3, 3).
+    :returns: shape (3,) or (..., 3), angle in [0, pi] radians.
+    """
+    quaternion = matrix_to_quaternion(np.asarray(rotation, dtype=float))
+    vector, w = quaternion[..., :3], quaternion[..., 3]
+    norm = np.linalg.norm(vector, axis=-1)
+    small = norm < 1e-8
+    # 2 atan2(|v|, w) / |v|, which tends to 2 / w as |v| -> 0.
+    scale = np.where(small, 2.0 / np.where(small, w, 1.0),
+                     2.0 * np.arctan2(norm, w) / np.where(small, 1.0, norm))
+    return vector * scale[..., None]

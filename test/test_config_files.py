@@ -40,12 +40,15 @@ CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
 
 #: The parameters each node declares, as its constructor does.
 NODE_SPECS = {
-    'ik_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-                + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
-    'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-                + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
-    'trajectory_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS
-                        + parameter_spec.QUEUE_PARAMETERS),
+    'ik_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+                + parameter_spec.FRAME_PARAMETERS + parameter_spec.MARKER_PARAMETERS
+                + parameter_spec.STREAMING_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
+    'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+                + parameter_spec.SOLVER_PARAMETERS + parameter_spec.FRAME_PARAMETERS
+                + parameter_spec.QUEUE_PARAMETERS),
+    'trajectory_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+                        + parameter_spec.FRAME_PARAMETERS + parameter_spec.RAMP_PARAMETERS
+                        + parameter_spec.MOTION_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {

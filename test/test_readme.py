@@ -33,8 +33,10 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
     parameter_spec.GEOMETRY_PARAMETERS, parameter_spec.SOLVER_PARAMETERS,
     parameter_spec.FRAME_PARAMETERS, parameter_spec.MARKER_PARAMETERS,
     parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
-    parameter_spec.ASSEMBLY_MODE_PARAMETERS,
-], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp', 'assembly_mode'])
+    parameter_spec.ASSEMBLY_MODE_PARAMETERS, parameter_spec.ACTUATOR_PARAMETERS,
+    parameter_spec.MOTION_PARAMETERS, parameter_spec.STREAMING_PARAMETERS,
+], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp', 'assembly_mode', 'actuator',
+        'motion', 'streaming'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
     assert parameter_spec.markdown_table(specs) in README, (
@@ -136,3 +138,16 @@ def test_decision_objects_example_runs(monkeypatch, capsys):
     assert len(sent) == 1 and len(sent[0]) == 6
     printed = capsys.readouterr().out
     assert '[0.     0.     0.4325 0.     0.     0.    ]' in printed
+
+
+def test_motion_example_runs(monkeypatch, capsys):
+    """The Motion section's Python example runs and prints what its comments say."""
+    blocks = re.findall(r'```python\n(.*?)```', README, re.DOTALL)
+    [example] = [block for block in blocks if 'plan_motion' in block]
+    monkeypatch.chdir(ROOT)
+    namespace = {}
+    exec(example, namespace)  # noqa: S102 - the README's own code
+    printed = capsys.readouterr().out.split('\n')
+    assert printed[0] == 'False too_fast'
+    assert printed[1] == '4.09'
+    assert namespace['points'].positions.shape == (412, 6)

@@ -355,4 +355,4 @@ def test_ramp_mode_must_be_known(make_node, write_params):
     node = make_node(cli_args=file_args(write_params({'mode': 'circle'})))
     with pytest.raises(InvalidParameterValueException) as raised:
         declare_parameters(node, RAMP_SPECS)
-    assert "'mode' must be one of table, interpolate; got 'circle'" in str(raised.value)
+    assert "'mode' must be one of table, interpolate, off; got 'circle'" in str(raised.value)

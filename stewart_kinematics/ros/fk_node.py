@@ -51,6 +51,7 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.actuators import ActuatorInterface
 from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.frames import Transform
@@ -88,11 +89,13 @@ class FkNode(Node):
         super().__init__('fk_node', **kwargs)
         values = declare_parameters(
             self,
-            parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-            + parameter_spec.ASSEMBLY_MODE_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.FK_FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
+            parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+            + parameter_spec.SOLVER_PARAMETERS + parameter_spec.ASSEMBLY_MODE_PARAMETERS
+            + parameter_spec.FRAME_PARAMETERS + parameter_spec.FK_FRAME_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
+        self.actuators = ActuatorInterface.from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)
         # Replaced whole when a tool frame parameter changes: one tree per message.
         self.frames = frames_from_parameters(values)
@@ -166,10 +169,17 @@ class FkNode(Node):
         self.estimate(lengths, header, self.accounting)
 
     def on_joint_states(self, message: JointState):
-        """Solve for the pose of a joint state; with leg velocities, publish the twist too."""
+        """
+        Solve for the pose of a joint state; with leg velocities, publish the twist too.
+
+        A joint state that names none of this platform's joints belongs to another (two
+        hexapods may share one ``joint_states``): it is skipped, and not counted.
+        """
+        if not any(name in message.name for name in self.actuators.joint_names):
+            return
         self.joint_state_accounting.receive()
         try:
-            lengths, velocities = legs_from_joint_state(message)
+            lengths, velocities = legs_from_joint_state(message, self.actuators)
         except ValueError as error:
             self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return

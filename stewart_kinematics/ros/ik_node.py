@@ -20,8 +20,11 @@ Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame) or ``target_pose
 (:mod:`stewart_kinematics.frames`; by default the platform frame itself), and ``target_twist``
 (geometry_msgs/msg/Twist, base frame). Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray,
 metres, leg 1..6), ``leg_extensions`` (the same layout: each length minus its length at the
-home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, legs ``leg_1``
-.. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
+home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, the legs as
+prismatic joints named ``joint_names``, positions ``length - actuator_offsets``, with the stamp
+of the pose; or, with ``command_rate``, streamed at that rate through the jerk-limited
+:class:`stewart_kinematics.CommandFilter` toward the latest accepted pose) and
+``leg_velocities`` (the rates of
 change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
 break a limit in red, even for a refused pose), and, if ``publish_commanded_tf`` is set,
@@ -39,6 +42,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
 from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.command_check import CommandCheck
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.frames import Transform
@@ -64,6 +68,7 @@ from stewart_kinematics.ros.node_main import (
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.rotations import quaternion_to_matrix
+from stewart_kinematics.streaming import CommandFilter
 from visualization_msgs.msg import MarkerArray
 
 #: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
@@ -78,14 +83,24 @@ class IkNode(Node):
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.IK_FRAME_PARAMETERS + parameter_spec.MARKER_PARAMETERS
+            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+            + parameter_spec.FRAME_PARAMETERS + parameter_spec.IK_FRAME_PARAMETERS
+            + parameter_spec.MARKER_PARAMETERS + parameter_spec.STREAMING_PARAMETERS
             + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
         self.check = CommandCheck(self.geometry)
         # Replaced whole when a tool frame parameter changes: one tree per message.
         self.frames = frames_from_parameters(values)
+        self.actuators = ActuatorInterface.from_parameters(values)
+        # Streaming: commands at command_rate toward the latest accepted pose, from the home
+        # pose (where the platform is assumed to start), once a first pose is accepted.
+        self.command_filter = None
+        self.streaming = False
+        if values['command_rate'] > 0.0:
+            self.command_filter = CommandFilter(ActuatorLimits.from_parameters(values),
+                                                1.0 / values['command_rate'],
+                                                self.geometry.home_leg_lengths)
         self.base_frame = values['base_frame']
         self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
         self.last_marker_ns = None
@@ -111,6 +126,8 @@ class IkNode(Node):
         create_input_subscription(
             self, PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
         create_input_subscription(self, Twist, 'target_twist', self.on_target_twist, depth)
+        if self.command_filter is not None:
+            self.create_timer(self.command_filter.period, self.publish_streamed_command)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
@@ -159,7 +176,7 @@ class IkNode(Node):
             position, quaternion_to_matrix(quaternion), header.frame_id)
         command = self.check.pose(position, rotation)
         if command.violations or command.accepted:
-            self.publish_markers(header, position, quaternion, command.violations)
+            self.publish_markers(header, position, rotation, command.violations)
         if not command.accepted:
             accounting.reject(command.refusal)
             return
@@ -170,13 +187,27 @@ class IkNode(Node):
         if self.extensions_publisher.get_subscription_count():
             self.extensions_publisher.publish(
                 legs_to_message(lengths - self.geometry.home_leg_lengths))
-        if self.joint_command_publisher.get_subscription_count():
-            self.joint_command_publisher.publish(joint_state_message(header, lengths))
+        if self.command_filter is not None:
+            self.command_filter.set_target(lengths)
+            self.streaming = True
+        elif self.joint_command_publisher.get_subscription_count():
+            self.joint_command_publisher.publish(
+                joint_state_message(header, lengths, actuators=self.actuators))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
                          Transform(position, rotation), header.stamp)
 
-    def publish_markers(self, header, position, quaternion, violations):
+    def publish_streamed_command(self):
+        """Publish the next filtered command (position, velocity), once a pose was accepted."""
+        if not self.streaming:
+            return
+        command = self.command_filter.step()
+        if self.joint_command_publisher.get_subscription_count():
+            header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
+            self.joint_command_publisher.publish(joint_state_message(
+                header, command.lengths, command.velocities, actuators=self.actuators))
+
+    def publish_markers(self, header, position, rotation, violations):
         """
         Publish the platform's markers, at most at marker_rate and only to a subscriber.
 
@@ -192,7 +223,7 @@ class IkNode(Node):
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(
             Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
-            quaternion_to_matrix(quaternion), [violation.leg for violation in violations],
+            rotation, [violation.leg for violation in violations],
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):

@@ -21,17 +21,23 @@ raises ``ValueError`` with a sentence a user can act on when a message cannot be
 
 import math
 
+from builtin_interfaces.msg import Duration
 from geometry_msgs.msg import Pose, Twist
+from nav_msgs.msg import Path
 import numpy as np
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
+from stewart_kinematics.actuators import ActuatorInterface
 from stewart_kinematics.kinematics import as_leg_lengths
 from stewart_kinematics.rotations import (
     euler_zyx_to_quaternion,
+    matrix_to_quaternion,
     normalize_quaternion,
     quaternion_to_euler_zyx,
 )
+from stewart_kinematics.trajectories import LegTrajectory
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 #: Label of the one layout dimension of a leg array message.
 LEG_DIMENSION_LABEL = 'leg'
@@ -39,6 +45,8 @@ LEG_DIMENSION_LABEL = 'leg'
 LEG_JOINT_NAMES = tuple(f'leg_{leg}' for leg in range(1, 7))
 #: A quaternion whose norm is this far from 1 is normalised with a warning.
 QUATERNION_NORM_TOLERANCE = 1e-6
+#: The default actuator interface: joints leg_1 .. leg_6, zero offsets (position = length).
+DEFAULT_ACTUATORS = ActuatorInterface()
 
 
 def position_quaternion_from_message(message: Pose):
@@ -114,45 +122,167 @@ def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
     return as_leg_lengths(data)
 
 
-def joint_state_message(header, lengths, velocities=None) -> JointState:
+def joint_state_message(header, lengths, velocities=None,
+                        actuators: ActuatorInterface = DEFAULT_ACTUATORS) -> JointState:
     """
-    sensor_msgs/msg/JointState of the six legs as prismatic joints ``leg_1`` .. ``leg_6``.
+    sensor_msgs/msg/JointState of the six legs as prismatic joints.
 
     :param header: std_msgs/msg/Header to carry through (stamp of the pose it comes from).
-    :param lengths: positions, the leg lengths in metres, shape (6,).
+    :param lengths: the leg lengths in metres, shape (6,); the message carries the actuator
+        positions, ``length - offset``.
     :param velocities: leg velocities in metres per second, shape (6,), or ``None`` if unknown
         (the message's velocity list is then empty, as JointState allows).
+    :param actuators: joint names and offsets (default ``leg_1`` .. ``leg_6``, zero offsets).
     """
-    message = JointState(header=header, name=list(LEG_JOINT_NAMES))
-    message.position = np.asarray(lengths, dtype=float).tolist()
+    message = JointState(header=header, name=list(actuators.joint_names))
+    message.position = actuators.positions(lengths).tolist()
     if velocities is not None:
         message.velocity = np.asarray(velocities, dtype=float).tolist()
     return message
 
 
-def legs_from_joint_state(message: JointState):
+def legs_from_joint_state(message: JointState,
+                          actuators: ActuatorInterface = DEFAULT_ACTUATORS):
     """
-    Leg lengths, and leg velocities if given, from a JointState naming ``leg_1`` .. ``leg_6``.
+    Leg lengths, and leg velocities if given, from a JointState naming the legs' joints.
 
-    Joints are matched by name, in any order; other joints are ignored.
+    Joints are matched by name, in any order; other joints are ignored. Lengths are the
+    positions plus the actuator offsets.
 
     :returns: ``(lengths, velocities)``: metres, shape (6,); m/s, shape (6,) or ``None``.
     :raises ValueError: if a leg is missing, or a length is not finite and positive.
     """
     names = list(message.name)
-    missing = [name for name in LEG_JOINT_NAMES if name not in names]
-    if missing or len(message.position) != len(names):
-        raise ValueError(
-            f'joint state must give a position for each of {", ".join(LEG_JOINT_NAMES)}; '
-            f'missing: {", ".join(missing) or "positions"}')
-    order = [names.index(name) for name in LEG_JOINT_NAMES]
-    lengths = as_leg_lengths(np.asarray(message.position, dtype=float)[order])
+    if len(message.position) != len(names):
+        raise ValueError(f'joint state must give a position for each of its {len(names)} '
+                         f'names, got {len(message.position)}')
+    try:
+        order = actuators.order(names)
+    except ValueError as error:
+        raise ValueError(f'joint state must give a position for each of '
+                         f'{", ".join(actuators.joint_names)}: {error}') from error
+    lengths = as_leg_lengths(actuators.lengths(np.asarray(message.position, dtype=float)[order]))
     velocities = None
     if len(message.velocity) == len(names):
         velocities = np.asarray(message.velocity, dtype=float)[order]
         if not np.all(np.isfinite(velocities)):
             raise ValueError(f'leg velocities must be finite, got {velocities.tolist()}')
     return lengths, velocities
+
+
+def seconds(duration) -> float:
+    """Seconds of a builtin_interfaces/msg/Duration."""
+    return duration.sec + duration.nanosec * 1e-9
+
+
+def duration_message(value: float) -> Duration:
+    """builtin_interfaces/msg/Duration of ``value`` seconds (>= 0), to the nanosecond."""
+    nanoseconds = int(round(value * 1e9))
+    return Duration(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
+
+
+def check_frame(frame_id: str, base_frame: str, what: str) -> None:
+    """
+    Refuse a frame other than ``base_frame`` (an empty frame counts as ``base_frame``).
+
+    :raises ValueError: naming the frame and what to do.
+    """
+    if frame_id and frame_id != base_frame:
+        raise ValueError(f"{what} is in frame '{frame_id}', not in base_frame "
+                         f"'{base_frame}'; transform it first")
+
+
+def pose_trajectory_from_message(message: MultiDOFJointTrajectory, base_frame: str) -> dict:
+    """
+    Waypoints of a trajectory_msgs/msg/MultiDOFJointTrajectory of one joint, the platform.
+
+    Transforms place the platform frame in the base frame; velocities (twists, base frame)
+    are used when every point has one; accelerations are not used (the interpolation is a
+    cubic through positions and velocities).
+
+    :returns: keyword arguments of :meth:`stewart_kinematics.PoseTrajectory.from_quaternions`:
+        ``times`` (time_from_start, seconds), ``positions``, ``quaternions`` and, when given,
+        ``velocities`` and ``angular_velocities``.
+    :raises ValueError: if the frame is not ``base_frame``, there is not one joint, a point
+        has not one transform, only some points have velocities, or a value is not finite.
+    """
+    check_frame(message.header.frame_id, base_frame, 'the trajectory')
+    if len(message.joint_names) > 1:
+        raise ValueError(f'the trajectory must have one joint, the platform; got '
+                         f'{len(message.joint_names)}: {list(message.joint_names)}')
+    points = message.points
+    if any(len(point.transforms) != 1 for point in points):
+        raise ValueError('every trajectory point must have exactly one transform (the '
+                         'platform in the base frame)')
+    transforms = [point.transforms[0] for point in points]
+    arguments = {
+        'times': [seconds(point.time_from_start) for point in points],
+        'positions': [[t.translation.x, t.translation.y, t.translation.z] for t in transforms],
+        'quaternions': [_quaternion(t.rotation, index) for index, t in enumerate(transforms)],
+    }
+    with_velocity = [len(point.velocities) == 1 for point in points]
+    if all(with_velocity) and points:
+        twists = [point.velocities[0] for point in points]
+        arguments['velocities'] = [[v.linear.x, v.linear.y, v.linear.z] for v in twists]
+        arguments['angular_velocities'] = [[v.angular.x, v.angular.y, v.angular.z]
+                                           for v in twists]
+    elif any(len(point.velocities) for point in points):
+        raise ValueError('velocities must be given for every point (one twist each) or for '
+                         'none')
+    return arguments
+
+
+def path_from_message(message: Path, base_frame: str):
+    """
+    Positions and quaternions of the waypoints of a nav_msgs/msg/Path (no timing).
+
+    :returns: ``(positions (N, 3), quaternions (N, 4))``, metres and unit quaternions.
+    :raises ValueError: if the path or a pose is in another frame than ``base_frame``, or a
+        value is not finite.
+    """
+    check_frame(message.header.frame_id, base_frame, 'the path')
+    positions, quaternions = [], []
+    for index, stamped in enumerate(message.poses):
+        check_frame(stamped.header.frame_id, base_frame, f'pose {index} of the path')
+        point = stamped.pose.position
+        positions.append([point.x, point.y, point.z])
+        quaternions.append(_quaternion(stamped.pose.orientation, index))
+    return np.array(positions, dtype=float).reshape(-1, 3), np.array(quaternions).reshape(-1, 4)
+
+
+def _quaternion(orientation, index):
+    try:
+        return normalize_quaternion([orientation.x, orientation.y, orientation.z, orientation.w])
+    except ValueError as error:
+        raise ValueError(f'point {index}: {error}') from error
+
+
+def joint_trajectory_message(header, trajectory: LegTrajectory) -> JointTrajectory:
+    """
+    trajectory_msgs/msg/JointTrajectory of a leg trajectory, for joint_trajectory_controller.
+
+    Joint names, and per point the actuator positions, velocities, accelerations and
+    time_from_start, as the controller takes them on its ``joint_trajectory`` topic.
+    """
+    message = JointTrajectory(header=header, joint_names=list(trajectory.joint_names))
+    message.points = [
+        JointTrajectoryPoint(positions=positions, velocities=velocities,
+                             accelerations=accelerations,
+                             time_from_start=duration_message(time))
+        for time, positions, velocities, accelerations in zip(
+            trajectory.times.tolist(), trajectory.positions.tolist(),
+            trajectory.velocities.tolist(), trajectory.accelerations.tolist())]
+    return message
+
+
+def pose_message(position, rotation) -> Pose:
+    """geometry_msgs/msg/Pose of a position (metres) and rotation matrix; unit quaternion."""
+    message = Pose()
+    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
+    x, y, z, w = matrix_to_quaternion(rotation).tolist()
+    message.orientation.x, message.orientation.y = x, y
+    message.orientation.z, message.orientation.w = z, w
+    return message
 
 
 def twist_from_message(message: Twist) -> np.ndarray:

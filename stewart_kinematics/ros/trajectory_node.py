@@ -13,56 +13,115 @@
 # limitations under the License.
 
 """
-Trajectory node: plays a ramp described as the paper's Table 3 on ``target_pose``.
+Trajectory node: plays the paper's Table 3 ramp, and checks, times and hands on trajectories.
 
-Publishes ``target_pose`` (geometry_msgs/msg/Pose, base frame, metres). In ``table`` mode it
-publishes the table's rows, one every ``row_period``; in ``interpolate`` mode it samples the
-ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup tables
-do. Once, or looping. Before playing, it checks every pose it would publish against the
+The ramp: publishes ``target_pose`` (geometry_msgs/msg/Pose, base frame, metres). In ``table``
+mode it publishes the table's rows, one every ``row_period``; in ``interpolate`` mode it samples
+the ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup
+tables do. Once, or looping. Before playing, it checks every pose it would publish against the
 limits of the geometry (the same parameters as ik_node) and refuses to start, listing the
-failing samples, rather than play half of the ramp.
+failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp.
+
+Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
+the platform) and ``pose_path`` (nav_msgs/msg/Path, waypoints without timing) are checked whole
+and timed by :func:`stewart_kinematics.plan_motion` (retimed with ``retime`` or for a path);
+an accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
+actuators' positions, velocities and accelerations, for joint_trajectory_controller) and, with
+``play``, as poses on ``target_pose`` at ``publish_rate``. A refused one publishes nothing; the
+reason (time, segment, leg, limit) goes to the log and ``/diagnostics``.
 """
 
+import threading
+
 from geometry_msgs.msg import Pose
+from nav_msgs.msg import Path
 import numpy as np
 from rclpy.node import Node
+from std_msgs.msg import Header
 
 from stewart_kinematics import limits, parameter_spec
+from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.parameter_spec import frames_from_parameters, geometry_from_parameters
-from stewart_kinematics.ros.message_conversions import pose_to_message
-from stewart_kinematics.ros.node_main import create_output_publisher, run_node
+from stewart_kinematics.ros.message_accounting import NodeDiagnostics
+from stewart_kinematics.ros.message_conversions import (
+    joint_trajectory_message,
+    path_from_message,
+    pose_message,
+    pose_to_message,
+    pose_trajectory_from_message,
+)
+from stewart_kinematics.ros.node_main import (
+    create_input_subscription,
+    create_output_publisher,
+    run_node,
+)
 from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.rotations import quaternion_to_matrix
+from stewart_kinematics.trajectories import (
+    INVALID_TRAJECTORY,
+    leg_trajectory,
+    load_retiming,
+    plan_motion,
+    PoseTrajectory,
+)
 from stewart_kinematics.trajectory import Ramp
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
+#: Refusal code of a trajectory sent while the tool frame is offset from the platform frame.
+TOOL_FRAME_NOT_SUPPORTED = 'tool_frame_not_supported'
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
 
 
 class TrajectoryNode(Node):
-    """Publish a ramp of poses on ``target_pose``."""
+    """Publish a ramp of poses on ``target_pose``; check, time and publish trajectories."""
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.RAMP_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
+            + parameter_spec.FRAME_PARAMETERS + parameter_spec.RAMP_PARAMETERS
+            + parameter_spec.MOTION_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
         self.settings = values
+        self.geometry = geometry_from_parameters(values)
+        self.actuator_limits = ActuatorLimits.from_parameters(values)
+        self.actuators = ActuatorInterface.from_parameters(values)
         self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
-        # The ramp's poses are the tool frame's, as ik_node reads them: check where they put
-        # the platform.
-        times, poses = self.planned_samples()
-        limits.check_samples(geometry_from_parameters(values), times,
-                             frames_from_parameters(values).platform_pose_vectors(poses))
-        self.publisher = create_output_publisher(self, Pose, 'target_pose', values['queue_depth'])
+        self.frames = frames_from_parameters(values)
+        if values['mode'] != 'off':
+            # The ramp's poses are the tool frame's, as ik_node reads them: check where they
+            # put the platform.
+            times, poses = self.planned_samples()
+            limits.check_samples(self.geometry, times, self.frames.platform_pose_vectors(poses))
+        # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
+        # and the ramp, not in the first callback; a callback that needs them meanwhile waits
+        # for the import to finish (Python's import lock).
+        threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
+        depth = values['queue_depth']
+        self.publisher = create_output_publisher(self, Pose, 'target_pose', depth)
+        self.leg_trajectory_publisher = create_output_publisher(
+            self, JointTrajectory, 'leg_trajectory', depth)
+        diagnostics = NodeDiagnostics(self)
+        self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
+        self.path_accounting = diagnostics.accounting('pose_path')
+        create_input_subscription(
+            self, MultiDOFJointTrajectory, 'pose_trajectory', self.on_pose_trajectory, depth)
+        create_input_subscription(self, Path, 'pose_path', self.on_pose_path, depth)
         self.published = 0
         self.row_index = 0
         self.start_time = None
         self.timer = None
-        self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
-        self.get_logger().info(
-            f'{values["mode"]} ramp of {len(self.rows)} rows, '
-            + ('looping' if values['loop'] else 'once'))
+        self.wait_timer = None
+        self.playing = None
+        self.play_start = None
+        self.play_timer = None
+        if values['mode'] != 'off':
+            self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
+            self.get_logger().info(
+                f'{values["mode"]} ramp of {len(self.rows)} rows, '
+                + ('looping' if values['loop'] else 'once'))
 
     def planned_samples(self):
         """
@@ -128,6 +187,79 @@ class TrajectoryNode(Node):
         if not self.settings['loop']:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
+
+    def on_pose_trajectory(self, message: MultiDOFJointTrajectory):
+        """Check, time (with ``retime``) and publish a platform trajectory, or refuse it."""
+        self.trajectory_accounting.receive()
+        try:
+            path = PoseTrajectory.from_quaternions(
+                **pose_trajectory_from_message(message, self.settings['base_frame']))
+        except ValueError as error:
+            self.trajectory_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
+            return
+        self.plan(path, self.settings['retime'], self.trajectory_accounting)
+
+    def on_pose_path(self, message: Path):
+        """Check, retime and publish a path of waypoints without timing, or refuse it."""
+        self.path_accounting.receive()
+        try:
+            positions, quaternions = path_from_message(message, self.settings['base_frame'])
+            path = PoseTrajectory.path(self.geometry, positions,
+                                       quaternion_to_matrix(quaternions))
+        except ValueError as error:
+            self.path_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
+            return
+        self.plan(path, True, self.path_accounting)
+
+    def plan(self, path, retime, accounting):
+        """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
+        if not self.frames.tool_pose.is_identity():
+            # Trajectories are interpolated and checked as platform-frame poses; with another
+            # tool frame their velocities would have to be moved to it too.
+            accounting.reject(Finding(TOOL_FRAME_NOT_SUPPORTED, (
+                f'{accounting.topic} is planned for the platform frame, but tool_frame '
+                f"'{self.frames.tool_frame}' is offset from it: set tool_frame_position and "
+                'tool_frame_orientation_deg to zero to send trajectories')))
+            return
+        plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
+                           speed_scale=self.settings['speed_scale'],
+                           validation_rate=self.settings['validation_rate'])
+        if not plan.accepted:
+            accounting.reject(plan.refusal)
+            return
+        points = leg_trajectory(plan.trajectory, self.geometry, self.actuators,
+                                self.settings['publish_rate'])
+        header = Header(stamp=self.get_clock().now().to_msg(),
+                        frame_id=self.settings['base_frame'])
+        accounting.publish(self.leg_trajectory_publisher,
+                           joint_trajectory_message(header, points))
+        self.get_logger().info(
+            f'{accounting.topic}: {path.waypoint_count} waypoints accepted, '
+            + ('retimed to ' if plan.retimed else 'timed ')
+            + f'{plan.trajectory.duration:.3f} s; {len(points.times)} points on leg_trajectory')
+        if self.settings['play']:
+            self.play(plan.trajectory)
+
+    def play(self, trajectory):
+        """Stream a timed trajectory's poses on ``target_pose``; a new one replaces it."""
+        if self.play_timer is not None:
+            self.play_timer.cancel()
+            self.destroy_timer(self.play_timer)
+        self.playing = trajectory
+        self.play_start = self.get_clock().now()
+        self.play_timer = self.create_timer(1.0 / self.settings['publish_rate'],
+                                            self.publish_playing)
+        self.publish_playing()
+
+    def publish_playing(self):
+        """Publish the pose of the trajectory being played at the current time."""
+        elapsed = (self.get_clock().now() - self.play_start).nanoseconds * 1e-9
+        duration = self.playing.duration
+        sample = self.playing.sample([min(elapsed, duration)])
+        self.publisher.publish(pose_message(sample.positions[0], sample.rotations[0]))
+        self.published += 1
+        if elapsed >= duration:
+            self.play_timer.cancel()
 
 
 def main(args=None) -> int:
