@@ -279,14 +279,18 @@ class LimitChecks:
         return violations
 
 
-def check_poses_array(geometry, poses) -> LimitChecks:
+def check_poses_array(geometry, poses, *, condition_of_refused=True) -> LimitChecks:
     """
     Every limit that each of a batch of poses breaks, vectorised: :func:`check_pose` as arrays.
 
     No Python loop runs over the poses: stroke and joint cones cost well under a microsecond a
-    pose; the singularity margin, one small singular value decomposition a pose, costs more.
+    pose; the singularity margin, one small singular value decomposition a pose, costs a few.
 
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,) or (N, 6).
+    :param condition_of_refused: with False, the condition number (the dearest check) is
+        computed only for the poses that keep the stroke and the cones: elsewhere it is NaN
+        and ``broken['max_jacobian_condition']`` False. ``allowed`` is the same either way;
+        only the list of reasons of a refused pose may lack the singularity margin.
     :returns: a :class:`LimitChecks`; ``.violations(k)`` gives pose k's :class:`Violation` list.
     :raises ValueError: if a pose has the wrong shape or a non-finite value.
 
@@ -304,26 +308,25 @@ def check_poses_array(geometry, poses) -> LimitChecks:
     broken = {name: np.empty((6, count), dtype=bool) for name, wanted in (
         ('leg_length_min', stroke), ('leg_length_max', stroke),
         ('base_joint_max_angle', cones), ('platform_joint_max_angle', cones)) if wanted}
+    condition = np.full(count, np.nan) if singularity else None
     allowed = np.ones(count, dtype=bool)
-    if stroke or cones:
+    if stroke or cones or singularity:
         constants = _check_constants(geometry)
         for start in range(0, count, CHECK_BLOCK_SIZE):
             block = slice(start, start + CHECK_BLOCK_SIZE)
             _check_block(geometry, poses[block], constants,
                          {name: array[:, block] for name, array in values.items()},
                          {name: array[:, block] for name, array in broken.items()},
-                         allowed[block])
+                         None if condition is None else condition[block],
+                         condition_of_refused, allowed[block])
     values = {name: array.T for name, array in values.items()}
     broken = {name: array.T for name, array in broken.items()}
-    condition = None
     if singularity:
-        condition = np.empty(count)
-        for start in range(0, count, CHECK_BLOCK_SIZE):
-            block = poses[start:start + CHECK_BLOCK_SIZE]
-            condition[start:start + CHECK_BLOCK_SIZE] = jacobian_condition(
-                geometry, block[:, :3], euler_zyx_to_matrix(block[:, 3:]))
-        broken['max_jacobian_condition'] = ~(condition <= geometry.max_jacobian_condition)
-        allowed &= ~broken['max_jacobian_condition']
+        # As in check_pose, a NaN condition number breaks the margin, except where it was
+        # not computed (condition_of_refused False): those poses are refused already.
+        broken['max_jacobian_condition'] = (
+            ~(condition <= geometry.max_jacobian_condition) if condition_of_refused
+            else condition > geometry.max_jacobian_condition)
     return LimitChecks(geometry, values.get('lengths'), values.get('base_angles'),
                        values.get('platform_angles'), condition, broken, allowed)
 
@@ -343,7 +346,8 @@ def _check_constants(geometry):
                                platform_home))
 
 
-def _check_block(geometry, poses, constants, values, broken, allowed):
+def _check_block(geometry, poses, constants, values, broken, condition, condition_of_refused,
+                 allowed):
     """
     Check a block of poses (n, 6): write into the (6, n) arrays of ``values`` and ``broken``.
 
@@ -351,6 +355,7 @@ def _check_block(geometry, poses, constants, values, broken, allowed):
     a 12-wide inner dimension, BLAS gains nothing, and its threads stall on a busy machine;
     with the poses along the last axis, numpy's inner loops run over the whole block.
 
+    :param condition: (n,) to write the condition numbers into, or None.
     :param allowed: (n,), cleared where a pose breaks a limit.
     """
     platform, base, home, platform_home = constants
@@ -362,9 +367,9 @@ def _check_block(geometry, poses, constants, values, broken, allowed):
     rows = ((cg * cb, cg * sb_sa - sg * ca, cg * sb_ca + sg * sa),
             (sg * cb, sg * sb_sa + cg * ca, sg * sb_ca - cg * sa),
             (-sb, cb * sa, cb * ca))
-    lx, ly, lz = (r1 * platform[0] + r2 * platform[1] + r3 * platform[2]
-                  + (position[axis] - base[axis])
-                  for axis, (r1, r2, r3) in enumerate(rows))
+    # R p_i, then the legs t + R p_i - b_i, per component, shape (6, n).
+    rotated = [r1 * platform[0] + r2 * platform[1] + r3 * platform[2] for r1, r2, r3 in rows]
+    lx, ly, lz = (rotated[axis] + (position[axis] - base[axis]) for axis in range(3))
     if 'lengths' in values:
         lengths = values['lengths']
         np.sqrt(lx * lx + ly * ly + lz * lz, out=lengths)
@@ -380,6 +385,34 @@ def _check_block(geometry, poses, constants, values, broken, allowed):
             np.greater(angles, getattr(geometry, name), out=broken[name])
     for mask in broken.values():
         allowed &= ~np.any(mask, axis=0)
+    if condition is not None:
+        columns = slice(None) if condition_of_refused else np.flatnonzero(allowed)
+        condition[columns] = _block_condition(
+            lx[:, columns], ly[:, columns], lz[:, columns],
+            *(component[:, columns] for component in rotated),
+            radius=geometry.platform_radius)
+        allowed &= condition <= geometry.max_jacobian_condition
+
+
+def _block_condition(lx, ly, lz, ax, ay, az, radius):
+    """
+    Condition numbers of :func:`jacobian_condition` from legs and rotated joints ``R p_i``.
+
+    :param lx: ..., the legs' and the rotated joints' components, each shape (6, n).
+    :returns: shape (n,); ``inf`` where a leg has zero length or the Jacobian is singular.
+    """
+    with np.errstate(divide='ignore', invalid='ignore'):
+        lengths = np.sqrt(lx * lx + ly * ly + lz * lz)
+        ux, uy, uz = lx / lengths, ly / lengths, lz / lengths
+        # Rows [u_i, (R p_i x u_i) / rho], as in kinematics.twist_jacobian.
+        rows = np.stack([ux, uy, uz, (ay * uz - az * uy) / radius,
+                         (az * ux - ax * uz) / radius, (ax * uy - ay * ux) / radius], axis=-1)
+        degenerate = ~np.all(np.isfinite(rows), axis=(0, 2))
+        rows[:, degenerate] = 0.0
+        singular_values = np.linalg.svd(np.swapaxes(rows, 0, 1), compute_uv=False)
+        condition = singular_values[:, 0] / singular_values[:, -1]
+    condition[degenerate] = np.inf
+    return condition
 
 
 def _block_angles(lx, ly, lz, hx, hy, hz, out):

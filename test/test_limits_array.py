@@ -114,6 +114,19 @@ def test_excess_is_the_signed_distance_beyond_each_limit(limited):
         np.testing.assert_array_equal(mask, checks.excess(name) > 0.0)
 
 
+def test_condition_only_where_the_other_limits_are_kept(limited):
+    geometry = tilted_geometry(limited)
+    poses = random_poses(geometry, 2000, seed=18)
+    full = limits.check_poses_array(geometry, poses)
+    partial = limits.check_poses_array(geometry, poses, condition_of_refused=False)
+    np.testing.assert_array_equal(partial.allowed, full.allowed)
+    others_kept = ~np.any([np.any(full.broken[name], axis=-1)
+                           for name in limits.LIMIT_NAMES[:4]], axis=0)
+    np.testing.assert_array_equal(np.isnan(partial.condition), ~others_kept)
+    assert_allclose(partial.condition[others_kept], full.condition[others_kept], rtol=1e-15)
+    assert np.any(partial.broken['max_jacobian_condition'])
+
+
 def test_only_the_limits_set_are_checked(limited):
     stroke_only = dataclasses.replace(
         limited, base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
