@@ -50,6 +50,12 @@ from stewart_kinematics.rotations import (
 )
 from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist
+from stewart_kinematics.workspace import (
+    orientation_workspace,
+    travel_ranges,
+    workspace_slice,
+    workspace_volume,
+)
 
 __all__ = [
     'euler_zyx_to_matrix',
@@ -66,9 +72,13 @@ __all__ = [
     'load_geometry',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
+    'orientation_workspace',
     'platform_twist',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'travel_ranges',
     'twist_jacobian',
+    'workspace_slice',
+    'workspace_volume',
 ]
