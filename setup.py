@@ -43,6 +43,7 @@ setup(
             'fk_node = stewart_kinematics.ros.fk_node:main',
             'trajectory_node = stewart_kinematics.ros.trajectory_node:main',
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
+            'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
         ],
     },
 )

@@ -290,12 +290,13 @@ class WorkspaceVolume:
 
     :param orientation: ``(alpha, beta, gamma)``, radians.
     :param volume: m^3.
-    :param bounding_box: ``[[x_min, y_min, z_min], [x_max, y_max, z_max]]``, metres, from the
-        boundary points.
+    :param bounding_box: ``[[x_min, y_min, z_min], [x_max, y_max, z_max]]``, metres: in z from
+        the boundary points (to the tolerance), in x and y from the reachable grid points
+        (within one resolution inside the true box).
     :param resolution: grid step, metres.
     :param boundary: boundary points, shape (M, 3), metres, base frame: the crossings of the
-        boundary along x, y and z between neighbouring grid points, each located to the
-        tolerance and reachable.
+        boundary along z between neighbouring grid points (the top and bottom of the
+        workspace over each grid column), each located to the tolerance and reachable.
     :param boundary_limit: per boundary point, the index into
         :data:`~stewart_kinematics.limits.LIMIT_NAMES` of the limit met there.
     :param boundary_leg: per boundary point, the leg of that limit (0: condition number).
@@ -338,22 +339,25 @@ def workspace_volume(geometry, orientation=None, *, position=None, resolution=0.
         base[:3] = np.asarray(position, dtype=float)
     grid = _Grid(geometry, as_poses(base), (0, 1, 2), np.full(3, float(resolution)), None,
                  span)
-    points, limit, leg = grid.boundary(tolerance)
-    # Along z: each column's reachable length is the sum of (exit - entry) of its intervals.
-    along_z = grid.crossing_axis == 2
-    entering = grid.crossing_entering[along_z]
-    heights = points[along_z, 2]
-    length = np.sum(np.where(entering, -heights, heights))
+    points, limit, leg = grid.boundary(tolerance, dimensions=(2,))
+    # Each column's reachable length is the sum of (exit - entry) of its intervals.
+    heights = points[:, 2]
+    length = np.sum(np.where(grid.crossing_entering, -heights, heights))
     # A column reachable at the grid's lowest or highest point (an unbounded workspace) is
     # cut there.
     z = grid.coordinates[2]
     length += np.count_nonzero(grid.allowed[:, :, -1]) * z[-1]
     length -= np.count_nonzero(grid.allowed[:, :, 0]) * z[0]
     volume = float(length * resolution ** 2)
-    box = (np.array([points.min(axis=0), points.max(axis=0)]) if len(points)
-           else np.zeros((2, 3)))
-    return WorkspaceVolume(base[3:].copy(), volume, box[:, :3], float(resolution),
-                           points[:, :3], limit, leg, grid.bounded)
+    box = np.zeros((2, 3))
+    if np.any(grid.allowed):
+        columns = np.nonzero(np.any(grid.allowed, axis=2))
+        for dimension in (0, 1):
+            values = grid.coordinates[dimension][columns[dimension]]
+            box[:, dimension] = values.min(), values.max()
+        box[:, 2] = heights.min(), heights.max()
+    return WorkspaceVolume(base[3:].copy(), volume, box, float(resolution), points[:, :3],
+                           limit, leg, grid.bounded)
 
 
 def orientation_workspace(geometry, position=None, gammas=(0.0,), *,
@@ -504,18 +508,34 @@ class _Grid:
                 if np.array_equal(new_low, low) and np.array_equal(new_high, high):
                     break
                 low, high = new_low, new_high
-            # Shrink to the reachable coarse points, with one coarse step of margin.
+            # Shrink to the reachable coarse points, with two coarse steps of margin (the
+            # coarse grid may miss a thin part of the workspace).
             reachable = np.nonzero(allowed)
             if reachable[0].size:
-                high = low + np.array([indices.max() for indices in reachable]) + 1
-                low = low + np.array([indices.min() for indices in reachable]) - 1
+                high = low + np.array([indices.max() for indices in reachable]) + 2
+                low = low + np.array([indices.min() for indices in reachable]) - 2
             low, high = low * COARSE_FACTOR, high * COARSE_FACTOR
         else:
             extent = np.asarray(extent, dtype=float) - base[list(self.axes)][:, None]
             low = np.floor(extent[:, 0] / self.resolution).astype(int)
             high = np.ceil(extent[:, 1] / self.resolution).astype(int)
         low, high = np.maximum(low, -reach), np.minimum(high, reach)
-        self._sample(low, high, self.resolution)
+        for _ in range(MAX_GROWTH):
+            self._sample(low, high, self.resolution)
+            if extent is not None:
+                break
+            # Reachable points on a face the coarse grid missed: move that face out.
+            new_low, new_high = low.copy(), high.copy()
+            for dimension in range(len(self.axes)):
+                if np.any(np.take(self.allowed, 0, axis=dimension)):
+                    new_low[dimension] = max(low[dimension] - 2 * COARSE_FACTOR,
+                                             -reach[dimension])
+                if np.any(np.take(self.allowed, -1, axis=dimension)):
+                    new_high[dimension] = min(high[dimension] + 2 * COARSE_FACTOR,
+                                              reach[dimension])
+            if np.array_equal(new_low, low) and np.array_equal(new_high, high):
+                break
+            low, high = new_low, new_high
         self.bounded = not any(
             np.any(np.take(self.allowed, end, axis=dimension))
             for dimension in range(len(self.axes)) for end in (0, -1))
@@ -550,17 +570,18 @@ class _Grid:
             poses[:, axis] = axis_values
         return poses
 
-    def boundary(self, tolerance):
+    def boundary(self, tolerance, dimensions=None):
         """
-        Boundary points: every crossing between grid neighbours along each grid axis.
+        Boundary points: every crossing between grid neighbours along grid axes.
 
+        :param dimensions: the grid dimensions to look along; default all.
         :returns: ``(poses (M, 6), limit (M,), leg (M,))``, the reachable side of each
             crossing located to ``tolerance``; sets ``crossing_axis`` (the grid dimension
             of each crossing) and ``crossing_entering`` (True where the line enters the
             workspace as the coordinate grows).
         """
         inside, outside, axis_of, entering = [], [], [], []
-        for dimension in range(len(self.axes)):
+        for dimension in range(len(self.axes)) if dimensions is None else dimensions:
             count = self.allowed.shape[dimension]
             lower = np.take(self.allowed, np.arange(count - 1), axis=dimension)
             upper = np.take(self.allowed, np.arange(1, count), axis=dimension)
