@@ -25,10 +25,16 @@ The core (this package's root modules) imports only numpy and PyYAML; the ROS no
     result = forward_kinematics(geometry, lengths)
     result.pose, result.converged, result.iterations, result.residual
 
+The decisions the nodes take, for a Python user's own loop: :class:`CommandCheck` (a commanded
+pose in, safe leg lengths or every reason out) and :class:`PoseTracker` (measured leg lengths
+in, a trusted pose or the reason out).
+
 Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
+from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -40,6 +46,7 @@ from stewart_kinematics.kinematics import (
     twist_jacobian,
 )
 from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+from stewart_kinematics.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -58,14 +65,18 @@ from stewart_kinematics.workspace import (
 )
 
 __all__ = [
+    'CommandCheck',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
+    'Finding',
     'forward_kinematics',
     'ForwardKinematicsResult',
     'Geometry',
     'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
+    'LegCommand',
+    'LegVelocityCommand',
     'leg_lengths',
     'leg_vectors',
     'leg_velocities',
@@ -74,11 +85,14 @@ __all__ = [
     'matrix_to_quaternion',
     'orientation_workspace',
     'platform_twist',
+    'PoseEstimate',
+    'PoseTracker',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
     'travel_ranges',
     'twist_jacobian',
+    'TwistEstimate',
     'workspace_slice',
     'workspace_volume',
 ]

@@ -38,11 +38,14 @@ import numpy as np
 from stewart_kinematics.kinematics import (
     as_leg_lengths,
     as_poses,
+    jacobian_condition,
     leg_lengths,
     leg_vectors,
-    twist_jacobian,
 )
 from stewart_kinematics.rotations import euler_zyx_to_matrix
+
+#: How many failing samples :func:`check_samples` lists in full.
+LISTED_FAILURES = 10
 
 
 @dataclass(frozen=True)
@@ -116,32 +119,14 @@ def joint_angles(geometry, position, rotation):
     return _angle_between(directions, home), _angle_between(platform_now, platform_home)
 
 
-def jacobian_condition(geometry, position, rotation):
-    """
-    Condition number of the dimensionless Jacobian: how close the pose is to a singularity.
-
-    The rows are ``[u_i, (R p_i x u_i) / rho]``: leg directions and their moment arms divided
-    by ``rho``, the RMS distance of the platform joints from their centroid, so that
-    translation and rotation weigh alike. 1 is ideal; it grows without bound at a singularity,
-    where the platform gains a motion that no leg resists.
-
-    :param position: metres, shape (3,) or (N, 3).
-    :param rotation: shape (3, 3) or (N, 3, 3).
-    :returns: shape () or (N,); ``inf`` at an exact singularity.
-    """
-    jac = twist_jacobian(geometry, position, rotation)
-    jac[..., 3:] /= geometry.platform_radius
-    singular_values = np.linalg.svd(jac, compute_uv=False)
-    with np.errstate(divide='ignore'):
-        return singular_values[..., 0] / singular_values[..., -1]
-
-
-def check_pose(geometry, position, rotation) -> List[Violation]:
+def check_pose(geometry, position, rotation, condition=None) -> List[Violation]:
     """
     Every limit that one pose breaks; empty when the pose is allowed.
 
     :param position: platform position in the base frame, metres, shape (3,).
     :param rotation: platform-to-base rotation matrix, shape (3, 3).
+    :param condition: the pose's :func:`jacobian_condition` when already known (a forward
+        kinematics result carries it), so that it is not computed twice.
     :raises ValueError: if the position or the rotation is malformed or not finite.
     """
     position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
@@ -164,7 +149,8 @@ def check_pose(geometry, position, rotation) -> List[Violation]:
                 violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
                                             math.degrees(allowed), 'deg'))
     if math.isfinite(geometry.max_jacobian_condition):
-        condition = float(jacobian_condition(geometry, position, rotation))
+        if condition is None:
+            condition = float(jacobian_condition(geometry, position, rotation))
         if not condition <= geometry.max_jacobian_condition:
             violations.append(Violation('max_jacobian_condition', None, condition,
                                         geometry.max_jacobian_condition, ''))
@@ -421,6 +407,30 @@ def _block_angles(lx, ly, lz, hx, hy, hz, out):
     cy = lz * hx - lx * hz
     cz = lx * hy - ly * hx
     np.arctan2(np.sqrt(cx * cx + cy * cy + cz * cz), lx * hx + ly * hy + lz * hz, out=out)
+
+
+def check_samples(geometry, times, poses):
+    """
+    Refuse a trajectory any of whose samples breaks a limit of ``geometry``.
+
+    trajectory_node checks every pose it would publish with this before it plays a ramp.
+
+    :param times: seconds from the start of a pass, shape (N,).
+    :param poses: the samples, ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
+    :raises ValueError: listing the failing samples (time, pose, every violation).
+    """
+    failures = [(index, violations) for index, violations
+                in enumerate(check_poses(geometry, poses)) if violations]
+    if not failures:
+        return
+    lines = [
+        f'sample {index} at t={times[index]:.3f} s, pose '
+        f'{np.round(poses[index], 6).tolist()}: ' + '; '.join(map(str, violations))
+        for index, violations in failures[:LISTED_FAILURES]]
+    more = len(failures) - LISTED_FAILURES
+    raise ValueError(
+        f'ramp refused: {len(failures)} of {len(poses)} samples break the limits of the '
+        'geometry:\n  ' + '\n  '.join(lines) + (f'\n  ... and {more} more' if more > 0 else ''))
 
 
 def _angle_between(a, b):

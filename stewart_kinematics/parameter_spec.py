@@ -213,6 +213,7 @@ GEOMETRY_PARAMETERS = (
         constraints='>= 1; .inf allowed'),
 )
 
+
 def distinct_names(name, value) -> str:
     """Require non-empty, distinct strings (joint names)."""
     if not all(value) or len(set(value)) != len(value):
@@ -251,8 +252,16 @@ SOLVER_PARAMETERS = (
     ParameterSpec(
         'near_singularity_condition', DOUBLE,
         'A solution whose dimensionless Jacobian condition number exceeds this is published '
-        'with a WARN status on /diagnostics: it lies near a singularity',
+        'with a WARN status on /diagnostics: it lies near a singularity; leg velocities are '
+        'not turned into a twist there (they would be amplified up to this many times)',
         default=100.0, validators=(in_range(1.0, math.inf),), constraints='>= 1; .inf allowed'),
+    ParameterSpec(
+        'pose_tolerance', DOUBLE,
+        'Largest accepted bound on the pose error of a solution, metres and radians: near a '
+        'singularity leg lengths matched to the tolerance above fix the pose only loosely, and '
+        'a solution whose first-order error bound exceeds this is refused; .inf for no check',
+        default=1e-9, validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> 0; .inf allowed'),
     ParameterSpec(
         'assembly_guard_length_change', DOUBLE,
         'Assembly-mode guard: when no leg changed by more than this since the last solution, '

@@ -184,7 +184,7 @@ def test_ik_and_fk_see_the_same_geometry(nodes):
     assert_allclose(ik.geometry.base_joints, fk.geometry.base_joints, atol=0.0)
     assert_allclose(ik.geometry.platform_joints, fk.geometry.platform_joints, atol=0.0)
     assert_allclose(ik.geometry.home_pose, fk.geometry.home_pose, atol=0.0)
-    assert (fk.settings['tolerance'], fk.settings['max_iterations']) == (1e-12, 50)
+    assert (fk.tracker.settings.tolerance, fk.tracker.settings.max_iterations) == (1e-12, 50)
 
 
 def test_geometry_from_yaml_reads_the_paper_platform():

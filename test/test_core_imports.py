@@ -26,7 +26,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / 'stewart_kinematics'
 CORE_MODULES = sorted(path.stem for path in PACKAGE.glob('*.py') if path.stem != '__init__')
 
 #: Run in a fresh interpreter: refuse every ROS module, then import the whole core.
-IMPORT_WITHOUT_ROS = '''
+IMPORT_WITHOUT_ROS = """
 import importlib
 import importlib.abc
 import sys
@@ -46,7 +46,7 @@ for module in sys.argv[1:]:
 ros = sorted(name for name in sys.modules if name.split('.')[0] == 'rclpy')
 assert not ros, ros
 print('imported', len(sys.argv) - 1, 'core modules')
-'''
+"""
 
 
 def test_core_modules_exist():

@@ -33,8 +33,8 @@ The restart test kills fk_node with SIGKILL, which leaves its Fast DDS shared-me
 in /dev/shm unless a surviving participant's watchdog removes it; the test removes it
 afterwards if its lock shows that no living process owns it (:func:`remove_dead_segments`).
 
-Run with ``-s`` to see the figures: lines starting ``LOAD``, ``BURST``, ``SIGNAL`` and
-``RESTART``.
+Run with ``-s`` to see the figures: lines starting ``LOAD``, ``FLOOD``, ``BURST``, ``SIGNAL``
+and ``RESTART``.
 """
 
 import contextlib
@@ -47,7 +47,7 @@ import signal
 import threading
 import time
 
-from diagnostic_msgs.msg import DiagnosticArray
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
@@ -88,6 +88,9 @@ LOAD_CYCLE = 500
 #: bytes a message: keeping every message received fails it (measured: +5.8 MB for ik_node's
 #: Pose messages, +4.7 MB for fk_node's Float64MultiArray ones).
 RSS_GROWTH_LIMIT_KB = 2048
+#: Bad poses a second, and in all, in the diagnostics flood test (3 s).
+FLOOD_RATE = 1000.0
+FLOOD_COUNT = 3000
 #: target_pose messages published as fast as possible in the burst test.
 BURST_SIZE = 5000
 #: Seconds a node has to exit after SIGINT or SIGTERM.
@@ -525,6 +528,84 @@ def test_node_loses_nothing_at_500_hz(client, start_node, config_directory, pape
     assert not failures, '\n'.join(failures)
     for process in processes:
         stop_cleanly(process)
+
+
+class DiagnosticsArrays:
+    """Every DiagnosticArray that carries a status of one name, with its arrival time."""
+
+    def __init__(self, name):
+        """Keep the arrays that carry a status named ``name``."""
+        self.name = name
+        self.arrays = []
+
+    def __call__(self, array):
+        """Keep ``array`` (with the monotonic time of arrival) if it carries the status."""
+        for status in array.status:
+            if status.name == self.name:
+                self.arrays.append((time.monotonic(), status))
+
+    def since(self, moment):
+        """Return the statuses that arrived at or after ``moment`` (monotonic seconds)."""
+        return [status for arrival, status in self.arrays if arrival >= moment]
+
+    def latest_values(self):
+        """Return the key-value pairs of the last status, as a dict (empty before the first)."""
+        return {pair.key: pair.value for pair in self.arrays[-1][1].values} if self.arrays \
+            else {}
+
+
+def test_a_flood_of_bad_poses_gives_one_diagnostics_report_a_second(
+        client, start_node, config_directory):
+    """
+    1000 bad poses a second for 3 s: about one DiagnosticArray a second, not one per pose.
+
+    ik_node runs in the namespace /flood with the example limits; two poses in three have a
+    NaN position (invalid_pose), one in three raises the platform beyond leg_length_max
+    (out_of_limits). Queues of FLOOD_COUNT messages on both sides keep every message, so the
+    node's report must count each reason exactly; its hardware_id names the namespace. The
+    log says each reason at most once a second, so the flood of one does not hide the other.
+    """
+    node = start_node('ik_node', node_arguments(
+        config_directory, '--params-file', str(config_directory / 'example_limits.yaml'),
+        '-p', f'queue_depth:={FLOOD_COUNT}', '-r', '__ns:=/flood'))
+    reports = DiagnosticsArrays('/flood/ik_node: target_pose')
+    client.subscribe(DiagnosticArray, '/diagnostics', reports)
+    publisher = client.node.create_publisher(Pose, '/flood/target_pose', FLOOD_COUNT)
+    client.wait(lambda: publisher.get_subscription_count() >= 1 and reports.arrays,
+                'ik_node in /flood matched with the client, and its first report', [node])
+    client.settle()
+
+    nan_pose = pose_message(TABLE3[0])
+    nan_pose.position.x = math.nan
+    raised = pose_message((0.0, 0.0, 0.62, 0.0, 0.0, 0.0))  # legs 1, 2, 4, 5, 6 beyond 0.9 m
+    flood = [nan_pose, nan_pose, raised]
+    start = time.monotonic()
+    for index in paced(FLOOD_RATE, FLOOD_COUNT):
+        publisher.publish(flood[index % 3])
+    flood_time = time.monotonic() - start
+    client.wait(lambda: reports.latest_values().get('received') == str(FLOOD_COUNT),
+                'a report counting every pose of the flood', [node])
+    during = reports.since(start)
+    values = reports.latest_values()
+    output = stop_cleanly(node)
+    logged = [line for line in output.splitlines() if 'rejected so far' in line]
+    print(f'\nFLOOD ik_node: {FLOOD_COUNT} bad poses in {flood_time:.2f} s; '
+          f'{len(during)} reports on /diagnostics from the start of the flood to the report '
+          f'counting all of them ({time.monotonic() - start:.2f} s); {len(logged)} log lines')
+
+    assert values['rejected'] == str(FLOOD_COUNT) and values['published'] == '0'
+    assert values['rejected invalid_pose'] == str(2 * FLOOD_COUNT // 3)
+    assert values['rejected out_of_limits'] == str(FLOOD_COUNT // 3)
+    assert values['last rejection'].startswith(('position must be finite',
+                                                'the pose is out of the limits'))
+    assert all(status.hardware_id == 'stewart_platform/flood' for status in during)
+    assert any(status.level == DiagnosticStatus.ERROR for status in during)
+    # One report a second: three for the flood, give or take one at each end.
+    assert 2 <= len(during) <= math.ceil(time.monotonic() - start) + 1, len(during)
+    assert any('target_pose rejected: position must be finite' in line for line in logged)
+    assert any('target_pose rejected: the pose is out of the limits' in line for line in logged)
+    assert len(logged) <= 2 * (math.ceil(flood_time) + 2), '\n'.join(logged)
+    assert any('more like it not logged' in line for line in logged)
 
 
 def test_ik_node_survives_a_burst(client, start_node, config_directory, paper_geometry):

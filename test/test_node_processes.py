@@ -431,7 +431,7 @@ def test_ik_node_survives_bad_poses(client, start_node, config_directory):
     publisher.publish(raw_pose_message((math.nan, 0.0, 0.4325), (0.0, 0.0, 0.0, 1.0)))
     publisher.publish(pose_message(TABLE3[3]))
     client.wait(lambda: len(lengths) == 1, 'answer to the good pose after a NaN one', [node])
-    # Same warning call site: wait out its throttle window so that the next one is logged.
+    # The same reason (invalid_pose): wait out its throttle window so that the next is logged.
     client.spin_for(WARNING_PERIOD + 0.25)
     publisher.publish(raw_pose_message(TABLE3[5][:3], (0.0, 0.0, 0.0, 0.0)))
     publisher.publish(pose_message(TABLE3[7], scale=2.0))

@@ -18,8 +18,11 @@ In-process tests of the nodes' safety behaviour: limits, bad input, diagnostics,
 Each node is built with config/paper_platform.yaml and config/example_limits.yaml (plus
 solver.yaml or table3_ramp.yaml), with parameter overrides where a test needs tighter limits.
 A probe node feeds the node's input topic and records its outputs and ``/diagnostics``
-(diagnostic_msgs/msg/DiagnosticArray): a refused message must publish no output and one ERROR
-status that says why, and the counters on /diagnostics must add up.
+(diagnostic_msgs/msg/DiagnosticArray). A refused message must publish no output; the node must
+pass on the core's finding (recorded here as the node hands it to its accounting), and the
+report on /diagnostics, one a second, must carry the counters, the counts by reason and the
+latest reason. The decisions themselves are tested without ROS in test_command_check.py and
+test_pose_tracker.py.
 
 The poses used against the limits were chosen with the values printed beside them; the
 functions of stewart_kinematics.limits that give those values are tested in test_limits.py.
@@ -40,7 +43,7 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics import inverse_kinematics
 from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
@@ -150,11 +153,6 @@ def counters_of(status):
     return tuple(int(values[key]) for key in ('received', 'published', 'rejected'))
 
 
-def is_summary(status):
-    """Say whether a status is the periodic summary (OK 'running' or WARN 'N rejected')."""
-    return status.message == 'running' or 'message(s) rejected; last:' in status.message
-
-
 class Probe:
     """A node that publishes a node's input and records its outputs and /diagnostics."""
 
@@ -173,14 +171,28 @@ class Probe:
             100)
 
     def statuses_of(self, node, level=None):
-        """Return the statuses ``node`` published, of one level or of all."""
+        """Return the statuses ``node`` published for its first input, of one level or all."""
         name = node.accounting.status_name
         return [status for status in self.statuses
                 if status.name == name and (level is None or status.level == level)]
 
-    def errors(self, node):
-        """Return the ERROR statuses ``node`` published: one per refused message."""
-        return self.statuses_of(node, DiagnosticStatus.ERROR)
+
+def record_findings(node):
+    """
+    Record, in order, every finding the node's inputs reject or warn with.
+
+    :returns: ``(refusals, warnings)``, two lists the node's accountings append to.
+    """
+    refusals, warnings = [], []
+    for accounting in node.accounting.diagnostics.inputs:
+        for name, found in (('reject', refusals), ('warn', warnings)):
+            original = getattr(accounting, name)
+
+            def record(finding, original=original, found=found):
+                found.append(finding)
+                original(finding)
+            setattr(accounting, name, record)
+    return refusals, warnings
 
 
 @pytest.fixture
@@ -232,13 +244,12 @@ def start_fk(start, overrides=None):
                  [('estimated_pose', Pose)])
 
 
-def wait_for_summary(spin_until, executor, probe, node, received):
-    """Spin until a summary status reports ``received`` messages, and return it."""
+def wait_for_report(spin_until, executor, probe, node, received):
+    """Spin until a report of the node's first input counts ``received`` messages; return it."""
     def found():
-        return [s for s in probe.statuses_of(node)
-                if is_summary(s) and counters_of(s)[0] == received]
+        return [s for s in probe.statuses_of(node) if counters_of(s)[0] == received]
     assert spin_until(executor, found), (
-        f'no summary with received={received}: '
+        f'no report with received={received}: '
         f'{[(s.message, values_of(s)) for s in probe.statuses_of(node)]}')
     return found()[0]
 
@@ -246,13 +257,12 @@ def wait_for_summary(spin_until, executor, probe, node, received):
 # ik_node --------------------------------------------------------------------------------------
 
 def test_ik_refuses_poses_beyond_each_limit_and_says_why(start, spin_until):
-    """Stroke, joint cone and singularity margin: no lengths, an ERROR naming leg and limit."""
+    """Stroke, joint cone and singularity margin: no lengths, a reason naming leg and limit."""
     node, probe, executor = start_ik(start, IK_TIGHT_LIMITS)
+    refusals, _ = record_findings(node)
     lengths, extensions = probe.received['leg_lengths'], probe.received['leg_extensions']
     for pose in (STROKE_POSE, CONE_POSE, SINGULAR_POSE):
         probe.publisher.publish(message_of(pose))
-    assert spin_until(executor, lambda: len(probe.errors(node)) >= 3), (
-        f'{len(probe.errors(node))} of 3 ERROR statuses')
     # Poses from one publisher arrive in order: the answer to this good pose comes after any
     # answer to the three bad ones, so one answer of each kind means they produced none.
     probe.publisher.publish(message_of(HOME))
@@ -261,27 +271,38 @@ def test_ik_refuses_poses_beyond_each_limit_and_says_why(start, spin_until):
     assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)
     assert_allclose(extensions[0].data, np.zeros(6), rtol=0.0, atol=1e-15)
 
-    stroke, cone, singular = probe.errors(node)
-    for number, status in enumerate((stroke, cone, singular), start=1):
-        assert status.message.startswith('target_pose rejected, out of the limits: ')
-        assert status.hardware_id == 'stewart_platform'
-        assert counters_of(status) == (number, 0, number)
+    stroke, cone, singular = refusals
+    for refusal in refusals:
+        assert refusal.code == 'out_of_limits'
+        assert refusal.message.startswith('the pose is out of the limits: ')
 
     for leg in (1, 2, 4, 5, 6):
         assert f'leg {leg}: leg_length_max 0.9 m broken by' in stroke.message
-        assert f'leg_length_max leg {leg}' in values_of(stroke)
+        assert f'leg_length_max leg {leg}' in dict(stroke.details)
     assert 'leg 3' not in stroke.message
     assert stroke.message.count('leg_length_max') == 5
 
     assert 'leg 3: base_joint_max_angle 12.1 deg broken by' in cone.message
     assert cone.message.count('base_joint_max_angle') == 1
-    assert values_of(cone)['base_joint_max_angle leg 3'].endswith('deg (limit 12.1 deg)')
+    assert dict(cone.details)['base_joint_max_angle leg 3'].endswith('deg (limit 12.1 deg)')
 
     assert 'platform: max_jacobian_condition 12 broken by' in singular.message
     assert 'leg ' not in singular.message
-    assert float(values_of(singular)['max_jacobian_condition'].split()[0]) > 12.0
+    assert float(dict(singular.details)['max_jacobian_condition'].split()[0]) > 12.0
     assert (node.accounting.received, node.accounting.published,
             node.accounting.rejected) == (4, 1, 3)
+
+    # On /diagnostics: one report a second with the counts by reason and the latest reason.
+    report = wait_for_report(spin_until, executor, probe, node, 4)
+    values = values_of(report)
+    assert report.hardware_id == 'stewart_platform'
+    assert counters_of(report) == (4, 1, 3)
+    assert values['rejected out_of_limits'] == '3'
+    assert values['last rejection'] == singular.message
+    assert float(values['max_jacobian_condition'].split()[0]) > 12.0
+    errors = probe.statuses_of(node, DiagnosticStatus.ERROR)
+    assert errors and 'rejected since the last report; last: the pose is out of the limits' in (
+        errors[-1].message)
 
 
 def test_ik_counts_every_message_as_one_output_or_one_rejection(start, spin_until, capfd):
@@ -308,26 +329,28 @@ def test_ik_counts_every_message_as_one_output_or_one_rejection(start, spin_unti
     for count, message in enumerate(mixed, start=1):
         probe.publisher.publish(message)
         assert spin_until(executor, lambda: node.accounting.received >= count)
-    summary = wait_for_summary(spin_until, executor, probe, node, len(mixed))
-    assert counters_of(summary) == (11, 3, 8)
+    report = wait_for_report(spin_until, executor, probe, node, len(mixed))
+    assert counters_of(report) == (11, 3, 8)
     assert spin_until(executor, lambda: len(probe.received['leg_extensions']) >= 3)
     assert len(probe.received['leg_lengths']) == 3
     assert len(probe.received['leg_extensions']) == 3
     for message, pose in zip(probe.received['leg_lengths'], (HOME, TILTED, TABLE3_END)):
         assert_allclose(message.data, lengths_of(pose), rtol=0.0, atol=1e-12)
 
-    errors = probe.errors(node)
-    assert len(errors) == 8, [status.message for status in errors]
-    for status, (reason, _) in zip(errors, bad):
-        assert status.message.startswith('target_pose rejected')
-        assert reason in status.message, status.message
-    assert [counters_of(status)[2] for status in errors] == list(range(1, 9))
-    warnings = [s for s in probe.statuses_of(node, DiagnosticStatus.WARN) if is_summary(s)]
-    assert warnings and 'rejected; last: target_pose rejected' in warnings[0].message
-    # Every rejection is on /diagnostics, but the log says it at most once a second.
+    # Counted by reason: six poses that are no poses, two out of the limits.
+    values = values_of(report)
+    assert (values['rejected invalid_pose'], values['rejected out_of_limits']) == ('6', '2')
+    assert values['last rejection'].startswith('the pose is out of the limits: ')
+    assert 'leg_length_min leg 1' in values
+    assert [s.level for s in probe.statuses_of(node)].count(DiagnosticStatus.ERROR) >= 1
+    # The log says each reason at most once a second, reason by reason: the flood of six
+    # invalid poses does not hide the two out of the limits.
     captured = capfd.readouterr()
-    logged = (captured.out + captured.err).count('rejected so far')
-    assert 1 <= logged < len(bad), captured.err
+    log = captured.out + captured.err
+    logged = log.count('rejected so far')
+    assert 2 <= logged < len(bad), log
+    assert 'target_pose rejected: position must be finite' in log, log
+    assert 'target_pose rejected: the pose is out of the limits' in log, log
 
 
 def test_ik_normalises_a_non_unit_quaternion_and_warns_once(start, spin_until, capfd):
@@ -348,25 +371,58 @@ def test_ik_normalises_a_non_unit_quaternion_and_warns_once(start, spin_until, c
     assert 'orientation has norm 2, not 1: normalised' in log
 
 
+#: A pose that puts platform joint 1 exactly on base joint 1 (identity rotation, position
+#: b_1 - p_1 of the paper's Tables 1 and 2): leg 1 has length 0.0 and no direction.
+JOINT_ON_JOINT_POSITION = (0.1000019, 0.0787127, -0.275)
+
+
+@pytest.mark.parametrize('overrides', [{}, {'max_jacobian_condition': 50.0}],
+                         ids=['no limits', 'only max_jacobian_condition'])
+def test_ik_refuses_a_pose_with_a_zero_length_leg(start, spin_until, overrides):
+    """
+    A platform joint on its base joint: refused with the reason, the node stays up.
+
+    With only the singularity margin set, the limit check used to divide by the zero length
+    inside the callback (ZeroDivisionError out of the executor); now the pose is refused.
+    """
+    node, probe, executor = start(IkNode, IK_ARGS[:3], overrides, Pose, 'target_pose',
+                                  [('leg_lengths', Float64MultiArray)])
+    refusals, _ = record_findings(node)
+    geometry = node.geometry
+    assert_allclose(np.array(JOINT_ON_JOINT_POSITION) + geometry.platform_joints[0],
+                    geometry.base_joints[0], rtol=0.0, atol=0.0)
+    lengths = probe.received['leg_lengths']
+    probe.publisher.publish(pose_message(JOINT_ON_JOINT_POSITION, [0.0, 0.0, 0.0, 1.0]))
+    probe.publisher.publish(message_of(TILTED))
+    assert spin_until(executor, lambda: len(lengths) >= 1)
+    assert len(lengths) == 1
+    assert_allclose(lengths[0].data, lengths_of(TILTED), rtol=0.0, atol=1e-12)
+    [refusal] = refusals
+    assert refusal.code == 'unreachable'
+    assert 'leg lengths must be finite and positive' in refusal.message
+    assert 'a platform joint on its base joint' in refusal.message
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (2, 1, 1)
+
+
 @pytest.mark.parametrize('cli_args', [IK_ARGS[:3], IK_ARGS], ids=['no limits', 'example limits'])
 def test_ik_refuses_a_finite_pose_whose_leg_lengths_overflow(start, spin_until, cli_args):
     """Positions of 1e200 m and 1e155 m (legs overflow to inf): refused, the node keeps going."""
     node, probe, executor = start(IkNode, cli_args, {}, Pose, 'target_pose',
                                   [('leg_lengths', Float64MultiArray)])
+    refusals, _ = record_findings(node)
     lengths = probe.received['leg_lengths']
     unit = [0.0, 0.0, 0.0, 1.0]
     probe.publisher.publish(pose_message([0.0, 0.0, 1e200], unit))
     probe.publisher.publish(pose_message([1e155, 0.0, 0.4325], unit))
-    assert spin_until(executor, lambda: len(probe.errors(node)) >= 2), (
-        f'{len(probe.errors(node))} of 2 ERROR statuses')
     # Poses from one publisher arrive in order: one answer to this one means none to those.
     probe.publisher.publish(message_of(HOME))
     assert spin_until(executor, lambda: len(lengths) >= 1)
     assert len(lengths) == 1
     assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)
-    for status in probe.errors(node):
-        assert status.message.startswith('target_pose rejected'), status.message
-        assert 'finite and positive' in status.message, status.message
+    assert [refusal.code for refusal in refusals] == ['unreachable'] * 2
+    for refusal in refusals:
+        assert 'finite and positive' in refusal.message, refusal.message
     assert (node.accounting.received, node.accounting.published,
             node.accounting.rejected) == (3, 1, 2)
 
@@ -386,20 +442,21 @@ def test_run_time_parameter_changes_are_validated(ros):
                             ('assembly_guard_position_change', 0.0),
                             ('assembly_guard_angle_change_deg', 200.0),
                             ('max_iterations', 0)):
-            old = fk.settings[name]
+            old = getattr(fk.tracker.settings, name)
             [result] = fk.set_parameters([Parameter(name, value=value)])
             assert not result.successful, name
             assert name in result.reason and repr(value) in result.reason, result.reason
             assert fk.get_parameter(name).value == old
-            assert fk.settings[name] == old
+            assert getattr(fk.tracker.settings, name) == old
         # A value of the wrong type is refused by rclpy itself, before the validator.
         [result] = fk.set_parameters([Parameter('tolerance', value='small')])
         assert not result.successful and 'type' in result.reason
-        assert fk.settings['tolerance'] == fk.get_parameter('tolerance').value == 1e-12
+        assert fk.tracker.settings.tolerance == fk.get_parameter('tolerance').value == 1e-12
 
-        [result] = fk.set_parameters([Parameter('near_singularity_condition', value=50.0)])
-        assert result.successful, result.reason
-        assert fk.settings['near_singularity_condition'] == 50.0
+        for name, value in (('near_singularity_condition', 50.0), ('pose_tolerance', 1e-8)):
+            [result] = fk.set_parameters([Parameter(name, value=value)])
+            assert result.successful, result.reason
+            assert getattr(fk.tracker.settings, name) == value
     finally:
         ik.destroy_node()
         fk.destroy_node()
@@ -408,41 +465,43 @@ def test_run_time_parameter_changes_are_validated(ros):
 # fk_node --------------------------------------------------------------------------------------
 
 def test_fk_publishes_no_pose_for_lengths_it_cannot_solve(start, spin_until):
-    """Out of the limits, impossible, non-convergent, pose out of the limits: ERROR, no pose."""
+    """Out of the limits, impossible, non-convergent, pose out of the limits: refused, no pose."""
     node, probe, executor = start_fk(start)
+    refusals, _ = record_findings(node)
     poses = probe.received['estimated_pose']
 
     def refuse(values, count):
         probe.publisher.publish(lengths_message(values))
-        assert spin_until(executor, lambda: len(probe.errors(node)) >= count), (
-            f'{len(probe.errors(node))} of {count} ERROR statuses')
-        return probe.errors(node)[-1]
+        assert spin_until(executor, lambda: len(refusals) >= count), (
+            f'{len(refusals)} of {count} refusals')
+        return refusals[-1]
 
     too_long = refuse([0.95] * 6, 1)
-    assert too_long.message.startswith('leg_lengths rejected, out of the limits: ')
+    assert too_long.code == 'out_of_limits'
+    assert too_long.message.startswith('the leg lengths are out of the limits: ')
     for leg in range(1, 7):
         assert f'leg {leg}: leg_length_max 0.9 m broken by 0.05 m' in too_long.message
-        assert f'leg_length_max leg {leg}' in values_of(too_long)
+        assert f'leg_length_max leg {leg}' in dict(too_long.details)
 
     impossible = refuse(IMPOSSIBLE_LENGTHS, 2)
+    assert impossible.code == 'no_solution'
     assert impossible.message.startswith('no pose found for leg lengths [0.9, 0.65, 0.9')
-    values = values_of(impossible)
+    values = dict(impossible.details)
     assert int(values['iterations']) >= 1
     assert float(values['residual_m']) > 1e-3
 
     beyond = refuse(lengths_of(BEYOND_TABLE3), 3)
     assert beyond.message.startswith('the pose of these leg lengths is out of the limits: ')
     assert 'leg 4: platform_joint_max_angle 35 deg broken by' in beyond.message
-    assert 'platform_joint_max_angle leg 4' in values_of(beyond)
+    assert 'platform_joint_max_angle leg 4' in dict(beyond.details)
 
     [result] = node.set_parameters([Parameter('max_iterations', value=1)])
     assert result.successful, result.reason
     slow = refuse(lengths_of(TABLE3_END), 4)
     assert 'no convergence within 1 iterations' in slow.message
-    values = values_of(slow)
+    values = dict(slow.details)
     assert values['iterations'] == '1'
-    assert float(values['residual_m']) > node.settings['tolerance']
-    assert counters_of(slow) == (4, 0, 4)
+    assert float(values['residual_m']) > node.tracker.settings.tolerance
     assert poses == []
 
     [result] = node.set_parameters([Parameter('max_iterations', value=50)])
@@ -453,13 +512,22 @@ def test_fk_publishes_no_pose_for_lengths_it_cannot_solve(start, spin_until):
     assert_pose_message(poses[0], TABLE3_END)
     assert (node.accounting.received, node.accounting.published,
             node.accounting.rejected) == (5, 1, 4)
+
+    report = wait_for_report(spin_until, executor, probe, node, 5)
+    values = values_of(report)
+    assert counters_of(report) == (5, 1, 4)
+    assert (values['rejected out_of_limits'], values['rejected no_solution']) == ('2', '2')
+    assert values['last rejection'] == slow.message
+    assert values['iterations'] == '1'
     # Condition about 17 is below the default near_singularity_condition of 100: no warning.
     assert not [s for s in probe.statuses_of(node) if 'near a singularity' in s.message]
+    assert 'last warning' not in values
 
 
 def test_fk_warns_near_a_singularity_and_still_publishes(start, spin_until):
     """With near_singularity_condition 5 (home is about 9.5) the home pose comes with a WARN."""
     node, probe, executor = start_fk(start, {'near_singularity_condition': 5.0})
+    refusals, warnings = record_findings(node)
     poses = probe.received['estimated_pose']
     probe.publisher.publish(lengths_message(lengths_of(HOME)))
 
@@ -470,8 +538,11 @@ def test_fk_warns_near_a_singularity_and_still_publishes(start, spin_until):
     assert_pose_message(poses[0], HOME)
     [warning] = warned()
     assert 'near_singularity_condition 5' in warning.message
-    assert float(values_of(warning)['jacobian_condition']) == pytest.approx(9.54, abs=0.01)
-    assert probe.errors(node) == []
+    values = values_of(warning)
+    assert float(values['jacobian_condition']) == pytest.approx(9.54, abs=0.01)
+    assert values['warned near_singularity'] == '1'
+    assert [finding.code for finding in warnings] == ['near_singularity']
+    assert refusals == []
     assert (node.accounting.received, node.accounting.published,
             node.accounting.rejected) == (1, 1, 0)
 
@@ -479,58 +550,29 @@ def test_fk_warns_near_a_singularity_and_still_publishes(start, spin_until):
 def test_fk_refuses_a_jump_to_another_solution(start, spin_until):
     """Unchanged lengths solved 0.1 m from the last pose are refused; then the node moves on."""
     node, probe, executor = start_fk(start)
+    refusals, _ = record_findings(node)
     poses = probe.received['estimated_pose']
     home_lengths = lengths_of(HOME)
     probe.publisher.publish(lengths_message(home_lengths))
     assert spin_until(executor, lambda: len(poses) >= 1)
-    assert_allclose(node.last_lengths, home_lengths, rtol=0.0, atol=0.0)
-    # The node believes the platform 0.1 m along x, as if it had followed another branch.
+    assert_allclose(node.tracker.last_lengths, home_lengths, rtol=0.0, atol=0.0)
+    # The tracker believes the platform 0.1 m along x, as if it had followed another branch.
     believed = np.array(HOME) + [0.1, 0.0, 0.0, 0.0, 0.0, 0.0]
-    node.last_pose = believed
+    node.tracker.last_pose, node.tracker.last_solution = believed, None
     probe.publisher.publish(lengths_message(home_lengths))
-    assert spin_until(executor, lambda: len(probe.errors(node)) >= 1)
-    [jump] = probe.errors(node)
+    assert spin_until(executor, lambda: len(refusals) >= 1)
+    [jump] = refusals
+    assert jump.code == 'assembly_mode_jump'
     assert 'another assembly mode' in jump.message
     assert 'the solution jumped 0.1 m and ' in jump.message
-    assert counters_of(jump) == (2, 1, 1)
-    assert_allclose(node.last_pose, believed, rtol=0.0, atol=0.0)
+    assert (node.accounting.received, node.accounting.published,
+            node.accounting.rejected) == (2, 1, 1)
+    assert_allclose(node.tracker.last_pose, believed, rtol=0.0, atol=0.0)
     # Lengths 15 mm away are a motion, not a jump: solved and published.
     probe.publisher.publish(lengths_message(lengths_of(TABLE3_ROW_1)))
     assert spin_until(executor, lambda: len(poses) >= 2)
     assert len(poses) == 2
     assert_pose_message(poses[1], TABLE3_ROW_1)
-
-
-def test_assembly_mode_jump_compares_with_the_last_solution(ros):
-    """The guard refuses the other assembly mode of the home lengths, not a small motion."""
-    node = FkNode(cli_args=FK_ARGS)
-    try:
-        geometry = paper_geometry()
-        home_lengths = geometry.home_leg_lengths
-        home = np.array(HOME)
-        # The same six lengths have a second solution, turned a half turn about z.
-        other = forward_kinematics(geometry, home_lengths, [0.0, 0.0, 0.35, 0.0, 0.0, math.pi])
-        assert other.converged
-        assert_allclose(inverse_kinematics(geometry, other.pose), home_lengths, atol=1e-12)
-        assert abs(other.pose[2] - HOME[2]) > 0.05
-
-        assert node.last_lengths is None
-        assert node.assembly_mode_jump(home_lengths, other.pose) == ''
-
-        node.last_lengths, node.last_pose = home_lengths, home
-        jump = node.assembly_mode_jump(home_lengths + 1e-4, other.pose)
-        assert 'another assembly mode' in jump and 'rejected' in jump
-        turned = home + [0.0, 0.0, 0.0, 0.0, 0.0, math.radians(20.0)]
-        assert '20 deg' in node.assembly_mode_jump(home_lengths + 1e-4, turned)
-        moved = home + [0.06, 0.0, 0.0, 0.0, 0.0, 0.0]
-        assert '0.06 m' in node.assembly_mode_jump(home_lengths, moved)
-
-        nearby = home + [0.01, -0.01, 0.02, math.radians(5.0), 0.0, math.radians(-5.0)]
-        assert node.assembly_mode_jump(home_lengths + 1e-3, nearby) == ''
-        # Lengths changed by more than assembly_guard_length_change (5 mm): a motion.
-        assert node.assembly_mode_jump(home_lengths + 0.006, other.pose) == ''
-    finally:
-        node.destroy_node()
 
 
 # trajectory_node ------------------------------------------------------------------------------

@@ -58,11 +58,12 @@ def test_linked_files_exist():
 
 
 def test_console_scripts_named_in_the_readme_are_declared():
-    """ik_node, fk_node, trajectory_node and ramp_demo are console scripts of setup.py."""
+    """ik_node, fk_node, trajectory_node (ros/) and ramp_demo (tools/) are console scripts."""
     setup = (ROOT / 'setup.py').read_text(encoding='utf-8')
     for script in ('ik_node', 'fk_node', 'trajectory_node', 'ramp_demo'):
         assert f'`{script}`' in README
-        assert re.search(rf"'{script} = stewart_kinematics\.{script}:main'", setup), script
+        assert re.search(rf"'{script} = stewart_kinematics\.(ros|tools)\.{script}:main'",
+                         setup), script
 
 
 def test_leg_lengths_example_is_the_home_pose():
@@ -120,3 +121,17 @@ def test_topic_tables_match_the_nodes(ros, config_directory, node_name):
                 topic: type_name(kind) for topic, kind in subscribed.items()}
     finally:
         node.destroy_node()
+
+
+def test_decision_objects_example_runs(monkeypatch, capsys):
+    """The Python API's CommandCheck and PoseTracker example runs as written."""
+    blocks = re.findall(r'```python\n(.*?)```', README, re.DOTALL)
+    [example] = [block for block in blocks if 'CommandCheck' in block]
+    monkeypatch.chdir(ROOT)
+    sent = []
+    geometry = load_geometry(ROOT / 'config' / 'paper_platform.yaml')
+    exec(example, {'send_to_actuators': sent.append,  # noqa: S102 - the README's own code
+                   'measured_lengths': geometry.home_leg_lengths})
+    assert len(sent) == 1 and len(sent[0]) == 6
+    printed = capsys.readouterr().out
+    assert '[0.     0.     0.4325 0.     0.     0.    ]' in printed

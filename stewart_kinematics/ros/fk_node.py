@@ -22,28 +22,26 @@ metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the stamp of
 state it comes from, or the time of arrival) and ``estimated_twist`` (geometry_msgs/msg/Twist,
 base frame: from leg velocities, at the last pose). Each solve starts from the last
 good solution, since a platform moves continuously, and falls back to the home pose when that
-fails. Lengths out of the limits, lengths that neither start solves, a solution out of the
-limits and a jump to another assembly mode publish nothing: the reason goes to the log and to
-``/diagnostics`` (with iterations and residual). A solution near a singularity is published
-with a WARN status.
+fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the
+home pose, for homing and restarts. What to publish and what to refuse is decided by
+:class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
+solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
+assembly mode); the node converts the messages, publishes, and counts each refusal and each
+warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
 """
-
-import math
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
+from std_srvs.srv import Trigger
 
-from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.kinematics import forward_kinematics
+from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.parameter_spec import geometry_from_parameters
-from stewart_kinematics.ros.message_accounting import (
-    MessageAccounting,
-    NodeDiagnostics,
-    violation_values,
-)
+from stewart_kinematics.pose_tracker import PoseTracker, SETTING_NAMES
+from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     leg_lengths_from_message,
     legs_from_joint_state,
@@ -52,8 +50,6 @@ from stewart_kinematics.ros.message_conversions import (
 )
 from stewart_kinematics.ros.node_main import create_output_publisher, run_node
 from stewart_kinematics.ros.ros_parameters import declare_parameters
-from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
-from stewart_kinematics.velocities import platform_twist
 
 
 class FkNode(Node):
@@ -61,18 +57,14 @@ class FkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        self.settings = {}
         values = declare_parameters(
             self,
             parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
             + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS,
-            on_change=self.settings.__setitem__)
-        self.settings.update(values)
+            on_change=self.on_parameter_change)
         self.geometry = geometry_from_parameters(values)
-        self.last_pose = self.geometry.home_pose
-        self.last_lengths = None
-        # The last good solution itself: a solve from it reuses its Jacobian too.
-        self.last_result = None
+        self.tracker = PoseTracker.from_parameters(self.geometry, values)
+        self.base_frame = values['base_frame']
         depth = values['queue_depth']
         self.pose_publisher = create_output_publisher(self, Pose, 'estimated_pose', depth)
         self.stamped_publisher = create_output_publisher(
@@ -86,9 +78,15 @@ class FkNode(Node):
         self.create_subscription(JointState, 'joint_states', self.on_joint_states, depth)
         self.create_subscription(
             Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
+        self.create_service(Trigger, 'reset_tracker', self.on_reset_tracker)
         self.get_logger().info(
             f'ready: tolerance {values["tolerance"]:g} m, '
             f'at most {values["max_iterations"]} iterations')
+
+    def on_parameter_change(self, name, value):
+        """Pass a solver parameter changed at run time (already validated) to the tracker."""
+        if name in SETTING_NAMES:
+            self.tracker.configure(**{name: value})
 
     def on_leg_lengths(self, message: Float64MultiArray):
         """Solve for the pose of the received lengths and publish it, or say why not."""
@@ -96,7 +94,7 @@ class FkNode(Node):
         try:
             lengths = leg_lengths_from_message(message)
         except ValueError as error:
-            self.accounting.reject(f'leg_lengths rejected: {error}')
+            self.accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
         header = Header(stamp=self.get_clock().now().to_msg())
         self.estimate(lengths, header, self.accounting)
@@ -107,105 +105,53 @@ class FkNode(Node):
         try:
             lengths, velocities = legs_from_joint_state(message)
         except ValueError as error:
-            self.joint_state_accounting.reject(f'joint_states rejected: {error}')
+            self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
         if self.estimate(lengths, message.header, self.joint_state_accounting) and (
                 velocities is not None):
-            self.twist_publisher.publish(twist_to_message(
-                platform_twist(self.geometry, self.last_pose, velocities)))
+            twist = self.tracker.twist(velocities)
+            if twist.accepted:
+                self.twist_publisher.publish(twist_to_message(twist.twist))
+            else:  # the pose went out: the message counts as published, its twist as a warning
+                self.joint_state_accounting.warn(twist.refusal)
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""
         self.velocity_accounting.receive()
-        try:
-            velocities = np.asarray(message.data, dtype=float)[message.layout.data_offset:]
-            twist = platform_twist(self.geometry, self.last_pose, velocities)
-        except ValueError as error:
-            self.velocity_accounting.reject(f'leg_velocities rejected: {error}')
+        velocities = np.asarray(message.data, dtype=float)[message.layout.data_offset:]
+        twist = self.tracker.twist(velocities)
+        if not twist.accepted:
+            self.velocity_accounting.reject(twist.refusal)
             return
-        self.velocity_accounting.publish(self.twist_publisher, twist_to_message(twist))
+        self.velocity_accounting.publish(self.twist_publisher, twist_to_message(twist.twist))
+
+    def on_reset_tracker(self, request: Trigger.Request, response: Trigger.Response):
+        """Forget the last solution: the next solve starts from the home pose."""
+        self.tracker.reset()
+        response.success = True
+        response.message = 'tracker reset: the next solve starts from the home pose'
+        self.get_logger().info(response.message)
+        return response
 
     def estimate(self, lengths, header: Header, accounting: MessageAccounting) -> bool:
         """
-        Publish the pose of six leg lengths, or reject them with the reason.
+        Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
         :param header: stamp to carry to ``estimated_pose_stamped``; its frame is base_frame.
         :returns: whether a pose was published.
         """
-        violations = limits.leg_length_violations(self.geometry, lengths)
-        if violations:
-            accounting.reject(
-                f'{accounting.topic} rejected, out of the limits: '
-                + '; '.join(map(str, violations)), violation_values(violations))
+        estimate = self.tracker.update(lengths)
+        for warning in estimate.warnings:
+            accounting.warn(warning)
+        if not estimate.accepted:
+            accounting.reject(estimate.refusal)
             return False
-        result = self.solve(lengths)
-        if not result.converged:
-            accounting.reject(
-                f'no pose found for leg lengths {np.round(lengths, 6).tolist()} m: '
-                f'{result.reason}',
-                (('iterations', result.iterations), ('residual_m', f'{result.residual:.3g}')))
-            return False
-        position, rotation = result.pose[:3], euler_zyx_to_matrix(result.pose[3:])
-        violations = limits.check_pose(self.geometry, position, rotation)
-        if violations:
-            accounting.reject(
-                'the pose of these leg lengths is out of the limits: '
-                + '; '.join(map(str, violations)), violation_values(violations))
-            return False
-        jump = self.assembly_mode_jump(lengths, result.pose)
-        if jump:
-            accounting.reject(f'{accounting.topic} {jump}')
-            return False
-        condition = float(limits.jacobian_condition(self.geometry, position, rotation))
-        if condition > self.settings['near_singularity_condition']:
-            accounting.warn(
-                f'estimated pose is near a singularity: Jacobian condition number '
-                f'{condition:.4g} > near_singularity_condition '
-                f'{self.settings["near_singularity_condition"]:g}',
-                (('jacobian_condition', f'{condition:.4g}'),))
-        self.last_pose, self.last_lengths, self.last_result = result.pose, lengths, result
-        pose = pose_to_message(result.pose)
+        pose = pose_to_message(estimate.pose)
         accounting.publish(self.pose_publisher, pose)
         if self.stamped_publisher.get_subscription_count():  # only for a subscriber, as ik_node
-            stamped_header = Header(stamp=header.stamp, frame_id=self.settings['base_frame'])
+            stamped_header = Header(stamp=header.stamp, frame_id=self.base_frame)
             self.stamped_publisher.publish(PoseStamped(header=stamped_header, pose=pose))
         return True
-
-    def solve(self, lengths):
-        """Solve from the last good pose, then from the home pose if that fails."""
-        options = {'tolerance': self.settings['tolerance'],
-                   'max_iterations': self.settings['max_iterations']}
-        # The last result carries its Jacobian too, but only while it is the last pose.
-        last = self.last_result
-        start = last if last is not None and last.pose is self.last_pose else self.last_pose
-        result = forward_kinematics(self.geometry, lengths, start, **options)
-        if not result.converged and not np.array_equal(self.last_pose, self.geometry.home_pose):
-            result = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
-                                        **options)
-        return result
-
-    def assembly_mode_jump(self, lengths, pose) -> str:
-        """
-        Say why ``pose`` looks like a jump to another assembly mode, or return ``''``.
-
-        For the same leg lengths a platform has several poses (assembly modes). A solution far
-        from the last one while the lengths barely changed is one of the others, not where the
-        platform went.
-        """
-        if self.last_lengths is None:
-            return ''
-        length_change = max(map(abs, (lengths - self.last_lengths).tolist()))
-        if length_change > self.settings['assembly_guard_length_change']:
-            return ''
-        position_change = math.dist(pose[:3].tolist(), self.last_pose[:3].tolist())
-        angle_change = math.degrees(float(rotation_angle_between(
-            euler_zyx_to_matrix(self.last_pose[3:]), euler_zyx_to_matrix(pose[3:]))))
-        if (position_change <= self.settings['assembly_guard_position_change']
-                and angle_change <= self.settings['assembly_guard_angle_change_deg']):
-            return ''
-        return (f'rejected: the solution jumped {position_change:.4g} m and '
-                f'{angle_change:.4g} deg from the last one while no leg changed by more than '
-                f'{length_change:.4g} m: another assembly mode, not a motion')
 
 
 def main(args=None) -> int:

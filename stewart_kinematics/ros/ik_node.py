@@ -23,9 +23,10 @@ home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, leg
 .. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
 change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
-break a limit in red, even for a refused pose). A pose that breaks a limit of the
-geometry is refused, never clamped: see :mod:`stewart_kinematics.limits` and
-:mod:`stewart_kinematics.ros.message_accounting`.
+break a limit in red, even for a refused pose). What to command and what to refuse is
+decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a limit of the
+geometry is refused, never clamped); the node converts the messages, publishes, and counts
+each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -34,15 +35,12 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
-from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.kinematics import as_leg_lengths, leg_lengths, twist_jacobian
+from stewart_kinematics import findings, parameter_spec
+from stewart_kinematics.command_check import CommandCheck
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.parameter_spec import geometry_from_parameters
 from stewart_kinematics.ros.markers import platform_markers
-from stewart_kinematics.ros.message_accounting import (
-    MessageAccounting,
-    NodeDiagnostics,
-    violation_values,
-)
+from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_state_message,
     legs_to_message,
@@ -55,6 +53,9 @@ from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.rotations import quaternion_to_matrix
 from visualization_msgs.msg import MarkerArray
 
+#: Code of the refusal of a stamped pose in a frame other than base_frame.
+WRONG_FRAME = 'wrong_frame'
+
 
 class IkNode(Node):
     """Publish the leg lengths of every pose received, or refuse it."""
@@ -65,10 +66,10 @@ class IkNode(Node):
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
             + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
         self.geometry = geometry_from_parameters(values)
+        self.check = CommandCheck(self.geometry)
         self.base_frame = values['base_frame']
         self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
         self.last_marker_ns = None
-        self.last_pose = None
         depth = values['queue_depth']
         self.lengths_publisher = create_output_publisher(
             self, Float64MultiArray, 'leg_lengths', depth)
@@ -97,49 +98,38 @@ class IkNode(Node):
         """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""
         self.accounting.receive()
         header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-        self.solve(message, header, self.accounting)
+        self.command(message, header, self.accounting)
 
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
         self.stamped_accounting.receive()
         frame = message.header.frame_id
         if frame and frame != self.base_frame:
-            self.stamped_accounting.reject(
-                f"target_pose_stamped rejected: it is in frame '{frame}', not in base_frame "
-                f"'{self.base_frame}'; transform it first")
+            self.stamped_accounting.reject(Finding(
+                WRONG_FRAME, f"it is in frame '{frame}', not in base_frame "
+                f"'{self.base_frame}'; transform it first"))
             return
-        self.solve(message.pose, message.header, self.stamped_accounting)
+        self.command(message.pose, message.header, self.stamped_accounting)
 
-    def solve(self, pose: Pose, header: Header, accounting: MessageAccounting):
+    def command(self, pose: Pose, header: Header, accounting: MessageAccounting):
         """Publish the leg lengths, extensions and joint states of a pose, or reject it."""
         try:
             position, quaternion, norm = position_quaternion_from_message(pose)
-            # Here too, not after the try: a finite pose so far away that its leg lengths
-            # overflow makes these raise, and a callback must never raise.
-            rotation = quaternion_to_matrix(quaternion)
-            violations = limits.check_pose(self.geometry, position, rotation)
         except ValueError as error:
-            accounting.reject(f'{accounting.topic} rejected: {error}')
+            accounting.reject(Finding(findings.INVALID_POSE, str(error)))
             return
         if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
             self.get_logger().warning(
                 f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
                 '(said once)', once=True)
-        self.publish_markers(header, position, rotation, violations)
-        if violations:
-            accounting.reject(
-                f'{accounting.topic} rejected, out of the limits: '
-                + '; '.join(str(violation) for violation in violations),
-                violation_values(violations))
+        rotation = quaternion_to_matrix(quaternion)
+        command = self.check.pose(position, rotation)
+        if command.violations or command.accepted:
+            self.publish_markers(header, position, rotation, command.violations)
+        if not command.accepted:
+            accounting.reject(command.refusal)
             return
-        try:
-            # Without a stroke limit check_pose skips the lengths: never command inf, NaN or 0.
-            lengths = as_leg_lengths(leg_lengths(self.geometry, position, rotation),
-                                     'its leg lengths')
-        except ValueError as error:
-            accounting.reject(f'{accounting.topic} rejected: {error}')
-            return
-        self.last_pose = position, rotation
+        lengths = command.lengths
         accounting.publish(self.lengths_publisher, legs_to_message(lengths))
         # The other forms only for a subscriber: in a 1 kHz command stream, messages that
         # nobody reads would cost the node a third of its rate.
@@ -171,17 +161,17 @@ class IkNode(Node):
     def on_target_twist(self, message: Twist):
         """Publish the leg velocities of a platform twist at the last accepted pose."""
         self.twist_accounting.receive()
-        if self.last_pose is None:
-            self.twist_accounting.reject(
-                'target_twist rejected: no pose accepted yet, so no Jacobian to apply it at')
-            return
         try:
             twist = twist_from_message(message)
         except ValueError as error:
-            self.twist_accounting.reject(f'target_twist rejected: {error}')
+            self.twist_accounting.reject(Finding(findings.INVALID_TWIST, str(error)))
             return
-        velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
-        self.twist_accounting.publish(self.velocities_publisher, legs_to_message(velocities))
+        command = self.check.twist(twist)
+        if not command.accepted:
+            self.twist_accounting.reject(command.refusal)
+            return
+        self.twist_accounting.publish(
+            self.velocities_publisher, legs_to_message(command.velocities))
 
 
 def main(args=None) -> int:

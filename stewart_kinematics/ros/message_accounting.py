@@ -15,27 +15,36 @@
 """
 Accounting of a node's input: every message ends as exactly one output or one rejection.
 
-Rejections are logged (at most once per :data:`WARNING_PERIOD` for each call site) and
-published at once on ``/diagnostics`` (diagnostic_msgs/msg/DiagnosticArray, as ROS diagnostic
-tools expect) with the reason; a summary with the counters follows every
-:data:`SUMMARY_PERIOD`.
+A rejection or a warning carries the core's :class:`~stewart_kinematics.findings.Finding`:
+its code is what rejections are counted by, its message what the log and ``/diagnostics`` say.
+As diagnostic_updater does, a node publishes one diagnostic_msgs/msg/DiagnosticArray every
+:data:`REPORT_PERIOD`, never one per message, so a flood of bad input cannot flood
+``/diagnostics``: one status per input topic with the counters, the counts by code and the
+latest rejection and warning with their details. The log says each kind of rejection at most
+once per :data:`WARNING_PERIOD`, kind by kind, so a flood of one kind does not hide another.
 """
+
+import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.ros.node_main import create_output_publisher
 
-#: Seconds between two log lines of the same warning.
+#: Seconds between two log lines of the same kind of rejection or warning, per input.
 WARNING_PERIOD = 1.0
-#: Seconds between two summaries on /diagnostics.
-SUMMARY_PERIOD = 1.0
-#: Hardware id of every diagnostic status of the package.
+#: Seconds between two DiagnosticArrays of a node.
+REPORT_PERIOD = 1.0
+#: Hardware id of the statuses of a node in the root namespace; a namespaced node's is this
+#: followed by its namespace (``stewart_platform/platform_a``), one per platform.
 HARDWARE_ID = 'stewart_platform'
+#: Depth of the /diagnostics publisher's queue, arrays.
+DIAGNOSTICS_DEPTH = 10
 
 
 class NodeDiagnostics:
     """
-    A node's ``/diagnostics`` publisher and its summary timer, shared by all its inputs.
+    A node's ``/diagnostics`` publisher and its report timer, shared by all its inputs.
 
     One publisher and one timer per node, not per input: rclpy's executor walks every
     publisher's event handlers and every timer at each wait, so each one costs every message.
@@ -46,8 +55,11 @@ class NodeDiagnostics:
     def __init__(self, node):
         self.node = node
         self.inputs = []
-        self.publisher = create_output_publisher(node, DiagnosticArray, '/diagnostics', 100)
-        node.create_timer(SUMMARY_PERIOD, self.publish_summary)
+        namespace = node.get_namespace()
+        self.hardware_id = HARDWARE_ID + ('' if namespace == '/' else namespace)
+        self.publisher = create_output_publisher(
+            node, DiagnosticArray, '/diagnostics', DIAGNOSTICS_DEPTH)
+        node.create_timer(REPORT_PERIOD, self.publish_report)
 
     def accounting(self, input_topic: str) -> 'MessageAccounting':
         """Return the accounting of one input topic, reported with the others."""
@@ -55,25 +67,21 @@ class NodeDiagnostics:
         self.inputs.append(accounting)
         return accounting
 
-    def publish_summary(self):
-        """Publish one status per input with its counters, in one array."""
-        self.send([accounting.summary() for accounting in self.inputs])
-
-    def send(self, statuses):
-        """Publish statuses as one DiagnosticArray stamped now."""
-        array = DiagnosticArray(status=statuses)
+    def publish_report(self):
+        """Publish one status per input, in one array stamped now."""
+        array = DiagnosticArray(status=[accounting.report() for accounting in self.inputs])
         array.header.stamp = self.node.get_clock().now().to_msg()
         self.publisher.publish(array)
 
 
 class MessageAccounting:
     """
-    Count the messages a node receives, publishes and rejects, and report rejections.
+    Count the messages of one input: received, published, rejected by code, warned about.
 
     Made by :meth:`NodeDiagnostics.accounting`.
 
     :param diagnostics: the node's :class:`NodeDiagnostics`.
-    :param input_topic: the topic whose messages are counted, for the status name.
+    :param input_topic: the topic whose messages are counted, for the status name and the log.
     """
 
     def __init__(self, diagnostics: NodeDiagnostics, input_topic: str):
@@ -81,9 +89,13 @@ class MessageAccounting:
         self.node = diagnostics.node
         self.topic = input_topic
         self.status_name = f'{self.node.get_fully_qualified_name()}: {input_topic}'
-        self.received = self.published = self.rejected = 0
-        self.last_rejection = ''
-        self.rejected_at_last_summary = 0
+        self.received = self.published = self.rejected = self.warned = 0
+        #: Rejections and warnings counted by their finding's code, since the start.
+        self.rejections_by_code = {}
+        self.warnings_by_code = {}
+        self.last_rejection = self.last_warning = None
+        self._reported = (0, 0)
+        self._log_throttle = LogThrottle(self.node.get_logger(), WARNING_PERIOD)
 
     def receive(self):
         """Count a message received."""
@@ -94,52 +106,92 @@ class MessageAccounting:
         publisher.publish(message)
         self.published += 1
 
-    def reject(self, reason: str, values=()):
+    def reject(self, refusal: Finding):
         """
-        Count a rejected message, log why and publish an ERROR status with the reason.
+        Count a rejected message by its code and log why (throttled per code).
 
-        :param reason: a sentence a user can act on.
-        :param values: extra ``(key, value)`` pairs for the status, such as iterations.
+        :param refusal: the core's finding, or the node's for a message it cannot convert.
         """
         self.rejected += 1
-        self.last_rejection = reason
-        self.node.get_logger().warning(
-            f'{reason} ({self.rejected} rejected so far)', throttle_duration_sec=WARNING_PERIOD)
-        self.diagnostics.send([self.status(DiagnosticStatus.ERROR, reason, values)])
+        count = self.rejections_by_code[refusal.code] = (
+            self.rejections_by_code.get(refusal.code, 0) + 1)
+        self.last_rejection = refusal
+        self._log_throttle.log(
+            'rejected ' + refusal.code,
+            f'{self.topic} rejected: {refusal.message} ({self.rejected} rejected so far, '
+            f'{count} of them {refusal.code})')
 
-    def warn(self, message: str, values=()):
-        """Publish a WARN status about a message that was still used, and log it (throttled)."""
-        self.node.get_logger().warning(message, throttle_duration_sec=WARNING_PERIOD)
-        self.diagnostics.send([self.status(DiagnosticStatus.WARN, message, values)])
+    def warn(self, warning: Finding):
+        """Count a warning about a message that was still used, and log it (throttled per code)."""
+        self.warned += 1
+        self.warnings_by_code[warning.code] = self.warnings_by_code.get(warning.code, 0) + 1
+        self.last_warning = warning
+        self._log_throttle.log('warned ' + warning.code, f'{self.topic}: {warning.message}')
 
-    def counters(self):
-        """Return the counters as ``(key, value)`` pairs, for a status."""
-        return (('received', self.received), ('published', self.published),
-                ('rejected', self.rejected))
+    def report(self) -> DiagnosticStatus:
+        """
+        Return this input's status since the last report.
 
-    def summary(self) -> DiagnosticStatus:
-        """Return the counters' status: OK, or WARN when messages were rejected since the last."""
-        new_rejections = self.rejected - self.rejected_at_last_summary
-        self.rejected_at_last_summary = self.rejected
+        ERROR when messages were rejected since then, WARN when only warnings came, else OK.
+        The values are the counters since the start: ``received``, ``published``,
+        ``rejected``, ``rejected <code>`` and ``warned <code>`` for each code seen, then the
+        latest rejection (``last rejection`` and its details) and the latest warning
+        (``last warning`` and its details).
+        """
+        new_rejections = self.rejected - self._reported[0]
+        new_warnings = self.warned - self._reported[1]
+        self._reported = (self.rejected, self.warned)
         if new_rejections:
-            return self.status(
-                DiagnosticStatus.WARN,
-                f'{new_rejections} message(s) rejected; last: {self.last_rejection}')
-        return self.status(DiagnosticStatus.OK, 'running')
-
-    def status(self, level, message, values=()) -> DiagnosticStatus:
-        """Return a status of this input with the counters and ``values``."""
+            level = DiagnosticStatus.ERROR
+            message = (f'{new_rejections} message(s) rejected since the last report; last: '
+                       f'{self.last_rejection.message}')
+        elif new_warnings:
+            level = DiagnosticStatus.WARN
+            message = (f'{new_warnings} warning(s) since the last report; last: '
+                       f'{self.last_warning.message}')
+        else:
+            level, message = DiagnosticStatus.OK, 'running'
+        values = [('received', self.received), ('published', self.published),
+                  ('rejected', self.rejected)]
+        values += [(f'rejected {code}', count)
+                   for code, count in sorted(self.rejections_by_code.items())]
+        values += [(f'warned {code}', count)
+                   for code, count in sorted(self.warnings_by_code.items())]
+        for key, finding in (('last rejection', self.last_rejection),
+                             ('last warning', self.last_warning)):
+            if finding is not None:
+                values += [(key, finding.message), *finding.details]
         return DiagnosticStatus(
-            level=level, name=self.status_name, message=message, hardware_id=HARDWARE_ID,
-            values=[KeyValue(key=str(key), value=str(value))
-                    for key, value in (*self.counters(), *values)])
+            level=level, name=self.status_name, message=message,
+            hardware_id=self.diagnostics.hardware_id,
+            values=[KeyValue(key=str(key), value=str(value)) for key, value in values])
 
 
-def violation_values(violations):
-    """Return ``(key, value)`` status pairs of :class:`~stewart_kinematics.limits.Violation`."""
-    pairs = []
-    for violation in violations:
-        unit = f' {violation.unit}' if violation.unit else ''
-        key = violation.limit + (f' leg {violation.leg}' if violation.leg else '')
-        pairs.append((key, f'{violation.value:.6g}{unit} (limit {violation.allowed:.6g}{unit})'))
-    return pairs
+class LogThrottle:
+    """
+    Log warnings at most once per period for each kind, saying how many were left out.
+
+    rclpy's own throttle is per call site, so one flood would hide every other kind of warning
+    logged from the same line.
+
+    :param logger: an rclpy logger.
+    :param period: seconds between two lines of one kind (monotonic clock).
+    """
+
+    def __init__(self, logger, period: float):
+        self.logger = logger
+        self.period = period
+        self._last = {}
+        self._skipped = {}
+
+    def log(self, kind: str, message: str):
+        """Log ``message`` as a warning unless a line of ``kind`` was logged within the period."""
+        now = time.monotonic()
+        last = self._last.get(kind)
+        if last is not None and now - last < self.period:
+            self._skipped[kind] = self._skipped.get(kind, 0) + 1
+            return
+        skipped = self._skipped.pop(kind, 0)
+        self._last[kind] = now
+        self.logger.warning(message + (f' [{skipped} more like it not logged]' if skipped
+                                       else ''))

@@ -36,8 +36,6 @@ from stewart_kinematics.trajectory import Ramp
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
-#: How many failing samples a refusal lists in full.
-LISTED_FAILURES = 10
 
 
 class TrajectoryNode(Node):
@@ -51,7 +49,7 @@ class TrajectoryNode(Node):
         self.settings = values
         self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
-        check_samples(geometry_from_parameters(values), *self.planned_samples())
+        limits.check_samples(geometry_from_parameters(values), *self.planned_samples())
         self.publisher = self.create_publisher(Pose, 'target_pose', values['queue_depth'])
         self.published = 0
         self.row_index = 0
@@ -126,28 +124,6 @@ class TrajectoryNode(Node):
         if not self.settings['loop']:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
-
-
-def check_samples(geometry, times, poses):
-    """
-    Refuse a ramp any of whose samples breaks a limit of ``geometry``.
-
-    :param times: seconds from the start of a pass, shape (N,).
-    :param poses: the samples, ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
-    :raises ValueError: listing the failing samples (time, pose, every violation).
-    """
-    failures = [(index, violations) for index, violations
-                in enumerate(limits.check_poses(geometry, poses)) if violations]
-    if not failures:
-        return
-    lines = [
-        f'sample {index} at t={times[index]:.3f} s, pose '
-        f'{np.round(poses[index], 6).tolist()}: ' + '; '.join(map(str, violations))
-        for index, violations in failures[:LISTED_FAILURES]]
-    more = len(failures) - LISTED_FAILURES
-    raise ValueError(
-        f'ramp refused: {len(failures)} of {len(poses)} samples break the limits of the '
-        'geometry:\n  ' + '\n  '.join(lines) + (f'\n  ... and {more} more' if more > 0 else ''))
 
 
 def main(args=None) -> int:

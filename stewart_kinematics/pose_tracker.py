@@ -1,0 +1,330 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The forward kinematics side's decision: measured leg lengths in, a trusted pose or the reason out.
+
+:class:`PoseTracker` follows a moving platform from its leg lengths, as fk_node does and as a
+Python user's own loop can::
+
+    tracker = PoseTracker(load_geometry('config/paper_platform.yaml'))
+    estimate = tracker.update(measured_lengths)    # six leg lengths, metres
+    if estimate.accepted:
+        use(estimate.pose)                          # [X, Y, Z, alpha, beta, gamma]
+    else:
+        print(estimate.reason)                      # e.g. a jump to another assembly mode
+    for warning in estimate.warnings:               # e.g. near a singularity
+        print(warning)
+    twist = tracker.twist(leg_velocities)           # at the last accepted pose
+    tracker.reset()                                 # homing: the next solve starts from home
+
+Each update checks the lengths against the actuator stroke, solves by Newton-Raphson from the
+last accepted solution (its pose and its Jacobian: a platform moves continuously), falls back
+to the home pose when that fails, and then refuses a solution that did not converge, whose
+pose error bound exceeds ``pose_tolerance`` (near a singularity), that breaks a limit of the
+geometry, or that jumped to another assembly mode; an accepted solution near a singularity
+comes with a warning. Nothing raises for lengths it cannot use, and nothing here imports ROS.
+"""
+
+from dataclasses import dataclass, fields, replace
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+
+from stewart_kinematics import findings, limits, parameter_spec
+from stewart_kinematics.findings import Decision, Finding
+from stewart_kinematics.kinematics import as_poses, forward_kinematics, ForwardKinematicsResult
+from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.velocities import platform_twist
+
+
+@dataclass(frozen=True)
+class TrackerSettings:
+    """
+    The settings of a :class:`PoseTracker`: the solver parameters of fk_node, same names.
+
+    See :data:`stewart_kinematics.parameter_spec.SOLVER_PARAMETERS` for each one's meaning,
+    unit and allowed values; an invalid value raises ``ValueError`` naming it.
+    """
+
+    tolerance: float = 1e-12
+    max_iterations: int = 50
+    near_singularity_condition: float = 100.0
+    pose_tolerance: float = 1e-9
+    assembly_guard_length_change: float = 0.005
+    assembly_guard_position_change: float = 0.05
+    assembly_guard_angle_change_deg: float = 10.0
+
+    def __post_init__(self):
+        parameter_spec.check_values(
+            parameter_spec.SOLVER_PARAMETERS,
+            {field.name: getattr(self, field.name) for field in fields(self)})
+
+
+#: The names of the settings, as parameter names.
+SETTING_NAMES = tuple(field.name for field in fields(TrackerSettings))
+
+
+@dataclass(frozen=True, eq=False)
+class PoseEstimate(Decision):
+    """
+    The answer to a set of leg lengths: the pose, or why none was accepted.
+
+    :param pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,); ``None``
+        when refused.
+    :param refusal: why the lengths were refused, with details, or ``None`` when accepted.
+    :param warnings: findings about an accepted pose (near a singularity).
+    :param solution: the forward kinematics result the decision was made on, or ``None`` when
+        no solve ran (lengths malformed or out of the stroke).
+    """
+
+    pose: Optional[np.ndarray]
+    refusal: Optional[Finding] = None
+    warnings: Tuple[Finding, ...] = ()
+    solution: Optional[ForwardKinematicsResult] = None
+
+    @property
+    def iterations(self) -> Optional[int]:
+        """Newton-Raphson steps of the solve, or ``None`` when none ran."""
+        return None if self.solution is None else self.solution.iterations
+
+    @property
+    def residual(self) -> Optional[float]:
+        """Largest leg length error of the solution, metres, or ``None``."""
+        return None if self.solution is None else self.solution.residual
+
+    @property
+    def condition(self) -> Optional[float]:
+        """Condition number of the dimensionless Jacobian at the solution, or ``None``."""
+        return None if self.solution is None else self.solution.condition
+
+    @property
+    def pose_error_bound(self) -> Optional[float]:
+        """First-order bound on the pose error of the solution, metres and radians, or ``None``."""
+        return None if self.solution is None else self.solution.pose_error_bound
+
+
+@dataclass(frozen=True, eq=False)
+class TwistEstimate(Decision):
+    """
+    The platform twist of a set of leg velocities, or why none was given.
+
+    :param twist: ``[vx, vy, vz, wx, wy, wz]``, base frame, m/s and rad/s; ``None`` when
+        refused.
+    :param refusal: why, or ``None`` when accepted.
+    """
+
+    twist: Optional[np.ndarray]
+    refusal: Optional[Finding] = None
+    warnings: Tuple[Finding, ...] = ()
+
+
+class PoseTracker:
+    """
+    Follow the platform's pose from its measured leg lengths, refusing what cannot be trusted.
+
+    State: the last accepted solution (:attr:`last_pose`, :attr:`last_lengths`,
+    :attr:`last_solution`), where the next solve starts and what the assembly-mode guard
+    compares with. :meth:`reset` forgets it.
+
+    :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
+    :param settings: :class:`TrackerSettings` fields by name (``tolerance=1e-10``, ...).
+    :raises ValueError: for an unknown or invalid setting.
+    """
+
+    def __init__(self, geometry, **settings):
+        self.geometry = geometry
+        self.settings = TrackerSettings()
+        self.configure(**settings)
+        #: The pose the next solve starts from: the last accepted one, or home after a reset.
+        self.last_pose = geometry.home_pose
+        #: The leg lengths of the last accepted pose, metres, or ``None`` after a reset.
+        self.last_lengths = None
+        #: The forward kinematics result of the last accepted pose, whose Jacobian the next
+        #: solve reuses; ``None`` after a reset.
+        self.last_solution = None
+
+    @classmethod
+    def from_parameters(cls, geometry, values: dict) -> 'PoseTracker':
+        """Build a tracker from parameter values, such as a node's; other names are ignored."""
+        return cls(geometry, **{name: values[name] for name in SETTING_NAMES if name in values})
+
+    def configure(self, **settings):
+        """
+        Change settings by name, such as the tolerance (``tolerance=1e-10``).
+
+        :raises ValueError: for an unknown name or an invalid value; nothing changes then.
+        """
+        unknown = sorted(set(settings) - set(SETTING_NAMES))
+        if unknown:
+            raise ValueError(f'unknown tracker setting(s) {unknown}; known: {SETTING_NAMES}')
+        self.settings = replace(self.settings, **settings)
+
+    def reset(self, pose=None):
+        """
+        Forget the last solution: the next solve starts from ``pose``, by default home.
+
+        For homing and restarts. The assembly-mode guard has nothing to compare the next
+        solution with, so it accepts whichever assembly mode that start leads to.
+
+        :param pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,).
+        :raises ValueError: if ``pose`` is malformed.
+        """
+        start = self.geometry.home_pose if pose is None else as_poses(pose, 'reset pose')
+        if start.shape != (6,):
+            raise ValueError(f'reset pose must have shape (6,), got {start.shape}')
+        self.last_pose = np.array(start)
+        self.last_lengths = None
+        self.last_solution = None
+
+    def update(self, lengths) -> PoseEstimate:
+        """
+        Estimate the pose of measured leg lengths, or refuse them with the reason.
+
+        :param lengths: leg lengths l_1..l_6, metres, shape (6,).
+        :returns: a :class:`PoseEstimate`; an accepted one becomes the last solution.
+        """
+        try:
+            violations = limits.leg_length_violations(self.geometry, lengths)
+        except ValueError as error:
+            return PoseEstimate(None, Finding(findings.INVALID_LENGTHS, str(error)))
+        if violations:
+            return PoseEstimate(None, findings.out_of_limits('the leg lengths are', violations))
+        lengths = np.array(lengths, dtype=float)
+        solution = self._solve(lengths)
+        refusal = self._refusal(lengths, solution)
+        if refusal is not None:
+            return PoseEstimate(None, refusal, solution=solution)
+        warnings = ()
+        if solution.condition > self.settings.near_singularity_condition:
+            warnings = (Finding(
+                findings.NEAR_SINGULARITY,
+                f'estimated pose is near a singularity: Jacobian condition number '
+                f'{solution.condition:.4g} > near_singularity_condition '
+                f'{self.settings.near_singularity_condition:g}',
+                (('jacobian_condition', f'{solution.condition:.4g}'),)),)
+        self.last_pose, self.last_lengths, self.last_solution = solution.pose, lengths, solution
+        return PoseEstimate(solution.pose, None, warnings, solution)
+
+    def twist(self, velocities) -> TwistEstimate:
+        """
+        Estimate the platform twist of leg velocities at the last accepted pose.
+
+        Before any pose was accepted, at the home pose (or the pose of :meth:`reset`). Refused
+        where the Jacobian's condition number exceeds the singularity margin, the
+        smaller of ``near_singularity_condition`` and the geometry's
+        ``max_jacobian_condition``: there the leg velocities hardly determine the twist, and
+        their errors come out amplified as many times.
+
+        :param velocities: leg velocities l_1'..l_6', metres per second, shape (6,).
+        :returns: a :class:`TwistEstimate`, ``[vx, vy, vz, wx, wy, wz]`` in the base frame.
+        """
+        velocities = np.asarray(velocities, dtype=float)
+        if velocities.shape != (6,) or not np.all(np.isfinite(velocities)):
+            return TwistEstimate(None, Finding(
+                findings.INVALID_VELOCITIES,
+                f'leg velocities must be six finite numbers (m/s), got {velocities.tolist()}'))
+        margin = min(self.settings.near_singularity_condition,
+                     self.geometry.max_jacobian_condition)
+        position, rotation = self.last_pose[:3], euler_zyx_to_matrix(self.last_pose[3:])
+        condition = float(limits.jacobian_condition(self.geometry, position, rotation))
+        if not condition <= margin:
+            return TwistEstimate(None, Finding(
+                findings.NEAR_SINGULARITY,
+                f'the twist is not determined at the last pose: Jacobian condition number '
+                f'{condition:.4g} > {margin:g} (the singularity margin)',
+                (('jacobian_condition', f'{condition:.4g}'),)))
+        return TwistEstimate(platform_twist(self.geometry, self.last_pose, velocities))
+
+    def _solve(self, lengths) -> ForwardKinematicsResult:
+        """Solve from the last solution (with its Jacobian), then from home if that fails."""
+        options = {'tolerance': self.settings.tolerance,
+                   'max_iterations': self.settings.max_iterations}
+        start = self.last_solution if self.last_solution is not None else self.last_pose
+        solution = forward_kinematics(self.geometry, lengths, start, **options)
+        if not solution.converged and not np.array_equal(self.last_pose,
+                                                         self.geometry.home_pose):
+            solution = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
+                                          **options)
+        return solution
+
+    def _refusal(self, lengths, solution) -> Optional[Finding]:
+        """Say why a solution cannot be accepted, or return ``None``."""
+        if not solution.converged:
+            return Finding(
+                findings.NO_SOLUTION,
+                f'no pose found for leg lengths {np.round(lengths, 6).tolist()} m: '
+                f'{solution.reason}',
+                (('iterations', str(solution.iterations)),
+                 ('residual_m', f'{solution.residual:.3g}')))
+        if not solution.pose_error_bound <= self.settings.pose_tolerance:
+            if solution.condition > self.settings.near_singularity_condition:
+                cause = 'the pose is too near a singularity for the lengths to fix it'
+            else:
+                cause = 'lower the tolerance, or raise pose_tolerance'
+            return Finding(
+                findings.INACCURATE_POSE,
+                f'the pose of these leg lengths is known only to {solution.pose_error_bound:.3g} '
+                f'm and rad (pose_error_bound) > pose_tolerance '
+                f'{self.settings.pose_tolerance:g}: the residual {solution.residual:.3g} m '
+                f'amplified by the Jacobian condition number {solution.condition:.4g}; {cause}',
+                (('iterations', str(solution.iterations)),
+                 ('residual_m', f'{solution.residual:.3g}'),
+                 ('jacobian_condition', f'{solution.condition:.4g}'),
+                 ('pose_error_bound', f'{solution.pose_error_bound:.3g}')))
+        violations = limits.check_pose(self.geometry, solution.pose[:3],
+                                       euler_zyx_to_matrix(solution.pose[3:]),
+                                       condition=solution.condition)
+        if violations:
+            return findings.out_of_limits('the pose of these leg lengths is', violations)
+        if self.last_lengths is None:
+            return None
+        return assembly_mode_jump(self.settings, self.last_pose, self.last_lengths,
+                                  solution.pose, lengths)
+
+
+def assembly_mode_jump(settings: TrackerSettings, last_pose, last_lengths, pose,
+                       lengths) -> Optional[Finding]:
+    """
+    Say why ``pose`` looks like a jump to another assembly mode, or return ``None``.
+
+    For the same leg lengths a platform has several poses (assembly modes). A solution far
+    from the last one while the lengths barely changed is one of the others, not where the
+    platform went: when no leg changed by more than ``assembly_guard_length_change`` metres,
+    the platform origin may move at most ``assembly_guard_position_change`` metres and the
+    platform turn at most ``assembly_guard_angle_change_deg`` degrees.
+
+    :param last_pose: the last accepted pose, ``[X, Y, Z, alpha, beta, gamma]``.
+    :param last_lengths: its leg lengths, metres, shape (6,).
+    :param pose: the new solution, same form.
+    :param lengths: the new leg lengths, metres, shape (6,).
+    """
+    length_change = max(map(abs, (np.asarray(lengths) - last_lengths).tolist()))
+    if length_change > settings.assembly_guard_length_change:
+        return None
+    position_change = math.dist(pose[:3].tolist(), last_pose[:3].tolist())
+    angle_change = math.degrees(float(rotation_angle_between(
+        euler_zyx_to_matrix(last_pose[3:]), euler_zyx_to_matrix(pose[3:]))))
+    if (position_change <= settings.assembly_guard_position_change
+            and angle_change <= settings.assembly_guard_angle_change_deg):
+        return None
+    return Finding(
+        findings.ASSEMBLY_MODE_JUMP,
+        f'the solution jumped {position_change:.4g} m and {angle_change:.4g} deg from the last '
+        f'one while no leg changed by more than {length_change:.4g} m: another assembly mode, '
+        'not a motion',
+        (('position_change_m', f'{position_change:.4g}'),
+         ('angle_change_deg', f'{angle_change:.4g}'),
+         ('length_change_m', f'{length_change:.4g}')))

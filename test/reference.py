@@ -1,0 +1,203 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Reference values and implementations shared by the tests, independent of the package.
+
+The paper's platform (Tables 1 and 2) and ramp (Table 3) typed from the paper, and the
+textbook formulas the package is checked against: elementary rotations multiplied out,
+half-angle quaternions, leg lengths leg by leg in plain Python. Nothing here imports
+stewart_kinematics except :func:`paper_geometry`, which builds a Geometry from these tables.
+"""
+
+import math
+
+import numpy as np
+
+#: Table 1, base joints b_1..b_6, millimetres.
+TABLE_1_MM = (
+    (48.6989, 219.6666, 0.0),
+    (165.8874, 152.0078, 0.0),
+    (165.8874, -152.0078, 0.0),
+    (48.6989, -219.6666, 0.0),
+    (-214.5863, -67.6588, 0.0),
+    (-214.5863, 67.6588, 0.0),
+)
+#: Table 2, platform joints p_1..p_6, millimetres (p_3 z = 257 as printed).
+TABLE_2_MM = (
+    (-51.3030, 140.9539, 275.0),
+    (147.7212, 26.0472, 275.0),
+    (147.7212, -26.0472, 257.0),
+    (-51.3030, -140.9539, 275.0),
+    (-96.4181, -114.9067, 275.0),
+    (-96.4181, 114.9067, 275.0),
+)
+#: The same in metres, shape (6, 3).
+BASE_JOINTS = np.array(TABLE_1_MM) / 1000.0
+PLATFORM_JOINTS = np.array(TABLE_2_MM) / 1000.0
+#: Table 3: start and step of X, Y, Z (millimetres) and alpha, beta, gamma (degrees), 11 rows.
+TABLE_3_START_MM_DEG = (0.0, 0.0, 432.5, 0.0, 0.0, 0.0)
+TABLE_3_STEP_MM_DEG = (10.0, 15.0, 10.0, 1.5, -1.5, 2.0)
+TABLE_3_ROW_COUNT = 11
+
+
+def to_si(pose_mm_deg):
+    """Return a pose given in millimetres and degrees in metres and radians, as a tuple."""
+    return (tuple(value / 1000.0 for value in pose_mm_deg[:3])
+            + tuple(math.radians(value) for value in pose_mm_deg[3:]))
+
+
+def table_3_row(k):
+    """Return row k (0..10) of Table 3 as [X, Y, Z, alpha, beta, gamma], metres and radians."""
+    return to_si([start + k * step
+                  for start, step in zip(TABLE_3_START_MM_DEG, TABLE_3_STEP_MM_DEG)])
+
+
+#: Table 3's rows, metres and radians; the first is the home pose.
+TABLE_3 = tuple(table_3_row(k) for k in range(TABLE_3_ROW_COUNT))
+HOME = TABLE_3[0]
+TABLE_3_END = TABLE_3[-1]
+
+
+def paper_geometry(**changes):
+    """Build the paper's platform (home pose: Table 3's first row), with optional changes."""
+    from stewart_kinematics.geometry import Geometry
+    arguments = {'base_joints': BASE_JOINTS, 'platform_joints': PLATFORM_JOINTS,
+                 'home_pose': HOME}
+    arguments.update(changes)
+    return Geometry(**arguments)
+
+
+def rx(angle):
+    """Elementary rotation about x."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def ry(angle):
+    """Elementary rotation about y."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rz(angle):
+    """Elementary rotation about z."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rotation_zyx(alpha, beta, gamma):
+    """Return ``Rz(gamma) @ Ry(beta) @ Rx(alpha)``, the product of the elementary matrices."""
+    return rz(gamma) @ ry(beta) @ rx(alpha)
+
+
+def quaternion_product(q, r):
+    """Hamilton product of quaternions ``(x, y, z, w)``."""
+    qx, qy, qz, qw = q
+    rx_, ry_, rz_, rw = r
+    return (qw * rx_ + qx * rw + qy * rz_ - qz * ry_,
+            qw * ry_ - qx * rz_ + qy * rw + qz * rx_,
+            qw * rz_ + qx * ry_ - qy * rx_ + qz * rw,
+            qw * rw - qx * rx_ - qy * ry_ - qz * rz_)
+
+
+def quaternion_from_euler(alpha, beta, gamma):
+    """
+    Return the unit quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``, ``w >= 0``.
+
+    The product ``q_z(gamma) q_y(beta) q_x(alpha)`` of the half-angle quaternions.
+    """
+    q = quaternion_product(
+        quaternion_product((0.0, 0.0, math.sin(gamma / 2), math.cos(gamma / 2)),
+                           (0.0, math.sin(beta / 2), 0.0, math.cos(beta / 2))),
+        (math.sin(alpha / 2), 0.0, 0.0, math.cos(alpha / 2)))
+    return tuple(-value for value in q) if q[3] < 0.0 else q
+
+
+def quaternion_matrix(x, y, z, w):
+    """Rotation matrix of a unit quaternion ``(x, y, z, w)``, the textbook formula."""
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def rotation_angle(rotation_a, rotation_b):
+    """Angle in radians between two rotation matrices, from the axis-angle of ``A^T B``."""
+    relative = np.asarray(rotation_a).T @ np.asarray(rotation_b)
+    skew = 0.5 * np.array([relative[2, 1] - relative[1, 2], relative[0, 2] - relative[2, 0],
+                           relative[1, 0] - relative[0, 1]])
+    return math.atan2(float(np.linalg.norm(skew)), 0.5 * (float(np.trace(relative)) - 1.0))
+
+
+def quaternion_angle(q, r):
+    """Angle in radians between the rotations of two unit quaternions ``(x, y, z, w)``."""
+    dot = abs(sum(a * b for a, b in zip(q, r)))
+    return 2.0 * math.acos(min(1.0, dot))
+
+
+def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """
+    Return the six leg lengths ``|t + R p_i - b_i|`` of a pose, leg by leg, in plain Python.
+
+    :param pose: ``[X, Y, Z, alpha, beta, gamma]``, metres and radians.
+    """
+    position, rotation = np.asarray(pose[:3], dtype=float), rotation_zyx(*pose[3:])
+    return [math.sqrt(sum(value * value for value in (position + rotation @ p - b).tolist()))
+            for b, p in zip(np.asarray(base), np.asarray(platform))]
+
+
+def random_poses(count, seed, around=HOME, position_range=0.1, angle_range_deg=15.0):
+    """Draw poses within +-0.1 m and +-15 degrees of ``around``, shape (count, 6)."""
+    rng = np.random.default_rng(seed)
+    offsets = np.column_stack([
+        rng.uniform(-position_range, position_range, (count, 3)),
+        rng.uniform(-math.radians(angle_range_deg), math.radians(angle_range_deg),
+                    (count, 3))])
+    return np.asarray(around) + offsets
+
+
+def twist_jacobian(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """
+    Return the rows ``[u_i, R p_i x u_i]`` that map a twist ``[v, w]`` to leg velocities.
+
+    Leg ``i`` changes at ``u_i . (v + w x R p_i)``, ``u_i`` its unit vector (base frame).
+    """
+    position, rotation = np.asarray(pose[:3], dtype=float), rotation_zyx(*pose[3:])
+    rows = []
+    for b, p in zip(np.asarray(base), np.asarray(platform)):
+        leg = position + rotation @ p - b
+        unit = leg / math.sqrt(float(leg @ leg))
+        rows.append(np.concatenate([unit, np.cross(rotation @ p, unit)]))
+    return np.array(rows)
+
+
+def singular_yaw():
+    """
+    Return the yaw (radians) near 90.4 degrees where the paper's platform is singular.
+
+    At the home position with no roll or pitch: the root of det(twist Jacobian), by bisection.
+    """
+    def determinant(gamma):
+        return float(np.linalg.det(twist_jacobian(HOME[:5] + (gamma,))))
+
+    low, high = math.radians(90.0), math.radians(91.0)
+    assert determinant(low) * determinant(high) < 0.0
+    for _ in range(100):
+        middle = 0.5 * (low + high)
+        if determinant(low) * determinant(middle) <= 0.0:
+            high = middle
+        else:
+            low = middle
+    return 0.5 * (low + high)

@@ -1,0 +1,197 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Unit tests of stewart_kinematics.command_check.CommandCheck (pure numpy, no ROS).
+
+Expected leg lengths are computed here from the paper's tables, leg by leg with the textbook
+rotation matrices; leg velocities are checked against central differences of those lengths.
+"""
+
+import math
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics import CommandCheck, Geometry
+
+pytestmark = pytest.mark.core
+
+#: Tables 1 and 2 of the paper: base and platform joints, metres, as in paper_platform.yaml.
+BASE = np.array([(0.0486989, 0.2196666, 0.0), (0.1658874, 0.1520078, 0.0),
+                 (0.1658874, -0.1520078, 0.0), (0.0486989, -0.2196666, 0.0),
+                 (-0.2145863, -0.0676588, 0.0), (-0.2145863, 0.0676588, 0.0)])
+PLATFORM = np.array([(-0.051303, 0.1409539, 0.275), (0.1477212, 0.0260472, 0.275),
+                     (0.1477212, -0.0260472, 0.257), (-0.051303, -0.1409539, 0.275),
+                     (-0.0964181, -0.1149067, 0.275), (-0.0964181, 0.1149067, 0.275)])
+HOME = (0.0, 0.0, 0.4325, 0.0, 0.0, 0.0)
+TILTED = (-0.02, 0.03, 0.45, math.radians(-5.0), math.radians(8.0), math.radians(-30.0))
+#: Limits of config/example_limits.yaml.
+EXAMPLE_LIMITS = {'leg_length_min': 0.65, 'leg_length_max': 0.9,
+                  'base_joint_max_angle': math.radians(35.0),
+                  'platform_joint_max_angle': math.radians(35.0),
+                  'max_jacobian_condition': 50.0}
+
+
+def geometry(**limits):
+    """Build the paper's platform with the given limits (cone angles in radians)."""
+    return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=np.array(HOME),
+                    **limits)
+
+
+def rotation_zyx(alpha, beta, gamma):
+    """R = Rz(gamma) Ry(beta) Rx(alpha), as the product of the three textbook matrices."""
+    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
+    cg, sg = math.cos(gamma), math.sin(gamma)
+    return (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
+            @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
+            @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
+
+
+def lengths_by_hand(position, rotation):
+    """|t + R p_i - b_i| leg by leg."""
+    return np.array([np.linalg.norm(np.asarray(position) + rotation @ p - b)
+                     for b, p in zip(BASE, PLATFORM)])
+
+
+def test_an_allowed_pose_gives_its_leg_lengths():
+    """Position and matrix, or the pose vector: the lengths of the paper's equation 1."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    rotation = rotation_zyx(*TILTED[3:])
+    command = check.pose(TILTED[:3], rotation)
+    assert command.accepted and command.reason == '' and command.violations == ()
+    assert_allclose(command.lengths, lengths_by_hand(TILTED[:3], rotation), rtol=0.0,
+                    atol=1e-15)
+    assert_allclose(check.pose_vector(TILTED).lengths, command.lengths, rtol=0.0, atol=1e-15)
+
+
+def test_a_pose_beyond_the_limits_is_refused_with_every_violation():
+    """Raised 0.1875 m: legs 1, 2, 4, 5, 6 beyond 0.9 m, each listed; nothing to command."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    raised = (0.0, 0.0, 0.62, 0.0, 0.0, 0.0)
+    expected = lengths_by_hand(raised[:3], np.eye(3))
+    assert [leg for leg in range(1, 7) if expected[leg - 1] > 0.9] == [1, 2, 4, 5, 6]
+    command = check.pose_vector(raised)
+    assert not command.accepted and command.lengths is None
+    assert command.refusal.code == 'out_of_limits'
+    assert [(v.limit, v.leg) for v in command.violations] == [
+        ('leg_length_max', leg) for leg in (1, 2, 4, 5, 6)]
+    for leg in (1, 2, 4, 5, 6):
+        assert f'leg {leg}: leg_length_max 0.9 m broken by' in command.reason
+        value = dict(command.refusal.details)[f'leg_length_max leg {leg}']
+        assert value.startswith(f'{expected[leg - 1]:.6g} m')
+    assert check.last_pose is None
+
+
+@pytest.mark.parametrize('limits', [{}, {'max_jacobian_condition': 50.0}, EXAMPLE_LIMITS],
+                         ids=['no limits', 'only max_jacobian_condition', 'example limits'])
+def test_a_platform_joint_on_its_base_joint_is_refused_not_raised(limits):
+    """Leg 1 of length exactly 0 has no direction: refused as unreachable, never a 0 length."""
+    check = CommandCheck(geometry(**limits))
+    position = BASE[0] - PLATFORM[0]
+    assert lengths_by_hand(position, np.eye(3))[0] == 0.0
+    command = check.pose(position, np.eye(3))
+    assert not command.accepted and command.lengths is None
+    assert command.refusal.code == 'unreachable'
+    assert 'a platform joint on its base joint' in command.reason
+
+
+@pytest.mark.parametrize('position', [(0.0, 0.0, 1e200), (1e155, 0.0, 0.4325)])
+def test_a_pose_whose_lengths_overflow_is_refused(position):
+    """Lengths that overflow to inf are never commanded."""
+    command = CommandCheck(geometry(**EXAMPLE_LIMITS)).pose(position, np.eye(3))
+    assert command.refusal.code == 'unreachable'
+    assert 'finite and positive' in command.reason
+
+
+@pytest.mark.parametrize('position, rotation, words', [
+    ((math.nan, 0.0, 0.4), np.eye(3), 'position must be finite'),
+    ((0.0, math.inf, 0.4), np.eye(3), 'position must be finite'),
+    ((0.0, 0.0, 0.4), np.full((3, 3), math.nan), 'rotation must be finite'),
+    ((0.0, 0.0, 0.4), 2.0 * np.eye(3), 'rotation must be a rotation matrix'),
+    ((0.0, 0.0, 0.4), np.diag([1.0, 1.0, -1.0]), 'determinant +1'),
+    ((0.0, 0.4), np.eye(3), 'expected a position (3,)'),
+    ((0.0, 0.0, 0.4), np.eye(4), 'rotation matrix (3, 3)'),
+])
+def test_a_malformed_pose_is_refused_with_what_is_wrong(position, rotation, words):
+    """NaN, infinity, a matrix that is no rotation, wrong shapes: invalid_pose, with words."""
+    command = CommandCheck(geometry(**EXAMPLE_LIMITS)).pose(position, rotation)
+    assert command.refusal.code == 'invalid_pose'
+    assert words in command.reason
+
+
+def test_a_malformed_pose_vector_is_refused():
+    """Five numbers or a NaN angle in the pose vector: invalid_pose."""
+    check = CommandCheck(geometry())
+    for pose in ([0.0] * 5, [0.0, 0.0, 0.4, math.nan, 0.0, 0.0]):
+        assert check.pose_vector(pose).refusal.code == 'invalid_pose'
+
+
+def test_no_finite_pose_raises_or_gives_a_bad_length():
+    """
+    4000 finite poses from 1e-300 m to 1e300 m and angles to 1e6 rad, every limit set.
+
+    Each comes back accepted with six finite, positive lengths, or refused with a reason.
+    """
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    generator = np.random.default_rng(9)
+    magnitudes = 10.0 ** generator.uniform(-300.0, 300.0, size=(4000, 6))
+    poses = magnitudes * generator.choice([-1.0, 1.0], size=(4000, 6))
+    poses[:1000, :3] = HOME[:3] + generator.uniform(-0.3, 0.3, size=(1000, 3))
+    poses[:1000, 3:] = generator.uniform(-1.0, 1.0, size=(1000, 3))
+    accepted = 0
+    for pose in poses:
+        command = check.pose_vector(pose)
+        if command.accepted:
+            accepted += 1
+            assert np.all(np.isfinite(command.lengths)) and np.all(command.lengths > 0.0)
+        else:
+            assert command.lengths is None and command.reason
+    assert accepted > 0
+
+
+def test_twist_gives_the_rates_of_the_lengths_at_the_last_accepted_pose():
+    """Leg velocities match central differences of the lengths; a refused pose changes nothing."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    before = check.twist([0.01, 0.0, 0.0, 0.0, 0.0, 0.0])
+    assert not before.accepted and before.refusal.code == 'no_pose_yet'
+    rotation = rotation_zyx(*TILTED[3:])
+    assert check.pose(TILTED[:3], rotation).accepted
+    assert not check.pose_vector((0.0, 0.0, 0.62, 0.0, 0.0, 0.0)).accepted
+    twist = np.array([0.02, -0.01, 0.03, 0.2, -0.1, 0.3])
+    command = check.twist(twist)
+    assert command.accepted
+
+    def lengths_at(time):
+        # Rotation by the angle vector w * time (Rodrigues), applied in the base frame.
+        angle_vector = twist[3:] * time
+        angle = np.linalg.norm(angle_vector)
+        k = np.array([[0.0, -angle_vector[2], angle_vector[1]],
+                      [angle_vector[2], 0.0, -angle_vector[0]],
+                      [-angle_vector[1], angle_vector[0], 0.0]]) / angle
+        turn = np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
+        return lengths_by_hand(np.array(TILTED[:3]) + twist[:3] * time, turn @ rotation)
+    step = 1e-6
+    expected = (lengths_at(step) - lengths_at(-step)) / (2.0 * step)
+    assert_allclose(command.velocities, expected, rtol=0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize('twist', [[0.0] * 5, [math.nan, 0.0, 0.0, 0.0, 0.0, 0.0]])
+def test_a_malformed_twist_is_refused(twist):
+    """Five numbers or NaN: invalid_twist."""
+    check = CommandCheck(geometry())
+    assert check.pose_vector(HOME).accepted
+    command = check.twist(twist)
+    assert command.refusal.code == 'invalid_twist' and command.velocities is None
