@@ -141,6 +141,17 @@ def in_range(low: float, high: float, *, low_inclusive: bool = True,
     return validate
 
 
+def zero_or_in_range(low: float, high: float) -> Validator:
+    """Require 0 (a feature turned off) or a number within ``[low, high]``."""
+    within = in_range(low, high)
+
+    def validate(name, value):
+        if value == 0.0 or not within(name, value):
+            return ''
+        return f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got {value!r}"
+    return validate
+
+
 def one_of(*allowed: str) -> Validator:
     """Require one of the given strings."""
     def validate(name, value):
@@ -298,6 +309,22 @@ MARKER_PARAMETERS = (
         constraints='in [0, 1000]'),
 )
 
+WORKSPACE_PARAMETERS = (
+    ParameterSpec(
+        'workspace_resolution', DOUBLE,
+        'Grid step of the constant-orientation workspace (at the home orientation) that '
+        'workspace_markers shows, metres; computed at start-up and again when this changes, '
+        'away from the command path; 0.0 turns the markers off',
+        default=0.01, validators=(finite, zero_or_in_range(0.002, 0.1)),
+        constraints='0.0 or in [0.002, 0.1]'),
+    ParameterSpec(
+        'travel_range_rate', DOUBLE,
+        'Rate of travel_ranges, the range left along each axis from the last accepted pose, '
+        'hertz; each is computed away from the command path; 0.0 turns them off',
+        default=1.0, read_only=True, validators=(finite, in_range(0.0, 10.0)),
+        constraints='in [0, 10]'),
+)
+
 QUEUE_PARAMETERS = (
     ParameterSpec(
         'queue_depth', INTEGER,
@@ -377,7 +404,7 @@ RAMP_PARAMETERS = (
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS + FRAME_PARAMETERS
-            + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
+            + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS)
 
 
 def check_known_names(names, context: str) -> None:

@@ -382,6 +382,54 @@ def orientation_workspace(geometry, position=None, gammas=(0.0,), *,
     return tuple(slices)
 
 
+@dataclass(frozen=True)
+class WorkspaceShell:
+    """
+    Points on the boundary of the constant-orientation workspace, for a 3-D view (RViz).
+
+    :param orientation: ``(alpha, beta, gamma)``, radians.
+    :param points: shape (M, 3), metres, base frame: the top and bottom surfaces (the
+        crossings along z of :func:`workspace_volume`) and horizontal rings (the boundaries of
+        XY slices at ``layers`` heights), each point reachable and located to the tolerance.
+    :param limit: per point, the index into :data:`~stewart_kinematics.limits.LIMIT_NAMES`
+        of the limit met there.
+    :param volume: the workspace volume, m^3.
+    """
+
+    orientation: np.ndarray
+    points: np.ndarray
+    limit: np.ndarray
+    volume: float
+
+
+def workspace_shell(geometry, orientation=None, *, resolution=0.01, layers=10,
+                    tolerance=(1e-6, 1e-6)) -> WorkspaceShell:
+    """
+    Sample the boundary of the constant-orientation workspace as a cloud of points.
+
+    :param orientation: ``(alpha, beta, gamma)``, radians; default the home orientation.
+    :param resolution: grid step, metres: about ``(size / resolution) ** 2`` points.
+    :param layers: horizontal rings between the lowest and highest reachable heights.
+    :returns: a :class:`WorkspaceShell`.
+    :raises ValueError: if the home position at that orientation breaks a limit.
+    """
+    volume = workspace_volume(geometry, orientation, resolution=resolution, tolerance=tolerance)
+    points, limit = [volume.boundary], [volume.boundary_limit]
+    (x_low, y_low, z_low), (x_high, y_high, z_high) = volume.bounding_box
+    margin = 2.0 * resolution
+    extent = ((x_low - margin, x_high + margin), (y_low - margin, y_high + margin))
+    pose = _base_pose(geometry, None)
+    pose[3:] = volume.orientation
+    for height in np.linspace(z_low, z_high, layers + 2)[1:-1]:
+        pose[2] = height
+        ring = workspace_slice(geometry, 'XY', pose, resolution=resolution, extent=extent,
+                               tolerance=tolerance)
+        points.append(np.column_stack([ring.boundary, np.full(len(ring.boundary), height)]))
+        limit.append(ring.boundary_limit)
+    return WorkspaceShell(volume.orientation, np.concatenate(points), np.concatenate(limit),
+                          volume.volume)
+
+
 # Classification of poses ------------------------------------------------------------------------
 
 @dataclass(frozen=True)

@@ -23,10 +23,14 @@ home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, leg
 .. ``leg_6`` as prismatic joints, with the stamp of the pose) and ``leg_velocities`` (the rates of
 change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
-break a limit in red, even for a refused pose). What to command and what to refuse is
-decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a limit of the
-geometry is refused, never clamped); the node converts the messages, publishes, and counts
-each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
+break a limit in red, even for a refused pose), ``workspace_markers`` (the boundary of the
+constant-orientation workspace at the home orientation, latched) and ``travel_ranges`` (the
+range left along each axis from the last accepted pose, about once a second); those two are
+computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command path. What to
+command and what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (a pose that
+breaks a limit of the geometry is refused, never clamped); the node converts the messages,
+publishes, and counts each refusal with the core's reason
+(:mod:`stewart_kinematics.ros.message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -50,6 +54,7 @@ from stewart_kinematics.ros.message_conversions import (
 )
 from stewart_kinematics.ros.node_main import create_output_publisher, run_node
 from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
 from stewart_kinematics.rotations import quaternion_to_matrix
 from visualization_msgs.msg import MarkerArray
 
@@ -64,7 +69,8 @@ class IkNode(Node):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-            + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            + parameter_spec.MARKER_PARAMETERS + parameter_spec.WORKSPACE_PARAMETERS
+            + parameter_spec.QUEUE_PARAMETERS, on_change=self.on_parameter_change)
         self.geometry = geometry_from_parameters(values)
         self.check = CommandCheck(self.geometry)
         self.base_frame = values['base_frame']
@@ -90,9 +96,22 @@ class IkNode(Node):
         self.create_subscription(
             PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
         self.create_subscription(Twist, 'target_twist', self.on_target_twist, depth)
+        self.workspace = WorkspaceReporter(
+            self, self.geometry, self.base_frame, values['workspace_resolution'],
+            values['travel_range_rate'], lambda: self.check.last_pose, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
+
+    def on_parameter_change(self, name, value):
+        """Recompute the workspace markers when their resolution changes at run time."""
+        if name == 'workspace_resolution':
+            self.workspace.set_resolution(value)
+
+    def destroy_node(self):
+        """Stop the workspace worker, then destroy the node."""
+        self.workspace.shutdown()
+        return super().destroy_node()
 
     def on_target_pose(self, message: Pose):
         """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""

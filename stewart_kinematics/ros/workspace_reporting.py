@@ -1,0 +1,159 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off the command path.
+
+The core's :mod:`stewart_kinematics.workspace` does the work in one worker thread (numpy
+releases the interpreter lock in its loops); a guard condition hands each result back to the
+executor, whose callback only converts and publishes. So a 3 s workspace computation or a
+0.2 s travel range never holds up a pose in the 1 kHz command stream, and at most one job of
+each kind is in flight: a travel range due while the last one is still running is skipped.
+"""
+
+import queue
+import threading
+
+import numpy as np
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
+
+from stewart_kinematics import workspace
+from stewart_kinematics.ros.markers import workspace_markers
+from stewart_kinematics.ros.node_main import create_output_publisher
+from stewart_kinematics.rotations import matrix_to_euler_zyx
+from visualization_msgs.msg import MarkerArray
+
+#: Layout of travel_ranges: (axis, end), row-major; offsets from the pose, m and rad.
+TRAVEL_RANGE_LAYOUT = (
+    MultiArrayDimension(label='axis: X, Y, Z [m], alpha, beta, gamma [rad]', size=6,
+                        stride=12),
+    MultiArrayDimension(label='end: negative, positive (offset from the last accepted pose)',
+                        size=2, stride=2),
+)
+
+
+def travel_ranges_to_message(ranges) -> Float64MultiArray:
+    """Return the 12 values ``[X-, X+, Y-, Y+, ..., gamma+]`` with their labelled layout."""
+    message = Float64MultiArray(data=ranges.as_array().ravel().tolist())
+    message.layout.dim = list(TRAVEL_RANGE_LAYOUT)
+    return message
+
+
+class WorkspaceReporter:
+    """
+    Publish ``workspace_markers`` (latched) and ``travel_ranges`` for a node.
+
+    :param node: the node (ik_node).
+    :param geometry: its :class:`stewart_kinematics.Geometry`.
+    :param base_frame: frame of the markers.
+    :param resolution: grid step of the workspace, metres; 0 for no markers.
+    :param travel_range_rate: hertz; 0 for no travel ranges.
+    :param last_pose: a callable returning the last accepted ``(position, rotation)`` or None
+        (the home pose is used until a pose has been accepted).
+    :param depth: queue depth of travel_ranges.
+    """
+
+    def __init__(self, node, geometry, base_frame, resolution, travel_range_rate, last_pose,
+                 depth):
+        self.node, self.geometry, self.base_frame = node, geometry, base_frame
+        self.last_pose = last_pose
+        self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
+        # A daemon thread: a computation under way never delays the node's exit.
+        self.jobs = queue.SimpleQueue()
+        self.closed = False
+        self.worker = threading.Thread(target=self._work, name='workspace', daemon=True)
+        self.worker.start()
+        self.lock = threading.Lock()
+        #: Results waiting for the executor: kind -> (generation, value or exception).
+        self.results = {}
+        self.busy = set()
+        self.marker_generation = 0
+        self.handoff = node.create_guard_condition(self.publish_results)
+        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        self.marker_publisher = node.create_publisher(MarkerArray, 'workspace_markers', latched)
+        self.travel_publisher = create_output_publisher(
+            node, Float64MultiArray, 'travel_ranges', depth)
+        self.travel_timer = (node.create_timer(1.0 / travel_range_rate, self.request_travel_ranges)
+                             if travel_range_rate > 0.0 else None)
+        self.set_resolution(resolution)
+
+    def set_resolution(self, resolution):
+        """Compute the workspace at a new resolution (0: clear the markers) and publish it."""
+        self.marker_generation += 1
+        if resolution > 0.0:
+            self._submit('markers', self.marker_generation, workspace.workspace_shell,
+                         self.geometry, resolution=resolution)
+        else:
+            self.marker_publisher.publish(workspace_markers(self._header(), np.zeros((0, 3)),
+                                                            [], self.namespace))
+
+    def request_travel_ranges(self):
+        """Start a travel range computation from the last accepted pose, unless one runs."""
+        if 'travel' in self.busy:
+            return
+        last = self.last_pose()
+        pose = np.array(self.geometry.home_pose, dtype=float)
+        if last is not None:
+            pose = np.concatenate([last[0], matrix_to_euler_zyx(last[1])])
+        self._submit('travel', 0, workspace.travel_ranges, self.geometry, pose)
+
+    def _submit(self, kind, generation, function, *args, **kwargs):
+        self.busy.add(kind)
+        self.jobs.put((kind, generation, function, args, kwargs))
+
+    def _work(self):
+        """Run the jobs one after the other (worker thread) until :meth:`shutdown`."""
+        while True:
+            job = self.jobs.get()
+            if job is None:
+                return
+            kind, generation, function, args, kwargs = job
+            try:
+                value = function(*args, **kwargs)
+            except Exception as error:   # reported by the executor, never lost in the thread
+                value = error
+            with self.lock:
+                if self.closed:
+                    return
+                self.results[kind] = (generation, value)
+                self.handoff.trigger()
+
+    def publish_results(self):
+        """Publish the results the worker has finished (executor thread)."""
+        with self.lock:
+            results, self.results = self.results, {}
+        for kind, (generation, value) in results.items():
+            self.busy.discard(kind)
+            if isinstance(value, Exception):
+                self.node.get_logger().error(f'{kind} computation failed: {value}')
+            elif kind == 'travel':
+                self.travel_publisher.publish(travel_ranges_to_message(value))
+            elif generation == self.marker_generation:
+                self.marker_publisher.publish(workspace_markers(
+                    self._header(), value.points, value.limit, self.namespace))
+                self.node.get_logger().info(
+                    f'workspace_markers: {len(value.points)} boundary points, volume '
+                    f'{value.volume:.6f} m^3 at the home orientation')
+
+    def _header(self):
+        return Header(stamp=self.node.get_clock().now().to_msg(), frame_id=self.base_frame)
+
+    def shutdown(self):
+        """Stop the worker: jobs not started are dropped, a result under way is discarded."""
+        with self.lock:
+            self.closed = True
+        self.jobs.put(None)
