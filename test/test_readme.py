@@ -32,8 +32,9 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
 @pytest.mark.parametrize('specs', [
     parameter_spec.GEOMETRY_PARAMETERS, parameter_spec.SOLVER_PARAMETERS,
     parameter_spec.FRAME_PARAMETERS, parameter_spec.MARKER_PARAMETERS,
-    parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
-], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp'])
+    parameter_spec.WORKSPACE_PARAMETERS, parameter_spec.QUEUE_PARAMETERS,
+    parameter_spec.RAMP_PARAMETERS,
+], ids=['geometry', 'solver', 'frame', 'marker', 'workspace', 'queue', 'ramp'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
     assert parameter_spec.markdown_table(specs) in README, (

@@ -37,7 +37,7 @@ import yaml
 
 #: Slice and volume resolutions by default: millimetres, degrees.
 DEFAULT_SLICE_RESOLUTION_MM = 2.0
-DEFAULT_VOLUME_RESOLUTION_MM = 5.0
+DEFAULT_VOLUME_RESOLUTION_MM = 10.0
 DEFAULT_ANGLE_RESOLUTION_DEG = 0.25
 #: gamma of the orientation workspace figure, as fractions of the positive gamma range.
 GAMMA_FRACTIONS = (0.0, 0.5, 0.9)
