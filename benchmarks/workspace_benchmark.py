@@ -110,15 +110,16 @@ def core_rows(rows):
 
 def stall_rows(rows):
     """
-    Measure what a travel range computation in ik_node's worker thread costs the commands.
+    Measure what travel ranges computed beside the command path cost it.
 
     ik_node's decision for one pose (:class:`~stewart_kinematics.CommandCheck`) is timed call
-    by call, alone and while another thread computes travel ranges without a pause (ten
-    times the default 1 Hz and more): the worker and the command path share the interpreter
-    lock, which numpy releases only inside its loops.
+    by call: alone; while ik_node's worker process computes travel ranges without a pause
+    (many times the default 1 Hz); and, for comparison, while a thread of this process does,
+    which shares the interpreter lock with the command path.
     """
     import threading
     from stewart_kinematics.command_check import CommandCheck
+    from stewart_kinematics.ros.workspace_reporting import WorkspaceWorker
 
     geometry = load_geometry(FILES)
     check = CommandCheck(geometry)
@@ -137,23 +138,41 @@ def stall_rows(rows):
             index += 1
         return np.array(times) * 1e6
 
-    idle = command_times()
-    stop, computed = threading.Event(), []
+    def add_row(name, times):
+        p50, p99, p999 = np.percentile(times, [50, 99, 99.9])
+        rows.append((f'ik_node decision per pose, {name}', f'p50 {p50:.0f} us',
+                     f'p99 {p99:.0f} us, p99.9 {p999:.0f} us, max {times.max():.0f} us '
+                     f'({len(times)} poses)', ''))
+
+    add_row('alone', command_times())
+
+    computed = []
+
+    def again(tag, value):
+        computed.append(tag)
+        worker.submit(tag, 'travel_ranges', poses[len(computed) % 1000])
+    worker = WorkspaceWorker(geometry, again)
+    worker.submit(0, 'travel_ranges', poses[0])
+    while not computed:      # the worker process has started and imported numpy
+        time.sleep(0.05)
+    computed.clear()
+    times = command_times()
+    worker.close()
+    add_row(f'beside the worker process ({len(computed)} travel ranges in 3 s)', times)
+
+    stop = threading.Event()
+    computed.clear()
 
     def compute():
         while not stop.is_set():
             travel_ranges(geometry, poses[len(computed) % 1000])
             computed.append(1)
-    worker = threading.Thread(target=compute)
-    worker.start()
-    busy = command_times()
+    thread = threading.Thread(target=compute)
+    thread.start()
+    times = command_times()
     stop.set()
-    worker.join()
-    for name, times in (('alone', idle), (f'beside {len(computed)} travel ranges in 3 s', busy)):
-        p50, p99, p999 = np.percentile(times, [50, 99, 99.9])
-        rows.append((f'ik_node decision per pose, {name}', f'p50 {p50:.0f} us',
-                     f'p99 {p99:.0f} us, p99.9 {p999:.0f} us, max {times.max():.0f} us '
-                     f'({len(times)} poses)', ''))
+    thread.join()
+    add_row(f'beside a thread instead ({len(computed)} travel ranges in 3 s)', times)
 
 
 def report_row(rows, output):

@@ -181,15 +181,15 @@ def test_volume_agrees_with_monte_carlo_and_converges(limited):
     fine = workspace.workspace_volume(limited, resolution=0.01)
     assert coarse.bounded and fine.bounded
     box = fine.bounding_box + np.array([[-0.01], [0.01]])
-    estimate, error = monte_carlo_volume(limited, box, 200_000, seed=21)
+    estimate, error = monte_carlo_volume(limited, box, 100_000, seed=21)
     print(f'\nvolume: grid 20 mm {coarse.volume:.6f} m^3, grid 10 mm {fine.volume:.6f} m^3, '
-          f'Monte Carlo {estimate:.6f} +- {error:.6f} m^3 (200000 samples)')
+          f'Monte Carlo {estimate:.6f} +- {error:.6f} m^3 (100000 samples)')
     for result in (coarse, fine):
         assert abs(result.volume - estimate) <= 4.0 * error
     assert abs(fine.volume - coarse.volume) <= 0.005 * fine.volume
     # The bounding box holds every reachable Monte Carlo sample.
     rng = np.random.default_rng(22)
-    points = rng.uniform(box[0], box[1], (50_000, 3))
+    points = rng.uniform(box[0], box[1], (20_000, 3))
     poses = np.concatenate([points, np.repeat(limited.home_pose[None, 3:], len(points), 0)], -1)
     allowed, _ = limits_by_hand(limited, poses)
     inside = points[allowed]

@@ -16,14 +16,16 @@
 """
 ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off the command path.
 
-The core's :mod:`stewart_kinematics.workspace` does the work in one worker thread (numpy
-releases the interpreter lock in its loops); a guard condition hands each result back to the
-executor, whose callback only converts and publishes. So a 3 s workspace computation or a
-0.2 s travel range never holds up a pose in the 1 kHz command stream, and at most one job of
-each kind is in flight: a travel range due while the last one is still running is skipped.
+The core's :mod:`stewart_kinematics.workspace` does the work in a worker process of its own
+(:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
+measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. A
+guard condition hands each result back to the executor, whose callback only converts and
+publishes. So a 3 s workspace computation or a 0.2 s travel range never holds up a pose in the
+command stream, and at most one job of each kind is in flight: a travel range due while the
+last one is still running is skipped.
 """
 
-import queue
+import multiprocessing
 import threading
 
 import numpy as np
@@ -71,12 +73,8 @@ class WorkspaceReporter:
         self.node, self.geometry, self.base_frame = node, geometry, base_frame
         self.last_pose = last_pose
         self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
-        # A daemon thread: a computation under way never delays the node's exit.
-        self.jobs = queue.SimpleQueue()
-        self.closed = False
-        self.worker = threading.Thread(target=self._work, name='workspace', daemon=True)
-        self.worker.start()
         self.lock = threading.Lock()
+        self.worker = WorkspaceWorker(geometry, self._on_result)
         #: Results waiting for the executor: kind -> (generation, value or exception).
         self.results = {}
         self.busy = set()
@@ -95,8 +93,8 @@ class WorkspaceReporter:
         """Compute the workspace at a new resolution (0: clear the markers) and publish it."""
         self.marker_generation += 1
         if resolution > 0.0:
-            self._submit('markers', self.marker_generation, workspace.workspace_shell,
-                         self.geometry, resolution=resolution)
+            self._submit('markers', self.marker_generation, 'workspace_shell',
+                         resolution=resolution)
         else:
             self.marker_publisher.publish(workspace_markers(self._header(), np.zeros((0, 3)),
                                                             [], self.namespace))
@@ -109,28 +107,18 @@ class WorkspaceReporter:
         pose = np.array(self.geometry.home_pose, dtype=float)
         if last is not None:
             pose = np.concatenate([last[0], matrix_to_euler_zyx(last[1])])
-        self._submit('travel', 0, workspace.travel_ranges, self.geometry, pose)
+        self._submit('travel', 0, 'travel_ranges', pose)
 
     def _submit(self, kind, generation, function, *args, **kwargs):
         self.busy.add(kind)
-        self.jobs.put((kind, generation, function, args, kwargs))
+        self.worker.submit((kind, generation), function, *args, **kwargs)
 
-    def _work(self):
-        """Run the jobs one after the other (worker thread) until :meth:`shutdown`."""
-        while True:
-            job = self.jobs.get()
-            if job is None:
-                return
-            kind, generation, function, args, kwargs = job
-            try:
-                value = function(*args, **kwargs)
-            except Exception as error:   # reported by the executor, never lost in the thread
-                value = error
-            with self.lock:
-                if self.closed:
-                    return
-                self.results[kind] = (generation, value)
-                self.handoff.trigger()
+    def _on_result(self, tag, value):
+        """Keep a finished result and wake the executor (the worker's reader thread)."""
+        kind, generation = tag
+        with self.lock:
+            self.results[kind] = (generation, value)
+        self.handoff.trigger()
 
     def publish_results(self):
         """Publish the results the worker has finished (executor thread)."""
@@ -153,7 +141,63 @@ class WorkspaceReporter:
         return Header(stamp=self.node.get_clock().now().to_msg(), frame_id=self.base_frame)
 
     def shutdown(self):
-        """Stop the worker: jobs not started are dropped, a result under way is discarded."""
-        with self.lock:
-            self.closed = True
-        self.jobs.put(None)
+        """Stop the worker process: a computation under way is dropped."""
+        self.worker.close()
+
+
+class WorkspaceWorker:
+    """
+    A process that runs functions of :mod:`stewart_kinematics.workspace` for one geometry.
+
+    Started with the ``forkserver`` method (a clean interpreter: forking a process that runs
+    DDS threads is unsafe); jobs run one after the other; each result, or the exception as a
+    ``RuntimeError``, goes to ``on_result(tag, value)``, called in a reader thread. Closing
+    terminates the process at once, so a node never waits for a computation to exit.
+
+    :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
+    :param on_result: called with each job's tag and result.
+    """
+
+    def __init__(self, geometry, on_result):
+        context = multiprocessing.get_context('forkserver')
+        self.jobs, self.results = context.Queue(), context.Queue()
+        self.on_result = on_result
+        self.process = context.Process(target=_serve, args=(geometry, self.jobs, self.results),
+                                       name='workspace', daemon=True)
+        self.process.start()
+        self.reader = threading.Thread(target=self._read, name='workspace results',
+                                       daemon=True)
+        self.reader.start()
+
+    def submit(self, tag, function, *args, **kwargs):
+        """Queue ``workspace.<function>(geometry, *args, **kwargs)``; ``tag`` names the job."""
+        self.jobs.put((tag, function, args, kwargs))
+
+    def _read(self):
+        while True:
+            try:
+                item = self.results.get()
+            except (EOFError, OSError, TypeError, ValueError):
+                # The queue closed under the reader as the process exits.
+                return
+            if item is None:
+                return
+            self.on_result(*item)
+
+    def close(self):
+        """Terminate the process and the reader; jobs not finished are dropped."""
+        self.process.terminate()
+        self.results.put(None)
+        for channel in (self.jobs, self.results):
+            channel.cancel_join_thread()
+
+
+def _serve(geometry, jobs, results):
+    """Run jobs until the parent terminates the process (the worker process's main)."""
+    while True:
+        tag, function, args, kwargs = jobs.get()
+        try:
+            value = getattr(workspace, function)(geometry, *args, **kwargs)
+        except Exception as error:   # sent back as text: any exception pickles as this one
+            value = RuntimeError(f'{type(error).__name__}: {error}')
+        results.put((tag, value))
