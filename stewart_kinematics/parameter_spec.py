@@ -313,14 +313,15 @@ WORKSPACE_PARAMETERS = (
     ParameterSpec(
         'workspace_resolution', DOUBLE,
         'Grid step of the constant-orientation workspace (at the home orientation) that '
-        'workspace_markers shows, metres; computed at start-up and again when this changes, '
-        'away from the command path; 0.0 turns the markers off',
+        'workspace_markers shows, metres; computed in a worker process once the topic has a '
+        'subscriber, and again when this changes; 0.0 turns the markers off',
         default=0.01, validators=(finite, zero_or_in_range(0.002, 0.1)),
         constraints='0.0 or in [0.002, 0.1]'),
     ParameterSpec(
         'travel_range_rate', DOUBLE,
         'Rate of travel_ranges, the range left along each axis from the last accepted pose, '
-        'hertz; each is computed away from the command path; 0.0 turns them off',
+        'hertz; computed in a worker process while the topic has a subscriber and the pose '
+        'has moved; 0.0 turns them off',
         default=1.0, read_only=True, validators=(finite, in_range(0.0, 10.0)),
         constraints='in [0, 10]'),
 )

@@ -38,6 +38,8 @@ from stewart_kinematics.ros.node_main import create_output_publisher
 from stewart_kinematics.rotations import matrix_to_euler_zyx
 from visualization_msgs.msg import MarkerArray
 
+#: How often ik_node looks for a first subscriber of workspace_markers, seconds.
+MARKER_CHECK_PERIOD = 1.0
 #: Layout of travel_ranges: (axis, end), row-major; offsets from the pose, m and rad.
 TRAVEL_RANGE_LAYOUT = (
     MultiArrayDimension(label='axis: X, Y, Z [m], alpha, beta, gamma [rad]', size=6,
@@ -58,6 +60,12 @@ class WorkspaceReporter:
     """
     Publish ``workspace_markers`` (latched) and ``travel_ranges`` for a node.
 
+    Nothing is computed for nobody: the worker process starts, and the workspace is computed,
+    once ``workspace_markers`` has a subscriber (checked every second; latched, so later
+    subscribers get it too), again when the resolution changes; a travel range is computed
+    only while ``travel_ranges`` has a subscriber and the last accepted pose has moved since
+    the last one (otherwise that one is published again).
+
     :param node: the node (ik_node).
     :param geometry: its :class:`stewart_kinematics.Geometry`.
     :param base_frame: frame of the markers.
@@ -74,17 +82,22 @@ class WorkspaceReporter:
         self.last_pose = last_pose
         self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
         self.lock = threading.Lock()
-        self.worker = WorkspaceWorker(geometry, self._on_result)
+        self.worker = None
         #: Results waiting for the executor: kind -> (generation, value or exception).
         self.results = {}
         self.busy = set()
         self.marker_generation = 0
+        self.resolution = resolution
+        self.markers_due = False
+        #: The last travel range message and the pose it was computed from.
+        self.travel = None
         self.handoff = node.create_guard_condition(self.publish_results)
         latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.marker_publisher = node.create_publisher(MarkerArray, 'workspace_markers', latched)
         self.travel_publisher = create_output_publisher(
             node, Float64MultiArray, 'travel_ranges', depth)
+        self.marker_timer = node.create_timer(MARKER_CHECK_PERIOD, self.request_markers)
         self.travel_timer = (node.create_timer(1.0 / travel_range_rate, self.request_travel_ranges)
                              if travel_range_rate > 0.0 else None)
         self.set_resolution(resolution)
@@ -92,26 +105,39 @@ class WorkspaceReporter:
     def set_resolution(self, resolution):
         """Compute the workspace at a new resolution (0: clear the markers) and publish it."""
         self.marker_generation += 1
+        self.resolution = resolution
+        self.markers_due = resolution > 0.0
         if resolution > 0.0:
-            self._submit('markers', self.marker_generation, 'workspace_shell',
-                         resolution=resolution)
+            self.request_markers()
         else:
             self.marker_publisher.publish(workspace_markers(self._header(), np.zeros((0, 3)),
                                                             [], self.namespace))
 
+    def request_markers(self):
+        """Start the workspace computation if it is due and someone subscribes."""
+        if self.markers_due and self.marker_publisher.get_subscription_count():
+            self.markers_due = False
+            self._submit('markers', self.marker_generation, 'workspace_shell',
+                         resolution=self.resolution)
+
     def request_travel_ranges(self):
         """Start a travel range computation from the last accepted pose, unless one runs."""
-        if 'travel' in self.busy:
+        if 'travel' in self.busy or not self.travel_publisher.get_subscription_count():
             return
         last = self.last_pose()
         pose = np.array(self.geometry.home_pose, dtype=float)
         if last is not None:
             pose = np.concatenate([last[0], matrix_to_euler_zyx(last[1])])
-        self._submit('travel', 0, 'travel_ranges', pose)
+        if self.travel is not None and np.array_equal(self.travel[0], pose):
+            self.travel_publisher.publish(self.travel[1])
+            return
+        self._submit('travel', pose, 'travel_ranges', pose)
 
-    def _submit(self, kind, generation, function, *args, **kwargs):
+    def _submit(self, kind, tag, function, *args, **kwargs):
+        if self.worker is None:
+            self.worker = WorkspaceWorker(self.geometry, self._on_result)
         self.busy.add(kind)
-        self.worker.submit((kind, generation), function, *args, **kwargs)
+        self.worker.submit((kind, tag), function, *args, **kwargs)
 
     def _on_result(self, tag, value):
         """Keep a finished result and wake the executor (the worker's reader thread)."""
@@ -124,13 +150,14 @@ class WorkspaceReporter:
         """Publish the results the worker has finished (executor thread)."""
         with self.lock:
             results, self.results = self.results, {}
-        for kind, (generation, value) in results.items():
+        for kind, (tag, value) in results.items():
             self.busy.discard(kind)
             if isinstance(value, Exception):
                 self.node.get_logger().error(f'{kind} computation failed: {value}')
             elif kind == 'travel':
-                self.travel_publisher.publish(travel_ranges_to_message(value))
-            elif generation == self.marker_generation:
+                self.travel = tag, travel_ranges_to_message(value)
+                self.travel_publisher.publish(self.travel[1])
+            elif tag == self.marker_generation:
                 self.marker_publisher.publish(workspace_markers(
                     self._header(), value.points, value.limit, self.namespace))
                 self.node.get_logger().info(
@@ -142,7 +169,8 @@ class WorkspaceReporter:
 
     def shutdown(self):
         """Stop the worker process: a computation under way is dropped."""
-        self.worker.close()
+        if self.worker is not None:
+            self.worker.close()
 
 
 class WorkspaceWorker:
