@@ -229,6 +229,7 @@ def stream_rows(rows):
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from stewart_kinematics.ros.message_conversions import pose_to_message
+    from std_msgs.msg import Float64MultiArray
     from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
     from visualization_msgs.msg import MarkerArray
 
@@ -261,9 +262,13 @@ def stream_rows(rows):
             from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
             latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                                  durability=DurabilityPolicy.TRANSIENT_LOCAL)
+            travel = {'one': [], 'ten': []}
             for namespace in ('one', 'ten'):
                 node.create_subscription(MarkerArray, f'/{namespace}/workspace_markers',
                                          markers.append, latched)
+                # ik_node computes travel ranges only for a subscriber.
+                node.create_subscription(Float64MultiArray, f'/{namespace}/travel_ranges',
+                                         travel[namespace].append, 10)
             deadline = time.monotonic() + 120.0
             # Measured once the start-up workspace computation is over: the steady state.
             while time.monotonic() < deadline and not (
@@ -275,12 +280,17 @@ def stream_rows(rows):
                                    + ' '.join(p.output()[-300:] for p in processes))
             for probe in probes.values():
                 probe.run(executor, messages, STREAM_RATE, 0.5)     # warm-up
+            for received in travel.values():
+                received.clear()
             results = {name: [] for name in probes}
             for _ in range(STREAM_ROUNDS):
                 for name, probe in probes.items():
                     sends, arrivals = probe.run(executor, messages, STREAM_RATE,
                                                 STREAM_SECONDS)
                     results[name].append((sends, arrivals))
+            rows.append(('travel_ranges received during the measured runs',
+                         f'{len(travel["one"])} at 1 Hz, {len(travel["ten"])} at 10 Hz', '',
+                         ''))
             for name, runs in results.items():
                 sent = sum(len(sends) for sends, _ in runs)
                 received = sum(len(arrivals) for _, arrivals in runs)

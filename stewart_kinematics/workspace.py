@@ -53,8 +53,11 @@ UNITS = ('m', 'm', 'm', 'rad', 'rad', 'rad')
 #: Farthest a travel range or a grid reaches from its start, metres and radians: no hexapod
 #: moves a metre, and a rotation beyond half a turn wraps round.
 DEFAULT_SPAN = (1.0, math.pi)
-#: Step of the scan of a travel range, metres and radians, before bisection.
-DEFAULT_SCAN_STEP = (2e-4, 5e-4)
+#: Step of the scan of a travel range, metres and radians, before bisection: a forbidden
+#: gap narrower than this along a ray can be missed.
+DEFAULT_SCAN_STEP = (5e-4, 1e-3)
+#: Samples of each ray checked at a time, outwards from the start.
+SCAN_CHUNK = 256
 #: Bisection stops when a boundary is known this closely, metres and radians.
 DEFAULT_TOLERANCE = (1e-7, 1e-7)
 #: Poses classified at once: bounds the memory of a grid of millions of points.
@@ -137,11 +140,11 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     """
     Find the largest move along each pose coordinate alone, both ways, from ``pose``.
 
-    Each of the twelve rays is scanned at ``step`` out to ``span``; the first step that breaks
-    a limit and the last one before it bracket the end of the connected range that contains
-    the start (a ray may leave the workspace and come back: the rest is not reported), and
-    bisection locates it to ``tolerance``. The reported end is reachable; a move beyond it by
-    ``tolerance`` breaks the limit named.
+    Each of the twelve rays is scanned outwards at ``step`` until a sample breaks a limit, or
+    out to ``span``; that sample and the one before bracket the end of the connected range
+    that contains the start (a ray may leave the workspace and come back: the rest is not
+    reported), and bisection locates it to ``tolerance``. The reported end is reachable; a
+    move beyond it by ``tolerance`` breaks the limit named.
 
     :param geometry: a :class:`stewart_kinematics.Geometry` with its limits.
     :param pose: start pose ``[X, Y, Z, alpha, beta, gamma]``, metres and radians; default
@@ -159,27 +162,40 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     start = _start_pose(geometry, pose)
     per_axis = np.repeat(np.asarray(step, dtype=float), 3)
     counts = np.ceil(np.repeat(np.asarray(span, dtype=float), 3) / per_axis).astype(int)
-    # The twelve rays: axis a, sign s, samples k * step for k = 1 .. counts[a].
+    # The twelve rays: axis a, sign s, samples k * step for k = 1 .. counts[a], scanned
+    # outwards SCAN_CHUNK samples at a time, a ray dropping out at its first refusal.
     rays = [(axis, sign) for axis in range(6) for sign in (-1.0, 1.0)]
-    offsets = [sign * per_axis[axis] * np.arange(1, counts[axis] + 1) for axis, sign in rays]
-    poses = np.repeat(start[None, :], sum(map(len, offsets)), axis=0)
-    first = 0
-    for (axis, _), ray in zip(rays, offsets):
-        poses[first:first + len(ray), axis] += ray
-        first += len(ray)
-    allowed = _classify(geometry, poses).allowed
+    first_refused = [None] * len(rays)
+    active = list(range(len(rays)))
+    for start_index in range(1, max(counts) + 1, SCAN_CHUNK):
+        active = [ray for ray in active if start_index <= counts[rays[ray][0]]]
+        if not active:
+            break
+        chunks = [np.arange(start_index, min(start_index + SCAN_CHUNK,
+                                             counts[rays[ray][0]] + 1)) for ray in active]
+        poses = np.repeat(start[None, :], sum(map(len, chunks)), axis=0)
+        first = 0
+        for ray, chunk in zip(active, chunks):
+            axis, sign = rays[ray]
+            poses[first:first + len(chunk), axis] += sign * per_axis[axis] * chunk
+            first += len(chunk)
+        allowed = _classify(geometry, poses).allowed
+        first = 0
+        for ray, chunk in zip(active, chunks):
+            refused = np.flatnonzero(~allowed[first:first + len(chunk)])
+            first += len(chunk)
+            if refused.size:
+                first_refused[ray] = int(chunk[refused[0]])
+        active = [ray for ray in active if first_refused[ray] is None]
 
     inside, outside, stopped = [], [], []
-    first = 0
-    for (axis, sign), ray in zip(rays, offsets):
-        refused = np.flatnonzero(~allowed[first:first + len(ray)])
-        first += len(ray)
-        stopped.append(refused.size > 0)
-        last_inside = (refused[0] - 1) if refused.size else len(ray) - 1
+    for ray, (axis, sign) in enumerate(rays):
+        stopped.append(first_refused[ray] is not None)
+        outside_index = first_refused[ray] if stopped[-1] else counts[axis]
         inside_pose, outside_pose = start.copy(), start.copy()
-        if last_inside >= 0:
-            inside_pose[axis] += ray[last_inside]
-        outside_pose[axis] += ray[refused[0]] if refused.size else ray[-1]
+        inside_pose[axis] += sign * per_axis[axis] * (outside_index - 1 if stopped[-1]
+                                                      else outside_index)
+        outside_pose[axis] += sign * per_axis[axis] * outside_index
         inside.append(inside_pose)
         outside.append(outside_pose)
     inside, outside = np.array(inside), np.array(outside)

@@ -26,6 +26,7 @@ last one is still running is skipped.
 """
 
 import multiprocessing
+import os
 import threading
 
 import numpy as np
@@ -38,6 +39,9 @@ from stewart_kinematics.ros.node_main import create_output_publisher
 from stewart_kinematics.rotations import matrix_to_euler_zyx
 from visualization_msgs.msg import MarkerArray
 
+#: Scheduling priority of the worker process below the node's (nice(2) increment): on a
+#: busy machine the operating system runs the command path first.
+WORKER_NICENESS = 10
 #: How often ik_node looks for a first subscriber of workspace_markers, seconds.
 MARKER_CHECK_PERIOD = 1.0
 #: Layout of travel_ranges: (axis, end), row-major; offsets from the pose, m and rad.
@@ -178,9 +182,10 @@ class WorkspaceWorker:
     A process that runs functions of :mod:`stewart_kinematics.workspace` for one geometry.
 
     Started with the ``forkserver`` method (a clean interpreter: forking a process that runs
-    DDS threads is unsafe); jobs run one after the other; each result, or the exception as a
-    ``RuntimeError``, goes to ``on_result(tag, value)``, called in a reader thread. Closing
-    terminates the process at once, so a node never waits for a computation to exit.
+    DDS threads is unsafe), at a lower scheduling priority; jobs run one after the other;
+    each result, or the exception as a ``RuntimeError``, goes to ``on_result(tag, value)``,
+    called in a reader thread. Closing terminates the process at once, so a node never waits
+    for a computation to exit.
 
     :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
     :param on_result: called with each job's tag and result.
@@ -222,6 +227,8 @@ class WorkspaceWorker:
 
 def _serve(geometry, jobs, results):
     """Run jobs until the parent terminates the process (the worker process's main)."""
+    # Below the node on a busy machine: the command path comes first.
+    os.nice(WORKER_NICENESS)
     while True:
         tag, function, args, kwargs = jobs.get()
         try:
