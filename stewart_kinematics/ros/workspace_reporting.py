@@ -30,6 +30,7 @@ import os
 import threading
 
 import numpy as np
+from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
@@ -42,7 +43,8 @@ from visualization_msgs.msg import MarkerArray
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
 WORKER_NICENESS = 10
-#: How often ik_node looks for a first subscriber of workspace_markers, seconds.
+#: How often ik_node looks for a first subscriber of workspace_markers without travel
+#: ranges, seconds (with them, at each travel range).
 MARKER_CHECK_PERIOD = 1.0
 #: Layout of travel_ranges: (axis, end), row-major; offsets from the pose, m and rad.
 TRAVEL_RANGE_LAYOUT = (
@@ -65,10 +67,10 @@ class WorkspaceReporter:
     Publish ``workspace_markers`` (latched) and ``travel_ranges`` for a node.
 
     Nothing is computed for nobody: the worker process starts, and the workspace is computed,
-    once ``workspace_markers`` has a subscriber (checked every second; latched, so later
-    subscribers get it too), again when the resolution changes; a travel range is computed
-    only while ``travel_ranges`` has a subscriber and the last accepted pose has moved since
-    the last one (otherwise that one is published again).
+    once ``workspace_markers`` has a subscriber (checked at each travel range, or every
+    second; latched, so later subscribers get it too), again when the resolution changes; a
+    travel range is computed only while ``travel_ranges`` has a subscriber and the last
+    accepted pose has moved since the last one (otherwise that one is published again).
 
     :param node: the node (ik_node).
     :param geometry: its :class:`stewart_kinematics.Geometry`.
@@ -98,13 +100,24 @@ class WorkspaceReporter:
         self.handoff = node.create_guard_condition(self.publish_results)
         latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
-        self.marker_publisher = node.create_publisher(MarkerArray, 'workspace_markers', latched)
+        # Without rclpy's default QoS event handlers, and one timer for both outputs: every
+        # entity of a node adds to its executor's work at each message of the command stream.
+        self.marker_publisher = node.create_publisher(
+            MarkerArray, 'workspace_markers', latched,
+            event_callbacks=PublisherEventCallbacks(use_default_callbacks=False))
         self.travel_publisher = create_output_publisher(
             node, Float64MultiArray, 'travel_ranges', depth)
-        self.marker_timer = node.create_timer(MARKER_CHECK_PERIOD, self.request_markers)
-        self.travel_timer = (node.create_timer(1.0 / travel_range_rate, self.request_travel_ranges)
-                             if travel_range_rate > 0.0 else None)
+        self.travel_rate = travel_range_rate
+        self.timer = node.create_timer(
+            1.0 / travel_range_rate if travel_range_rate > 0.0 else MARKER_CHECK_PERIOD,
+            self.on_timer)
         self.set_resolution(resolution)
+
+    def on_timer(self):
+        """Start what is due: the markers for a first subscriber, a travel range."""
+        self.request_markers()
+        if self.travel_rate > 0.0:
+            self.request_travel_ranges()
 
     def set_resolution(self, resolution):
         """Compute the workspace at a new resolution (0: clear the markers) and publish it."""
