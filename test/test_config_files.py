@@ -41,7 +41,8 @@ CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
 #: The parameters each node declares, as its constructor does.
 NODE_SPECS = {
     'ik_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-                + parameter_spec.MARKER_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
+                + parameter_spec.MARKER_PARAMETERS + parameter_spec.WORKSPACE_PARAMETERS
+                + parameter_spec.QUEUE_PARAMETERS),
     'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
                 + parameter_spec.FRAME_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
     'trajectory_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.RAMP_PARAMETERS

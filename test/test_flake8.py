@@ -14,6 +14,7 @@
 
 """flake8 with the ament configuration, as ``ros2 pkg create`` generates it."""
 
+import gc
 from pathlib import Path
 
 from ament_flake8.main import main_with_errors
@@ -30,6 +31,9 @@ def test_flake8(monkeypatch):
     # ament_flake8 checks the working directory and skips folders whose names start with '.'
     # or '_' (.venv, .git); a colcon build run in this folder leaves build/, install/, log/.
     monkeypatch.chdir(PACKAGE_ROOT)
+    # flake8 forks its workers from this process: free here the garbage that earlier
+    # in-process node tests left (rclpy objects), which crashed a forked worker that freed it.
+    gc.collect()
     rc, errors = main_with_errors(argv=['--exclude', 'build', 'install', 'log'])
     assert rc == 0, \
         'Found %d code style errors / warnings:\n' % len(errors) + \

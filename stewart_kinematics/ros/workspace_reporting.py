@@ -185,9 +185,14 @@ class WorkspaceReporter:
         return Header(stamp=self.node.get_clock().now().to_msg(), frame_id=self.base_frame)
 
     def shutdown(self):
-        """Stop the worker process: a computation under way is dropped."""
+        """Stop the worker process (a computation under way is dropped); free the entities."""
         if self.worker is not None:
             self.worker.close()
+            self.worker = None
+        self.node.destroy_timer(self.timer)
+        self.node.destroy_guard_condition(self.handoff)
+        # No cycle through the node is left for the garbage collector.
+        self.last_pose = self.handoff = self.timer = None
 
 
 class WorkspaceWorker:
