@@ -56,7 +56,7 @@ from stewart_kinematics.rotations import (
     quaternion_to_matrix,
 )
 from stewart_kinematics.trajectory import Ramp
-from stewart_kinematics.velocities import leg_velocities, platform_twist
+from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
 from stewart_kinematics.workspace import (
     orientation_workspace,
     travel_ranges,
@@ -90,6 +90,7 @@ __all__ = [
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
     'Ramp',
+    'SingularPoseError',
     'travel_ranges',
     'twist_jacobian',
     'TwistEstimate',

@@ -20,7 +20,8 @@ in a Python user's own control loop alike::
 
     check = CommandCheck(load_geometry(['config/paper_platform.yaml',
                                         'config/example_limits.yaml']))
-    command = check.pose_vector([0.0, 0.0, 0.45, 0.0, 0.0, 0.1])   # or check.pose(t, R)
+    command = check.pose_vector([0.0, 0.0, 0.45, 0.0, 0.0, 0.1])   # or .pose(t, R), or
+    #                                                   .pose_quaternion(t, (x, y, z, w))
     if command.accepted:
         actuators.move(command.lengths)          # six finite, positive lengths, metres
     else:
@@ -42,7 +43,11 @@ import numpy as np
 from stewart_kinematics import findings, limits
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.kinematics import leg_lengths, twist_jacobian
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.rotations import (
+    euler_zyx_to_matrix,
+    normalize_quaternion,
+    quaternion_to_matrix,
+)
 
 #: Largest deviation of ``R^T R`` from the identity accepted for a rotation matrix.
 ROTATION_TOLERANCE = 1e-6
@@ -111,6 +116,33 @@ class CommandCheck:
         invalid = _invalid_pose(position, rotation)
         if invalid:
             return LegCommand(None, refusal=Finding(findings.INVALID_POSE, invalid))
+        return self._command(position, rotation)
+
+    def pose_quaternion(self, position, quaternion) -> LegCommand:
+        """
+        :meth:`pose` of a position and a quaternion ``(x, y, z, w)``, as geometry_msgs has them.
+
+        A quaternion that is not unit is normalised; a zero or non-finite one is refused.
+
+        :param position: metres, base frame, shape (3,).
+        :param quaternion: shape (4,).
+        """
+        position = np.asarray(position, dtype=float)
+        if position.shape != (3,) or not all(map(math.isfinite, position.tolist())):
+            return LegCommand(None, refusal=Finding(
+                findings.INVALID_POSE,
+                f'position must be three finite numbers (metres), got {position.tolist()}'))
+        try:
+            rotation = quaternion_to_matrix(normalize_quaternion(quaternion))
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
+        if rotation.shape != (3, 3):
+            return LegCommand(None, refusal=Finding(
+                findings.INVALID_POSE, f'expected one quaternion (4,), got {rotation.shape}'))
+        return self._command(position, rotation)
+
+    def _command(self, position, rotation) -> LegCommand:
+        """Decide on a valid position (3,) and rotation matrix (3, 3)."""
         # The lengths first: a leg of length zero (a platform joint on its base joint) has no
         # direction, so the joint angles and the Jacobian of the limits do not exist there.
         with np.errstate(over='ignore', invalid='ignore'):
@@ -138,7 +170,7 @@ class CommandCheck:
                 findings.INVALID_POSE,
                 f'a pose must be six finite numbers [X, Y, Z, alpha, beta, gamma] (metres, '
                 f'radians), got {pose.tolist()}'))
-        return self.pose(pose[:3], euler_zyx_to_matrix(pose[3:]))
+        return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
 
     def twist(self, twist) -> LegVelocityCommand:
         """

@@ -101,7 +101,8 @@ class Geometry:
         home_legs = leg_vectors_from_euler(self, self.home_pose)
         home_lengths = np.linalg.norm(home_legs, axis=-1)
         home_lengths.flags.writeable = False
-        home_directions = home_legs / home_lengths[:, None]
+        with np.errstate(invalid='ignore', divide='ignore'):  # NaN for a leg of zero length
+            home_directions = home_legs / home_lengths[:, None]
         home_directions.flags.writeable = False
         centred = self.platform_joints - self.platform_joints.mean(axis=0)
         object.__setattr__(self, 'home_leg_lengths', home_lengths)

@@ -88,8 +88,13 @@ def leg_length_violations(geometry, lengths) -> List[Violation]:
     lengths = as_leg_lengths(lengths)
     if lengths.shape != (6,):
         raise ValueError(f'expected the 6 lengths of one pose, got shape {lengths.shape}')
+    return _length_violations(geometry, lengths.tolist())
+
+
+def _length_violations(geometry, lengths):
+    """:func:`leg_length_violations` of six lengths (floats) known to be finite, maybe 0."""
     violations = []
-    for leg, length in enumerate(lengths.tolist(), start=1):
+    for leg, length in enumerate(lengths, start=1):
         if length < geometry.leg_length_min:
             violations.append(Violation('leg_length_min', leg, length, geometry.leg_length_min,
                                         'm'))
@@ -106,10 +111,13 @@ def joint_angles(geometry, position, rotation):
     :param position: platform position in the base frame, metres, shape (3,) or (N, 3).
     :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
     :returns: ``(base_angles, platform_angles)``, each shape (6,) or (N, 6): at the base joint
-        measured in the base frame, at the platform joint measured in the platform frame.
+        measured in the base frame, at the platform joint measured in the platform frame; NaN
+        for a leg of zero length.
     """
     legs = leg_vectors(geometry, position, rotation)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
+    # A leg of zero length has no direction: its angles are NaN, which no limit allows.
+    with np.errstate(divide='ignore', invalid='ignore'):
+        directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
     home = geometry.home_leg_directions
     home_rotation = euler_zyx_to_matrix(geometry.home_pose[3:])
     # In the platform frame: R^T u now against R_home^T u_home.
@@ -127,7 +135,9 @@ def check_pose(geometry, position, rotation, condition=None) -> List[Violation]:
     :param rotation: platform-to-base rotation matrix, shape (3, 3).
     :param condition: the pose's :func:`jacobian_condition` when already known (a forward
         kinematics result carries it), so that it is not computed twice.
-    :raises ValueError: if the position or the rotation is malformed or not finite.
+    :raises ValueError: if the position or the rotation is malformed or not finite; any other
+        pose gets its list, a platform joint on its base joint included (a leg of zero length
+        breaks the singularity margin and the joint cones, having no direction).
     """
     position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
     if position.shape != (3,) or rotation.shape != (3, 3):
@@ -138,14 +148,17 @@ def check_pose(geometry, position, rotation, condition=None) -> List[Violation]:
     # Each check runs only where its limit is set: the nodes call this for every message.
     violations = []
     if geometry.leg_length_min > 0.0 or geometry.leg_length_max < math.inf:
-        violations += leg_length_violations(geometry, leg_lengths(geometry, position, rotation))
+        lengths = leg_lengths(geometry, position, rotation)
+        if not np.all(np.isfinite(lengths)):
+            as_leg_lengths(lengths)  # raises: a pose so far away that its lengths overflow
+        violations += _length_violations(geometry, lengths.tolist())
     if min(geometry.base_joint_max_angle, geometry.platform_joint_max_angle) < math.pi:
         base_angles, platform_angles = joint_angles(geometry, position, rotation)
         for limit, angles, allowed in (
                 ('base_joint_max_angle', base_angles, geometry.base_joint_max_angle),
                 ('platform_joint_max_angle', platform_angles,
                  geometry.platform_joint_max_angle)):
-            for leg in np.flatnonzero(angles > allowed):
+            for leg in np.flatnonzero(~(angles <= allowed)):
                 violations.append(Violation(limit, int(leg) + 1, math.degrees(angles[leg]),
                                             math.degrees(allowed), 'deg'))
     if math.isfinite(geometry.max_jacobian_condition):

@@ -47,7 +47,7 @@ from stewart_kinematics import findings, limits, parameter_spec
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.kinematics import as_poses, forward_kinematics, ForwardKinematicsResult
 from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
-from stewart_kinematics.velocities import platform_twist
+from stewart_kinematics.velocities import platform_twist, SingularPoseError
 
 
 @dataclass(frozen=True)
@@ -238,15 +238,14 @@ class PoseTracker:
                 f'leg velocities must be six finite numbers (m/s), got {velocities.tolist()}'))
         margin = min(self.settings.near_singularity_condition,
                      self.geometry.max_jacobian_condition)
-        position, rotation = self.last_pose[:3], euler_zyx_to_matrix(self.last_pose[3:])
-        condition = float(limits.jacobian_condition(self.geometry, position, rotation))
-        if not condition <= margin:
+        try:
+            return TwistEstimate(platform_twist(self.geometry, self.last_pose, velocities,
+                                                max_condition=margin))
+        except SingularPoseError as error:
             return TwistEstimate(None, Finding(
                 findings.NEAR_SINGULARITY,
-                f'the twist is not determined at the last pose: Jacobian condition number '
-                f'{condition:.4g} > {margin:g} (the singularity margin)',
-                (('jacobian_condition', f'{condition:.4g}'),)))
-        return TwistEstimate(platform_twist(self.geometry, self.last_pose, velocities))
+                f'{error} (the singularity margin: the smaller of near_singularity_condition '
+                f'and max_jacobian_condition)'))
 
     def _solve(self, lengths) -> ForwardKinematicsResult:
         """Solve from the last solution (with its Jacobian), then from home if that fails."""

@@ -31,8 +31,25 @@ import numpy as np
 
 #: Below this norm a quaternion carries no rotation and is rejected.
 QUATERNION_NORM_MIN = 1e-9
-#: Below this cos(beta), double precision cannot separate alpha from gamma (gimbal lock).
+#: Where cos(beta) is below this (gimbal lock, or as near it as rounding cannot tell), alpha is
+#: set to 0 and gamma carries the whole rotation about the vertical; the angles rebuild the
+#: rotation just as exactly on either side (see :func:`matrix_to_euler_zyx`).
 GIMBAL_LOCK_COS_BETA = 1e-12
+
+
+def zyx_entries(cos_alpha, sin_alpha, cos_beta, sin_beta, cos_gamma, sin_gamma):
+    """
+    Entries ``(r11, r12, r13, r21, r22, r23, r31, r32, r33)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``.
+
+    The one formula of the rotation matrix (the paper's, section 3), for floats (one rotation)
+    or numpy arrays (a batch) alike: the same operations in the same order either way.
+    """
+    sb_sa, sb_ca = sin_beta * sin_alpha, sin_beta * cos_alpha
+    return (cos_gamma * cos_beta, cos_gamma * sb_sa - sin_gamma * cos_alpha,
+            cos_gamma * sb_ca + sin_gamma * sin_alpha,
+            sin_gamma * cos_beta, sin_gamma * sb_sa + cos_gamma * cos_alpha,
+            sin_gamma * sb_ca - cos_gamma * sin_alpha,
+            -sin_beta, cos_beta * sin_alpha, cos_beta * cos_alpha)
 
 
 def euler_zyx_to_matrix(angles):
@@ -51,20 +68,10 @@ def euler_zyx_to_matrix(angles):
     if angles.shape == (3,):
         # One rotation (the nodes' case): scalars cost less than numpy's per-call overhead.
         return np.array(euler_zyx_matrix_entries(*angles.tolist())).reshape(3, 3)
-    ca, cb, cg = np.cos(angles[..., 0]), np.cos(angles[..., 1]), np.cos(angles[..., 2])
-    sa, sb, sg = np.sin(angles[..., 0]), np.sin(angles[..., 1]), np.sin(angles[..., 2])
-    rotation = np.empty(angles.shape[:-1] + (3, 3))
-    # Entries r11..r33 exactly as printed in the paper, section 3.
-    rotation[..., 0, 0] = cg * cb
-    rotation[..., 0, 1] = cg * sb * sa - sg * ca
-    rotation[..., 0, 2] = cg * sb * ca + sg * sa
-    rotation[..., 1, 0] = sg * cb
-    rotation[..., 1, 1] = sg * sb * sa + cg * ca
-    rotation[..., 1, 2] = sg * sb * ca - cg * sa
-    rotation[..., 2, 0] = -sb
-    rotation[..., 2, 1] = cb * sa
-    rotation[..., 2, 2] = cb * ca
-    return rotation
+    cosines, sines = np.cos(angles), np.sin(angles)
+    entries = zyx_entries(cosines[..., 0], sines[..., 0], cosines[..., 1], sines[..., 1],
+                          cosines[..., 2], sines[..., 2])
+    return np.stack(entries, axis=-1).reshape(angles.shape[:-1] + (3, 3))
 
 
 def euler_zyx_matrix_entries(alpha, beta, gamma):
@@ -76,12 +83,51 @@ def euler_zyx_matrix_entries(alpha, beta, gamma):
 
     :returns: ``(r11, r12, r13, r21, r22, r23, r31, r32, r33)``, row by row.
     """
-    ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
-    sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
-    # Entries r11..r33 exactly as printed in the paper, section 3.
-    return (cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa,
-            sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa,
-            -sb, cb * sa, cb * ca)
+    return zyx_entries(math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta),
+                       math.cos(gamma), math.sin(gamma))
+
+
+class _FloatOperations:
+    """The functions :func:`zyx_angles` needs, for floats."""
+
+    atan2, cos, sin = math.atan2, math.cos, math.sin
+
+    @staticmethod
+    def where(condition, if_true, if_false):
+        return if_true if condition else if_false
+
+
+class _ArrayOperations:
+    """The functions :func:`zyx_angles` needs, for numpy arrays."""
+
+    atan2, cos, sin, where = np.arctan2, np.cos, np.sin, np.where
+
+
+def zyx_angles(entries, operations=_FloatOperations):
+    """
+    Euler ZYX angles ``(alpha, beta, gamma)`` of rotation matrix entries; the one formula.
+
+    ``alpha`` comes from the last row, ``(r32, r33) = cos(beta) (sin(alpha), cos(alpha))``, or
+    is 0 where ``cos(beta)`` is below :data:`GIMBAL_LOCK_COS_BETA`. Then ``beta`` and ``gamma``
+    come from ``R Rx(alpha)^T = Rz(gamma) Ry(beta)``, whose entries ``-sin(gamma)``,
+    ``cos(gamma)`` and ``cos(beta)`` are combinations of unit size for any ``beta``: so the
+    three angles rebuild the rotation to rounding even where ``alpha`` itself is poorly
+    determined (``beta`` near +-90 degrees), instead of taking ``alpha`` and ``gamma`` each
+    from entries of size ``cos(beta)`` that rounding has blurred.
+
+    :param entries: ``(r11, r12, ..., r33)``, floats or arrays of one shape.
+    :param operations: :class:`_FloatOperations` or :class:`_ArrayOperations`.
+    :returns: ``(alpha, beta, gamma)``: beta in [-pi/2, pi/2], alpha and gamma in (-pi, pi].
+    """
+    _, r12, r13, _, r22, r23, r31, r32, r33 = entries
+    locked = r32 * r32 + r33 * r33 < GIMBAL_LOCK_COS_BETA * GIMBAL_LOCK_COS_BETA
+    # Adding 0.0 turns -0.0 into 0.0, so that atan2 gives pi rather than -pi for a half turn.
+    alpha = operations.where(locked, 0.0, operations.atan2(r32 + 0.0, r33))
+    cos_alpha, sin_alpha = operations.cos(alpha), operations.sin(alpha)
+    sin_gamma = r13 * sin_alpha - r12 * cos_alpha
+    cos_gamma = r22 * cos_alpha - r23 * sin_alpha
+    cos_beta = r32 * sin_alpha + r33 * cos_alpha
+    return alpha, operations.atan2(-r31, cos_beta), operations.atan2(sin_gamma + 0.0, cos_gamma)
 
 
 def matrix_to_euler_zyx(rotation):
@@ -90,7 +136,8 @@ def matrix_to_euler_zyx(rotation):
 
     Returns ``beta`` in [-pi/2, pi/2] and ``alpha``, ``gamma`` in (-pi, pi]. At gimbal lock
     (``|beta| = pi/2``) only ``gamma - alpha`` or ``gamma + alpha`` is defined; ``alpha`` is then
-    set to 0 so that the result is still an exact representation of ``rotation``.
+    set to 0. The angles rebuild ``rotation`` to rounding everywhere, gimbal lock and its
+    neighbourhood included (see :func:`zyx_angles`).
 
     :param rotation: rotation matrix, shape (3, 3) or (..., 3, 3).
     :returns: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
@@ -98,16 +145,10 @@ def matrix_to_euler_zyx(rotation):
     rotation = np.asarray(rotation, dtype=float)
     if rotation.shape[-2:] != (3, 3):
         raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
-    r11, r21, r31 = rotation[..., 0, 0], rotation[..., 1, 0], rotation[..., 2, 0]
-    cos_beta = np.hypot(r11, r21)
-    beta = np.arctan2(-r31, cos_beta)
-    locked = cos_beta < GIMBAL_LOCK_COS_BETA
-    alpha = np.where(locked, 0.0, np.arctan2(rotation[..., 2, 1], rotation[..., 2, 2]))
-    gamma = np.where(
-        locked,
-        np.arctan2(-rotation[..., 0, 1], rotation[..., 1, 1]),
-        np.arctan2(r21, r11))
-    return np.stack([alpha, beta, gamma], axis=-1)
+    if rotation.shape == (3, 3):
+        return np.array(zyx_angles(rotation.ravel().tolist()))
+    entries = [rotation[..., row, column] for row in range(3) for column in range(3)]
+    return np.stack(zyx_angles(entries, _ArrayOperations), axis=-1)
 
 
 def quaternion_to_matrix(quaternion):
@@ -123,22 +164,16 @@ def quaternion_to_matrix(quaternion):
     """
     x, y, z, w = np.moveaxis(normalize_quaternion(quaternion), -1, 0)
     if np.ndim(x) == 0:
-        x, y, z, w = float(x), float(y), float(z), float(w)
-        return np.array((
-            (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)),
-            (2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)),
-            (2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y))))
-    rotation = np.empty(np.shape(x) + (3, 3))
-    rotation[..., 0, 0] = 1.0 - 2.0 * (y * y + z * z)
-    rotation[..., 0, 1] = 2.0 * (x * y - z * w)
-    rotation[..., 0, 2] = 2.0 * (x * z + y * w)
-    rotation[..., 1, 0] = 2.0 * (x * y + z * w)
-    rotation[..., 1, 1] = 1.0 - 2.0 * (x * x + z * z)
-    rotation[..., 1, 2] = 2.0 * (y * z - x * w)
-    rotation[..., 2, 0] = 2.0 * (x * z - y * w)
-    rotation[..., 2, 1] = 2.0 * (y * z + x * w)
-    rotation[..., 2, 2] = 1.0 - 2.0 * (x * x + y * y)
-    return rotation
+        # One quaternion (the nodes' case): floats cost less than numpy's per-call overhead.
+        return np.array(_quaternion_entries(float(x), float(y), float(z), float(w))).reshape(3, 3)
+    return np.stack(_quaternion_entries(x, y, z, w), axis=-1).reshape(np.shape(x) + (3, 3))
+
+
+def _quaternion_entries(x, y, z, w):
+    """Entries r11..r33 of the rotation of a unit quaternion; floats or arrays alike."""
+    return (1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w),
+            2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w),
+            2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y))
 
 
 def matrix_to_quaternion(rotation):
@@ -213,15 +248,33 @@ def euler_zyx_to_quaternion(angles):
     :returns: shape (4,) or (..., 4).
     """
     angles = np.asarray(angles, dtype=float)
+    if angles.shape[-1:] != (3,):
+        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
     if angles.shape == (3,):
-        # One rotation: the product q_z(gamma) q_y(beta) q_x(alpha) of half-angle quaternions.
+        # One rotation (the nodes' case): floats cost less than numpy's per-call overhead.
         alpha, beta, gamma = (0.5 * angle for angle in angles.tolist())
-        ca, cb, cg = math.cos(alpha), math.cos(beta), math.cos(gamma)
-        sa, sb, sg = math.sin(alpha), math.sin(beta), math.sin(gamma)
-        quaternion = np.array([sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-                               ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
+        quaternion = np.array(_half_angle_product(
+            math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta), math.cos(gamma),
+            math.sin(gamma)))
         return -quaternion if quaternion[3] < 0.0 else quaternion
-    return matrix_to_quaternion(euler_zyx_to_matrix(angles))
+    half = 0.5 * angles
+    cosines, sines = np.cos(half), np.sin(half)
+    quaternion = np.stack(_half_angle_product(
+        cosines[..., 0], sines[..., 0], cosines[..., 1], sines[..., 1], cosines[..., 2],
+        sines[..., 2]), axis=-1)
+    return np.where(quaternion[..., 3:] < 0.0, -quaternion, quaternion)
+
+
+def _half_angle_product(ca, sa, cb, sb, cg, sg):
+    """
+    ``q_z(gamma) q_y(beta) q_x(alpha)`` from the cosines and sines of the half angles.
+
+    The one formula of the quaternion of Euler ZYX angles, for floats or arrays alike.
+
+    :returns: ``(x, y, z, w)``.
+    """
+    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
+            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
 
 
 def quaternion_to_euler_zyx(quaternion):

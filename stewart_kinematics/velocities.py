@@ -23,10 +23,22 @@ Leg ``i`` changes at ``u_i . (v + w x R p_i) = [u_i, R p_i x u_i] . [v, w]``, wi
 unit vector: the rows of :func:`stewart_kinematics.kinematics.twist_jacobian`.
 """
 
+import math
+
 import numpy as np
 
-from stewart_kinematics.kinematics import as_poses, twist_jacobian
+from stewart_kinematics.kinematics import as_poses, jacobian_condition, twist_jacobian
 from stewart_kinematics.rotations import euler_zyx_to_matrix
+
+#: Largest condition number of the dimensionless Jacobian at which :func:`platform_twist`
+#: answers when the geometry sets no ``max_jacobian_condition``. At 1000 on the paper's
+#: platform, 1 mm/s of error on every leg velocity can already turn into 0.2 rad/s; at the
+#: singularity it is unbounded (the paper's platform at a yaw of 90.4 degrees: 4300 rad/s).
+DEFAULT_MAX_TWIST_CONDITION = 1e3
+
+
+class SingularPoseError(ValueError):
+    """A pose too near a singularity for the asked quantity: its Jacobian is ill-conditioned."""
 
 
 def leg_velocities(geometry, poses, twists) -> np.ndarray:
@@ -44,21 +56,44 @@ def leg_velocities(geometry, poses, twists) -> np.ndarray:
     return (jac @ twists[..., None])[..., 0]
 
 
-def platform_twist(geometry, poses, velocities) -> np.ndarray:
+def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.ndarray:
     """
     Platform twist that produces the given leg velocities at the given pose.
 
+    Near a singularity the twist grows without bound for bounded leg velocities (a small error
+    in them becomes a large false motion), so a pose whose dimensionless Jacobian (see
+    :func:`stewart_kinematics.limits.jacobian_condition`) has a condition number above
+    ``max_condition`` is refused.
+
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,) or (N, 6).
     :param velocities: leg velocities l_1'..l_6' in metres per second, same shape.
+    :param max_condition: largest condition number accepted; default the geometry's
+        ``max_jacobian_condition`` where it is finite, else
+        :data:`DEFAULT_MAX_TWIST_CONDITION`; ``math.inf`` to refuse only exact singularities.
     :returns: ``[vx, vy, vz, wx, wy, wz]`` in the base frame (m/s, rad/s), same shape.
-    :raises ValueError: if an input is malformed, or a pose is singular (the twist is then
-        not determined by the leg velocities).
+    :raises SingularPoseError: (a ValueError) if a pose's condition number exceeds
+        ``max_condition``, or the pose is singular: the twist is then not determined, or not
+        reliably, by the leg velocities.
+    :raises ValueError: if an input is malformed.
     """
     poses = as_poses(poses)
     velocities = as_poses(velocities, 'leg velocities')
-    jac = twist_jacobian(geometry, poses[..., :3], euler_zyx_to_matrix(poses[..., 3:]))
+    if max_condition is None:
+        max_condition = (geometry.max_jacobian_condition
+                         if math.isfinite(geometry.max_jacobian_condition)
+                         else DEFAULT_MAX_TWIST_CONDITION)
+    position, rotation = poses[..., :3], euler_zyx_to_matrix(poses[..., 3:])
+    condition = np.atleast_1d(jacobian_condition(geometry, position, rotation))
+    refused = np.flatnonzero(~(condition <= max_condition))
+    if refused.size:
+        where = f'pose {refused[0]}' if poses.ndim == 2 else 'the pose'
+        raise SingularPoseError(
+            f'{where} is too near a singularity for its twist: the condition number of the '
+            f'dimensionless Jacobian is {condition[refused[0]]:.4g}, above the limit '
+            f'{max_condition:.4g}')
     try:
-        return np.linalg.solve(jac, velocities[..., None])[..., 0]
+        return np.linalg.solve(twist_jacobian(geometry, position, rotation),
+                               velocities[..., None])[..., 0]
     except np.linalg.LinAlgError as error:
-        raise ValueError('the pose is singular: leg velocities do not determine the twist') \
-            from error
+        raise SingularPoseError(
+            'a pose is singular: leg velocities do not determine the twist') from error

@@ -102,6 +102,19 @@ def rotation_zyx(alpha, beta, gamma):
     return rz(gamma) @ ry(beta) @ rx(alpha)
 
 
+def rodrigues(axis, angle):
+    """Matrix of a rotation by ``angle`` (radians) about a unit ``axis``, by Rodrigues' formula."""
+    x, y, z = axis
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
+
+
+def rotation_vector_matrix(vector):
+    """Matrix of the rotation by ``|vector|`` radians about ``vector`` (:func:`rodrigues`)."""
+    angle = float(np.linalg.norm(vector))
+    return np.eye(3) if angle == 0.0 else rodrigues(np.asarray(vector) / angle, angle)
+
+
 def quaternion_product(q, r):
     """Hamilton product of quaternions ``(x, y, z, w)``."""
     qx, qy, qz, qw = q
@@ -122,7 +135,7 @@ def quaternion_from_euler(alpha, beta, gamma):
         quaternion_product((0.0, 0.0, math.sin(gamma / 2), math.cos(gamma / 2)),
                            (0.0, math.sin(beta / 2), 0.0, math.cos(beta / 2))),
         (math.sin(alpha / 2), 0.0, 0.0, math.cos(alpha / 2)))
-    return tuple(-value for value in q) if q[3] < 0.0 else q
+    return np.array(q) if q[3] >= 0.0 else -np.array(q)
 
 
 def quaternion_matrix(x, y, z, w):
@@ -143,8 +156,10 @@ def rotation_angle(rotation_a, rotation_b):
 
 def quaternion_angle(q, r):
     """Angle in radians between the rotations of two unit quaternions ``(x, y, z, w)``."""
-    dot = abs(sum(a * b for a, b in zip(q, r)))
-    return 2.0 * math.acos(min(1.0, dot))
+    qx, qy, qz, qw = q
+    x, y, z, w = quaternion_product((-qx, -qy, -qz, qw), r)
+    # From the vector part: accurate near zero, where acos of w would lose half the digits.
+    return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), abs(w))
 
 
 def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):

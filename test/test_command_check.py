@@ -195,3 +195,22 @@ def test_a_malformed_twist_is_refused(twist):
     assert check.pose_vector(HOME).accepted
     command = check.twist(twist)
     assert command.refusal.code == 'invalid_twist' and command.velocities is None
+
+
+def test_a_pose_given_by_quaternion_is_the_same_pose():
+    """(x, y, z, w) of Rz(0.3): the lengths of the matrix; scaled by -2, the same; zero refused."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    position = (0.01, -0.02, 0.45)
+    quaternion = (0.0, 0.0, math.sin(0.15), math.cos(0.15))
+    expected = lengths_by_hand(position, rotation_zyx(0.0, 0.0, 0.3))
+    for scale in (1.0, -2.0):
+        command = check.pose_quaternion(position, np.multiply(scale, quaternion))
+        assert command.accepted
+        assert_allclose(command.lengths, expected, rtol=0.0, atol=1e-15)
+    for bad, words in (((0.0, 0.0, 0.0, 0.0), 'zero quaternion'),
+                       ((math.nan, 0.0, 0.0, 1.0), 'must be finite'),
+                       ((0.0, 0.0, 1.0), 'shape')):
+        command = check.pose_quaternion(position, bad)
+        assert command.refusal.code == 'invalid_pose' and words in command.reason
+    refused = check.pose_quaternion((math.inf, 0.0, 0.45), quaternion)
+    assert 'position must be three finite numbers' in refused.reason

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import BASE_JOINTS, HOME, leg_lengths, paper_geometry, PLATFORM_JOINTS
 
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
@@ -33,35 +34,8 @@ pytestmark = pytest.mark.core
 
 PAPER_PLATFORM_YAML = Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml'
 
-#: Table 1, base joints b_1..b_6, millimetres.
-TABLE_1_MM = [
-    (48.6989, 219.6666, 0.0),
-    (165.8874, 152.0078, 0.0),
-    (165.8874, -152.0078, 0.0),
-    (48.6989, -219.6666, 0.0),
-    (-214.5863, -67.6588, 0.0),
-    (-214.5863, 67.6588, 0.0),
-]
-#: Table 2, platform joints p_1..p_6, millimetres (p_3 z = 257 as printed).
-TABLE_2_MM = [
-    (-51.3030, 140.9539, 275.0),
-    (147.7212, 26.0472, 275.0),
-    (147.7212, -26.0472, 257.0),
-    (-51.3030, -140.9539, 275.0),
-    (-96.4181, -114.9067, 275.0),
-    (-96.4181, 114.9067, 275.0),
-]
-BASE_M = np.array(TABLE_1_MM) / 1000.0
-PLATFORM_M = np.array(TABLE_2_MM) / 1000.0
-HOME_Z = 0.4325
-
-
-def paper_geometry(**changes):
-    """Build a Geometry of the paper's tables, with keyword arguments replaced by ``changes``."""
-    arguments = {'base_joints': BASE_M, 'platform_joints': PLATFORM_M,
-                 'home_pose': [0.0, 0.0, HOME_Z, 0.0, 0.0, 0.0]}
-    arguments.update(changes)
-    return Geometry(**arguments)
+BASE_M, PLATFORM_M = BASE_JOINTS, PLATFORM_JOINTS
+HOME_Z = HOME[2]
 
 
 def paper_parameters():
@@ -120,12 +94,9 @@ def test_from_yaml_home_pose_and_limits():
 
 
 def test_home_leg_lengths_by_hand():
-    """Home leg lengths equal sqrt((px-bx)^2 + (py-by)^2 + (0.4325+pz)^2) for each leg."""
+    """Home leg lengths equal |t + p_i - b_i| at the home pose, leg by leg."""
     geometry = load_geometry(PAPER_PLATFORM_YAML)
-    expected = []
-    for (bx, by, bz), (px, py, pz) in zip(TABLE_1_MM, TABLE_2_MM):
-        bx, by, bz, px, py, pz = (value / 1000.0 for value in (bx, by, bz, px, py, pz))
-        expected.append(math.sqrt((px - bx) ** 2 + (py - by) ** 2 + (HOME_Z + pz - bz) ** 2))
+    expected = leg_lengths(HOME)
     assert geometry.home_leg_lengths.shape == (6,)
     assert_allclose(geometry.home_leg_lengths, expected, rtol=0.0, atol=1e-12)
 

@@ -30,6 +30,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import leg_lengths as expected_lengths, quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros import ik_node
@@ -75,27 +76,6 @@ def paper_rotation(alpha, beta, gamma):
         [sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa],
         [-sb, cb * sa, cb * ca],
     ]
-
-
-def expected_lengths(pose):
-    """Leg lengths |t + R p_i - b_i| of a pose (metres, radians), in plain Python."""
-    base, platform = paper_joints()
-    rotation = paper_rotation(*pose[3:])
-    lengths = []
-    for b, p in zip(base, platform):
-        leg = [pose[row] + sum(rotation[row][k] * p[k] for k in range(3)) - b[row]
-               for row in range(3)]
-        lengths.append(math.sqrt(sum(component * component for component in leg)))
-    return lengths
-
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
 
 
 def pose_message(position, quaternion):

@@ -15,8 +15,8 @@
 """
 Unit tests of stewart_kinematics.kinematics (pure numpy).
 
-Expected leg lengths come from the paper's equation, with r11..r33 typed out and a loop over
-the legs in plain Python; the geometry is the paper's Tables 1 and 2, typed here.
+Expected leg lengths come from the paper's equation evaluated leg by leg in plain Python, and
+the geometry from the paper's Tables 1 and 2, both in test/reference.py.
 """
 
 import math
@@ -24,7 +24,19 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import (
+    BASE_JOINTS,
+    HOME,
+    leg_lengths as leg_lengths_of,
+    paper_geometry,
+    PLATFORM_JOINTS,
+    random_poses,
+    rotation_zyx,
+    singular_yaw,
+    TABLE_3,
+)
 
+from stewart_kinematics import kinematics
 from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.kinematics import (
     forward_kinematics,
@@ -37,98 +49,19 @@ from stewart_kinematics.kinematics import (
 
 pytestmark = pytest.mark.core
 
-#: Table 1, base joints b_1..b_6, millimetres.
-TABLE_1_MM = [
-    (48.6989, 219.6666, 0.0),
-    (165.8874, 152.0078, 0.0),
-    (165.8874, -152.0078, 0.0),
-    (48.6989, -219.6666, 0.0),
-    (-214.5863, -67.6588, 0.0),
-    (-214.5863, 67.6588, 0.0),
-]
-#: Table 2, platform joints p_1..p_6, millimetres (p_3 z = 257 as printed).
-TABLE_2_MM = [
-    (-51.3030, 140.9539, 275.0),
-    (147.7212, 26.0472, 275.0),
-    (147.7212, -26.0472, 257.0),
-    (-51.3030, -140.9539, 275.0),
-    (-96.4181, -114.9067, 275.0),
-    (-96.4181, 114.9067, 275.0),
-]
-BASE_M = [tuple(value / 1000.0 for value in joint) for joint in TABLE_1_MM]
-PLATFORM_M = [tuple(value / 1000.0 for value in joint) for joint in TABLE_2_MM]
-HOME = (0.0, 0.0, 0.4325, 0.0, 0.0, 0.0)
-
-#: Table 3: start and step of X, Y, Z (millimetres) and alpha, beta, gamma (degrees).
-TABLE_3_START = (0.0, 0.0, 432.5, 0.0, 0.0, 0.0)
-TABLE_3_STEP = (10.0, 15.0, 10.0, 1.5, -1.5, 2.0)
-
-
-def table_3_row(k):
-    """Return row k of Table 3 as [X, Y, Z, alpha, beta, gamma] in metres and radians."""
-    values = [start + k * step for start, step in zip(TABLE_3_START, TABLE_3_STEP)]
-    return [value / 1000.0 for value in values[:3]] + [math.radians(v) for v in values[3:]]
-
-
-TABLE_3_ROWS = [table_3_row(k) for k in range(11)]
-
 
 @pytest.fixture(scope='module')
 def geometry():
     """Build the paper's platform, home pose at the start of Table 3."""
-    return Geometry(base_joints=BASE_M, platform_joints=PLATFORM_M, home_pose=HOME)
-
-
-def paper_leg_lengths(pose):
-    """Compute the six leg lengths of a pose with the paper's equation, in plain Python."""
-    x, y, z, alpha, beta, gamma = pose
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    r11 = cg * cb
-    r12 = cg * sb * sa - sg * ca
-    r13 = cg * sb * ca + sg * sa
-    r21 = sg * cb
-    r22 = sg * sb * sa + cg * ca
-    r23 = sg * sb * ca - cg * sa
-    r31 = -sb
-    r32 = cb * sa
-    r33 = cb * ca
-    lengths = []
-    for (bx, by, bz), (px, py, pz) in zip(BASE_M, PLATFORM_M):
-        lengths.append(math.sqrt(
-            (x + r11 * px + r12 * py + r13 * pz - bx) ** 2
-            + (y + r21 * px + r22 * py + r23 * pz - by) ** 2
-            + (z + r31 * px + r32 * py + r33 * pz - bz) ** 2))
-    return lengths
-
-
-def random_poses(count, seed):
-    """Draw poses within +-0.1 m and +-15 degrees of home, shape (count, 6)."""
-    rng = np.random.default_rng(seed)
-    offsets = np.column_stack([
-        rng.uniform(-0.1, 0.1, (count, 3)),
-        rng.uniform(-math.radians(15.0), math.radians(15.0), (count, 3))])
-    return np.asarray(HOME) + offsets
-
-
-def elementary_zyx(alpha, beta, gamma):
-    """Build Rz(gamma) @ Ry(beta) @ Rx(alpha) from elementary rotations."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
+    return paper_geometry()
 
 
 # Inverse kinematics.
 
 def test_table_3_rows_are_the_papers_numbers():
     """The first and last rows built here are the paper's start and end points."""
-    assert_allclose(TABLE_3_ROWS[0], [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0], rtol=0.0, atol=1e-15)
-    assert_allclose(TABLE_3_ROWS[10],
+    assert_allclose(TABLE_3[0], [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0], rtol=0.0, atol=1e-15)
+    assert_allclose(TABLE_3[10],
                     [0.1, 0.15, 0.5325, math.radians(15), math.radians(-15), math.radians(20)],
                     rtol=0.0, atol=1e-15)
 
@@ -136,13 +69,13 @@ def test_table_3_rows_are_the_papers_numbers():
 @pytest.mark.parametrize('k', range(11))
 def test_inverse_kinematics_table_3_row_matches_paper_equation(geometry, k):
     """Leg lengths of each Table 3 row equal the paper's equation evaluated by hand."""
-    assert_allclose(inverse_kinematics(geometry, TABLE_3_ROWS[k]),
-                    paper_leg_lengths(TABLE_3_ROWS[k]), rtol=0.0, atol=1e-12)
+    assert_allclose(inverse_kinematics(geometry, TABLE_3[k]),
+                    leg_lengths_of(TABLE_3[k]), rtol=0.0, atol=1e-12)
 
 
 def test_inverse_kinematics_home_lengths():
     """At home the legs are 0.718855 m, leg 3 (p_3 z = 0.257) 0.701146 m."""
-    geometry = Geometry(base_joints=BASE_M, platform_joints=PLATFORM_M)
+    geometry = Geometry(base_joints=BASE_JOINTS, platform_joints=PLATFORM_JOINTS)
     assert_allclose(inverse_kinematics(geometry, HOME),
                     [0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488],
                     rtol=0.0, atol=1e-8)
@@ -150,11 +83,11 @@ def test_inverse_kinematics_home_lengths():
 
 def test_inverse_kinematics_batch_equals_loop_of_singles(geometry):
     """A (N, 6) batch gives the same lengths as one call per pose."""
-    poses = np.vstack([TABLE_3_ROWS, random_poses(20, seed=3)])
+    poses = np.vstack([TABLE_3, random_poses(20, seed=3)])
     batch = inverse_kinematics(geometry, poses)
     singles = np.array([inverse_kinematics(geometry, pose) for pose in poses])
     assert_allclose(batch, singles, rtol=0.0, atol=1e-15)
-    assert_allclose(batch, [paper_leg_lengths(pose) for pose in poses], rtol=0.0, atol=1e-12)
+    assert_allclose(batch, [leg_lengths_of(pose) for pose in poses], rtol=0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize('shape, expected', [((6,), (6,)), ((1, 6), (1, 6)), ((4, 6), (4, 6))])
@@ -179,20 +112,20 @@ def test_inverse_kinematics_rejects_bad_poses(geometry, poses, message):
 
 def test_leg_vectors_are_t_plus_r_p_minus_b(geometry):
     """Each leg vector is t + R p_i - b_i, with R from elementary rotations."""
-    pose = TABLE_3_ROWS[7]
-    rotation = elementary_zyx(*pose[3:])
+    pose = TABLE_3[7]
+    rotation = rotation_zyx(*pose[3:])
     vectors = leg_vectors(geometry, pose[:3], rotation)
     assert vectors.shape == (6, 3)
-    for vector, base, platform in zip(vectors, BASE_M, PLATFORM_M):
+    for vector, base, platform in zip(vectors, BASE_JOINTS, PLATFORM_JOINTS):
         expected = np.asarray(pose[:3]) + rotation @ platform - np.asarray(base)
         assert_allclose(vector, expected, rtol=0.0, atol=1e-15)
 
 
 def test_leg_lengths_from_rotation_matrix_equals_euler_version(geometry):
     """leg_lengths(position, R) matches the Euler pose, single and batch."""
-    poses = np.vstack([TABLE_3_ROWS, random_poses(10, seed=4)])
-    rotations = np.array([elementary_zyx(*pose[3:]) for pose in poses])
-    expected = [paper_leg_lengths(pose) for pose in poses]
+    poses = np.vstack([TABLE_3, random_poses(10, seed=4)])
+    rotations = np.array([rotation_zyx(*pose[3:]) for pose in poses])
+    expected = [leg_lengths_of(pose) for pose in poses]
     assert_allclose(leg_lengths(geometry, poses[:, :3], rotations), expected,
                     rtol=0.0, atol=1e-12)
     assert leg_lengths(geometry, poses[0, :3], rotations[0]).shape == (6,)
@@ -209,13 +142,13 @@ def central_differences(pose, step=1e-6):
         plus, minus = list(pose), list(pose)
         plus[j] += step
         minus[j] -= step
-        columns.append((np.array(paper_leg_lengths(plus))
-                        - np.array(paper_leg_lengths(minus))) / (2.0 * step))
+        columns.append((np.array(leg_lengths_of(plus))
+                        - np.array(leg_lengths_of(minus))) / (2.0 * step))
     return np.column_stack(columns)
 
 
 @pytest.mark.parametrize('pose', [
-    HOME, TABLE_3_ROWS[3], TABLE_3_ROWS[10], (0.05, -0.08, 0.38, -0.2, 0.25, -0.3),
+    HOME, TABLE_3[3], TABLE_3[10], (0.05, -0.08, 0.38, -0.2, 0.25, -0.3),
     (0.0, 0.0, 0.45, 0.5, -1.0, 2.5),
 ])
 def test_jacobian_matches_central_differences(geometry, pose):
@@ -245,27 +178,27 @@ def test_jacobian_rejects_bad_pose(geometry):
 @pytest.mark.parametrize('k', range(11))
 def test_forward_kinematics_table_3_row_from_home(geometry, k):
     """Each Table 3 row is found from the home guess to 1e-9 in a few iterations."""
-    lengths = paper_leg_lengths(TABLE_3_ROWS[k])
+    lengths = leg_lengths_of(TABLE_3[k])
     result = forward_kinematics(geometry, lengths)
     assert result.converged is True
     assert result.reason == ''
     assert result.iterations < 10
     assert result.residual <= 1e-12
-    assert_allclose(result.pose[:3], TABLE_3_ROWS[k][:3], rtol=0.0, atol=1e-9)
-    assert_allclose(result.pose[3:], TABLE_3_ROWS[k][3:], rtol=0.0, atol=1e-9)
+    assert_allclose(result.pose[:3], TABLE_3[k][:3], rtol=0.0, atol=1e-9)
+    assert_allclose(result.pose[3:], TABLE_3[k][3:], rtol=0.0, atol=1e-9)
 
 
 def test_forward_kinematics_solution_reproduces_lengths(geometry):
     """The returned pose has the requested leg lengths within the tolerance."""
-    lengths = paper_leg_lengths(TABLE_3_ROWS[6])
+    lengths = leg_lengths_of(TABLE_3[6])
     result = forward_kinematics(geometry, lengths, tolerance=1e-10)
     assert result.residual <= 1e-10
-    assert_allclose(paper_leg_lengths(result.pose), lengths, rtol=0.0, atol=1e-10)
+    assert_allclose(leg_lengths_of(result.pose), lengths, rtol=0.0, atol=1e-10)
 
 
 def test_forward_kinematics_at_home_takes_no_iteration(geometry):
     """The home lengths are solved by the default guess, the home pose, at once."""
-    result = forward_kinematics(geometry, paper_leg_lengths(HOME))
+    result = forward_kinematics(geometry, leg_lengths_of(HOME))
     assert result.converged is True
     assert result.iterations == 0
     assert_allclose(result.pose, HOME, rtol=0.0, atol=1e-15)
@@ -274,7 +207,7 @@ def test_forward_kinematics_at_home_takes_no_iteration(geometry):
 def test_forward_kinematics_1000_random_poses_batch(geometry):
     """1000 poses within +-0.1 m and +-15 deg of home all converge to within 1e-9."""
     poses = random_poses(1000, seed=6)
-    lengths = np.array([paper_leg_lengths(pose) for pose in poses])
+    lengths = np.array([leg_lengths_of(pose) for pose in poses])
     result = forward_kinematics(geometry, lengths)
     assert result.pose.shape == (1000, 6)
     assert np.all(result.converged)
@@ -285,17 +218,17 @@ def test_forward_kinematics_1000_random_poses_batch(geometry):
 def test_forward_kinematics_warm_start_needs_fewer_iterations(geometry):
     """Starting from the previous Table 3 row takes fewer iterations than from home."""
     for k in range(2, 11):
-        lengths = paper_leg_lengths(TABLE_3_ROWS[k])
+        lengths = leg_lengths_of(TABLE_3[k])
         cold = forward_kinematics(geometry, lengths)
-        warm = forward_kinematics(geometry, lengths, initial_guess=TABLE_3_ROWS[k - 1])
+        warm = forward_kinematics(geometry, lengths, initial_guess=TABLE_3[k - 1])
         assert warm.converged and cold.converged
         assert warm.iterations < cold.iterations, k
-        assert_allclose(warm.pose, TABLE_3_ROWS[k], rtol=0.0, atol=1e-9)
+        assert_allclose(warm.pose, TABLE_3[k], rtol=0.0, atol=1e-9)
 
 
 def test_forward_kinematics_single_result_types(geometry):
     """One solve gives a (6,) pose and plain bool, int, float and str fields."""
-    result = forward_kinematics(geometry, paper_leg_lengths(TABLE_3_ROWS[4]))
+    result = forward_kinematics(geometry, leg_lengths_of(TABLE_3[4]))
     assert isinstance(result, ForwardKinematicsResult)
     assert result.pose.shape == (6,)
     assert type(result.converged) is bool
@@ -306,7 +239,7 @@ def test_forward_kinematics_single_result_types(geometry):
 
 def test_forward_kinematics_batch_result_types(geometry):
     """A batch of N gives a (N, 6) pose, arrays of N flags, counts, residuals and N reasons."""
-    lengths = [paper_leg_lengths(row) for row in TABLE_3_ROWS[:3]]
+    lengths = [leg_lengths_of(row) for row in TABLE_3[:3]]
     result = forward_kinematics(geometry, lengths)
     assert result.pose.shape == (3, 6)
     assert result.converged.shape == (3,) and result.converged.dtype == bool
@@ -317,32 +250,32 @@ def test_forward_kinematics_batch_result_types(geometry):
 
 def test_forward_kinematics_one_batch_of_one_is_a_batch(geometry):
     """Lengths of shape (1, 6) give batch fields of length 1, not scalars."""
-    result = forward_kinematics(geometry, [paper_leg_lengths(TABLE_3_ROWS[2])])
+    result = forward_kinematics(geometry, [leg_lengths_of(TABLE_3[2])])
     assert result.pose.shape == (1, 6)
     assert result.converged.shape == (1,)
 
 
 def test_forward_kinematics_broadcasts_one_guess_or_one_length_set(geometry):
     """One guess serves a batch of lengths, and one set of lengths a batch of guesses."""
-    lengths = np.array([paper_leg_lengths(row) for row in TABLE_3_ROWS[1:4]])
+    lengths = np.array([leg_lengths_of(row) for row in TABLE_3[1:4]])
     result = forward_kinematics(geometry, lengths, initial_guess=HOME)
-    assert_allclose(result.pose, TABLE_3_ROWS[1:4], rtol=0.0, atol=1e-9)
-    guesses = np.array([HOME, TABLE_3_ROWS[1], TABLE_3_ROWS[2]])
+    assert_allclose(result.pose, TABLE_3[1:4], rtol=0.0, atol=1e-9)
+    guesses = np.array([HOME, TABLE_3[1], TABLE_3[2]])
     result = forward_kinematics(geometry, lengths[2], initial_guess=guesses)
     assert result.pose.shape == (3, 6)
-    assert_allclose(result.pose, [TABLE_3_ROWS[3]] * 3, rtol=0.0, atol=1e-9)
+    assert_allclose(result.pose, [TABLE_3[3]] * 3, rtol=0.0, atol=1e-9)
 
 
 def test_forward_kinematics_rejects_mismatched_batches(geometry):
     """Two lengths sets and three guesses raise ValueError."""
-    lengths = [paper_leg_lengths(HOME)] * 2
+    lengths = [leg_lengths_of(HOME)] * 2
     with pytest.raises(ValueError, match='same number of poses'):
         forward_kinematics(geometry, lengths, initial_guess=[HOME] * 3)
 
 
 def test_forward_kinematics_iteration_limit_is_reported(geometry):
     """One iteration from home to the last Table 3 row is reported as not converged."""
-    result = forward_kinematics(geometry, paper_leg_lengths(TABLE_3_ROWS[10]), max_iterations=1)
+    result = forward_kinematics(geometry, leg_lengths_of(TABLE_3[10]), max_iterations=1)
     assert result.converged is False
     assert result.iterations == 1
     assert 'iterations' in result.reason
@@ -351,12 +284,12 @@ def test_forward_kinematics_iteration_limit_is_reported(geometry):
 
 def test_forward_kinematics_batch_reports_each_solve(geometry):
     """In a batch, a failing solve does not spoil the others."""
-    lengths = [paper_leg_lengths(TABLE_3_ROWS[3]), [0.01] * 6, paper_leg_lengths(HOME)]
+    lengths = [leg_lengths_of(TABLE_3[3]), [0.01] * 6, leg_lengths_of(HOME)]
     result = forward_kinematics(geometry, lengths)
     assert result.converged.tolist() == [True, False, True]
     assert result.reason[0] == '' and result.reason[2] == ''
     assert result.reason[1] != ''
-    assert_allclose(result.pose[0], TABLE_3_ROWS[3], rtol=0.0, atol=1e-9)
+    assert_allclose(result.pose[0], TABLE_3[3], rtol=0.0, atol=1e-9)
     assert_allclose(result.pose[2], HOME, rtol=0.0, atol=1e-12)
 
 
@@ -372,12 +305,12 @@ def test_forward_kinematics_impossible_lengths_are_not_solved(geometry, lengths)
     assert result.reason != ''
     assert result.residual > 1e-6
     if np.all(np.isfinite(result.pose)):
-        assert np.max(np.abs(np.array(paper_leg_lengths(result.pose)) - lengths)) > 1e-6
+        assert np.max(np.abs(np.array(leg_lengths_of(result.pose)) - lengths)) > 1e-6
 
 
 @pytest.mark.parametrize('lengths, max_iterations', [
-    (paper_leg_lengths(TABLE_3_ROWS[10]), 1),
-    (paper_leg_lengths(TABLE_3_ROWS[10]), 2),
+    (leg_lengths_of(TABLE_3[10]), 1),
+    (leg_lengths_of(TABLE_3[10]), 2),
     ([0.01] * 6, 50),
     ([10.0, 10.0, 10.0, 0.1, 0.1, 0.1], 50),
 ])
@@ -387,7 +320,7 @@ def test_forward_kinematics_residual_is_that_of_the_returned_pose(
     result = forward_kinematics(geometry, lengths, max_iterations=max_iterations)
     assert result.converged is False
     assert np.all(np.isfinite(result.pose))
-    actual = np.max(np.abs(np.array(paper_leg_lengths(result.pose)) - lengths))
+    actual = np.max(np.abs(np.array(leg_lengths_of(result.pose)) - lengths))
     assert_allclose(result.residual, actual, rtol=1e-9, atol=1e-12)
 
 
@@ -414,26 +347,26 @@ def test_forward_kinematics_rejects_wrong_length_shape(geometry, lengths):
 def test_forward_kinematics_rejects_bad_initial_guess(geometry, guess):
     """A malformed initial guess raises ValueError naming it."""
     with pytest.raises(ValueError, match='initial_guess'):
-        forward_kinematics(geometry, paper_leg_lengths(HOME), initial_guess=guess)
+        forward_kinematics(geometry, leg_lengths_of(HOME), initial_guess=guess)
 
 
 @pytest.mark.parametrize('tolerance', [0.0, -1e-9, math.nan])
 def test_forward_kinematics_rejects_bad_tolerance(geometry, tolerance):
     """A tolerance that is not positive raises ValueError."""
     with pytest.raises(ValueError, match='tolerance'):
-        forward_kinematics(geometry, paper_leg_lengths(HOME), tolerance=tolerance)
+        forward_kinematics(geometry, leg_lengths_of(HOME), tolerance=tolerance)
 
 
 @pytest.mark.parametrize('max_iterations', [0, -3, 2.5])
 def test_forward_kinematics_rejects_bad_max_iterations(geometry, max_iterations):
     """An iteration limit that is not a positive integer raises ValueError."""
     with pytest.raises(ValueError, match='max_iterations'):
-        forward_kinematics(geometry, paper_leg_lengths(HOME), max_iterations=max_iterations)
+        forward_kinematics(geometry, leg_lengths_of(HOME), max_iterations=max_iterations)
 
 
 def test_forward_kinematics_looser_tolerance_is_honoured(geometry):
     """With tolerance 1e-4 the residual is within 1e-4 and no more iterations are taken."""
-    lengths = paper_leg_lengths(TABLE_3_ROWS[10])
+    lengths = leg_lengths_of(TABLE_3[10])
     loose = forward_kinematics(geometry, lengths, tolerance=1e-4)
     tight = forward_kinematics(geometry, lengths)
     assert loose.converged and loose.residual <= 1e-4
@@ -442,9 +375,9 @@ def test_forward_kinematics_looser_tolerance_is_honoured(geometry):
 
 def test_forward_kinematics_returns_canonical_angles(geometry):
     """A guess wound by whole turns gives the same pose with angles in canonical ranges."""
-    pose = TABLE_3_ROWS[5]
+    pose = TABLE_3[5]
     guess = np.array(pose) + [0.0, 0.0, 0.0, 2.0 * math.pi, 0.0, -4.0 * math.pi]
-    result = forward_kinematics(geometry, paper_leg_lengths(pose), initial_guess=guess)
+    result = forward_kinematics(geometry, leg_lengths_of(pose), initial_guess=guess)
     assert result.converged
     assert_allclose(result.pose, pose, rtol=0.0, atol=1e-9)
 
@@ -453,7 +386,7 @@ def test_forward_kinematics_random_angles_in_canonical_range(geometry):
     """Solved angles lie in beta in [-pi/2, pi/2] and alpha, gamma in [-pi, pi]."""
     poses = random_poses(200, seed=7)
     guesses = poses + [0.0, 0.0, 0.0, 2.0 * math.pi, 0.0, 2.0 * math.pi]
-    lengths = np.array([paper_leg_lengths(pose) for pose in poses])
+    lengths = np.array([leg_lengths_of(pose) for pose in poses])
     result = forward_kinematics(geometry, lengths, initial_guess=guesses)
     assert np.all(result.converged)
     assert np.all(np.abs(result.pose[:, [3, 5]]) <= math.pi)
@@ -467,7 +400,7 @@ def test_single_pose_inverse_kinematics_equals_batch(geometry):
     batch = inverse_kinematics(geometry, poses)
     singles = np.array([inverse_kinematics(geometry, pose) for pose in poses])
     assert_allclose(singles, batch, rtol=0.0, atol=1e-12)
-    assert_allclose(batch, [paper_leg_lengths(pose) for pose in poses], rtol=0.0, atol=1e-12)
+    assert_allclose(batch, [leg_lengths_of(pose) for pose in poses], rtol=0.0, atol=1e-12)
 
 
 def test_batched_inverse_kinematics_spans_blocks(geometry):
@@ -532,8 +465,7 @@ def count_jacobian_inversions(monkeypatch):
 def ramp_at_1khz(seconds=1.0):
     """Poses along Table 3's ramp (row 0 to row 10 in 10 s) sampled every millisecond."""
     times = np.arange(int(seconds * 1000) + 1) * 1e-3
-    return np.array(TABLE_3_ROWS[0]) + np.outer(times / 10.0,
-                                                np.subtract(TABLE_3_ROWS[10], TABLE_3_ROWS[0]))
+    return np.array(TABLE_3[0]) + np.outer(times / 10.0, np.subtract(TABLE_3[10], TABLE_3[0]))
 
 
 def test_tracking_from_the_last_result_reuses_its_jacobian(geometry, monkeypatch):
@@ -584,7 +516,7 @@ def test_a_result_that_did_not_converge_gives_only_its_pose(geometry, monkeypatc
     """A failed result as the guess starts from its pose with a fresh Jacobian."""
     failed = forward_kinematics(geometry, np.full(6, 5.0), max_iterations=3)
     assert not failed.converged
-    target = paper_leg_lengths(TABLE_3_ROWS[1])
+    target = leg_lengths_of(TABLE_3[1])
     calls = count_jacobian_inversions(monkeypatch)
     from_result = forward_kinematics(geometry, target, failed)
     assert len(calls) >= 1
@@ -595,10 +527,10 @@ def test_a_result_that_did_not_converge_gives_only_its_pose(geometry, monkeypatc
 
 
 @pytest.mark.parametrize('lengths', [
-    tuple(paper_leg_lengths(HOME)),
-    list(paper_leg_lengths(HOME)),
-    np.array(paper_leg_lengths(HOME), dtype=np.float32),
-    list(paper_leg_lengths(HOME))[:5] + ['0.7188548793'],
+    tuple(leg_lengths_of(HOME)),
+    list(leg_lengths_of(HOME)),
+    np.array(leg_lengths_of(HOME), dtype=np.float32),
+    list(leg_lengths_of(HOME))[:5] + ['0.7188548793'],
 ])
 def test_forward_kinematics_accepts_any_sequence_of_six_numbers(geometry, lengths):
     """Tuples, lists, float32 arrays and numeric strings are lengths like a float array."""
@@ -606,3 +538,102 @@ def test_forward_kinematics_accepts_any_sequence_of_six_numbers(geometry, length
     assert result.converged
     assert result.pose.shape == (6,)
     assert_allclose(result.pose, HOME, rtol=0.0, atol=1e-6)
+
+
+# A batch with bad rows, and single solves against batches ---------------------------------
+
+def test_a_batch_solves_its_valid_rows_and_reports_the_others(geometry):
+    # The defect: one NaN row made the whole batch raise ValueError.
+    good = inverse_kinematics(geometry, random_poses(3, seed=11))
+    lengths = np.array([good[0], [0.7, math.nan, 0.7, 0.7, 0.7, 0.7], good[1],
+                        [0.7, 0.7, 0.7, 0.7, 0.7, -0.7], [0.7, 0.7, 0.0, 0.7, 0.7, 0.7],
+                        [math.inf] * 6, good[2]])
+    result = forward_kinematics(geometry, lengths)
+    assert result.converged.tolist() == [True, False, True, False, False, False, True]
+    for row in (1, 3, 4, 5):
+        assert result.reason[row] == kinematics.INVALID_LENGTHS
+        assert 'finite and positive' in result.reason[row]
+        assert result.residual[row] == math.inf and result.iterations[row] == 0
+        assert_allclose(result.pose[row], HOME, rtol=0.0, atol=0.0)
+    for row, expected in zip((0, 2, 6), good):
+        single = forward_kinematics(geometry, expected)
+        assert result.reason[row] == '' and result.iterations[row] == single.iterations
+        assert_allclose(result.pose[row], single.pose, rtol=0.0, atol=1e-15)
+    with pytest.raises(ValueError, match='finite and positive'):
+        forward_kinematics(geometry, lengths[1])
+
+
+def test_a_batch_reports_a_row_whose_guess_is_not_finite(geometry):
+    lengths = inverse_kinematics(geometry, random_poses(2, seed=12))
+    guesses = np.array([HOME, [0.0, math.nan, 0.4, 0.0, 0.0, 0.0]])
+    result = forward_kinematics(geometry, lengths, guesses)
+    assert result.converged.tolist() == [True, False]
+    assert result.reason[1] == kinematics.INVALID_GUESS
+    with pytest.raises(ValueError, match='initial_guess'):
+        forward_kinematics(geometry, lengths[1], guesses[1])
+
+
+def assert_single_solves_equal_batch(geometry, lengths, guesses, **options):
+    """Solve each row alone and the rows as one batch; assert they agree in every field."""
+    batch = forward_kinematics(geometry, lengths, guesses, **options)
+    for k in range(len(lengths)):
+        single = forward_kinematics(geometry, lengths[k], guesses[k], **options)
+        assert (single.reason, single.converged, single.iterations) == (
+            batch.reason[k], batch.converged[k], batch.iterations[k]), k
+        # The same arithmetic: the same residual to the bit; the pose to rounding, as numpy's
+        # and the math module's atan2 may differ by one unit in the last place.
+        assert single.residual == batch.residual[k]
+        assert_allclose(single.pose, batch.pose[k], rtol=0.0, atol=1e-15)
+    return batch
+
+
+def test_single_and_batch_solves_agree_on_every_field_failures_included(geometry):
+    # The defect: lengths [10] * 6 gave 'no convergence' alone and 'diverged' in a batch, as
+    # the two solvers rounded differently and chaotic iterates drifted apart.
+    rng = np.random.default_rng(13)
+    reachable = inverse_kinematics(geometry, random_poses(150, seed=14))
+    unreachable = np.vstack([rng.uniform(0.2, 3.0, (150, 6)), [[10.0] * 6, [0.01] * 6]])
+    singular = np.array(HOME[:5] + (singular_yaw(),))
+    near_singular = np.array([leg_lengths_of(singular + np.array([0.0] * 5 + [offset]))
+                              for offset in (0.0, 1e-9, 1e-6, -1e-6, 1e-3)])
+    lengths = np.vstack([reachable, unreachable, near_singular])
+    guesses = np.vstack([np.broadcast_to(HOME, (len(reachable) + len(unreachable), 6)),
+                         np.broadcast_to(singular, (len(near_singular), 6))])
+    batch = assert_single_solves_equal_batch(geometry, lengths, guesses)
+    reasons = set(batch.reason)
+    assert '' in reasons and kinematics.DIVERGED in reasons
+    assert_single_solves_equal_batch(geometry, unreachable[:40], guesses[:40], max_iterations=7)
+
+
+def test_single_and_batch_solves_agree_at_a_singular_jacobian():
+    # A platform whose joints coincide at its home pose (every leg of zero length): the
+    # Jacobian there is zero, and both solvers say so.
+    joints = np.array(PLATFORM_JOINTS)
+    joints[:, 2] = 0.0
+    flat = Geometry(base_joints=joints, platform_joints=joints, home_pose=[0.0] * 6)
+    lengths = np.array([[0.2] * 6, [0.3] * 6])
+    batch = assert_single_solves_equal_batch(flat, lengths, np.zeros((2, 6)))
+    assert batch.reason == (kinematics.SINGULAR_JACOBIAN,) * 2
+
+
+def test_one_pose_paths_equal_the_batch_formulas(geometry):
+    # One formula each, run on floats for one pose and on arrays for a batch: the same
+    # operations in the same order, so the results are equal to the bit (inverse kinematics
+    # from Euler angles to 1e-15 relative: numpy's and the math module's sine may differ in
+    # the last place on some processors).
+    poses = np.vstack([random_poses(50, seed=15), [[0.0, 0.0, 0.0, 0.0, math.pi / 2, 0.0]]])
+    rotations = np.array([rotation_zyx(*pose[3:]) for pose in poses])
+    batch_lengths = leg_lengths(geometry, poses[:, :3], rotations)
+    batch_vectors = leg_vectors(geometry, poses[:, :3], rotations)
+    batch_jacobians = kinematics.twist_jacobian(geometry, poses[:, :3], rotations)
+    ik_batch = inverse_kinematics(geometry, poses)
+    for k, (pose, rotation) in enumerate(zip(poses, rotations)):
+        assert np.array_equal(leg_lengths(geometry, pose[:3], rotation), batch_lengths[k])
+        assert np.array_equal(leg_vectors(geometry, pose[:3], rotation), batch_vectors[k])
+        assert np.array_equal(kinematics.twist_jacobian(geometry, pose[:3], rotation),
+                              batch_jacobians[k])
+        assert_allclose(inverse_kinematics(geometry, pose), ik_batch[k], rtol=1e-15, atol=0.0)
+        assert_allclose(kinematics.jacobian(geometry, pose),
+                        kinematics.jacobian(geometry, poses)[k], rtol=0.0, atol=0.0)
+    euler_batch = kinematics._batch_euler_legs(kinematics._constants(geometry), poses)[0].T
+    assert np.array_equal(ik_batch, euler_batch)

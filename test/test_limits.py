@@ -26,6 +26,7 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import BASE_JOINTS, HOME, PLATFORM_JOINTS, rotation_zyx, TABLE_3_END
 
 from stewart_kinematics import limits
 from stewart_kinematics.geometry import Geometry
@@ -33,47 +34,15 @@ from stewart_kinematics.limits import Violation
 
 pytestmark = pytest.mark.core
 
-#: Table 1 of the paper, base joints b_1..b_6, millimetres.
-TABLE_1_MM = [
-    (48.6989, 219.6666, 0.0),
-    (165.8874, 152.0078, 0.0),
-    (165.8874, -152.0078, 0.0),
-    (48.6989, -219.6666, 0.0),
-    (-214.5863, -67.6588, 0.0),
-    (-214.5863, 67.6588, 0.0),
-]
-#: Table 2 of the paper, platform joints p_1..p_6, millimetres (p_3 z = 257 as printed).
-TABLE_2_MM = [
-    (-51.3030, 140.9539, 275.0),
-    (147.7212, 26.0472, 275.0),
-    (147.7212, -26.0472, 257.0),
-    (-51.3030, -140.9539, 275.0),
-    (-96.4181, -114.9067, 275.0),
-    (-96.4181, 114.9067, 275.0),
-]
-BASE = np.array(TABLE_1_MM) / 1000.0
-PLATFORM = np.array(TABLE_2_MM) / 1000.0
-HOME = np.array([0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
-#: Last row of Table 3: 100 mm, 150 mm, 532.5 mm, 15 deg, -15 deg, 20 deg.
-TABLE3_END = np.array([0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0),
-                       math.radians(20.0)])
+BASE, PLATFORM = BASE_JOINTS, PLATFORM_JOINTS
+HOME = np.array(HOME)
+TABLE3_END = np.array(TABLE_3_END)
 
 
 def paper_geometry(home_pose=HOME, **limit_values):
     """Build the paper's platform with the given home pose and limits (radians for cones)."""
     return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=home_pose,
                     **limit_values)
-
-
-def rotation_zyx(alpha, beta, gamma):
-    """Return R = Rz(gamma) Ry(beta) Rx(alpha) as the product of the three textbook matrices."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
 
 
 def legs_by_hand(base, platform, position, rotation):
@@ -438,3 +407,53 @@ def test_geometry_accepts_limits_the_home_pose_keeps():
     assert (geometry.leg_length_min, geometry.leg_length_max) == (0.70, 0.72)
     assert geometry.max_jacobian_condition == 9.6
     assert geometry.base_joint_max_angle == pytest.approx(math.radians(1.0))
+
+
+# A platform joint on its base joint ---------------------------------------------------------
+
+#: The paper's joints rounded to multiples of 2^-20 m (about 1 um), so that the pose below puts
+#: a platform joint exactly on its base joint, without rounding: a leg of zero length.
+DYADIC = 2.0 ** 20
+DYADIC_BASE = np.round(BASE * DYADIC) / DYADIC
+DYADIC_PLATFORM = np.round(PLATFORM * DYADIC) / DYADIC
+#: Rotations whose entries are exact: none, and a quarter turn about z.
+EXACT_ROTATIONS = [np.eye(3), np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])]
+
+
+def dyadic_geometry(**limit_values):
+    """Return the paper's platform with dyadic joints and the given limits."""
+    return Geometry(base_joints=DYADIC_BASE, platform_joints=DYADIC_PLATFORM, home_pose=HOME,
+                    **limit_values)
+
+
+def joint_on_its_base_joint(leg, rotation):
+    """Return the position that puts platform joint ``leg`` exactly on base joint ``leg``."""
+    return DYADIC_BASE[leg] - rotation @ DYADIC_PLATFORM[leg]
+
+
+@pytest.mark.parametrize('leg', range(6))
+@pytest.mark.parametrize('rotation', EXACT_ROTATIONS)
+def test_a_leg_of_zero_length_breaks_the_singularity_margin_without_raising(leg, rotation):
+    # The defect: with only max_jacobian_condition set, this pose raised ZeroDivisionError
+    # (from the unit vector of the zero-length leg), which ended ik_node.
+    geometry = dyadic_geometry(max_jacobian_condition=50.0)
+    position = joint_on_its_base_joint(leg, rotation)
+    assert limits.leg_lengths(geometry, position, rotation)[leg] == 0.0
+    violations = limits.check_pose(geometry, position, rotation)
+    assert [(v.limit, v.value) for v in violations] == [('max_jacobian_condition', math.inf)]
+    assert float(limits.jacobian_condition(geometry, position, rotation)) == math.inf
+    batch = limits.jacobian_condition(geometry, position[None], rotation[None])
+    assert batch.shape == (1,) and batch[0] == math.inf
+
+
+@pytest.mark.parametrize('leg', range(6))
+def test_a_leg_of_zero_length_breaks_every_limit_set_and_nothing_raises(leg):
+    geometry = dyadic_geometry(leg_length_min=0.65, leg_length_max=0.90,
+                               base_joint_max_angle=math.radians(30.0),
+                               platform_joint_max_angle=math.radians(35.0),
+                               max_jacobian_condition=50.0)
+    rotation = EXACT_ROTATIONS[1]
+    position = joint_on_its_base_joint(leg, rotation)
+    broken = {(v.limit, v.leg) for v in limits.check_pose(geometry, position, rotation)}
+    assert {('leg_length_min', leg + 1), ('base_joint_max_angle', leg + 1),
+            ('platform_joint_max_angle', leg + 1), ('max_jacobian_condition', None)} <= broken

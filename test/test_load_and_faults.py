@@ -52,6 +52,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
 from rclpy.executors import SingleThreadedExecutor
+from reference import quaternion_angle as rotation_angle, quaternion_from_euler as quaternion
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.kinematics import inverse_kinematics
@@ -124,29 +125,6 @@ def to_si(pose_mm_deg):
 TABLE3 = tuple(
     to_si([start + row * step for start, step in zip(TABLE3_START_MM_DEG, TABLE3_STEP_MM_DEG)])
     for row in range(TABLE3_ROWS))
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``R = Rz(gamma) Ry(beta) Rx(alpha)``, angles in radians."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg,
-            ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg,
-            ca * cb * cg + sa * sb * sg)
-
-
-def rotation_angle(q, r):
-    """Angle in radians between the rotations of two unit quaternions ``(x, y, z, w)``."""
-    qx, qy, qz, qw = q
-    rx, ry, rz, rw = r
-    # The vector part and the scalar part of conj(q) * r.
-    x = qw * rx - qx * rw - qy * rz + qz * ry
-    y = qw * ry + qx * rz - qy * rw - qz * rx
-    z = qw * rz - qx * ry + qy * rx - qz * rw
-    w = qw * rw + qx * rx + qy * ry + qz * rz
-    return 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), abs(w))
 
 
 def pose_message(pose):

@@ -25,6 +25,7 @@ from geometry_msgs.msg import Pose, Quaternion
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import quaternion_from_euler
 from std_msgs.msg import Float64MultiArray, MultiArrayLayout
 
 from stewart_kinematics.ros.message_conversions import (
@@ -38,24 +39,6 @@ from stewart_kinematics.ros.message_conversions import (
 pytestmark = pytest.mark.node
 
 SQRT_HALF = 0.7071067811865476
-
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """
-    Quaternion ``(x, y, z, w)`` of ``R = Rz(gamma) Ry(beta) Rx(alpha)``, textbook formula.
-
-    :returns: the quaternion with ``w >= 0``.
-    """
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg,
-        ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg,
-        ca * cb * cg + sa * sb * sg,
-    ])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
 
 
 def pose_message(position, quaternion):

@@ -37,6 +37,12 @@ from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
+from reference import (
+    leg_lengths as expected_leg_lengths,
+    quaternion_angle as rotation_angle,
+    quaternion_from_euler as quaternion,
+)
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros.message_accounting import WARNING_PERIOD
@@ -53,102 +59,11 @@ CLIENT_DEPTH = 100
 #: Exit code of a node that could not start (stewart_kinematics.ros.node_main.EXIT_START_FAILED).
 EXIT_START_FAILED = 1
 
-# The paper's Table 1: base joint centres b_1..b_6 in the base frame, millimetres.
-BASE_JOINTS_MM = (
-    (48.6989, 219.6666, 0.0),
-    (165.8874, 152.0078, 0.0),
-    (165.8874, -152.0078, 0.0),
-    (48.6989, -219.6666, 0.0),
-    (-214.5863, -67.6588, 0.0),
-    (-214.5863, 67.6588, 0.0),
-)
-# The paper's Table 2: platform joint centres p_1..p_6 in the platform frame, millimetres
-# (p_3 at z = 257 as published).
-PLATFORM_JOINTS_MM = (
-    (-51.3030, 140.9539, 275.0),
-    (147.7212, 26.0472, 275.0),
-    (147.7212, -26.0472, 257.0),
-    (-51.3030, -140.9539, 275.0),
-    (-96.4181, -114.9067, 275.0),
-    (-96.4181, 114.9067, 275.0),
-)
-# The paper's Table 3: X, Y, Z in millimetres, alpha, beta, gamma in degrees.
-TABLE3_MM_DEG = (
-    (0.0, 0.0, 432.5, 0.0, 0.0, 0.0),
-    (10.0, 15.0, 442.5, 1.5, -1.5, 2.0),
-    (20.0, 30.0, 452.5, 3.0, -3.0, 4.0),
-    (30.0, 45.0, 462.5, 4.5, -4.5, 6.0),
-    (40.0, 60.0, 472.5, 6.0, -6.0, 8.0),
-    (50.0, 75.0, 482.5, 7.5, -7.5, 10.0),
-    (60.0, 90.0, 492.5, 9.0, -9.0, 12.0),
-    (70.0, 105.0, 502.5, 10.5, -10.5, 14.0),
-    (80.0, 120.0, 512.5, 12.0, -12.0, 16.0),
-    (90.0, 135.0, 522.5, 13.5, -13.5, 18.0),
-    (100.0, 150.0, 532.5, 15.0, -15.0, 20.0),
-)
-
-
-def to_si(pose_mm_deg):
-    """Pose ``[X, Y, Z, alpha, beta, gamma]`` from millimetres and degrees to metres, radians."""
-    return tuple(v / 1000.0 for v in pose_mm_deg[:3]) + tuple(map(math.radians, pose_mm_deg[3:]))
-
-
-BASE_JOINTS = tuple(tuple(v / 1000.0 for v in joint) for joint in BASE_JOINTS_MM)
-PLATFORM_JOINTS = tuple(tuple(v / 1000.0 for v in joint) for joint in PLATFORM_JOINTS_MM)
-TABLE3 = tuple(to_si(row) for row in TABLE3_MM_DEG)
+# The paper's tables (test/reference.py) as plain tuples of floats, for parameter files.
+BASE_JOINTS = tuple(map(tuple, reference.BASE_JOINTS.tolist()))
+PLATFORM_JOINTS = tuple(map(tuple, reference.PLATFORM_JOINTS.tolist()))
+TABLE3 = reference.TABLE_3
 HOME_POSE = TABLE3[0]
-
-
-def matrix_product(a, b):
-    """Product of two 3x3 matrices given as nested lists."""
-    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-
-
-def rotation_matrix(alpha, beta, gamma):
-    """Return the paper's ``R = Rz(gamma) Ry(beta) Rx(alpha)`` (radians) as nested lists."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = [[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]
-    ry = [[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]]
-    rz = [[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]]
-    return matrix_product(rz, matrix_product(ry, rx))
-
-
-def expected_leg_lengths(pose):
-    """Leg lengths in metres of a pose: ``l_i = |[X, Y, Z] + R p_i - b_i|``."""
-    position, rotation = pose[:3], rotation_matrix(*pose[3:])
-    lengths = []
-    for base_joint, platform_joint in zip(BASE_JOINTS, PLATFORM_JOINTS):
-        leg = [position[row] + sum(rotation[row][k] * platform_joint[k] for k in range(3))
-               - base_joint[row] for row in range(3)]
-        lengths.append(math.sqrt(sum(component * component for component in leg)))
-    return lengths
-
-
-def quaternion_product(q, r):
-    """Hamilton product of two quaternions ``(x, y, z, w)``."""
-    qx, qy, qz, qw = q
-    rx, ry, rz, rw = r
-    return (qw * rx + qx * rw + qy * rz - qz * ry,
-            qw * ry - qx * rz + qy * rw + qz * rx,
-            qw * rz + qx * ry - qy * rx + qz * rw,
-            qw * rw - qx * rx - qy * ry - qz * rz)
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``R = Rz(gamma) Ry(beta) Rx(alpha)``: qz * qy * qx."""
-    qx = (math.sin(alpha / 2.0), 0.0, 0.0, math.cos(alpha / 2.0))
-    qy = (0.0, math.sin(beta / 2.0), 0.0, math.cos(beta / 2.0))
-    qz = (0.0, 0.0, math.sin(gamma / 2.0), math.cos(gamma / 2.0))
-    return quaternion_product(qz, quaternion_product(qy, qx))
-
-
-def rotation_angle(q, r):
-    """Angle in radians between the rotations of two unit quaternions, accurate near zero."""
-    qx, qy, qz, qw = q
-    relative = quaternion_product((-qx, -qy, -qz, qw), r)
-    return 2.0 * math.atan2(math.sqrt(sum(v * v for v in relative[:3])), abs(relative[3]))
 
 
 def pose_message(pose, scale=1.0):

@@ -33,7 +33,7 @@ from pathlib import Path
 import threading
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from geometry_msgs.msg import Pose
+from geometry_msgs.msg import Pose, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -41,9 +41,10 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import leg_lengths as plain_lengths, quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics import inverse_kinematics
+from stewart_kinematics import inverse_kinematics, platform_twist
 from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
@@ -90,17 +91,6 @@ IMPOSSIBLE_LENGTHS = [0.9, 0.65, 0.9, 0.65, 0.9, 0.65]
 
 
 # Messages and poses ---------------------------------------------------------------------------
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
-
 
 def pose_message(position, quaternion):
     """Build a Pose from a position and a quaternion (x, y, z, w)."""
@@ -575,23 +565,39 @@ def test_fk_refuses_a_jump_to_another_solution(start, spin_until):
     assert_pose_message(poses[1], TABLE3_ROW_1)
 
 
+def test_fk_refuses_a_twist_beyond_the_singularity_margin(start, spin_until):
+    """
+    Leg velocities at a pose beyond the margin give no twist, with the reason; within, one.
+
+    With near_singularity_condition 5 the home pose (condition about 9.5) is beyond the margin:
+    there the leg velocities would hardly determine the twist (the defect: 1 mm/s on every leg
+    turned into 4300 rad/s near the singularity, and fk_node published it).
+    """
+    node, probe, executor = start(FkNode, FK_ARGS, {'near_singularity_condition': 5.0},
+                                  Float64MultiArray, 'leg_velocities',
+                                  [('estimated_twist', Twist)])
+    refusals, _ = record_findings(node)
+    twists = probe.received['estimated_twist']
+    velocities = lengths_message([0.001] * 6)
+    probe.publisher.publish(velocities)
+    assert spin_until(executor, lambda: len(refusals) >= 1)
+    [refusal] = refusals
+    assert refusal.code == 'near_singularity'
+    assert 'above the limit 5 (the singularity margin' in refusal.message
+    [result] = node.set_parameters([Parameter('near_singularity_condition', value=100.0)])
+    assert result.successful, result.reason
+    probe.publisher.publish(velocities)
+    assert spin_until(executor, lambda: len(twists) >= 1)
+    assert len(twists) == 1
+    expected = platform_twist(paper_geometry(), HOME, [0.001] * 6)
+    twist = twists[0]
+    assert_allclose([twist.linear.x, twist.linear.y, twist.linear.z, twist.angular.x,
+                     twist.angular.y, twist.angular.z], expected, rtol=0.0, atol=1e-15)
+    accounting = node.velocity_accounting
+    assert (accounting.received, accounting.published, accounting.rejected) == (2, 1, 1)
+
+
 # trajectory_node ------------------------------------------------------------------------------
-
-def plain_lengths(pose):
-    """Return |t + R p_i - b_i| of a pose, with R built from its three textbook factors."""
-    alpha, beta, gamma = pose[3:]
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rotation = (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-                @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-                @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
-    with open(PLATFORM_FILE, encoding='utf-8') as stream:
-        parameters = yaml.safe_load(stream)['/**']['ros__parameters']
-    base = np.reshape(parameters['base_joints'], (6, 3))
-    platform = np.reshape(parameters['platform_joints'], (6, 3))
-    return [float(np.linalg.norm(np.asarray(pose[:3]) + rotation @ p - b))
-            for b, p in zip(base, platform)]
-
 
 def ramp_pose(fraction):
     """Return the Table 3 ramp's pose a fraction 0..1 of the way from its start to its end."""

@@ -31,6 +31,11 @@ from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import (
+    quaternion_from_euler as quaternion,
+    quaternion_matrix,
+    rotation_zyx as rotation_matrix,
+)
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from visualization_msgs.msg import MarkerArray
@@ -63,16 +68,6 @@ def read_geometry(path):
             np.reshape(parameters['platform_joints'], (6, 3)))
 
 
-def rotation_matrix(alpha, beta, gamma):
-    """Return ``R = Rz(gamma) Ry(beta) Rx(alpha)``, the README's rotation convention."""
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
-
-
 def reference_lengths(geometry, position, rotation):
     """Leg lengths ``l_i = |position + R p_i - b_i|`` in metres."""
     base_joints, platform_joints = geometry
@@ -101,23 +96,6 @@ def finite_difference_leg_velocities(geometry, pose, twist):
         return reference_lengths(geometry, position + twist[:3] * dt,
                                  rotation_about(twist[3:] * dt) @ rotation)
     return (lengths_after(h) - lengths_after(-h)) / (2.0 * h)
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
-
-
-def quaternion_matrix(x, y, z, w):
-    """Rotation matrix of a unit quaternion ``(x, y, z, w)``."""
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def pose_message(pose):

@@ -24,7 +24,18 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import (
+    quaternion_from_euler,
+    quaternion_matrix,
+    rodrigues,
+    rotation_angle,
+    rotation_zyx,
+    rx,
+    ry,
+    rz,
+)
 
+from stewart_kinematics import kinematics
 from stewart_kinematics.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -42,40 +53,10 @@ ATOL = 1e-12
 SQRT_HALF = math.sqrt(0.5)
 
 
-def rx(angle):
-    """Elementary rotation about x."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-
-
-def ry(angle):
-    """Elementary rotation about y."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def rz(angle):
-    """Elementary rotation about z."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def zyx(alpha, beta, gamma):
-    """Rz(gamma) @ Ry(beta) @ Rx(alpha) from the elementary matrices."""
-    return rz(gamma) @ ry(beta) @ rx(alpha)
-
-
 def axis_angle_quaternion(axis, angle):
     """Quaternion (x, y, z, w) of a rotation by angle about a unit axis."""
     half = 0.5 * angle
     return np.array([*(math.sin(half) * np.asarray(axis, dtype=float)), math.cos(half)])
-
-
-def rodrigues(axis, angle):
-    """Matrix of a rotation by angle about a unit axis: I + sin K + (1 - cos) K^2."""
-    x, y, z = axis
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
 
 
 def random_angles(count, seed=0):
@@ -90,7 +71,8 @@ def random_angles(count, seed=0):
 def test_euler_zyx_to_matrix_equals_product_of_elementary_rotations():
     """The matrix of random angles is Rz(gamma) Ry(beta) Rx(alpha)."""
     for alpha, beta, gamma in random_angles(50):
-        assert_allclose(euler_zyx_to_matrix([alpha, beta, gamma]), zyx(alpha, beta, gamma),
+        assert_allclose(euler_zyx_to_matrix([alpha, beta, gamma]),
+                        rotation_zyx(alpha, beta, gamma),
                         rtol=0.0, atol=ATOL)
 
 
@@ -122,7 +104,7 @@ def test_euler_zyx_to_matrix_batch_shape_matches_singles():
     batch = euler_zyx_to_matrix(angles)
     assert batch.shape == (7, 3, 3)
     for row, matrix in zip(angles, batch):
-        assert_allclose(matrix, zyx(*row), rtol=0.0, atol=ATOL)
+        assert_allclose(matrix, rotation_zyx(*row), rtol=0.0, atol=ATOL)
 
 
 def test_euler_zyx_to_matrix_rejects_wrong_shape():
@@ -134,20 +116,20 @@ def test_euler_zyx_to_matrix_rejects_wrong_shape():
 def test_matrix_to_euler_zyx_round_trip_on_random_angles():
     """Angles with beta in (-pi/2, pi/2) and alpha, gamma in (-pi, pi) come back unchanged."""
     angles = random_angles(1000, seed=1)
-    matrices = np.array([zyx(*row) for row in angles])
+    matrices = np.array([rotation_zyx(*row) for row in angles])
     assert_allclose(matrix_to_euler_zyx(matrices), angles, rtol=0.0, atol=1e-9)
 
 
 def test_matrix_to_euler_zyx_single_shape():
     """One matrix gives one angle triple, shape (3,)."""
-    result = matrix_to_euler_zyx(zyx(0.1, -0.2, 0.3))
+    result = matrix_to_euler_zyx(rotation_zyx(0.1, -0.2, 0.3))
     assert result.shape == (3,)
     assert_allclose(result, [0.1, -0.2, 0.3], rtol=0.0, atol=ATOL)
 
 
 def test_matrix_to_euler_zyx_wraps_angles_into_canonical_range():
     """Angles beyond pi are returned as the equivalent angle in (-pi, pi]."""
-    result = matrix_to_euler_zyx(zyx(0.3 + 2.0 * math.pi, 0.2, -0.4 - 2.0 * math.pi))
+    result = matrix_to_euler_zyx(rotation_zyx(0.3 + 2.0 * math.pi, 0.2, -0.4 - 2.0 * math.pi))
     assert_allclose(result, [0.3, 0.2, -0.4], rtol=0.0, atol=1e-9)
 
 
@@ -155,11 +137,11 @@ def test_matrix_to_euler_zyx_wraps_angles_into_canonical_range():
 @pytest.mark.parametrize('alpha, gamma', [(0.3, 0.7), (-1.2, 2.5), (0.0, 0.0), (3.0, -3.0)])
 def test_matrix_to_euler_zyx_at_gimbal_lock_reproduces_matrix(alpha, beta, gamma):
     """At beta = +-pi/2 the returned angles describe the input rotation exactly."""
-    matrix = zyx(alpha, beta, gamma)
+    matrix = rotation_zyx(alpha, beta, gamma)
     result = matrix_to_euler_zyx(matrix)
     assert np.all(np.isfinite(result))
     assert_allclose(result[1], beta, rtol=0.0, atol=1e-9)
-    assert_allclose(zyx(*result), matrix, rtol=0.0, atol=1e-9)
+    assert_allclose(rotation_zyx(*result), matrix, rtol=0.0, atol=1e-9)
 
 
 def test_matrix_to_euler_zyx_rejects_wrong_shape():
@@ -222,7 +204,7 @@ def test_matrix_to_quaternion_has_non_negative_w():
 
 def test_matrix_to_quaternion_round_trip_random_rotations():
     """Matrix -> quaternion -> matrix returns the Euler-built matrix for random angles."""
-    matrices = np.array([zyx(*row) for row in random_angles(500, seed=2)])
+    matrices = np.array([rotation_zyx(*row) for row in random_angles(500, seed=2)])
     quaternions = matrix_to_quaternion(matrices)
     assert quaternions.shape == (500, 4)
     assert_allclose(np.linalg.norm(quaternions, axis=-1), 1.0, rtol=0.0, atol=1e-12)
@@ -308,14 +290,14 @@ def test_quaternion_to_matrix_rejects_zero_quaternion():
 
 def test_rotation_angle_between_equal_rotations_is_zero():
     """Equal rotations are 0 rad apart."""
-    matrix = zyx(0.3, -0.2, 1.0)
+    matrix = rotation_zyx(0.3, -0.2, 1.0)
     assert_allclose(rotation_angle_between(matrix, matrix), 0.0, rtol=0.0, atol=1e-15)
 
 
 @pytest.mark.parametrize('angle', [1e-9, 1e-6, 0.5, 2.0, math.pi - 1e-6])
 def test_rotation_angle_between_known_angles(angle):
     """The angle between R and R @ Rk(angle) is angle, accurate even at 1e-9 rad."""
-    base = zyx(0.3, -0.2, 1.0)
+    base = rotation_zyx(0.3, -0.2, 1.0)
     axis = np.array([2.0, -1.0, 2.0]) / 3.0
     relative = rodrigues(axis, angle)
     assert_allclose(rotation_angle_between(base, base @ relative), angle, rtol=1e-6, atol=0.0)
@@ -372,3 +354,48 @@ def test_single_value_paths_equal_the_batch_paths():
         assert_allclose(normalize_quaternion(scaled[k]), quaternions[k], rtol=0.0, atol=1e-15)
         assert_allclose(rotation_angle_between(matrices[k], shifted[k]), batch_angles[k],
                         rtol=0.0, atol=1e-12)
+
+
+def gimbal_band_cases():
+    """Random alpha, gamma with beta within 1e-12 to 1e-6 rad of +-90 degrees, shape (N, 3)."""
+    rng = np.random.default_rng(90)
+    offsets = 10.0 ** rng.uniform(-12.0, -6.0, 400)
+    signs = rng.choice([-1.0, 1.0], 400)
+    return np.column_stack([rng.uniform(-math.pi, math.pi, 400),
+                            signs * (0.5 * math.pi - offsets),
+                            rng.uniform(-math.pi, math.pi, 400)])
+
+
+def test_euler_angles_near_gimbal_lock_rebuild_the_rotation_to_rounding():
+    # The defect: within 1e-12..1e-6 rad of beta = +-90 degrees, alpha and gamma were taken
+    # each from entries of size cos(beta) that rounding had blurred; their rotation was up to
+    # 7e-4 rad away from the quaternion's.
+    cases = gimbal_band_cases()
+    quaternions = np.array([quaternion_from_euler(*angles) for angles in cases])
+    batch = quaternion_to_euler_zyx(quaternions)
+    worst = 0.0
+    for quaternion, angles in zip(quaternions, batch):
+        single = quaternion_to_euler_zyx(quaternion)
+        assert_allclose(single, angles, rtol=0.0, atol=1e-15)
+        expected = quaternion_matrix(*quaternion)
+        worst = max(worst, rotation_angle(rotation_zyx(*single), expected))
+        assert abs(single[1]) <= math.pi / 2 and np.all(np.abs(single) <= math.pi)
+    assert worst <= 1e-14
+
+
+def test_euler_angles_from_matrices_near_gimbal_lock_rebuild_them():
+    cases = gimbal_band_cases()
+    matrices = np.array([rotation_zyx(*angles) for angles in cases])
+    for matrix, angles in zip(matrices, matrix_to_euler_zyx(matrices)):
+        assert rotation_angle(rotation_zyx(*angles), matrix) <= 1e-14
+
+
+def test_scalar_canonical_angles_agree_with_the_batch_conversion_near_gimbal_lock():
+    # The forward solver's scalar twin of matrix_to_euler_zyx(euler_zyx_to_matrix(angles)),
+    # on angles out of the canonical ranges (so that they are converted).
+    cases = gimbal_band_cases() + [2.0 * math.pi, 0.0, -2.0 * math.pi]
+    expected = matrix_to_euler_zyx(euler_zyx_to_matrix(cases))
+    for angles, batch in zip(cases, expected):
+        single = kinematics._single_canonical_angles(*angles)
+        assert_allclose(single, batch, rtol=0.0, atol=1e-15)
+        assert rotation_angle(rotation_zyx(*single), rotation_zyx(*angles)) <= 1e-14

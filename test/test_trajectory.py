@@ -23,6 +23,7 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose, assert_array_equal
 import pytest
+from reference import TABLE_3, TABLE_3_END
 
 from stewart_kinematics.trajectory import Ramp
 
@@ -43,17 +44,8 @@ def table_3_ramp():
                            ORIENTATION_START_DEG, ORIENTATION_STEP_DEG, ORIENTATION_END_DEG)
 
 
-def paper_row(k):
-    """Return row k of Table 3 from the paper's millimetres and degrees, metres and radians."""
-    x_mm, y_mm, z_mm = 0.0 + 10.0 * k, 0.0 + 15.0 * k, 432.5 + 10.0 * k
-    alpha, beta, gamma = 0.0 + 1.5 * k, 0.0 - 1.5 * k, 0.0 + 2.0 * k
-    return [x_mm / 1000.0, y_mm / 1000.0, z_mm / 1000.0,
-            alpha * math.pi / 180.0, beta * math.pi / 180.0, gamma * math.pi / 180.0]
-
-
-PAPER_ROWS = np.array([paper_row(k) for k in range(11)])
-PAPER_END = [0.1, 0.15, 0.5325, 15.0 * math.pi / 180.0, -15.0 * math.pi / 180.0,
-             20.0 * math.pi / 180.0]
+PAPER_ROWS = np.array(TABLE_3)
+PAPER_END = TABLE_3_END
 
 
 def test_table_3_gives_eleven_rows_equal_to_the_paper():

@@ -20,7 +20,6 @@ parameter overrides; the received poses are compared with the paper's Table 3 ty
 millimetres and degrees, orientations as textbook quaternions.
 """
 
-import math
 from pathlib import Path
 
 from geometry_msgs.msg import Pose
@@ -31,6 +30,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from reference import quaternion_from_euler, TABLE_3
 
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
@@ -43,35 +43,10 @@ RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
 RAMP_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', RAMP_FILE]
 
-#: The paper's Table 3 row by row: X, Y, Z in mm, alpha, beta, gamma in degrees.
-TABLE3_MM_DEG = [
-    (0.0, 0.0, 432.5, 0.0, 0.0, 0.0),
-    (10.0, 15.0, 442.5, 1.5, -1.5, 2.0),
-    (20.0, 30.0, 452.5, 3.0, -3.0, 4.0),
-    (30.0, 45.0, 462.5, 4.5, -4.5, 6.0),
-    (40.0, 60.0, 472.5, 6.0, -6.0, 8.0),
-    (50.0, 75.0, 482.5, 7.5, -7.5, 10.0),
-    (60.0, 90.0, 492.5, 9.0, -9.0, 12.0),
-    (70.0, 105.0, 502.5, 10.5, -10.5, 14.0),
-    (80.0, 120.0, 512.5, 12.0, -12.0, 16.0),
-    (90.0, 135.0, 522.5, 13.5, -13.5, 18.0),
-    (100.0, 150.0, 532.5, 15.0, -15.0, 20.0),
-]
-TABLE3 = np.array([[v / 1000.0 for v in row[:3]] + [math.radians(v) for v in row[3:]]
-                   for row in TABLE3_MM_DEG])
+#: The paper's Table 3, metres and radians (test/reference.py).
+TABLE3 = np.array(TABLE_3)
 #: Seconds of silence that show a finished ramp has stopped (ten row periods of 0.05 s).
 QUIET_TIME = 0.5
-
-
-def quaternion_from_euler(alpha, beta, gamma):
-    """Return the textbook roll-pitch-yaw quaternion (x, y, z, w) of Rz Ry Rx, w >= 0."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    quaternion = np.array([
-        sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-        ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg])
-    return -quaternion if quaternion[3] < 0.0 else quaternion
 
 
 def position_of(message):

@@ -19,10 +19,18 @@ from pathlib import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from stewart_kinematics import leg_lengths
+from reference import HOME, paper_geometry, rotation_vector_matrix, singular_yaw
+
+from stewart_kinematics import leg_lengths, SingularPoseError
+from stewart_kinematics.limits import jacobian_condition
 from stewart_kinematics.parameter_spec import load_geometry
 from stewart_kinematics.rotations import euler_zyx_to_matrix
-from stewart_kinematics.velocities import leg_velocities, platform_twist, twist_jacobian
+from stewart_kinematics.velocities import (
+    DEFAULT_MAX_TWIST_CONDITION,
+    leg_velocities,
+    platform_twist,
+    twist_jacobian,
+)
 
 pytestmark = pytest.mark.core
 
@@ -40,19 +48,9 @@ TWISTS = np.array([
 ])
 
 
-def axis_angle_matrix(vector):
-    """Return the rotation by |vector| radians about vector (Rodrigues), written out."""
-    angle = float(np.linalg.norm(vector))
-    if angle == 0.0:
-        return np.eye(3)
-    x, y, z = np.asarray(vector) / angle
-    skew = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * skew + (1.0 - math.cos(angle)) * skew @ skew
-
-
 def moved_lengths(pose, twist, dt):
     """Return the leg lengths after moving with ``twist`` for ``dt`` seconds from ``pose``."""
-    rotation = axis_angle_matrix(np.asarray(twist[3:]) * dt) @ euler_zyx_to_matrix(pose[3:])
+    rotation = rotation_vector_matrix(np.asarray(twist[3:]) * dt) @ euler_zyx_to_matrix(pose[3:])
     return leg_lengths(GEOMETRY, np.asarray(pose[:3]) + np.asarray(twist[:3]) * dt, rotation)
 
 
@@ -99,3 +97,33 @@ def test_twist_jacobian_of_one_pose_equals_its_batch_form():
         single = twist_jacobian(GEOMETRY, pose[:3], rotation)
         assert single.shape == (6, 6)
         assert_allclose(single, expected, rtol=0.0, atol=1e-15)
+
+
+def test_platform_twist_refuses_a_pose_near_the_singularity():
+    # The defect: 1 mm/s on every leg became about 4300 rad/s near the paper platform's
+    # singularity (yaw 90.4 degrees), without a word.
+    pose = np.array(HOME[:5] + (singular_yaw() + 3e-7,))
+    velocities = [1e-3] * 6
+    with pytest.raises(SingularPoseError, match=r'condition number .* above the limit 1000'):
+        platform_twist(GEOMETRY, pose, velocities)
+    with pytest.raises(ValueError, match='the pose is too near a singularity'):
+        platform_twist(GEOMETRY, pose, velocities)
+    # Asked to answer anyway, it gives the huge twist the refusal protects from.
+    twist = platform_twist(GEOMETRY, pose, velocities, max_condition=math.inf)
+    assert np.max(np.abs(twist[3:])) > 1e3
+    # In a batch, the refusal names the pose.
+    with pytest.raises(SingularPoseError, match='pose 1 is too near'):
+        platform_twist(GEOMETRY, [POSES[0], pose], [velocities, velocities])
+
+
+def test_platform_twist_limit_defaults_to_the_geometry_singularity_margin():
+    limited = paper_geometry(max_jacobian_condition=12.0)
+    condition = float(jacobian_condition(GEOMETRY, POSES[2, :3],
+                                         euler_zyx_to_matrix(POSES[2, 3:])))
+    assert 12.0 < condition < DEFAULT_MAX_TWIST_CONDITION
+    velocities = leg_velocities(GEOMETRY, POSES[2], TWISTS[2])
+    assert_allclose(platform_twist(GEOMETRY, POSES[2], velocities), TWISTS[2], atol=1e-12)
+    with pytest.raises(SingularPoseError, match='above the limit 12'):
+        platform_twist(limited, POSES[2], velocities)
+    assert_allclose(platform_twist(limited, POSES[2], velocities, max_condition=20.0), TWISTS[2],
+                    atol=1e-12)

@@ -141,10 +141,9 @@ class IkNode(Node):
             self.get_logger().warning(
                 f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
                 '(said once)', once=True)
-        rotation = quaternion_to_matrix(quaternion)
-        command = self.check.pose(position, rotation)
+        command = self.check.pose_quaternion(position, quaternion)
         if command.violations or command.accepted:
-            self.publish_markers(header, position, rotation, command.violations)
+            self.publish_markers(header, position, quaternion, command.violations)
         if not command.accepted:
             accounting.reject(command.refusal)
             return
@@ -158,7 +157,7 @@ class IkNode(Node):
         if self.joint_command_publisher.get_subscription_count():
             self.joint_command_publisher.publish(joint_state_message(header, lengths))
 
-    def publish_markers(self, header, position, rotation, violations):
+    def publish_markers(self, header, position, quaternion, violations):
         """
         Publish the platform's markers, at most at marker_rate and only to a subscriber.
 
@@ -174,7 +173,7 @@ class IkNode(Node):
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(
             Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
-            rotation, [violation.leg for violation in violations],
+            quaternion_to_matrix(quaternion), [violation.leg for violation in violations],
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):
