@@ -46,6 +46,7 @@ setup(
             'stewart_platform = stewart_kinematics.ros.stewart_platform:main',
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
             'stewart_calibrate = stewart_kinematics.tools.calibrate:main',
+            'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
         ],
     },
 )

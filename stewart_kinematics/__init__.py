@@ -83,6 +83,12 @@ from stewart_kinematics.trajectories import (
 )
 from stewart_kinematics.trajectory import Ramp
 from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
+from stewart_kinematics.workspace import (
+    orientation_workspace,
+    travel_ranges,
+    workspace_slice,
+    workspace_volume,
+)
 
 __all__ = [
     'ActuatorInterface',
@@ -123,6 +129,7 @@ __all__ = [
     'measurement_poses',
     'MotionPlan',
     'plan_motion',
+    'orientation_workspace',
     'platform_twist',
     'PoseEstimate',
     'PoseTracker',
@@ -135,8 +142,11 @@ __all__ = [
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',
+    'travel_ranges',
     'twist_jacobian',
     'TwistEstimate',
+    'workspace_slice',
+    'workspace_volume',
 ]
 
 #: Calibration needs scipy: imported on first use, so that the nodes start without loading it.

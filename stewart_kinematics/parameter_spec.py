@@ -142,6 +142,17 @@ def in_range(low: float, high: float, *, low_inclusive: bool = True,
     return validate
 
 
+def zero_or_in_range(low: float, high: float) -> Validator:
+    """Require 0 (a feature turned off) or a number within ``[low, high]``."""
+    within = in_range(low, high)
+
+    def validate(name, value):
+        if value == 0.0 or not within(name, value):
+            return ''
+        return f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got {value!r}"
+    return validate
+
+
 def one_of(*allowed: str) -> Validator:
     """Require one of the given strings."""
     def validate(name, value):
@@ -418,6 +429,23 @@ MARKER_PARAMETERS = (
         constraints='in [0, 1000]'),
 )
 
+WORKSPACE_PARAMETERS = (
+    ParameterSpec(
+        'workspace_resolution', DOUBLE,
+        'Grid step of the constant-orientation workspace (at the home orientation) that '
+        'workspace_markers shows, metres; computed in a worker process once the topic has a '
+        'subscriber, and again when this changes; 0.0 turns the markers off',
+        default=0.01, validators=(finite, zero_or_in_range(0.002, 0.1)),
+        constraints='0.0 or in [0.002, 0.1]'),
+    ParameterSpec(
+        'travel_range_rate', DOUBLE,
+        'Rate of travel_ranges, the range left along each axis from the last accepted pose, '
+        'hertz; computed in a worker process while the topic has a subscriber and the pose '
+        'has moved; 0.0 turns them off',
+        default=1.0, read_only=True, validators=(finite, in_range(0.0, 10.0)),
+        constraints='in [0, 10]'),
+)
+
 QUEUE_PARAMETERS = (
     ParameterSpec(
         'queue_depth', INTEGER,
@@ -541,8 +569,8 @@ def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
-            + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + QUEUE_PARAMETERS + RAMP_PARAMETERS
-            + MOTION_PARAMETERS + STREAMING_PARAMETERS)
+            + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
+            + RAMP_PARAMETERS + MOTION_PARAMETERS + STREAMING_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

@@ -42,7 +42,8 @@ CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
 NODE_SPECS = {
     'ik_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
                 + parameter_spec.FRAME_PARAMETERS + parameter_spec.MARKER_PARAMETERS
-                + parameter_spec.STREAMING_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
+                + parameter_spec.WORKSPACE_PARAMETERS + parameter_spec.STREAMING_PARAMETERS
+                + parameter_spec.QUEUE_PARAMETERS),
     'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
                 + parameter_spec.SOLVER_PARAMETERS + parameter_spec.FRAME_PARAMETERS
                 + parameter_spec.QUEUE_PARAMETERS),

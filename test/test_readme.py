@@ -35,8 +35,9 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
     parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
     parameter_spec.ASSEMBLY_MODE_PARAMETERS, parameter_spec.ACTUATOR_PARAMETERS,
     parameter_spec.MOTION_PARAMETERS, parameter_spec.STREAMING_PARAMETERS,
+    parameter_spec.WORKSPACE_PARAMETERS,
 ], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp', 'assembly_mode', 'actuator',
-        'motion', 'streaming'])
+        'motion', 'streaming', 'workspace'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
     assert parameter_spec.markdown_table(specs) in README, (

@@ -17,22 +17,28 @@ Inverse kinematics node: a commanded platform pose in, six leg lengths out.
 
 Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame) or ``target_pose_stamped``
 (geometry_msgs/msg/PoseStamped, base frame or user frame), metres: the pose of the tool frame
-(:mod:`stewart_kinematics.frames`; by default the platform frame itself), and ``target_twist``
-(geometry_msgs/msg/Twist, base frame). Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray,
-metres, leg 1..6), ``leg_extensions`` (the same layout: each length minus its length at the
-home pose, the paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, the legs as
-prismatic joints named ``joint_names``, positions ``length - actuator_offsets``, with the stamp
-of the pose; or, with ``command_rate``, streamed at that rate through the jerk-limited
-:class:`stewart_kinematics.CommandFilter` toward the latest accepted pose) and
-``leg_velocities`` (the rates of
-change of the lengths for a twist at the last pose, m/s), and ``platform_markers``
+(:mod:`stewart_kinematics.frames`; by default the platform frame itself), and
+``target_twist`` (geometry_msgs/msg/Twist, base frame).
+
+Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6),
+``leg_extensions`` (the same layout: each length minus its length at the home pose, the
+paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, the legs as prismatic joints
+named ``joint_names``, positions ``length - actuator_offsets``, with the stamp of the pose; or,
+with ``command_rate``, streamed at that rate through the jerk-limited
+:class:`stewart_kinematics.CommandFilter` toward the latest accepted pose), ``leg_velocities``
+(the rates of change of the lengths for a twist at the last pose, m/s), ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
-break a limit in red, even for a refused pose), and, if ``publish_commanded_tf`` is set,
-the commanded platform frame on ``/tf`` as ``<platform_frame>_commanded``. A change of the
-tool frame at run time applies from the next message on. What to command and what to refuse is
-decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a limit of the
-geometry is refused, never clamped); the node converts the messages, publishes, and counts
-each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
+break a limit in red, even for a refused pose), ``workspace_markers`` (the boundary of the
+constant-orientation workspace at the home orientation, latched) and ``travel_ranges`` (the
+range left along each axis from the last accepted pose, about once a second), those two
+computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command path; and, if
+``publish_commanded_tf`` is set, the commanded platform frame on ``/tf`` as
+``<platform_frame>_commanded``.
+
+A change of the tool frame at run time applies from the next message on. What to command and
+what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a
+limit of the geometry is refused, never clamped); the node converts the messages, publishes,
+and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -67,6 +73,7 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.ros.transforms import TransformBroadcaster
+from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
 from stewart_kinematics.rotations import quaternion_to_matrix
 from stewart_kinematics.streaming import CommandFilter
 from visualization_msgs.msg import MarkerArray
@@ -85,7 +92,8 @@ class IkNode(Node):
         values = declare_parameters(
             self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
             + parameter_spec.FRAME_PARAMETERS + parameter_spec.IK_FRAME_PARAMETERS
-            + parameter_spec.MARKER_PARAMETERS + parameter_spec.STREAMING_PARAMETERS
+            + parameter_spec.MARKER_PARAMETERS + parameter_spec.WORKSPACE_PARAMETERS
+            + parameter_spec.STREAMING_PARAMETERS
             + parameter_spec.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
@@ -128,16 +136,26 @@ class IkNode(Node):
         create_input_subscription(self, Twist, 'target_twist', self.on_target_twist, depth)
         if self.command_filter is not None:
             self.create_timer(self.command_filter.period, self.publish_streamed_command)
+        self.workspace = WorkspaceReporter(
+            self, self.geometry, self.base_frame, values['workspace_resolution'],
+            values['travel_range_rate'], lambda: self.check.last_pose, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
 
     def on_parameter_change(self, name, value):
-        """Take a new tool frame (already validated) from the next message on."""
+        """Apply a validated run-time change: a new tool frame, or a new workspace resolution."""
         if name.startswith('tool_frame'):
             self.frames = frames_from_parameters(
                 {spec.name: self.get_parameter(spec.name).value
                  for spec in parameter_spec.FRAME_PARAMETERS})
+        elif name == 'workspace_resolution':
+            self.workspace.set_resolution(value)
+
+    def destroy_node(self):
+        """Stop the workspace worker, then destroy the node."""
+        self.workspace.shutdown()
+        return super().destroy_node()
 
     def on_target_pose(self, message: Pose):
         """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""

@@ -30,6 +30,13 @@ PLATFORM_COLOUR = ColorRGBA(r=0.3, g=0.5, b=0.9, a=0.8)
 #: Marker line widths, metres.
 LEG_WIDTH = 0.01
 OUTLINE_WIDTH = 0.006
+#: Workspace boundary points: one colour per limit, in LIMIT_NAMES order (stroke min, stroke
+#: max, base cone, platform cone, singularity margin), as in the workspace figures.
+LIMIT_COLOURS = tuple(ColorRGBA(r=r, g=g, b=b, a=0.8) for r, g, b in (
+    (0.12, 0.47, 0.71), (0.84, 0.15, 0.16), (0.17, 0.63, 0.17), (1.0, 0.5, 0.05),
+    (0.58, 0.4, 0.74)))
+#: Size of a workspace boundary point, metres.
+WORKSPACE_POINT_SIZE = 0.004
 
 
 def platform_markers(header, geometry, position, rotation, violating_legs=(),
@@ -69,6 +76,36 @@ def platform_markers(header, geometry, position, rotation, violating_legs=(),
         legs.colors += [colour, colour]
     return MarkerArray(markers=[outline(0, geometry.base_joints, BASE_COLOUR),
                                 outline(1, platform_joints, PLATFORM_COLOUR), legs])
+
+
+def workspace_markers(header, points, limits, namespace='stewart_platform') -> MarkerArray:
+    """
+    Markers of the workspace boundary: points coloured by the limit met there.
+
+    :param header: std_msgs/msg/Header whose ``frame_id`` is the base frame.
+    :param points: boundary points, metres, base frame, shape (M, 3).
+    :param limits: per point, the index of its limit in
+        :data:`stewart_kinematics.limits.LIMIT_NAMES`.
+    :param namespace: the markers' namespace is this plus ``/workspace``.
+    :returns: a DELETEALL marker (so that a new boundary replaces the old one), then one
+        POINTS marker per limit met, its id the limit's index.
+    """
+    namespace = f'{namespace}/workspace'
+    clear = Marker(header=header, ns=namespace, action=Marker.DELETEALL)
+    markers = [clear]
+    points = np.asarray(points, dtype=float)
+    limits = np.asarray(limits)
+    for index, colour in enumerate(LIMIT_COLOURS):
+        chosen = points[limits == index]
+        if not len(chosen):
+            continue
+        marker = Marker(header=header, ns=namespace, id=index, type=Marker.POINTS,
+                        action=Marker.ADD, color=colour)
+        marker.pose.orientation.w = 1.0
+        marker.scale.x = marker.scale.y = WORKSPACE_POINT_SIZE
+        marker.points = [Point(x=x, y=y, z=z) for x, y, z in chosen.tolist()]
+        markers.append(marker)
+    return MarkerArray(markers=markers)
 
 
 def _point(xyz) -> Point:

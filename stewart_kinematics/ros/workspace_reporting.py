@@ -1,0 +1,256 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+"""
+ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off the command path.
+
+The core's :mod:`stewart_kinematics.workspace` does the work in a worker process of its own
+(:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
+measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. A
+guard condition hands each result back to the executor, whose callback only converts and
+publishes. So a 3 s workspace computation or a 0.2 s travel range never holds up a pose in the
+command stream, and at most one job of each kind is in flight: a travel range due while the
+last one is still running is skipped.
+"""
+
+import multiprocessing
+import os
+import threading
+
+import numpy as np
+from rclpy.event_handler import PublisherEventCallbacks
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
+
+from stewart_kinematics import workspace
+from stewart_kinematics.ros.markers import workspace_markers
+from stewart_kinematics.ros.node_main import create_output_publisher
+from stewart_kinematics.rotations import matrix_to_euler_zyx
+from visualization_msgs.msg import MarkerArray
+
+#: Scheduling priority of the worker process below the node's (nice(2) increment): on a
+#: busy machine the operating system runs the command path first.
+WORKER_NICENESS = 10
+#: How often ik_node looks for a first subscriber of workspace_markers without travel
+#: ranges, seconds (with them, at each travel range).
+MARKER_CHECK_PERIOD = 1.0
+#: Layout of travel_ranges: (axis, end), row-major; offsets from the pose, m and rad.
+TRAVEL_RANGE_LAYOUT = (
+    MultiArrayDimension(label='axis: X, Y, Z [m], alpha, beta, gamma [rad]', size=6,
+                        stride=12),
+    MultiArrayDimension(label='end: negative, positive (offset from the last accepted pose)',
+                        size=2, stride=2),
+)
+
+
+def travel_ranges_to_message(ranges) -> Float64MultiArray:
+    """Return the 12 values ``[X-, X+, Y-, Y+, ..., gamma+]`` with their labelled layout."""
+    message = Float64MultiArray(data=ranges.as_array().ravel().tolist())
+    message.layout.dim = list(TRAVEL_RANGE_LAYOUT)
+    return message
+
+
+class WorkspaceReporter:
+    """
+    Publish ``workspace_markers`` (latched) and ``travel_ranges`` for a node.
+
+    Nothing is computed for nobody: the worker process starts, and the workspace is computed,
+    once ``workspace_markers`` has a subscriber (checked at each travel range, or every
+    second; latched, so later subscribers get it too), again when the resolution changes; a
+    travel range is computed only while ``travel_ranges`` has a subscriber and the last
+    accepted pose has moved since the last one (otherwise that one is published again).
+
+    :param node: the node (ik_node).
+    :param geometry: its :class:`stewart_kinematics.Geometry`.
+    :param base_frame: frame of the markers.
+    :param resolution: grid step of the workspace, metres; 0 for no markers.
+    :param travel_range_rate: hertz; 0 for no travel ranges.
+    :param last_pose: a callable returning the last accepted ``(position, rotation)`` or None
+        (the home pose is used until a pose has been accepted).
+    :param depth: queue depth of travel_ranges.
+    """
+
+    def __init__(self, node, geometry, base_frame, resolution, travel_range_rate, last_pose,
+                 depth):
+        self.node, self.geometry, self.base_frame = node, geometry, base_frame
+        self.last_pose = last_pose
+        self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
+        self.lock = threading.Lock()
+        self.worker = None
+        #: Results waiting for the executor: kind -> (generation, value or exception).
+        self.results = {}
+        self.busy = set()
+        self.marker_generation = 0
+        self.resolution = resolution
+        self.markers_due = False
+        #: The last travel range message and the pose it was computed from.
+        self.travel = None
+        self.handoff = node.create_guard_condition(self.publish_results)
+        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        # Without rclpy's default QoS event handlers, and one timer for both outputs: every
+        # entity of a node adds to its executor's work at each message of the command stream.
+        self.marker_publisher = node.create_publisher(
+            MarkerArray, 'workspace_markers', latched,
+            event_callbacks=PublisherEventCallbacks(use_default_callbacks=False))
+        self.travel_publisher = create_output_publisher(
+            node, Float64MultiArray, 'travel_ranges', depth)
+        self.travel_rate = travel_range_rate
+        self.timer = node.create_timer(
+            1.0 / travel_range_rate if travel_range_rate > 0.0 else MARKER_CHECK_PERIOD,
+            self.on_timer)
+        self.set_resolution(resolution)
+
+    def on_timer(self):
+        """Start what is due: the markers for a first subscriber, a travel range."""
+        self.request_markers()
+        if self.travel_rate > 0.0:
+            self.request_travel_ranges()
+
+    def set_resolution(self, resolution):
+        """Compute the workspace at a new resolution (0: clear the markers) and publish it."""
+        self.marker_generation += 1
+        self.resolution = resolution
+        self.markers_due = resolution > 0.0
+        if resolution > 0.0:
+            self.request_markers()
+        else:
+            self.marker_publisher.publish(workspace_markers(self._header(), np.zeros((0, 3)),
+                                                            [], self.namespace))
+
+    def request_markers(self):
+        """Start the workspace computation if it is due and someone subscribes."""
+        if self.markers_due and self.marker_publisher.get_subscription_count():
+            self.markers_due = False
+            self._submit('markers', self.marker_generation, 'workspace_shell',
+                         resolution=self.resolution)
+
+    def request_travel_ranges(self):
+        """Start a travel range computation from the last accepted pose, unless one runs."""
+        if 'travel' in self.busy or not self.travel_publisher.get_subscription_count():
+            return
+        last = self.last_pose()
+        pose = np.array(self.geometry.home_pose, dtype=float)
+        if last is not None:
+            pose = np.concatenate([last[0], matrix_to_euler_zyx(last[1])])
+        if self.travel is not None and np.array_equal(self.travel[0], pose):
+            self.travel_publisher.publish(self.travel[1])
+            return
+        self._submit('travel', pose, 'travel_ranges', pose)
+
+    def _submit(self, kind, tag, function, *args, **kwargs):
+        if self.worker is None:
+            self.worker = WorkspaceWorker(self.geometry, self._on_result)
+        self.busy.add(kind)
+        self.worker.submit((kind, tag), function, *args, **kwargs)
+
+    def _on_result(self, tag, value):
+        """Keep a finished result and wake the executor (the worker's reader thread)."""
+        kind, generation = tag
+        with self.lock:
+            self.results[kind] = (generation, value)
+        self.handoff.trigger()
+
+    def publish_results(self):
+        """Publish the results the worker has finished (executor thread)."""
+        with self.lock:
+            results, self.results = self.results, {}
+        for kind, (tag, value) in results.items():
+            self.busy.discard(kind)
+            if isinstance(value, Exception):
+                self.node.get_logger().error(f'{kind} computation failed: {value}')
+            elif kind == 'travel':
+                self.travel = tag, travel_ranges_to_message(value)
+                self.travel_publisher.publish(self.travel[1])
+            elif tag == self.marker_generation:
+                self.marker_publisher.publish(workspace_markers(
+                    self._header(), value.points, value.limit, self.namespace))
+                self.node.get_logger().info(
+                    f'workspace_markers: {len(value.points)} boundary points, volume '
+                    f'{value.volume:.6f} m^3 at the home orientation')
+
+    def _header(self):
+        return Header(stamp=self.node.get_clock().now().to_msg(), frame_id=self.base_frame)
+
+    def shutdown(self):
+        """Stop the worker process (a computation under way is dropped); free the entities."""
+        if self.worker is not None:
+            self.worker.close()
+            self.worker = None
+        self.node.destroy_timer(self.timer)
+        self.node.destroy_guard_condition(self.handoff)
+        # No cycle through the node is left for the garbage collector.
+        self.last_pose = self.handoff = self.timer = None
+
+
+class WorkspaceWorker:
+    """
+    A process that runs functions of :mod:`stewart_kinematics.workspace` for one geometry.
+
+    Started with the ``forkserver`` method (a clean interpreter: forking a process that runs
+    DDS threads is unsafe), at a lower scheduling priority; jobs run one after the other;
+    each result, or the exception as a ``RuntimeError``, goes to ``on_result(tag, value)``,
+    called in a reader thread. Closing terminates the process at once, so a node never waits
+    for a computation to exit.
+
+    :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
+    :param on_result: called with each job's tag and result.
+    """
+
+    def __init__(self, geometry, on_result):
+        context = multiprocessing.get_context('forkserver')
+        self.jobs, self.results = context.Queue(), context.Queue()
+        self.on_result = on_result
+        self.process = context.Process(target=_serve, args=(geometry, self.jobs, self.results),
+                                       name='workspace', daemon=True)
+        self.process.start()
+        self.reader = threading.Thread(target=self._read, name='workspace results',
+                                       daemon=True)
+        self.reader.start()
+
+    def submit(self, tag, function, *args, **kwargs):
+        """Queue ``workspace.<function>(geometry, *args, **kwargs)``; ``tag`` names the job."""
+        self.jobs.put((tag, function, args, kwargs))
+
+    def _read(self):
+        while True:
+            try:
+                item = self.results.get()
+            except (EOFError, OSError, TypeError, ValueError):
+                # The queue closed under the reader as the process exits.
+                return
+            if item is None:
+                return
+            self.on_result(*item)
+
+    def close(self):
+        """Terminate the process and the reader; jobs not finished are dropped."""
+        self.process.terminate()
+        self.results.put(None)
+        for channel in (self.jobs, self.results):
+            channel.cancel_join_thread()
+
+
+def _serve(geometry, jobs, results):
+    """Run jobs until the parent terminates the process (the worker process's main)."""
+    # Below the node on a busy machine: the command path comes first.
+    os.nice(WORKER_NICENESS)
+    while True:
+        tag, function, args, kwargs = jobs.get()
+        try:
+            value = getattr(workspace, function)(geometry, *args, **kwargs)
+        except Exception as error:   # sent back as text: any exception pickles as this one
+            value = RuntimeError(f'{type(error).__name__}: {error}')
+        results.put((tag, value))

@@ -1,0 +1,230 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+
+r"""
+``stewart_workspace``: what a platform can reach, from the nodes' own parameter files.
+
+Prints the travel ranges from the home pose (or ``--pose``) and the volume of the
+constant-orientation workspace, and writes to ``--output``: ``workspace.yaml`` (the numbers),
+``workspace_slices.png`` (XY, XZ and YZ slices through the pose, boundary coloured by the
+limit met), ``orientation_workspace.png`` (reachable alpha and beta at the position, for three
+gamma values) and ``dexterity.png`` (condition number over the slices)::
+
+    stewart_workspace --params-file config/paper_platform.yaml \\
+        --params-file config/example_limits.yaml --output workspace_output
+"""
+
+import argparse
+import math
+from pathlib import Path
+import sys
+import time
+
+import numpy as np
+import yaml
+
+#: Slice and volume resolutions by default: millimetres, degrees.
+DEFAULT_SLICE_RESOLUTION_MM = 2.0
+DEFAULT_VOLUME_RESOLUTION_MM = 10.0
+DEFAULT_ANGLE_RESOLUTION_DEG = 0.25
+#: gamma of the orientation workspace figure, as fractions of the positive gamma range.
+GAMMA_FRACTIONS = (0.0, 0.5, 0.9)
+
+
+class ProgressBar:
+    """
+    A plain text progress bar on stderr: ``[#####-----] 3/6 volume``.
+
+    Drawn in place with a carriage return on a terminal, one line per step otherwise (a log
+    file, a test capturing the output).
+    """
+
+    def __init__(self, total, stream=None, width=30):
+        self.total, self.done, self.width = total, 0, width
+        self.stream = sys.stderr if stream is None else stream
+        self.started = time.monotonic()
+        self.interactive = hasattr(self.stream, 'isatty') and self.stream.isatty()
+
+    def step(self, label):
+        """Announce the step about to run."""
+        filled = self.width * self.done // self.total
+        line = (f'[{"#" * filled}{"-" * (self.width - filled)}] {self.done}/{self.total} '
+                f'{label} ({time.monotonic() - self.started:.1f} s)')
+        self.stream.write(f'\r{line:<79}' if self.interactive else line + '\n')
+        self.stream.flush()
+        self.done += 1
+
+    def close(self):
+        """Draw the full bar and end the line."""
+        self.done = self.total
+        self.step('done')
+        if self.interactive:
+            self.stream.write('\n')
+
+
+def parse_arguments(argv):
+    """Return the command-line options."""
+    parser = argparse.ArgumentParser(
+        prog='stewart_workspace', description=__doc__.split('\n\n')[1].split('::')[0])
+    parser.add_argument('--params-file', dest='params_files', action='append', required=True,
+                        type=Path, help='ROS 2 parameter file with the geometry and limits; '
+                                        'repeat it to layer files, as the nodes take them')
+    parser.add_argument('--node-name', default=None,
+                        help="also apply this node's sections of the files (default: /** only)")
+    parser.add_argument('--output', type=Path, default=Path('workspace_output'),
+                        help='folder for workspace.yaml and the figures '
+                             '(default workspace_output/)')
+    parser.add_argument('--pose', type=float, nargs=6, default=None,
+                        metavar=('X', 'Y', 'Z', 'ALPHA', 'BETA', 'GAMMA'),
+                        help='start pose in metres and degrees (default: the home pose)')
+    parser.add_argument('--slice-resolution-mm', type=float,
+                        default=DEFAULT_SLICE_RESOLUTION_MM,
+                        help=f'grid step of the slices (default {DEFAULT_SLICE_RESOLUTION_MM})')
+    parser.add_argument('--volume-resolution-mm', type=float,
+                        default=DEFAULT_VOLUME_RESOLUTION_MM,
+                        help='grid step of the volume (default '
+                             f'{DEFAULT_VOLUME_RESOLUTION_MM})')
+    parser.add_argument('--angle-resolution-deg', type=float,
+                        default=DEFAULT_ANGLE_RESOLUTION_DEG,
+                        help='grid step of the orientation workspace (default '
+                             f'{DEFAULT_ANGLE_RESOLUTION_DEG})')
+    parser.add_argument('--no-figures', action='store_true', help='write the YAML only')
+    options = parser.parse_args(argv)
+    for name in ('slice_resolution_mm', 'volume_resolution_mm', 'angle_resolution_deg'):
+        value = getattr(options, name)
+        if not 0.0 < value < math.inf:
+            parser.error(f'--{name.replace("_", "-")} must be positive, got {value}')
+    return options
+
+
+def main(argv=None) -> int:
+    """Run the report; return 0, or 1 with a message when the geometry cannot be used."""
+    options = parse_arguments(argv)
+    from stewart_kinematics.parameter_spec import load_geometry
+    try:
+        geometry = load_geometry(options.params_files, options.node_name)
+        report = workspace_report(geometry, options)
+    except ValueError as error:
+        print(f'stewart_workspace: {error}', file=sys.stderr)
+        return 1
+    report['parameter_files'] = [str(path) for path in options.params_files]
+    options.output.mkdir(parents=True, exist_ok=True)
+    path = options.output / 'workspace.yaml'
+    with open(path, 'w', encoding='utf-8') as stream:
+        yaml.safe_dump(report, stream, sort_keys=False, default_flow_style=None)
+    print(f'numbers written to {path}')
+    return 0
+
+
+def workspace_report(geometry, options) -> dict:
+    """Compute everything, print the tables, write the figures; return the numbers."""
+    from stewart_kinematics import workspace
+    pose = np.array(geometry.home_pose, dtype=float)
+    if options.pose is not None:
+        pose = np.array(options.pose[:3] + [math.radians(angle) for angle in options.pose[3:]])
+    slice_step = options.slice_resolution_mm * 1e-3
+    angle_step = math.radians(options.angle_resolution_deg)
+    progress = ProgressBar(7 if options.no_figures else 8)
+    timings = {}
+
+    def timed(name, label, function, *args, **kwargs):
+        progress.step(label)
+        start = time.perf_counter()
+        result = function(*args, **kwargs)
+        timings[name] = round(time.perf_counter() - start, 3)
+        return result
+
+    ranges = timed('travel_ranges', 'travel ranges', workspace.travel_ranges, geometry, pose)
+    volume = timed('volume', 'volume', workspace.workspace_volume, geometry, pose[3:],
+                   position=pose[:3], resolution=options.volume_resolution_mm * 1e-3)
+    slices = [timed(f'slice_{plane}', f'{plane} slice', workspace.workspace_slice, geometry,
+                    plane, pose, resolution=slice_step) for plane in ('XY', 'XZ', 'YZ')]
+    gamma_range = ranges.axes[5].positive
+    gammas = [pose[5] + fraction * gamma_range for fraction in GAMMA_FRACTIONS]
+    orientation = timed('orientation_workspace', 'orientation workspace',
+                        workspace.orientation_workspace, geometry, pose[:3], gammas,
+                        resolution=angle_step)
+    figures = []
+    if not options.no_figures:
+        from stewart_kinematics.tools.workspace_plots import write_workspace_figures
+        figures = timed('figures', 'figures', write_workspace_figures, options.output, slices,
+                        orientation)
+    progress.close()
+
+    print('Travel ranges from the pose '
+          + ', '.join(f'{name} {value:.6g}' for name, value in zip(
+              ('X [m]', 'Y [m]', 'Z [m]', 'alpha [rad]', 'beta [rad]', 'gamma [rad]'), pose)))
+    print(ranges.table())
+    box = volume.bounding_box * 1e3
+    unbounded = '' if volume.bounded else ', UNBOUNDED: the part within the span'
+    print(f'\nConstant-orientation workspace at alpha, beta, gamma = '
+          f'{", ".join(f"{math.degrees(a):.4g}" for a in volume.orientation)} deg: '
+          f'{volume.volume:.6f} m^3 ({volume.volume * 1e3:.3f} litres), grid '
+          f'{volume.resolution * 1e3:g} mm{unbounded}')
+    print(f'bounding box: X {box[0, 0]:.1f} .. {box[1, 0]:.1f} mm, '
+          f'Y {box[0, 1]:.1f} .. {box[1, 1]:.1f} mm, Z {box[0, 2]:.1f} .. {box[1, 2]:.1f} mm')
+    for path in figures:
+        print(f'figure written to {path}')
+    return {
+        'start_pose': _floats(pose),
+        'travel_ranges': {
+            travel.axis: {'unit': travel.unit, 'negative': float(travel.negative),
+                          'positive': float(travel.positive),
+                          'negative_limit': travel.negative_limit,
+                          'negative_leg': travel.negative_leg,
+                          'positive_limit': travel.positive_limit,
+                          'positive_leg': travel.positive_leg}
+            for travel in ranges.axes},
+        'travel_range_tolerance': {'m': ranges.tolerance[0], 'rad': ranges.tolerance[1]},
+        'volume': {'orientation_rad': _floats(volume.orientation),
+                   'volume_m3': float(volume.volume),
+                   'bounding_box_m': {'min': _floats(volume.bounding_box[0]),
+                                      'max': _floats(volume.bounding_box[1])},
+                   'resolution_m': float(volume.resolution), 'bounded': bool(volume.bounded),
+                   'boundary_points': int(len(volume.boundary)),
+                   'boundary_points_by_limit': _by_limit(volume.boundary_limit)},
+        'slices': [_slice_numbers(result) for result in slices],
+        'orientation_workspace': [_slice_numbers(result) for result in orientation],
+        'seconds': timings,
+    }
+
+
+def _slice_numbers(result):
+    condition = result.condition[np.isfinite(result.condition)]
+    return {
+        'plane': '-'.join(result.labels), 'pose': _floats(result.pose),
+        'area': float(result.area),
+        'area_unit': {2: 'm^2', 1: 'm rad', 0: 'rad^2'}[sum(axis < 3 for axis in result.axes)],
+        'resolution': _floats([result.u[1] - result.u[0], result.v[1] - result.v[0]]),
+        'bounded': bool(result.bounded),
+        'boundary_points_by_limit': _by_limit(result.boundary_limit),
+        'condition_number': ({'min': float(condition.min()),
+                              'median': float(np.median(condition)),
+                              'max': float(condition.max())} if condition.size else None),
+    }
+
+
+def _by_limit(limits_met):
+    from stewart_kinematics.limits import LIMIT_NAMES
+    counts = np.bincount(limits_met[limits_met >= 0], minlength=len(LIMIT_NAMES))
+    return {name: int(count) for name, count in zip(LIMIT_NAMES, counts) if count}
+
+
+def _floats(values):
+    return [float(value) for value in values]
+
+
+if __name__ == '__main__':
+    sys.exit(main())
