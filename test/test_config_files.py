@@ -191,7 +191,7 @@ def test_ik_and_fk_see_the_same_geometry(nodes):
     assert (fk.tracker.settings.tolerance, fk.tracker.settings.max_iterations) == (1e-12, 50)
 
 
-def test_geometry_from_yaml_reads_the_paper_platform():
+def test_load_geometry_reads_the_paper_platform():
     """load_geometry reads Tables 1 and 2 (mm typed here, / 1000) and the home pose."""
     geometry = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml')
     base_mm = [[48.6989, 219.6666, 0.0], [165.8874, 152.0078, 0.0],
@@ -214,7 +214,7 @@ def test_geometry_from_yaml_reads_the_paper_platform():
         [0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488], atol=1e-8)
 
 
-def test_geometry_from_yaml_with_a_node_name():
+def test_load_geometry_with_a_node_name():
     """Reading the file as a named node applies /** as well (that node has no own section)."""
     plain = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml')
     as_ik = load_geometry(CONFIG_DIRECTORY / 'paper_platform.yaml', node_name='ik_node')

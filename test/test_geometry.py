@@ -72,20 +72,20 @@ def paper_yaml_section():
         f'    home_position: [0.0, 0.0, {HOME_Z}]\n')
 
 
-def test_from_yaml_gives_table_1_base_joints_in_metres():
+def test_load_geometry_gives_table_1_base_joints_in_metres():
     """config/paper_platform.yaml holds Table 1 converted to metres."""
     geometry = load_geometry(PAPER_PLATFORM_YAML)
     assert_allclose(geometry.base_joints, BASE_M, rtol=0.0, atol=1e-12)
 
 
-def test_from_yaml_gives_table_2_platform_joints_in_metres():
+def test_load_geometry_gives_table_2_platform_joints_in_metres():
     """config/paper_platform.yaml holds Table 2 converted to metres, with p_3 z = 0.257."""
     geometry = load_geometry(PAPER_PLATFORM_YAML)
     assert_allclose(geometry.platform_joints, PLATFORM_M, rtol=0.0, atol=1e-12)
     assert geometry.platform_joints[2, 2] == pytest.approx(0.257, abs=1e-12)
 
 
-def test_from_yaml_home_pose_and_limits():
+def test_load_geometry_home_pose_and_limits():
     """The paper's home pose is [0, 0, 0.4325, 0, 0, 0] and the legs have no limits."""
     geometry = load_geometry(str(PAPER_PLATFORM_YAML))
     assert_allclose(geometry.home_pose, [0.0, 0.0, HOME_Z, 0.0, 0.0, 0.0], rtol=0.0, atol=0.0)
@@ -282,35 +282,35 @@ def test_from_parameters_bad_value_names_parameter_and_value():
         geometry_from_parameters(values)
 
 
-def test_from_yaml_missing_file_raises_naming_the_path(tmp_path):
+def test_load_geometry_missing_file_raises_naming_the_path(tmp_path):
     """A missing file raises ValueError naming it."""
     path = tmp_path / 'absent.yaml'
     with pytest.raises(ValueError, match=r'cannot read parameter file .*absent\.yaml'):
         load_geometry(path)
 
 
-def test_from_yaml_invalid_yaml_raises(tmp_path):
+def test_load_geometry_invalid_yaml_raises(tmp_path):
     """A file that is not YAML raises ValueError saying so."""
     path = write_file(tmp_path, '/**:\n  ros__parameters: [unclosed\n')
     with pytest.raises(ValueError, match='not valid YAML'):
         load_geometry(path)
 
 
-def test_from_yaml_bad_value_names_parameter_and_value(tmp_path):
+def test_load_geometry_bad_value_names_parameter_and_value(tmp_path):
     """A negative leg_length_min raises ValueError naming the file, parameter and value."""
     path = write_file(tmp_path, paper_yaml_section() + '    leg_length_min: -0.25\n')
     with pytest.raises(ValueError, match=r"params\.yaml: parameter 'leg_length_min'.*-0\.25"):
         load_geometry(path)
 
 
-def test_from_yaml_bad_geometry_names_file_and_problem(tmp_path):
+def test_load_geometry_bad_geometry_names_file_and_problem(tmp_path):
     """Limits that exclude the home pose raise ValueError naming the file and the legs."""
     path = write_file(tmp_path, paper_yaml_section() + '    leg_length_max: 0.5\n')
     with pytest.raises(ValueError, match=r'params\.yaml: the home pose breaks the limits: leg'):
         load_geometry(path)
 
 
-def test_from_yaml_node_section_overrides_wildcard(tmp_path):
+def test_load_geometry_node_section_overrides_wildcard(tmp_path):
     """A node's own section overrides '/**' for that node only."""
     text = (paper_yaml_section()
             + 'fk_node:\n  ros__parameters:\n    leg_length_max: 2.0\n'
@@ -325,7 +325,7 @@ def test_from_yaml_node_section_overrides_wildcard(tmp_path):
     assert_allclose(shared.home_pose[:3], [0.0, 0.0, HOME_Z], rtol=0.0, atol=0.0)
 
 
-def test_from_yaml_refuses_a_misspelt_parameter_name(tmp_path):
+def test_load_geometry_refuses_a_misspelt_parameter_name(tmp_path):
     """A typo in a parameter name is refused with the closest known name."""
     text = PAPER_PLATFORM_YAML.read_text(encoding='utf-8')
     path = tmp_path / 'typo.yaml'
@@ -334,7 +334,7 @@ def test_from_yaml_refuses_a_misspelt_parameter_name(tmp_path):
         load_geometry(path)
 
 
-def test_from_yaml_names_what_replaced_pivot_point(tmp_path):
+def test_load_geometry_names_what_replaced_pivot_point(tmp_path):
     """A file that still sets pivot_point is refused, naming the tool frame that replaced it."""
     path = tmp_path / 'old.yaml'
     path.write_text(PAPER_PLATFORM_YAML.read_text(encoding='utf-8').replace(
