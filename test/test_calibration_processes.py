@@ -31,6 +31,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
 from std_msgs.msg import Float64MultiArray
 from stewart_kinematics.tools.node_processes import find_executable
 import yaml
@@ -50,41 +51,22 @@ def run(arguments, cwd):
     return completed.returncode, completed.stdout, completed.stderr
 
 
-def rotation_matrix(alpha, beta, gamma):
-    """Return ``R = Rz(gamma) Ry(beta) Rx(alpha)``, the README's rotation convention."""
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
-
-
 def file_lengths(path, pose):
     """Leg lengths of ``pose`` (of the platform frame) for the joints of a parameter file."""
     with open(path, encoding='utf-8') as stream:
         parameters = yaml.safe_load(stream)['/**']['ros__parameters']
     assert 'pivot_point' not in parameters
-    base = np.reshape(parameters['base_joints'], (6, 3))
-    platform = np.reshape(parameters['platform_joints'], (6, 3))
-    legs = pose[:3] + platform @ rotation_matrix(*pose[3:]).T - base
-    return np.linalg.norm(legs, axis=1)
+    return np.array(reference.leg_lengths(
+        pose, np.reshape(parameters['base_joints'], (6, 3)),
+        np.reshape(parameters['platform_joints'], (6, 3))))
 
 
 def pose_message(pose):
     """geometry_msgs/msg/Pose of ``[X, Y, Z, alpha, beta, gamma]`` (quaternion of ZYX)."""
-    alpha, beta, gamma = pose[3:] / 2.0
     message = Pose()
     message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
     o = message.orientation
-    o.x = math.sin(alpha) * math.cos(beta) * math.cos(gamma) - math.cos(alpha) * math.sin(
-        beta) * math.sin(gamma)
-    o.y = math.cos(alpha) * math.sin(beta) * math.cos(gamma) + math.sin(alpha) * math.cos(
-        beta) * math.sin(gamma)
-    o.z = math.cos(alpha) * math.cos(beta) * math.sin(gamma) - math.sin(alpha) * math.sin(
-        beta) * math.cos(gamma)
-    o.w = math.cos(alpha) * math.cos(beta) * math.cos(gamma) + math.sin(alpha) * math.sin(
-        beta) * math.sin(gamma)
+    o.x, o.y, o.z, o.w = (float(v) for v in reference.quaternion_from_euler(*pose[3:]))
     return message
 
 

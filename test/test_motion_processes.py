@@ -23,7 +23,6 @@ the leg formula written out here; velocities are checked against finite differen
 published positions: nothing is shared with the package's code.
 """
 
-import math
 
 from builtin_interfaces.msg import Duration
 from diagnostic_msgs.msg import DiagnosticArray
@@ -32,6 +31,7 @@ from nav_msgs.msg import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import (
     JointTrajectory,
@@ -48,9 +48,8 @@ VELOCITY_MAX, ACCELERATION_MAX, JERK_MAX = 0.05, 0.25, 2.5
 #: Rate of the points of leg_trajectory in these tests, hertz.
 POINT_RATE = 200.0
 #: The paper's Table 3: X, Y, Z (m), alpha, beta, gamma (rad), rows 0..10.
-TABLE_3 = np.array([[0.01 * k, 0.015 * k, 0.4325 + 0.01 * k, math.radians(1.5 * k),
-                     math.radians(-1.5 * k), math.radians(2.0 * k)] for k in range(11)])
-HOME = np.array([0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
+TABLE_3 = np.array(reference.TABLE_3)
+HOME = TABLE_3[0]
 
 
 def read_geometry(path):
@@ -61,30 +60,14 @@ def read_geometry(path):
             np.reshape(parameters['platform_joints'], (6, 3)))
 
 
-def rotation_matrix(alpha, beta, gamma):
-    """``R = Rz(gamma) Ry(beta) Rx(alpha)``."""
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]])
-    ry = np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-    rz = np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ ry @ rx
-
-
 def pose_lengths(geometry, pose):
-    """Leg lengths ``|t + R p_i - b_i|`` of a pose, metres."""
-    base_joints, platform_joints = geometry
-    rotation = rotation_matrix(*pose[3:])
-    return np.linalg.norm(pose[:3] + platform_joints @ rotation.T - base_joints, axis=1)
+    """Leg lengths ``|t + R p_i - b_i|`` of a pose for ``geometry = (base, platform)``, metres."""
+    return np.array(reference.leg_lengths(pose, *geometry))
 
 
 def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``."""
-    ca, sa = math.cos(alpha / 2.0), math.sin(alpha / 2.0)
-    cb, sb = math.cos(beta / 2.0), math.sin(beta / 2.0)
-    cg, sg = math.cos(gamma / 2.0), math.sin(gamma / 2.0)
-    return (sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-            ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg)
+    """Quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``, as floats."""
+    return tuple(float(value) for value in reference.quaternion_from_euler(alpha, beta, gamma))
 
 
 def pose_message(pose):
