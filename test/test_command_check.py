@@ -24,12 +24,15 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
 
 from stewart_kinematics import CommandCheck, Geometry
 
 pytestmark = pytest.mark.core
 
 #: Tables 1 and 2 of the paper: base and platform joints, metres, as in paper_platform.yaml.
+#: Written as the file writes them (not millimetres / 1000), so that a joint can sit exactly on
+#: another.
 BASE = np.array([(0.0486989, 0.2196666, 0.0), (0.1658874, 0.1520078, 0.0),
                  (0.1658874, -0.1520078, 0.0), (0.0486989, -0.2196666, 0.0),
                  (-0.2145863, -0.0676588, 0.0), (-0.2145863, 0.0676588, 0.0)])
@@ -51,13 +54,7 @@ def geometry(**limits):
                     **limits)
 
 
-def rotation_zyx(alpha, beta, gamma):
-    """R = Rz(gamma) Ry(beta) Rx(alpha), as the product of the three textbook matrices."""
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    return (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-            @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-            @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
+rotation_zyx = reference.rotation_zyx
 
 
 def lengths_by_hand(position, rotation):
@@ -75,6 +72,19 @@ def test_an_allowed_pose_gives_its_leg_lengths():
     assert_allclose(command.lengths, lengths_by_hand(TILTED[:3], rotation), rtol=0.0,
                     atol=1e-15)
     assert_allclose(check.pose_vector(TILTED).lengths, command.lengths, rtol=0.0, atol=1e-15)
+
+
+def test_a_pose_from_a_quaternion_is_the_pose_of_its_matrix():
+    """pose_quaternion normalises (x, y, z, w) as geometry_msgs has it, and refuses a zero one."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    quaternion = 3.0 * reference.quaternion_from_euler(*TILTED[3:])   # not unit
+    command = check.pose_quaternion(TILTED[:3], quaternion)
+    assert command.accepted
+    assert_allclose(command.lengths, lengths_by_hand(TILTED[:3], rotation_zyx(*TILTED[3:])),
+                    rtol=0.0, atol=1e-14)
+    zero = check.pose_quaternion(TILTED[:3], (0.0, 0.0, 0.0, 0.0))
+    assert not zero.accepted and zero.refusal.code == 'invalid_pose'
+    assert check.pose_quaternion((0.0, math.nan, 0.45), quaternion).refusal.code == 'invalid_pose'
 
 
 def test_a_pose_beyond_the_limits_is_refused_with_every_violation():
