@@ -17,7 +17,7 @@ Rewrite the generated tables of README.md: parameters from the specs, benchmarks
 
 Each parameter table sits between ``<!-- parameters: GROUP -->`` and
 ``<!-- end parameters -->``, where GROUP names a tuple of
-:mod:`stewart_kinematics.parameter_spec` (``GEOMETRY``, ``SOLVER``, ``QUEUE``, ``RAMP``). Each
+:mod:`stewart_kinematics.parameters` (``GEOMETRY``, ``SOLVER``, ``QUEUE``, ``RAMP``). Each
 benchmark block sits between ``<!-- benchmark: NAME -->`` and ``<!-- end benchmark -->`` (NAME:
 ``machine``, ``results``, ``targets``) and is copied from the same block of
 ``benchmarks/results.md``, which benchmarks/run_benchmarks.py writes.
@@ -32,7 +32,7 @@ from pathlib import Path
 import re
 import sys
 
-from stewart_kinematics import parameter_spec
+from stewart_kinematics import parameters
 
 ROOT = Path(__file__).resolve().parent.parent
 README = ROOT / 'README.md'
@@ -54,8 +54,8 @@ def benchmark_blocks(text: str) -> dict:
 def render(text: str, results: str = None) -> str:
     """Return ``text`` with every marked table regenerated (benchmarks from ``results``)."""
     def table(match):
-        specs = getattr(parameter_spec, f'{match.group(2)}_PARAMETERS')
-        return match.group(1) + parameter_spec.markdown_table(specs) + '\n' + match.group(3)
+        specs = getattr(parameters, f'{match.group(2)}_PARAMETERS')
+        return match.group(1) + parameters.markdown_table(specs) + '\n' + match.group(3)
 
     if results is None:
         results = BENCHMARK_RESULTS.read_text(encoding='utf-8')

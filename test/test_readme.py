@@ -20,8 +20,8 @@ import re
 from numpy.testing import assert_allclose
 import pytest
 
-from stewart_kinematics import parameter_spec
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics import parameters
+from stewart_kinematics.parameters import load_geometry
 
 pytestmark = pytest.mark.node
 
@@ -30,17 +30,17 @@ README = (ROOT / 'README.md').read_text(encoding='utf-8')
 
 
 @pytest.mark.parametrize('specs', [
-    parameter_spec.GEOMETRY_PARAMETERS, parameter_spec.SOLVER_PARAMETERS,
-    parameter_spec.FRAME_PARAMETERS, parameter_spec.MARKER_PARAMETERS,
-    parameter_spec.QUEUE_PARAMETERS, parameter_spec.RAMP_PARAMETERS,
-    parameter_spec.ASSEMBLY_MODE_PARAMETERS, parameter_spec.ACTUATOR_PARAMETERS,
-    parameter_spec.MOTION_PARAMETERS, parameter_spec.STREAMING_PARAMETERS,
-    parameter_spec.WORKSPACE_PARAMETERS,
+    parameters.GEOMETRY_PARAMETERS, parameters.SOLVER_PARAMETERS,
+    parameters.FRAME_PARAMETERS, parameters.MARKER_PARAMETERS,
+    parameters.QUEUE_PARAMETERS, parameters.RAMP_PARAMETERS,
+    parameters.ASSEMBLY_MODE_PARAMETERS, parameters.ACTUATOR_PARAMETERS,
+    parameters.MOTION_PARAMETERS, parameters.STREAMING_PARAMETERS,
+    parameters.WORKSPACE_PARAMETERS,
 ], ids=['geometry', 'solver', 'frame', 'marker', 'queue', 'ramp', 'assembly_mode', 'actuator',
         'motion', 'streaming', 'workspace'])
 def test_parameter_tables_match_the_declarations(specs):
     """Each parameter table in the README is the one generated from the specs."""
-    assert parameter_spec.markdown_table(specs) in README, (
+    assert parameters.markdown_table(specs) in README, (
         'README.md is out of date: run .venv/bin/python scripts/update_readme_tables.py')
 
 

@@ -27,12 +27,24 @@ import sys
 
 import numpy as np
 
-from stewart_kinematics.calibration import (
-    calibrate, calibrated_parameters, CalibrationError, load_measurements, LOSSES,
-    MEASUREMENT_COLUMNS, measurement_poses, predict_actuator_positions, write_parameter_file)
-from stewart_kinematics.parameter_spec import (
-    ACTUATOR_PARAMETERS, check_known_names, check_values, geometry_from_parameters,
-    read_parameter_file)
+from stewart_kinematics.analysis.calibration import (
+    calibrate,
+    calibrated_parameters,
+    CalibrationError,
+    load_measurements,
+    LOSSES,
+    MEASUREMENT_COLUMNS,
+    measurement_poses,
+    predict_actuator_positions,
+    write_parameter_file,
+)
+from stewart_kinematics.parameters import (
+    ACTUATOR_PARAMETERS,
+    check_known_names,
+    check_values,
+    geometry_from_parameters,
+    read_parameter_file,
+)
 
 EPILOG = """\
 measurement CSV: a header row naming the columns, then one row per measured pose; other

@@ -35,14 +35,14 @@ from typing import Dict, List, Optional
 
 import numpy as np
 
-from stewart_kinematics.kinematics import (
+from stewart_kinematics.model.kinematics import (
     as_leg_lengths,
     as_poses,
     jacobian_condition,
     leg_lengths,
     leg_vectors,
 )
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: How many failing samples :func:`check_samples` lists in full.
 LISTED_FAILURES = 10
