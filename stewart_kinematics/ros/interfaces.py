@@ -66,7 +66,7 @@ class Endpoint:
     condition: str = ''
 
     @property
-    def type(self):
+    def message_type(self):
         """Return the message or service class, imported now (``ImportError`` if missing)."""
         package, kind, name = self.type_name.split('/')
         return getattr(importlib.import_module(f'{package}.{kind}'), name)
@@ -174,8 +174,8 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
 ))
 
 #: Every node's interface, by node name.
-NODE_INTERFACES = {interface.node: interface for interface in (IK_NODE, FK_NODE,
-                                                                TRAJECTORY_NODE)}
+NODE_INTERFACES = {
+    interface.node: interface for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE)}
 
 
 def markdown_table(interface: NodeInterface) -> str:
@@ -184,7 +184,8 @@ def markdown_table(interface: NodeInterface) -> str:
 
     A test compares the documentation with this, so it cannot drift from the code.
     """
-    lines = ['| Topic or service | Kind | Type | QoS | Meaning |', '| --- | --- | --- | --- | --- |']
+    lines = ['| Topic or service | Kind | Type | QoS | Meaning |',
+             '| --- | --- | --- | --- | --- |']
     for endpoint in interface.endpoints:
         meaning = endpoint.meaning + (f' (with `{endpoint.condition}`)'
                                       if endpoint.condition else '')
