@@ -641,11 +641,10 @@ class _Grid:
 
         :param dimensions: the grid dimensions to look along; default all.
         :returns: ``(poses (M, 6), limit (M,), leg (M,))``, the reachable side of each
-            crossing located to ``tolerance``; sets ``crossing_axis`` (the grid dimension
-            of each crossing) and ``crossing_entering`` (True where the line enters the
-            workspace as the coordinate grows).
+            crossing located to ``tolerance``; sets ``crossing_entering`` (True where the
+            line enters the workspace as the coordinate grows).
         """
-        inside, outside, axis_of, entering = [], [], [], []
+        inside, outside, entering = [], [], []
         for dimension in range(len(self.axes)) if dimensions is None else dimensions:
             count = self.allowed.shape[dimension]
             lower = np.take(self.allowed, np.arange(count - 1), axis=dimension)
@@ -659,10 +658,8 @@ class _Grid:
                                                else (low_index, high_index))
                 inside.append(self.poses(inside_index))
                 outside.append(self.poses(outside_index))
-                axis_of.append(np.full(len(found[0]), dimension))
                 entering.append(np.full(len(found[0]), enters))
         inside, outside = np.concatenate(inside), np.concatenate(outside)
-        self.crossing_axis = np.concatenate(axis_of)
         self.crossing_entering = np.concatenate(entering)
         tolerances = np.repeat(np.asarray(tolerance, dtype=float), 3)
         points, _, limit, leg = _bisect(self.geometry, inside, outside, tolerances)
