@@ -336,12 +336,14 @@ def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
     assert (check.modes_within_limits, check.near_known_pose) == (1, 0)
 
 
-def test_readme_table_of_the_modes_at_the_end_of_table_3_is_current():
+def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
     from stewart_kinematics.tools.assembly_modes_figure import markdown_table, table_3_end_modes
-    readme = (Path(__file__).resolve().parent.parent / 'README.md').read_text(encoding='utf-8')
+    page = (Path(__file__).resolve().parent.parent / 'doc' / 'assembly_modes.md').read_text(
+        encoding='utf-8')
     _, modes = table_3_end_modes()
-    assert markdown_table(modes) in readme, (
-        'README.md is out of date: run python -m stewart_kinematics.tools.assembly_modes_figure')
+    assert markdown_table(modes) in page, (
+        'doc/assembly_modes.md is out of date: run '
+        'python -m stewart_kinematics.tools.assembly_modes_figure')
 
 
 def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper):
