@@ -32,10 +32,15 @@ import time
 
 import numpy as np
 from stewart_kinematics import (
-    assembly_mode_margin, assembly_modes, forward_kinematics, Geometry, inverse_kinematics,
-    load_geometry)
-from stewart_kinematics.assembly_modes import pose_distance, start_system
-from stewart_kinematics.rotations import matrix_to_euler_zyx, quaternion_to_matrix
+    assembly_mode_margin,
+    assembly_modes,
+    forward_kinematics,
+    Geometry,
+    inverse_kinematics,
+    load_geometry,
+)
+from stewart_kinematics.analysis.assembly_modes import pose_distance, start_system
+from stewart_kinematics.model.rotations import matrix_to_euler_zyx, quaternion_to_matrix
 import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -91,7 +96,7 @@ def tracking_cost(geometry, updates=2000):
     Table 3 ramp sampled at ``updates`` points.
     """
     from stewart_kinematics import PoseTracker
-    from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
+    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
     fractions = np.linspace(0.0, 1.0, updates)[:, None]
     lengths = inverse_kinematics(geometry, geometry.home_pose + fractions
                                  * (TABLE_3_END - geometry.home_pose))

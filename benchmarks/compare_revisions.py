@@ -133,7 +133,7 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory() as directory:
         old = import_baseline(Path(args.old).resolve(), directory)
         old.load_geometry = importlib.import_module(f'{BASELINE}.parameter_spec').load_geometry
-        new.load_geometry = importlib.import_module('stewart_kinematics.parameter_spec') \
+        new.load_geometry = importlib.import_module('stewart_kinematics.parameters') \
             .load_geometry
         data = workload(new, config, args.random, args.batch)
         figures = compare((old, new), config, args.rounds, data)

@@ -42,6 +42,7 @@ from stewart_kinematics import (
     check_trajectory,
     CommandFilter,
     inverse_kinematics,
+    limits,
     load_geometry,
     plan_motion,
     PoseTrajectory,
@@ -49,8 +50,7 @@ from stewart_kinematics import (
     retime,
     TimedTrajectory,
 )
-from stewart_kinematics import limits
-from stewart_kinematics.parameter_spec import read_parameter_file
+from stewart_kinematics.parameters import read_parameter_file
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = [ROOT / 'config' / 'paper_platform.yaml', ROOT / 'config' / 'example_limits.yaml']

@@ -51,9 +51,14 @@ import warnings
 import numpy as np
 
 from stewart_kinematics import (
-    euler_zyx_to_matrix, forward_kinematics, inverse_kinematics, load_geometry,
-    matrix_to_euler_zyx, Ramp)
-from stewart_kinematics.rotations import rotation_angle_between
+    euler_zyx_to_matrix,
+    forward_kinematics,
+    inverse_kinematics,
+    load_geometry,
+    matrix_to_euler_zyx,
+    Ramp,
+)
+from stewart_kinematics.model.rotations import rotation_angle_between
 from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
 
 ROOT = Path(__file__).resolve().parent.parent

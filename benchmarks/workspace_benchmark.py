@@ -42,7 +42,7 @@ import time
 import numpy as np
 
 from stewart_kinematics import limits, load_geometry, travel_ranges
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.tools.node_processes import find_executable
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -118,7 +118,7 @@ def stall_rows(rows):
     which shares the interpreter lock with the command path.
     """
     import threading
-    from stewart_kinematics.command_check import CommandCheck
+    from stewart_kinematics.decisions.command_check import CommandCheck
     from stewart_kinematics.ros.workspace_reporting import WorkspaceWorker
 
     geometry = load_geometry(FILES)

@@ -73,8 +73,8 @@ autodoc_default_options = {'members': True}
 autodoc_mock_imports = ['toppra', 'ruckig', 'matplotlib', 'rosbags']
 
 # Doctests (``sphinx-build -b doctest``): every ``>>>`` example of the docstrings and the pages
-# runs, importing what it uses, from the repository root, so that ``load_geometry('config/paper_platform.yaml')`` works
-# as written (the package's config/ folder holds the paper's platform).
+# runs, importing what it uses, from the repository root, so that
+# ``load_geometry('config/paper_platform.yaml')`` works as written.
 doctest_global_setup = """
 import os as _os
 from pathlib import Path as _Path

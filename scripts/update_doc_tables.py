@@ -69,7 +69,8 @@ def main() -> int:
         updated = render(text)
         if updated != text:
             page.write_text(updated, encoding='utf-8')
-        print(f'{page.relative_to(ROOT)} ' + ('updated' if updated != text else 'already up to date'))
+        state = 'updated' if updated != text else 'already up to date'
+        print(f'{page.relative_to(ROOT)} {state}')
     return 0
 
 

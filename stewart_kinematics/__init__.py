@@ -34,19 +34,26 @@ Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
 """
 
-from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.assembly_modes import (
+from stewart_kinematics.analysis.assembly_modes import (
     assembly_mode_margin,
     assembly_modes,
     AssemblyMode,
     AssemblyModeMargin,
     AssemblyModes,
 )
-from stewart_kinematics.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.analysis.workspace import (
+    orientation_workspace,
+    travel_ranges,
+    workspace_slice,
+    workspace_volume,
+)
+from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.decisions.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.frames import FrameTree, Transform
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.kinematics import (
+from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.frames import FrameTree, Transform
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.model.kinematics import (
     forward_kinematics,
     ForwardKinematicsResult,
     inverse_kinematics,
@@ -55,13 +62,7 @@ from stewart_kinematics.kinematics import (
     leg_vectors,
     twist_jacobian,
 )
-from stewart_kinematics.parameter_spec import (
-    frames_from_parameters,
-    geometry_from_parameters,
-    load_geometry,
-)
-from stewart_kinematics.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
     matrix_to_euler_zyx,
@@ -69,25 +70,18 @@ from stewart_kinematics.rotations import (
     quaternion_to_euler_zyx,
     quaternion_to_matrix,
 )
-from stewart_kinematics.streaming import CommandFilter, FilteredCommand
-from stewart_kinematics.trajectories import (
-    check_trajectory,
-    leg_trajectory,
-    LegTrajectory,
-    MotionPlan,
-    plan_motion,
-    PoseTrajectory,
-    retime,
-    TimedTrajectory,
-    TrajectoryCheck,
-)
-from stewart_kinematics.trajectory import Ramp
-from stewart_kinematics.velocities import leg_velocities, platform_twist, SingularPoseError
-from stewart_kinematics.workspace import (
-    orientation_workspace,
-    travel_ranges,
-    workspace_slice,
-    workspace_volume,
+from stewart_kinematics.model.velocities import leg_velocities, platform_twist, SingularPoseError
+from stewart_kinematics.motion.leg_trajectory import leg_trajectory, LegTrajectory
+from stewart_kinematics.motion.planning import MotionPlan, plan_motion
+from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
+from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.retiming import retime
+from stewart_kinematics.motion.streaming import CommandFilter, FilteredCommand
+from stewart_kinematics.motion.trajectory_check import check_trajectory, TrajectoryCheck
+from stewart_kinematics.parameters import (
+    frames_from_parameters,
+    geometry_from_parameters,
+    load_geometry,
 )
 
 __all__ = [
@@ -156,6 +150,6 @@ _CALIBRATION_NAMES = ('calibrate', 'CalibrationError', 'CalibrationResult', 'mea
 def __getattr__(name):
     """Import the calibration names on first use (PEP 562)."""
     if name in _CALIBRATION_NAMES:
-        from stewart_kinematics import calibration
+        from stewart_kinematics.analysis import calibration
         return getattr(calibration, name)
     raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

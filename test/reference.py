@@ -72,7 +72,7 @@ TABLE_3_END = TABLE_3[-1]
 
 def paper_geometry(**changes):
     """Build the paper's platform (home pose: Table 3's first row), with optional changes."""
-    from stewart_kinematics.geometry import Geometry
+    from stewart_kinematics.model.geometry import Geometry
     arguments = {'base_joints': BASE_JOINTS, 'platform_joints': PLATFORM_JOINTS,
                  'home_pose': HOME}
     arguments.update(changes)

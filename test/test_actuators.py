@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Unit tests of stewart_kinematics.actuators: leg speed limits and the actuator interface."""
+"""Unit tests of stewart_kinematics.model.actuators: leg speed limits, the actuator interface."""
 
 import math
 from pathlib import Path
@@ -22,7 +22,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 import pytest
 
 from stewart_kinematics import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.parameter_spec import read_parameter_file
+from stewart_kinematics.parameters import read_parameter_file
 
 pytestmark = pytest.mark.core
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Tests of stewart_kinematics.assembly_modes: every real assembly mode, and the margin.
+Tests of stewart_kinematics.analysis.assembly_modes: every real assembly mode, and the margin.
 
 Independent references: Dietmaier's platform with its 40 real solutions as PHCpack lists them
 (test/resources/dietmaier_40_modes.yaml), and, for the paper's platform, a multi-start search
@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from stewart_kinematics import assembly_mode_margin, assembly_modes, Geometry, load_geometry
-from stewart_kinematics.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 import yaml
 
 pytestmark = pytest.mark.core
@@ -310,7 +310,7 @@ def test_margin_to_the_nearest_other_mode(paper, paper_with_limits):
 
 
 def test_a_start_is_ambiguous_when_two_modes_are_reachable_and_none_is_near(paper):
-    from stewart_kinematics.assembly_modes import start_ambiguity
+    from stewart_kinematics.analysis.assembly_modes import start_ambiguity
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
     lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
                          euler_zyx_to_matrix(end[3:]))
@@ -326,7 +326,7 @@ def test_a_start_is_ambiguous_when_two_modes_are_reachable_and_none_is_near(pape
 
 
 def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
-    from stewart_kinematics.assembly_modes import start_ambiguity
+    from stewart_kinematics.analysis.assembly_modes import start_ambiguity
     geometry = paper_with_limits
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
     lengths = lengths_of(geometry.base_joints, geometry.platform_joints, end[:3],
@@ -337,17 +337,21 @@ def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
 
 
 def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
-    from stewart_kinematics.tools.assembly_modes_figure import markdown_table, table_3_end_modes
+    import importlib.util
+    script = Path(__file__).resolve().parent.parent / 'scripts' / 'figures' / 'assembly_modes.py'
+    spec = importlib.util.spec_from_file_location('assembly_modes_figure', script)
+    figure = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(figure)
+    markdown_table, table_3_end_modes = figure.markdown_table, figure.table_3_end_modes
     page = (Path(__file__).resolve().parent.parent / 'doc' / 'assembly_modes.md').read_text(
         encoding='utf-8')
     _, modes = table_3_end_modes()
     assert markdown_table(modes) in page, (
-        'doc/assembly_modes.md is out of date: run '
-        'python -m stewart_kinematics.tools.assembly_modes_figure')
+        'doc/assembly_modes.md is out of date: run python scripts/figures/assembly_modes.py')
 
 
 def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper):
-    from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
+    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
     lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
                          euler_zyx_to_matrix(end[3:]))

@@ -30,12 +30,20 @@ from numpy.testing import assert_allclose
 import pytest
 
 from stewart_kinematics import load_geometry
-from stewart_kinematics.calibration import (
-    calibrate, calibrated_parameters, CalibrationError, identifiability, load_measurements,
-    measurement_poses, MIN_POSES, PARAMETER_NAMES, predict_actuator_positions,
-    write_measurements, write_parameter_file)
-from stewart_kinematics.parameter_spec import (
-    ACTUATOR_PARAMETERS, check_values, read_parameter_file)
+from stewart_kinematics.analysis.calibration import (
+    calibrate,
+    calibrated_parameters,
+    CalibrationError,
+    identifiability,
+    load_measurements,
+    measurement_poses,
+    MIN_POSES,
+    PARAMETER_NAMES,
+    predict_actuator_positions,
+    write_measurements,
+    write_parameter_file,
+)
+from stewart_kinematics.parameters import ACTUATOR_PARAMETERS, check_values, read_parameter_file
 
 pytestmark = pytest.mark.core
 

@@ -23,6 +23,7 @@ the calibrated joints, computed here with the leg formula from the file read wit
 """
 
 import math
+from pathlib import Path
 import re
 import subprocess
 import sys
@@ -70,13 +71,17 @@ def pose_message(pose):
     return message
 
 
+#: The README's worked example, run as a script (it is no part of the installed package).
+EXAMPLE_SCRIPT = Path(__file__).resolve().parent.parent / 'scripts' / 'calibration_example.py'
+
+
 @pytest.fixture(scope='module')
 def example(tmp_path_factory):
     """Write the worked example's files and calibrate from them with stewart_calibrate."""
     from pathlib import Path
     config = Path(__file__).resolve().parent.parent / 'config'
     directory = tmp_path_factory.mktemp('calibration_example')
-    code, out, err = run([sys.executable, '-m', 'stewart_kinematics.tools.calibration_example',
+    code, out, err = run([sys.executable, str(EXAMPLE_SCRIPT),
                           str(directory), '--config-dir', str(config)], directory)
     assert code == 0, out + err
     code, out, err = run([
@@ -111,7 +116,7 @@ def test_stewart_calibrate_reports_finds_the_outliers_and_writes_its_files(examp
 def test_calibration_cuts_the_pose_error_of_the_built_platform(example):
     directory, config, code, out, err = example
     assert code == 0, out + err
-    code, out, err = run([sys.executable, '-m', 'stewart_kinematics.tools.calibration_example',
+    code, out, err = run([sys.executable, str(EXAMPLE_SCRIPT),
                           str(directory), '--config-dir', str(config),
                           '--check', str(directory / 'calibrated.yaml')], directory)
     assert code == 0, out + err

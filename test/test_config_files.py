@@ -26,8 +26,8 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 
-from stewart_kinematics import parameter_spec
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics import parameters
+from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
@@ -40,16 +40,16 @@ CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
 
 #: The parameters each node declares, as its constructor does.
 NODE_SPECS = {
-    'ik_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-                + parameter_spec.FRAME_PARAMETERS + parameter_spec.MARKER_PARAMETERS
-                + parameter_spec.WORKSPACE_PARAMETERS + parameter_spec.STREAMING_PARAMETERS
-                + parameter_spec.QUEUE_PARAMETERS),
-    'fk_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-                + parameter_spec.SOLVER_PARAMETERS + parameter_spec.FRAME_PARAMETERS
-                + parameter_spec.QUEUE_PARAMETERS),
-    'trajectory_node': (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-                        + parameter_spec.FRAME_PARAMETERS + parameter_spec.RAMP_PARAMETERS
-                        + parameter_spec.MOTION_PARAMETERS + parameter_spec.QUEUE_PARAMETERS),
+    'ik_node': (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+                + parameters.FRAME_PARAMETERS + parameters.MARKER_PARAMETERS
+                + parameters.WORKSPACE_PARAMETERS + parameters.STREAMING_PARAMETERS
+                + parameters.QUEUE_PARAMETERS),
+    'fk_node': (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+                + parameters.SOLVER_PARAMETERS + parameters.FRAME_PARAMETERS
+                + parameters.QUEUE_PARAMETERS),
+    'trajectory_node': (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+                        + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
+                        + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS),
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {

@@ -12,8 +12,14 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The layout's rule: the core (the package root's modules) imports no ROS."""
+"""
+The layout's rules: the core imports no ROS, and each folder imports only what it may.
 
+The core is every module outside ``ros/`` and ``tools/``. Each folder's ``__init__.py`` states
+what it may import; :data:`MAY_IMPORT` is the same rule, checked on every module's imports.
+"""
+
+import ast
 from pathlib import Path
 import subprocess
 import sys
@@ -23,7 +29,31 @@ import pytest
 pytestmark = pytest.mark.core
 
 PACKAGE = Path(__file__).resolve().parent.parent / 'stewart_kinematics'
-CORE_MODULES = sorted(path.stem for path in PACKAGE.glob('*.py') if path.stem != '__init__')
+#: The package's folders outside the core.
+NOT_CORE = ('ros', 'tools')
+CORE_MODULES = sorted(
+    '.'.join(path.relative_to(PACKAGE).with_suffix('').parts)
+    for path in PACKAGE.rglob('*.py')
+    if path.name != '__init__.py' and path.relative_to(PACKAGE).parts[0] not in NOT_CORE)
+#: What each part of the package may import from the package (``''``: the root's modules,
+#: such as findings). ros/ and tools/ may import all of it.
+MAY_IMPORT = {
+    'findings': set(),
+    'model': {'model'},
+    'limits': {'model', 'limits', 'findings'},
+    'parameters': {'model', 'parameters'},
+    'decisions': {'model', 'limits', 'findings', 'parameters', 'decisions',
+                  'analysis.assembly_modes'},
+    'motion': {'model', 'limits', 'findings', 'parameters', 'motion'},
+    'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis'},
+    'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
+}
+#: Single modules allowed one import more than their folder, and why.
+EXCEPTIONS = {
+    # A geometry whose home pose breaks its own limits is refused when it is built, by the
+    # limits model (imported inside the constructor: limits/ imports model/ at module level).
+    'model.geometry': {'limits'},
+}
 
 #: Run in a fresh interpreter: refuse every ROS module, then import the whole core.
 IMPORT_WITHOUT_ROS = """
@@ -50,8 +80,50 @@ print('imported', len(sys.argv) - 1, 'core modules')
 
 
 def test_core_modules_exist():
-    """The core is where the layout says: geometry, kinematics and rotations at the root."""
-    assert {'geometry', 'kinematics', 'rotations', 'limits'} <= set(CORE_MODULES)
+    """The core is where the layout says: the model, the limits, the decisions, motion."""
+    assert {'model.geometry', 'model.kinematics', 'model.rotations', 'limits.checks',
+            'decisions.command_check', 'motion.retiming', 'findings'} <= set(CORE_MODULES)
+
+
+def package_imports(path):
+    """Every ``stewart_kinematics...`` module that the module at ``path`` imports."""
+    imported = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding='utf-8'))):
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            if node.module == 'stewart_kinematics':
+                imported.update(f'stewart_kinematics.{alias.name}' for alias in node.names)
+            elif node.module.startswith('stewart_kinematics.'):
+                imported.add(node.module)
+        elif isinstance(node, ast.Import):
+            imported.update(alias.name for alias in node.names
+                            if alias.name.startswith('stewart_kinematics.'))
+    return imported
+
+
+def allowed(part, module, importer=''):
+    """Whether ``part`` (a folder or root module) may import ``stewart_kinematics.<module>``."""
+    rules = MAY_IMPORT[part] | EXCEPTIONS.get(importer, set())
+    return any(module == rule or module.startswith(rule + '.') for rule in rules)
+
+
+def test_each_folder_imports_only_what_its_rule_allows():
+    """A module of model/ importing motion/, say, fails here with the module and the import."""
+    broken = []
+    for module in CORE_MODULES:
+        part = module.split('.')[0]
+        assert part in MAY_IMPORT, f'{module}: add its folder to MAY_IMPORT (and a rule)'
+        path = PACKAGE.joinpath(*module.split('.')).with_suffix('.py')
+        for imported in sorted(package_imports(path)):
+            target = imported[len('stewart_kinematics.'):]
+            if not allowed(part, target, module):
+                broken.append(f'{module} imports {imported}')
+    assert not broken, 'imports against the layout rules:\n' + '\n'.join(broken)
+
+
+def test_the_rule_check_catches_a_forbidden_import():
+    """The check above can fail: model/ may not import motion/ nor limits/."""
+    assert not allowed('model', 'motion.ramp') and not allowed('model', 'limits')
+    assert allowed('motion', 'model.kinematics') and allowed('decisions', 'findings')
 
 
 def test_core_imports_with_rclpy_unavailable():

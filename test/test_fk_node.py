@@ -36,7 +36,7 @@ from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayou
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import forward_kinematics, inverse_kinematics
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros import fk_node
 from stewart_kinematics.ros.fk_node import FkNode
 import yaml

@@ -35,8 +35,12 @@ from reference import (
     twist_jacobian,
 )
 
-from stewart_kinematics import kinematics, limits
-from stewart_kinematics.kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.model import kinematics
+from stewart_kinematics.model.kinematics import (
+    forward_kinematics,
+    inverse_kinematics,
+    jacobian_condition,
+)
 
 pytestmark = pytest.mark.core
 
@@ -72,7 +76,7 @@ def test_condition_is_that_of_the_dimensionless_jacobian_at_the_pose(geometry):
     single = forward_kinematics(geometry, inverse_kinematics(geometry, poses[0]))
     assert isinstance(single.condition, float)
     assert single.condition == pytest.approx(expected[0], rel=1e-9)
-    assert single.condition == pytest.approx(float(limits.jacobian_condition(
+    assert single.condition == pytest.approx(float(jacobian_condition(
         geometry, single.pose[:3], rotation_zyx(*single.pose[3:]))), rel=1e-12)
 
 

@@ -28,10 +28,10 @@ from numpy.testing import assert_allclose
 import pytest
 
 from stewart_kinematics import inverse_kinematics, leg_lengths, load_geometry
-from stewart_kinematics.frames import FrameTree, IDENTITY, Transform
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.parameter_spec import frames_from_parameters
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.frames import FrameTree, IDENTITY, Transform
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+from stewart_kinematics.parameters import frames_from_parameters
 
 pytestmark = pytest.mark.core
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.geometry (pure numpy).
+Unit tests of stewart_kinematics.model.geometry (pure numpy).
 
 The paper's Tables 1 and 2 are typed here in millimetres, as printed, and converted to metres.
 """
@@ -27,8 +27,8 @@ from numpy.testing import assert_allclose
 import pytest
 from reference import BASE_JOINTS, HOME, leg_lengths, paper_geometry, PLATFORM_JOINTS
 
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.parameter_spec import geometry_from_parameters, load_geometry
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.parameters import geometry_from_parameters, load_geometry
 
 pytestmark = pytest.mark.core
 

@@ -19,7 +19,7 @@ ik_node's workspace outputs, with ik_node started as a process.
 ``workspace_markers`` is latched and published again after a parameter change;
 ``travel_ranges`` starts from the last accepted pose.
 
-The expected content is computed here with the core (:mod:`stewart_kinematics.workspace`),
+The expected content is computed here with the core (:mod:`stewart_kinematics.analysis.workspace`),
 whose own accuracy test/test_workspace.py checks against independent computations.
 """
 
@@ -34,7 +34,8 @@ from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 from rcl_interfaces.srv import SetParameters
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray
-from stewart_kinematics import load_geometry, travel_ranges, workspace
+from stewart_kinematics import load_geometry, travel_ranges
+from stewart_kinematics.analysis import workspace
 from stewart_kinematics.limits import check_poses_array, LIMIT_NAMES
 from stewart_kinematics.ros.message_conversions import pose_to_message
 from visualization_msgs.msg import Marker, MarkerArray

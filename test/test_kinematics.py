@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.kinematics (pure numpy).
+Unit tests of stewart_kinematics.model.kinematics (pure numpy).
 
 Expected leg lengths come from the paper's equation evaluated leg by leg in plain Python, and
 the geometry from the paper's Tables 1 and 2, both in test/reference.py.
@@ -36,9 +36,9 @@ from reference import (
     TABLE_3,
 )
 
-from stewart_kinematics import kinematics
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.kinematics import (
+from stewart_kinematics.model import kinematics
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.model.kinematics import (
     forward_kinematics,
     ForwardKinematicsResult,
     inverse_kinematics,
@@ -405,7 +405,7 @@ def test_single_pose_inverse_kinematics_equals_batch(geometry):
 
 def test_batched_inverse_kinematics_spans_blocks(geometry):
     """A batch longer than one block equals the per-pose leg vector norms."""
-    from stewart_kinematics.kinematics import IK_BLOCK_SIZE, leg_vectors_from_euler
+    from stewart_kinematics.model.kinematics import IK_BLOCK_SIZE, leg_vectors_from_euler
     poses = random_poses(2 * IK_BLOCK_SIZE + 3, seed=7)
     expected = np.linalg.norm(leg_vectors_from_euler(geometry, poses), axis=-1)
     assert_allclose(inverse_kinematics(geometry, poses), expected, rtol=0.0, atol=1e-12)
@@ -413,7 +413,7 @@ def test_batched_inverse_kinematics_spans_blocks(geometry):
 
 def test_single_pose_leg_lengths_equals_batch(geometry):
     """leg_lengths of one position and matrix equals its batch form."""
-    from stewart_kinematics.rotations import euler_zyx_to_matrix
+    from stewart_kinematics.model.rotations import euler_zyx_to_matrix
     poses = random_poses(50, seed=7)
     rotations = euler_zyx_to_matrix(poses[:, 3:])
     batch = leg_lengths(geometry, poses[:, :3], rotations)
@@ -451,7 +451,7 @@ def test_single_pose_forward_kinematics_failures_match_batch(geometry):
 
 def count_jacobian_inversions(monkeypatch):
     """Count the Jacobians the solver inverts (each costs a 6x6 inversion)."""
-    import stewart_kinematics.kinematics as kinematics
+    import stewart_kinematics.model.kinematics as kinematics
     calls = []
     inverse = np.linalg.inv
 

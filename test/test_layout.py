@@ -22,6 +22,7 @@ and a row for a path that no longer exists fails too.
 from pathlib import Path
 import re
 import subprocess
+import sys
 
 import pytest
 
@@ -93,3 +94,26 @@ def test_every_layout_row_exists():
     """No row names a file or folder that is not there."""
     gone = sorted(path for path in layout_paths() if not (ROOT / path).exists())
     assert not gone, f'{PAGE_NAME} Layout table names paths that do not exist: ' + ', '.join(gone)
+
+
+def test_import_rules_table_is_the_checked_rule():
+    """The architecture page's table of import rules says what test_core_imports enforces."""
+    sys.path.insert(0, str(ROOT / 'test'))
+    try:
+        from test_core_imports import MAY_IMPORT
+    finally:
+        sys.path.remove(str(ROOT / 'test'))
+    heading = '## The rules: what each folder may import'
+    section = re.search(rf'\n{heading}\n(.*?)\n## ', PAGE, re.DOTALL)
+    assert section, f'{PAGE_NAME} has no "{heading}" section'
+    rows = re.findall(r'^\| `([\w.]+)/?` \| ([^|]+) \|', section.group(1), re.MULTILINE)
+    stated = {}
+    for folder, cell in rows:
+        part = folder.removesuffix('.py')
+        # What a parenthesis adds is a one-module exception (test_core_imports.EXCEPTIONS).
+        names = re.findall(r'`([\w/.]+)`', cell.split('(')[0])
+        stated[part] = {name.removesuffix('/').removesuffix('.py').replace('/', '.')
+                        for name in names} | ({part} if 'itself' in cell or names else set())
+    for part, allowed in MAY_IMPORT.items():
+        assert part in stated, f'{PAGE_NAME}: no row for {part} in the import rules'
+        assert stated[part] == allowed | ({part} if part != 'findings' else set()), part

@@ -29,8 +29,9 @@ import pytest
 from reference import BASE_JOINTS, HOME, PLATFORM_JOINTS, rotation_zyx, TABLE_3_END
 
 from stewart_kinematics import limits
-from stewart_kinematics.geometry import Geometry
 from stewart_kinematics.limits import Violation
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.model.kinematics import jacobian_condition, leg_lengths
 
 pytestmark = pytest.mark.core
 
@@ -95,7 +96,7 @@ def condition_about_z(geometry, gammas_deg):
     gammas = np.radians(np.asarray(gammas_deg, dtype=float))
     rotations = np.array([rotation_zyx(0.0, 0.0, gamma) for gamma in gammas])
     positions = np.broadcast_to(geometry.home_pose[:3], (len(gammas), 3))
-    return limits.jacobian_condition(geometry, positions, rotations)
+    return jacobian_condition(geometry, positions, rotations)
 
 
 # leg_length_violations ------------------------------------------------------------------------
@@ -183,7 +184,7 @@ def test_joint_angles_from_a_rotated_home_and_in_a_batch():
 def test_jacobian_condition_at_home_of_the_paper_platform():
     """The paper platform's home condition number is about 9.5, as the README says."""
     geometry = paper_geometry()
-    condition = float(limits.jacobian_condition(geometry, HOME[:3], np.eye(3)))
+    condition = float(jacobian_condition(geometry, HOME[:3], np.eye(3)))
     assert condition == pytest.approx(condition_by_hand(HOME[:3], np.eye(3)), rel=1e-9)
     assert condition == pytest.approx(9.54, abs=0.01)
 
@@ -195,12 +196,12 @@ def test_jacobian_condition_matches_the_documented_formula():
     poses = HOME + rng.uniform(-1.0, 1.0, (20, 6)) * [0.05, 0.05, 0.05, 0.3, 0.3, 0.6]
     poses = np.vstack([poses, TABLE3_END])
     rotations = np.array([rotation_zyx(*pose[3:]) for pose in poses])
-    batch = limits.jacobian_condition(geometry, poses[:, :3], rotations)
+    batch = jacobian_condition(geometry, poses[:, :3], rotations)
     assert batch.shape == (len(poses),)
     for pose, rotation, condition in zip(poses, rotations, batch):
         expected = condition_by_hand(pose[:3], rotation)
         assert condition == pytest.approx(expected, rel=1e-9)
-        assert float(limits.jacobian_condition(geometry, pose[:3], rotation)) == (
+        assert float(jacobian_condition(geometry, pose[:3], rotation)) == (
             pytest.approx(expected, rel=1e-9))
         assert condition >= 1.0
 
@@ -209,18 +210,18 @@ def test_jacobian_condition_is_invariant_to_scale_and_to_a_turn_about_z():
     """Moments over rho make it unit-free; turning the whole machine about z changes nothing."""
     geometry = paper_geometry()
     rotation = rotation_zyx(*TABLE3_END[3:])
-    reference = float(limits.jacobian_condition(geometry, TABLE3_END[:3], rotation))
+    reference = float(jacobian_condition(geometry, TABLE3_END[:3], rotation))
 
     scale = 3.7
     scaled = Geometry(base_joints=scale * BASE, platform_joints=scale * PLATFORM,
                       home_pose=np.concatenate([scale * HOME[:3], HOME[3:]]))
-    assert float(limits.jacobian_condition(scaled, scale * TABLE3_END[:3], rotation)) == (
+    assert float(jacobian_condition(scaled, scale * TABLE3_END[:3], rotation)) == (
         pytest.approx(reference, rel=1e-9))
 
     turn = rotation_zyx(0.0, 0.0, math.radians(40.0))
     turned = Geometry(base_joints=BASE @ turn.T, platform_joints=PLATFORM,
                       home_pose=np.concatenate([turn @ HOME[:3], [0.0, 0.0, math.radians(40.0)]]))
-    assert float(limits.jacobian_condition(turned, turn @ TABLE3_END[:3], turn @ rotation)) == (
+    assert float(jacobian_condition(turned, turn @ TABLE3_END[:3], turn @ rotation)) == (
         pytest.approx(reference, rel=1e-9))
 
 
@@ -438,11 +439,11 @@ def test_a_leg_of_zero_length_breaks_the_singularity_margin_without_raising(leg,
     # (from the unit vector of the zero-length leg), which ended ik_node.
     geometry = dyadic_geometry(max_jacobian_condition=50.0)
     position = joint_on_its_base_joint(leg, rotation)
-    assert limits.leg_lengths(geometry, position, rotation)[leg] == 0.0
+    assert leg_lengths(geometry, position, rotation)[leg] == 0.0
     violations = limits.check_pose(geometry, position, rotation)
     assert [(v.limit, v.value) for v in violations] == [('max_jacobian_condition', math.inf)]
-    assert float(limits.jacobian_condition(geometry, position, rotation)) == math.inf
-    batch = limits.jacobian_condition(geometry, position[None], rotation[None])
+    assert float(jacobian_condition(geometry, position, rotation)) == math.inf
+    batch = jacobian_condition(geometry, position[None], rotation[None])
     assert batch.shape == (1,) and batch[0] == math.inf
 
 

@@ -27,10 +27,9 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 
-from stewart_kinematics import limits
-from stewart_kinematics import load_geometry
-from stewart_kinematics.kinematics import inverse_kinematics, jacobian_condition
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics import limits, load_geometry
+from stewart_kinematics.model.kinematics import inverse_kinematics, jacobian_condition
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core
 

@@ -55,8 +55,8 @@ from rclpy.executors import SingleThreadedExecutor
 from reference import quaternion_angle as rotation_angle, quaternion_from_euler as quaternion
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.kinematics import inverse_kinematics
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.model.kinematics import inverse_kinematics
+from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.tools.node_processes import NodeProcess
 
 pytestmark = pytest.mark.process

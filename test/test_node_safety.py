@@ -45,7 +45,7 @@ from reference import leg_lengths as plain_lengths, quaternion_from_euler
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics import inverse_kinematics, platform_twist
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode

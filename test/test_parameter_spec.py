@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.parameter_spec (no ROS).
+Unit tests of stewart_kinematics.parameters (no ROS).
 
 Every spec's check() returns '' for an allowed value, else a sentence that names the parameter
 and the value; read_parameter_file applies '/**' and then the node's own section.
@@ -24,8 +24,8 @@ import math
 
 import pytest
 
-from stewart_kinematics import parameter_spec
-from stewart_kinematics.parameter_spec import (
+from stewart_kinematics import parameters
+from stewart_kinematics.parameters import (
     GEOMETRY_PARAMETERS,
     QUEUE_PARAMETERS,
     RAMP_PARAMETERS,
@@ -242,14 +242,14 @@ def test_double_refuses_integer_value_as_rcl_does():
 
 def test_unknown_names_are_refused_with_a_suggestion():
     """A misspelt parameter name is refused, naming the closest known one."""
-    parameter_spec.check_known_names(['tolerance', 'base_joints'], 'test')
+    parameters.check_known_names(['tolerance', 'base_joints'], 'test')
     with pytest.raises(ValueError, match="'tolerence' \\(did you mean 'tolerance'\\?\\)"):
-        parameter_spec.check_known_names(['tolerence', 'base_joints'], 'test')
+        parameters.check_known_names(['tolerence', 'base_joints'], 'test')
 
 
 def test_defaults_maps_names_to_defaults():
     """defaults() gives each name its default, None for the required ones."""
-    result = parameter_spec.defaults(GEOMETRY_PARAMETERS)
+    result = parameters.defaults(GEOMETRY_PARAMETERS)
     assert result['base_joints'] is None
     assert result['home_orientation_deg'] == [0.0, 0.0, 0.0]
     assert result['leg_length_max'] == math.inf
@@ -258,24 +258,24 @@ def test_defaults_maps_names_to_defaults():
 
 def test_check_values_accepts_allowed_values():
     """check_values() returns quietly when every value is allowed."""
-    parameter_spec.check_values(SOLVER_PARAMETERS, {'tolerance': 1e-9, 'max_iterations': 20})
+    parameters.check_values(SOLVER_PARAMETERS, {'tolerance': 1e-9, 'max_iterations': 20})
 
 
 def test_check_values_raises_with_the_reason():
     """check_values() raises ValueError with the first bad value's reason."""
     with pytest.raises(ValueError, match=r"'max_iterations'.*0"):
-        parameter_spec.check_values(SOLVER_PARAMETERS, {'tolerance': 1e-9, 'max_iterations': 0})
+        parameters.check_values(SOLVER_PARAMETERS, {'tolerance': 1e-9, 'max_iterations': 0})
 
 
 def test_check_values_reports_missing_required_value():
     """check_values() raises ValueError naming a missing required parameter."""
     with pytest.raises(ValueError, match=r"'base_joints' is required"):
-        parameter_spec.check_values(GEOMETRY_PARAMETERS, {})
+        parameters.check_values(GEOMETRY_PARAMETERS, {})
 
 
 def test_markdown_table_lists_every_parameter():
     """The README table has a header, a separator and one row per spec."""
-    lines = parameter_spec.markdown_table(RAMP_PARAMETERS).splitlines()
+    lines = parameters.markdown_table(RAMP_PARAMETERS).splitlines()
     assert len(lines) == 2 + len(RAMP_PARAMETERS)
     for spec, line in zip(RAMP_PARAMETERS, lines[2:]):
         assert line.startswith(f'| `{spec.name}` | {spec.value_type} |')

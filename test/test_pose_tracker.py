@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.pose_tracker.PoseTracker (pure numpy, no ROS).
+Unit tests of stewart_kinematics.decisions.pose_tracker.PoseTracker (pure numpy, no ROS).
 
 The lengths fed to the tracker are computed from the paper's tables, leg by leg with the
 textbook rotation matrices (test/reference.py), so that every pose the tracker returns is
@@ -28,7 +28,7 @@ import pytest
 from reference import HOME, leg_lengths, paper_geometry, singular_yaw, TABLE_3
 
 from stewart_kinematics import forward_kinematics, platform_twist, PoseTracker
-from stewart_kinematics.pose_tracker import assembly_mode_jump, TrackerSettings
+from stewart_kinematics.decisions.pose_tracker import assembly_mode_jump, TrackerSettings
 
 pytestmark = pytest.mark.core
 

@@ -25,11 +25,11 @@ from rclpy.executors import SingleThreadedExecutor
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from stewart_kinematics import inverse_kinematics
-from stewart_kinematics.parameter_spec import load_geometry
+from stewart_kinematics.model.velocities import leg_velocities
+from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
 from stewart_kinematics.ros.message_conversions import pose_from_message, pose_to_message
-from stewart_kinematics.velocities import leg_velocities
 
 pytestmark = pytest.mark.node
 

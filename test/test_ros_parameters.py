@@ -31,16 +31,16 @@ from rclpy.exceptions import (
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
-from stewart_kinematics import parameter_spec
+from stewart_kinematics import parameters
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 import yaml
 
 pytestmark = pytest.mark.node
 
 NODE_NAME = 'parameter_test_node'
-SPECS = (parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.SOLVER_PARAMETERS
-         + parameter_spec.QUEUE_PARAMETERS)
-RAMP_SPECS = parameter_spec.RAMP_PARAMETERS
+SPECS = (parameters.GEOMETRY_PARAMETERS + parameters.SOLVER_PARAMETERS
+         + parameters.QUEUE_PARAMETERS)
+RAMP_SPECS = parameters.RAMP_PARAMETERS
 
 BASE_JOINTS = [
     0.0486989, 0.2196666, 0.0, 0.1658874, 0.1520078, 0.0, 0.1658874, -0.1520078, 0.0,
@@ -341,7 +341,7 @@ def test_descriptors_carry_description_unit_type_and_read_only(make_node, specs)
             assert f'(allowed: {spec.constraints})' in described.description
         assert described.type == types[spec.value_type], spec.name
         assert described.read_only == spec.read_only, spec.name
-    geometry_names = {spec.name for spec in parameter_spec.GEOMETRY_PARAMETERS}
+    geometry_names = {spec.name for spec in parameters.GEOMETRY_PARAMETERS}
     for spec in specs:
         if spec.name in geometry_names:
             assert node.describe_parameter(spec.name).read_only, spec.name

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.rotations (pure numpy).
+Unit tests of stewart_kinematics.model.rotations (pure numpy).
 
 Expected values come from elementary rotation matrices and quaternions written out here, never
 from the functions under test.
@@ -35,8 +35,8 @@ from reference import (
     rz,
 )
 
-from stewart_kinematics import kinematics
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model import kinematics
+from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
     matrix_to_euler_zyx,

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Unit tests of stewart_kinematics.streaming: the jerk-limited command filter (ruckig)."""
+"""Unit tests of stewart_kinematics.motion.streaming: the jerk-limited command filter (ruckig)."""
 
 import math
 

@@ -40,7 +40,7 @@ from stewart_kinematics import (
     retime,
     TimedTrajectory,
 )
-from stewart_kinematics.rotations import matrix_to_rotation_vector, rotation_vector_to_matrix
+from stewart_kinematics.model.rotations import matrix_to_rotation_vector, rotation_vector_to_matrix
 
 pytestmark = pytest.mark.core
 

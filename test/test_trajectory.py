@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.trajectory (pure numpy).
+Unit tests of stewart_kinematics.motion.ramp (pure numpy).
 
 The paper's Table 3 is typed here in its own units (millimetres and degrees) and converted.
 """
@@ -25,7 +25,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 import pytest
 from reference import TABLE_3, TABLE_3_END
 
-from stewart_kinematics.trajectory import Ramp
+from stewart_kinematics.motion.ramp import Ramp
 
 pytestmark = pytest.mark.core
 

@@ -22,15 +22,15 @@ import pytest
 from reference import HOME, paper_geometry, rotation_vector_matrix, singular_yaw
 
 from stewart_kinematics import leg_lengths, SingularPoseError
-from stewart_kinematics.limits import jacobian_condition
-from stewart_kinematics.parameter_spec import load_geometry
-from stewart_kinematics.rotations import euler_zyx_to_matrix
-from stewart_kinematics.velocities import (
+from stewart_kinematics.model.kinematics import jacobian_condition
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.velocities import (
     DEFAULT_MAX_TWIST_CONDITION,
     leg_velocities,
     platform_twist,
     twist_jacobian,
 )
+from stewart_kinematics.parameters import load_geometry
 
 pytestmark = pytest.mark.core
 

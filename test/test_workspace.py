@@ -14,7 +14,7 @@
 
 
 """
-Tests of stewart_kinematics.workspace against independent computations written here.
+Tests of stewart_kinematics.analysis.workspace against independent computations written here.
 
 The limits are evaluated here from their definitions in the README (leg vectors from the
 textbook rotation matrices, cone angles with arccos, the condition number with
@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 
 from stewart_kinematics import load_geometry
-from stewart_kinematics import workspace
+from stewart_kinematics.analysis import workspace
 from stewart_kinematics.limits import LIMIT_NAMES
 
 pytestmark = pytest.mark.core

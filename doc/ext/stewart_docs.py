@@ -55,15 +55,15 @@ def public_names() -> list:
 
 
 def parameter_groups() -> dict:
-    """Return ``{GROUP: specs}`` for every ``GROUP_PARAMETERS`` tuple of the parameter specs."""
-    from stewart_kinematics import parameter_spec
-    return {name[:-len('_PARAMETERS')]: value for name, value in vars(parameter_spec).items()
+    """Return ``{GROUP: specs}`` for every ``GROUP_PARAMETERS`` tuple of the declarations."""
+    from stewart_kinematics.parameters import declarations
+    return {name[:-len('_PARAMETERS')]: value for name, value in vars(declarations).items()
             if name.endswith('_PARAMETERS') and isinstance(value, tuple)}
 
 
 def parameter_table(group: str) -> str:
     """Return the Markdown table of one parameter group, as the specs render it."""
-    from stewart_kinematics.parameter_spec import markdown_table
+    from stewart_kinematics.parameters import markdown_table
     table = markdown_table(parameter_groups()[group])
     # A description may say `<platform_frame>_commanded`: outside code spans, escape '<' so
     # that Markdown shows it rather than taking it for an HTML tag.
@@ -74,7 +74,6 @@ def parameter_table(group: str) -> str:
 #: every string constant of findings.py, and the named ones of the other modules.
 CODE_SOURCES = {
     'findings.py': None,
-    'trajectories.py': ('TOO_FAST', 'RETIMING_FAILED', 'INVALID_TRAJECTORY'),
     'ros/ik_node.py': ('WRONG_FRAME',),
     'ros/trajectory_node.py': ('TOOL_FRAME_NOT_SUPPORTED',),
 }
@@ -175,7 +174,7 @@ def refusal_codes() -> list:
     """
     Every refusal or warning code the package can emit: ``(code, emitted by, meaning, where)``.
 
-    The one source of the docs' table of codes. Today the codes are constants of four modules
+    The one source of the docs' table of codes. Today the codes are constants of three modules
     (:data:`CODE_SOURCES`) and their meanings are written here (:data:`MEANINGS`); when the
     registry of every code with its meaning exists (issue 18, in findings.py), read it here
     instead and drop both. Raises ``ValueError`` when a code has no meaning or a meaning no

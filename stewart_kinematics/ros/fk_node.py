@@ -22,7 +22,7 @@ the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamp
 in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
 arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
 last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
-``/tf_static`` (see :mod:`stewart_kinematics.frames`). Each solve starts from the last good
+``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good
 solution, since a platform moves continuously, and falls back to the home pose when that fails; the
 service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for
 homing and restarts. What to publish and what to refuse is decided by
@@ -33,8 +33,8 @@ warning (near a singularity) with the core's reason on the log and ``/diagnostic
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
 nearest other real assembly mode within the limits is computed in a worker thread
-(:class:`stewart_kinematics.assembly_modes.AssemblyModeMarginMonitor`, only when the lengths
-changed) and reported with the other statuses, WARN when below
+(:class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`, only when the
+lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
 solution (after a start or reset_tracker) when the lengths allow several modes within the
 limits and none near the last known pose.
@@ -50,17 +50,17 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
-from stewart_kinematics import findings, parameter_spec
-from stewart_kinematics.actuators import ActuatorInterface
-from stewart_kinematics.assembly_modes import AssemblyModeMarginMonitor
+from stewart_kinematics import findings, parameters
+from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
+from stewart_kinematics.decisions.pose_tracker import PoseTracker, SETTING_NAMES
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.frames import Transform
-from stewart_kinematics.parameter_spec import (
+from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.parameters import (
     frame_parameters_reason,
     frames_from_parameters,
     geometry_from_parameters,
 )
-from stewart_kinematics.pose_tracker import PoseTracker, SETTING_NAMES
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
     MessageAccounting,
@@ -89,10 +89,10 @@ class FkNode(Node):
         super().__init__('fk_node', **kwargs)
         values = declare_parameters(
             self,
-            parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-            + parameter_spec.SOLVER_PARAMETERS + parameter_spec.ASSEMBLY_MODE_PARAMETERS
-            + parameter_spec.FRAME_PARAMETERS + parameter_spec.FK_FRAME_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS,
+            parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+            + parameters.SOLVER_PARAMETERS + parameters.ASSEMBLY_MODE_PARAMETERS
+            + parameters.FRAME_PARAMETERS + parameters.FK_FRAME_PARAMETERS
+            + parameters.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
         self.actuators = ActuatorInterface.from_parameters(values)
@@ -136,7 +136,7 @@ class FkNode(Node):
             old = self.frames
             self.frames = frames_from_parameters(
                 {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameter_spec.FRAME_PARAMETERS})
+                 for spec in parameters.FRAME_PARAMETERS})
             if self.tf is not None:
                 if old.tool_frame != self.frames.tool_frame:
                     self.tf.forget_static(old.tool_frame)

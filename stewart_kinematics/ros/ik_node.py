@@ -17,7 +17,7 @@ Inverse kinematics node: a commanded platform pose in, six leg lengths out.
 
 Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame) or ``target_pose_stamped``
 (geometry_msgs/msg/PoseStamped, base frame or user frame), metres: the pose of the tool frame
-(:mod:`stewart_kinematics.frames`; by default the platform frame itself), and
+(:mod:`stewart_kinematics.model.frames`; by default the platform frame itself), and
 ``target_twist`` (geometry_msgs/msg/Twist, base frame).
 
 Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6),
@@ -47,12 +47,14 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
-from stewart_kinematics import findings, parameter_spec
-from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.command_check import CommandCheck
+from stewart_kinematics import findings, parameters
+from stewart_kinematics.decisions.command_check import CommandCheck
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.frames import Transform
-from stewart_kinematics.parameter_spec import (
+from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.motion.streaming import CommandFilter
+from stewart_kinematics.parameters import (
     frame_parameters_reason,
     frames_from_parameters,
     geometry_from_parameters,
@@ -74,8 +76,6 @@ from stewart_kinematics.ros.node_main import (
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
-from stewart_kinematics.rotations import quaternion_to_matrix
-from stewart_kinematics.streaming import CommandFilter
 from visualization_msgs.msg import MarkerArray
 
 #: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
@@ -90,11 +90,11 @@ class IkNode(Node):
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-            + parameter_spec.FRAME_PARAMETERS + parameter_spec.IK_FRAME_PARAMETERS
-            + parameter_spec.MARKER_PARAMETERS + parameter_spec.WORKSPACE_PARAMETERS
-            + parameter_spec.STREAMING_PARAMETERS
-            + parameter_spec.QUEUE_PARAMETERS,
+            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+            + parameters.FRAME_PARAMETERS + parameters.IK_FRAME_PARAMETERS
+            + parameters.MARKER_PARAMETERS + parameters.WORKSPACE_PARAMETERS
+            + parameters.STREAMING_PARAMETERS
+            + parameters.QUEUE_PARAMETERS,
             on_change=self.on_parameter_change, check=frame_parameters_reason)
         self.geometry = geometry_from_parameters(values)
         self.check = CommandCheck(self.geometry)
@@ -148,7 +148,7 @@ class IkNode(Node):
         if name.startswith('tool_frame'):
             self.frames = frames_from_parameters(
                 {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameter_spec.FRAME_PARAMETERS})
+                 for spec in parameters.FRAME_PARAMETERS})
         elif name == 'workspace_resolution':
             self.workspace.set_resolution(value)
 

@@ -28,15 +28,15 @@ import numpy as np
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
-from stewart_kinematics.actuators import ActuatorInterface
-from stewart_kinematics.kinematics import as_leg_lengths
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.model.kinematics import as_leg_lengths
+from stewart_kinematics.model.rotations import (
     euler_zyx_to_quaternion,
     matrix_to_quaternion,
     normalize_quaternion,
     quaternion_to_euler_zyx,
 )
-from stewart_kinematics.trajectories import LegTrajectory
+from stewart_kinematics.motion.leg_trajectory import LegTrajectory
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 #: Label of the one layout dimension of a leg array message.

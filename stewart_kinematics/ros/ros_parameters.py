@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Turns the parameter specs of :mod:`stewart_kinematics.parameter_spec` into ROS declarations.
+Turns the parameter specs of :mod:`stewart_kinematics.parameters` into ROS declarations.
 
 A node calls :func:`declare_parameters` once in its constructor. It registers the validator
 before declaring, so that a bad value from a parameter file fails the declaration with the
@@ -24,19 +24,19 @@ with that reason while the old value stays.
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.parameter import Parameter
 
-from stewart_kinematics import parameter_spec
+from stewart_kinematics import parameters
 
 _ROS_TYPES = {
-    parameter_spec.BOOL: Parameter.Type.BOOL,
-    parameter_spec.INTEGER: Parameter.Type.INTEGER,
-    parameter_spec.DOUBLE: Parameter.Type.DOUBLE,
-    parameter_spec.STRING: Parameter.Type.STRING,
-    parameter_spec.DOUBLE_ARRAY: Parameter.Type.DOUBLE_ARRAY,
-    parameter_spec.STRING_ARRAY: Parameter.Type.STRING_ARRAY,
+    parameters.BOOL: Parameter.Type.BOOL,
+    parameters.INTEGER: Parameter.Type.INTEGER,
+    parameters.DOUBLE: Parameter.Type.DOUBLE,
+    parameters.STRING: Parameter.Type.STRING,
+    parameters.DOUBLE_ARRAY: Parameter.Type.DOUBLE_ARRAY,
+    parameters.STRING_ARRAY: Parameter.Type.STRING_ARRAY,
 }
 
 
-def descriptor(spec: parameter_spec.ParameterSpec) -> ParameterDescriptor:
+def descriptor(spec: parameters.ParameterSpec) -> ParameterDescriptor:
     """ROS descriptor of a spec: description with unit, allowed values, read-only flag."""
     description = spec.description
     if spec.constraints:
@@ -51,7 +51,7 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     Declare ``specs`` on ``node`` with validation, and return their values.
 
     :param node: an ``rclpy.node.Node``.
-    :param specs: the :class:`~stewart_kinematics.parameter_spec.ParameterSpec` to declare.
+    :param specs: the :class:`~stewart_kinematics.parameters.ParameterSpec` to declare.
     :param on_change: called as ``on_change(name, value)`` after a run-time change of one of
         them has been accepted.
     :param check: called at run time as ``check(values)`` with every value of ``specs`` as it
@@ -65,7 +65,7 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     """
     by_name = {spec.name: spec for spec in specs}
     # rclpy ignores overrides nobody declares: a misspelt name would silently keep a default.
-    parameter_spec.check_known_names(
+    parameters.check_known_names(
         [name for name in node._parameter_overrides
          if not (node.has_parameter(name) or name.startswith('qos_overrides.'))],
         f'the parameters given to {node.get_fully_qualified_name()}')
@@ -101,5 +101,5 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
         node.add_post_set_parameters_callback(apply)
     values = {spec.name: node.get_parameter_or(spec.name).value for spec in specs}
     # A required parameter that no file set was never validated: report it here.
-    parameter_spec.check_values(specs, values)
+    parameters.check_values(specs, values)
     return values

@@ -39,10 +39,16 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import limits, parameter_spec
-from stewart_kinematics.actuators import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.findings import Finding
-from stewart_kinematics.parameter_spec import frames_from_parameters, geometry_from_parameters
+from stewart_kinematics import limits, parameters
+from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
+from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.motion.leg_trajectory import leg_trajectory
+from stewart_kinematics.motion.planning import plan_motion
+from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.retiming import load_retiming
+from stewart_kinematics.parameters import frames_from_parameters, geometry_from_parameters
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_trajectory_message,
@@ -57,15 +63,6 @@ from stewart_kinematics.ros.node_main import (
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import declare_parameters
-from stewart_kinematics.rotations import quaternion_to_matrix
-from stewart_kinematics.trajectories import (
-    INVALID_TRAJECTORY,
-    leg_trajectory,
-    load_retiming,
-    plan_motion,
-    PoseTrajectory,
-)
-from stewart_kinematics.trajectory import Ramp
 from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 #: Refusal code of a trajectory sent while the tool frame is offset from the platform frame.
@@ -80,9 +77,9 @@ class TrajectoryNode(Node):
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
         values = declare_parameters(
-            self, parameter_spec.GEOMETRY_PARAMETERS + parameter_spec.ACTUATOR_PARAMETERS
-            + parameter_spec.FRAME_PARAMETERS + parameter_spec.RAMP_PARAMETERS
-            + parameter_spec.MOTION_PARAMETERS + parameter_spec.QUEUE_PARAMETERS)
+            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+            + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
+            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
         self.settings = values
         self.geometry = geometry_from_parameters(values)
         self.actuator_limits = ActuatorLimits.from_parameters(values)

@@ -26,10 +26,10 @@ from geometry_msgs.msg import Pose, Transform as TransformMessage, TransformStam
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from std_msgs.msg import Header
 
-from stewart_kinematics.frames import Transform
+from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.model.rotations import matrix_to_quaternion, quaternion_to_matrix
 from stewart_kinematics.ros.message_conversions import position_quaternion_from_message
 from stewart_kinematics.ros.node_main import create_output_publisher
-from stewart_kinematics.rotations import matrix_to_quaternion, quaternion_to_matrix
 
 try:
     from tf2_msgs.msg import TFMessage

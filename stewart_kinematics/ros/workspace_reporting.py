@@ -16,8 +16,8 @@
 """
 ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off the command path.
 
-The core's :mod:`stewart_kinematics.workspace` does the work in a worker process of its own
-(:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
+The core's :mod:`stewart_kinematics.analysis.workspace` does the work in a worker process of its
+own (:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
 measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. A
 guard condition hands each result back to the executor, whose callback only converts and
 publishes. So a 3 s workspace computation or a 0.2 s travel range never holds up a pose in the
@@ -34,10 +34,10 @@ from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
-from stewart_kinematics import workspace
+from stewart_kinematics.analysis import workspace
+from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.markers import workspace_markers
 from stewart_kinematics.ros.node_main import create_output_publisher
-from stewart_kinematics.rotations import matrix_to_euler_zyx
 from visualization_msgs.msg import MarkerArray
 
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
@@ -197,7 +197,7 @@ class WorkspaceReporter:
 
 class WorkspaceWorker:
     """
-    A process that runs functions of :mod:`stewart_kinematics.workspace` for one geometry.
+    A process that runs functions of :mod:`stewart_kinematics.analysis.workspace` for one geometry.
 
     Started with the ``forkserver`` method (a clean interpreter: forking a process that runs
     DDS threads is unsafe), at a lower scheduling priority; jobs run one after the other;

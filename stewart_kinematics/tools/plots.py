@@ -110,7 +110,7 @@ def calibration_figure(path, result):
     model, on a log scale. Bottom: every calibrated residual by pose, outlier poses marked.
 
     :param path: the PNG file to write.
-    :param result: a :class:`stewart_kinematics.calibration.CalibrationResult`.
+    :param result: a :class:`stewart_kinematics.analysis.calibration.CalibrationResult`.
     """
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 7))
     legs = np.arange(1, 7)
@@ -142,42 +142,3 @@ def calibration_figure(path, result):
     bottom.set_xlabel('pose')
     bottom.set_ylabel('calibrated residual [um]')
     return _finish(figure, (top, bottom), 'Calibration: nominal against calibrated model', path)
-
-
-def write_retiming_figure(path, runs, velocity_max, acceleration_max):
-    """
-    Write leg velocities and accelerations against their limits, before and after retiming.
-
-    :param path: PNG file to write; its folder is created if missing.
-    :param runs: ``[(title, times (N,), velocities (N, 6), accelerations (N, 6))]``, one
-        column of the figure each: seconds, m/s, m/s^2.
-    :param velocity_max: leg velocity limit, m/s, drawn at plus and minus.
-    :param acceleration_max: leg acceleration limit, m/s^2, likewise.
-    :returns: the path.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure, axes = plt.subplots(2, len(runs), sharey='row', figsize=(5 * len(runs), 6),
-                                squeeze=False)
-    for column, (title, times, velocities, accelerations) in enumerate(runs):
-        for row, (values, limit, label) in enumerate((
-                (velocities * 1e3, velocity_max * 1e3, 'leg velocity [mm/s]'),
-                (accelerations * 1e3, acceleration_max * 1e3, 'leg acceleration [mm/s^2]'))):
-            plot = axes[row][column]
-            for leg in range(6):
-                plot.plot(times, values[:, leg], label=f'leg {leg + 1}')
-            for sign in (1.0, -1.0):
-                plot.axhline(sign * limit, color='red', linestyle='--',
-                             label='limit' if sign > 0 else None)
-            plot.set_ylabel(label)
-            plot.set_xlabel('time [s]')
-            plot.set_title(title if row == 0 else None)
-    for row in axes:
-        for plot in row:
-            plot.grid(True, alpha=0.3)
-    axes[0][-1].legend(loc='lower center', fontsize='small', ncol=4)
-    figure.suptitle('Leg velocity and acceleration against the example limits')
-    figure.tight_layout()
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path

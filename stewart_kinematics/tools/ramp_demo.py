@@ -189,10 +189,10 @@ def _prepare_bag(bag_path):
 
 
 def _ramp_rows(ramp_file):
-    from stewart_kinematics import parameter_spec
-    from stewart_kinematics.trajectory import Ramp
-    values = parameter_spec.defaults(parameter_spec.RAMP_PARAMETERS)
-    values.update(parameter_spec.read_parameter_file(ramp_file, 'trajectory_node'))
+    from stewart_kinematics import parameters
+    from stewart_kinematics.motion.ramp import Ramp
+    values = parameters.defaults(parameters.RAMP_PARAMETERS)
+    values.update(parameters.read_parameter_file(ramp_file, 'trajectory_node'))
     return Ramp.from_parameters(values).rows
 
 
@@ -213,7 +213,7 @@ def print_tables(table_rows, recorder):
     :returns: dict of ``times`` (row indices), ``received``, ``lengths``, ``estimates``,
         ``position_error`` (metres) and ``orientation_error`` (radians), one row per pose.
     """
-    from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+    from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
     received = np.array(recorder.target_poses)
     lengths = np.array(recorder.leg_lengths)
     estimates = np.array(recorder.estimated_poses)

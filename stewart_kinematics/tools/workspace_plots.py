@@ -41,8 +41,8 @@ def write_workspace_figures(directory, slices, orientation_slices):
     Write the workspace figures and return their paths.
 
     :param directory: folder to write to, created if missing.
-    :param slices: :class:`~stewart_kinematics.workspace.WorkspaceSlice` of the XY, XZ and YZ
-        planes (any number of position slices).
+    :param slices: :class:`~stewart_kinematics.analysis.workspace.WorkspaceSlice` of the XY, XZ
+        and YZ planes (any number of position slices).
     :param orientation_slices: alpha-beta slices, one per gamma.
     :returns: paths of workspace_slices.png, orientation_workspace.png, dexterity.png.
     """

@@ -112,7 +112,7 @@ def parse_arguments(argv):
 def main(argv=None) -> int:
     """Run the report; return 0, or 1 with a message when the geometry cannot be used."""
     options = parse_arguments(argv)
-    from stewart_kinematics.parameter_spec import load_geometry
+    from stewart_kinematics.parameters import load_geometry
     try:
         geometry = load_geometry(options.params_files, options.node_name)
         report = workspace_report(geometry, options)
@@ -130,7 +130,7 @@ def main(argv=None) -> int:
 
 def workspace_report(geometry, options) -> dict:
     """Compute everything, print the tables, write the figures; return the numbers."""
-    from stewart_kinematics import workspace
+    from stewart_kinematics.analysis import workspace
     pose = np.array(geometry.home_pose, dtype=float)
     if options.pose is not None:
         pose = np.array(options.pose[:3] + [math.radians(angle) for angle in options.pose[3:]])

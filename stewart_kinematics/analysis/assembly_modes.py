@@ -55,7 +55,7 @@ nearest other real mode within the limits: how far a solver would have to be thr
 another mode, and how sure a start from a remembered pose can be.
 
 Units are metres and radians, frames and the rotation convention those of
-:mod:`stewart_kinematics.geometry`. Nothing here imports ROS.
+:mod:`stewart_kinematics.model.geometry`. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
@@ -68,8 +68,13 @@ import weakref
 import numpy as np
 
 from stewart_kinematics import limits
-from stewart_kinematics.kinematics import as_leg_lengths, as_poses, forward_kinematics
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model.kinematics import (
+    as_leg_lengths,
+    as_poses,
+    forward_kinematics,
+    jacobian_condition,
+)
+from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,
     rotation_angle_between,
@@ -129,7 +134,7 @@ class AssemblyMode:
         :func:`stewart_kinematics.forward_kinematics` returns poses.
     :param residual: largest leg length error, metres.
     :param condition: condition number of the dimensionless Jacobian
-        (:func:`stewart_kinematics.limits.jacobian_condition`); large near a singularity.
+        (:func:`stewart_kinematics.model.kinematics.jacobian_condition`); large near a singularity.
     :param violations: every limit of the geometry the pose breaks (empty when allowed).
     :param position_distance: distance of the platform origin from the reference pose's,
         metres.
@@ -359,7 +364,7 @@ def _refined_modes(geometry, lengths, candidates, reference):
                                                           rotations[None, :]))
     duplicate = np.any(np.tril(separation <= DISTINCT_POSE, k=-1), axis=-1)
     kept = np.flatnonzero(~duplicate)
-    conditions = limits.jacobian_condition(geometry, poses[kept, :3], rotations[kept])
+    conditions = jacobian_condition(geometry, poses[kept, :3], rotations[kept])
     return tuple(
         AssemblyMode(
             pose=poses[index], residual=float(residuals[index]),
@@ -788,7 +793,7 @@ def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyMo
     :returns: an :class:`AssemblyModeMargin`; ``inf`` distances when no other mode within
         the limits exists.
     """
-    from stewart_kinematics.kinematics import inverse_kinematics
+    from stewart_kinematics.model.kinematics import inverse_kinematics
     pose = as_poses(pose, 'pose')
     if lengths is None:
         lengths = inverse_kinematics(geometry, pose)

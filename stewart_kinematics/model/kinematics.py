@@ -20,11 +20,12 @@ Forward kinematics solves ``l(x) = lengths`` for the pose ``x = [X, Y, Z, alpha,
 by Newton-Raphson with the analytic Jacobian ``dl/dx``.
 
 Units are metres and radians; frames and the rotation convention are those of
-:mod:`stewart_kinematics.geometry` and :mod:`stewart_kinematics.rotations`. Every function takes
-one pose, shape (6,), or a batch, shape (N, 6), and loops over no poses in Python.
+:mod:`stewart_kinematics.model.geometry` and :mod:`stewart_kinematics.model.rotations`. Every
+function takes one pose, shape (6,), or a batch, shape (N, 6), and loops over no poses in
+Python.
 
 Each quantity has one formula (:func:`_legs`, :func:`_twist_rows`, :func:`_euler_step`,
-:func:`_apply` and :func:`stewart_kinematics.rotations.zyx_entries`), written so that it runs
+:func:`_apply` and :func:`stewart_kinematics.model.rotations.zyx_entries`), written so that it runs
 on floats for one pose (numpy's per-call overhead would cost more than the arithmetic on six
 legs) and on numpy arrays for a batch, with the same operations in the same order: a single
 solve and a batch take the same steps to the bit.
@@ -38,7 +39,7 @@ import weakref
 
 import numpy as np
 
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model.rotations import (
     _ArrayOperations,
     euler_zyx_matrix_entries,
     euler_zyx_to_matrix,
@@ -401,7 +402,7 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param position: metres, base frame, shape (3,) or (N, 3).
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3); build it
-        from a quaternion with :func:`stewart_kinematics.rotations.quaternion_to_matrix`.
+        from a quaternion with :func:`stewart_kinematics.model.rotations.quaternion_to_matrix`.
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
     """
     position = np.asarray(position, dtype=float)

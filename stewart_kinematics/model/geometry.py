@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Two joints closer than this (metres) count as one: a leg pair would be degenerate.
 MIN_JOINT_SEPARATION = 1e-6
@@ -48,8 +48,8 @@ class Geometry:
         base joint, radians, in (0, pi] (pi for no limit).
     :param platform_joint_max_angle: the same at the platform joint, in the platform frame.
     :param max_jacobian_condition: largest allowed condition number of the dimensionless
-        Jacobian (:func:`stewart_kinematics.limits.jacobian_condition`), >= 1 (``inf`` for no
-        limit): the singularity margin.
+        Jacobian (:func:`stewart_kinematics.model.kinematics.jacobian_condition`), >= 1
+        (``inf`` for no limit): the singularity margin.
     :raises ValueError: if an array has the wrong shape or a non-finite value, two joints
         coincide, the joints of the base or of the platform are collinear, a limit is out of
         its range, or the home pose breaks a limit.
@@ -98,7 +98,7 @@ class Geometry:
 
         # Derived once: every IK request and limit check uses them.
         from stewart_kinematics import limits
-        from stewart_kinematics.kinematics import leg_vectors_from_euler
+        from stewart_kinematics.model.kinematics import leg_vectors_from_euler
         home_legs = leg_vectors_from_euler(self, self.home_pose)
         home_lengths = np.linalg.norm(home_legs, axis=-1)
         home_lengths.flags.writeable = False

@@ -13,9 +13,9 @@
 # limitations under the License.
 
 """
-The README's table and figure of every assembly mode at the end of the paper's Table 3.
+The documentation's table and figure of every assembly mode at the end of the paper's Table 3.
 
-``python -m stewart_kinematics.tools.assembly_modes_figure [docs/assembly_modes.png]`` prints
+``python scripts/figures/assembly_modes.py [docs/assembly_modes.png]`` prints
 the table (Markdown) and draws the modes side by side, each platform with its legs and base,
 as a PNG (matplotlib, Agg backend).
 """
@@ -31,7 +31,7 @@ import numpy as np  # noqa: E402
 
 from stewart_kinematics import (  # noqa: E402
     assembly_modes, inverse_kinematics, load_geometry)
-from stewart_kinematics.rotations import euler_zyx_to_matrix  # noqa: E402
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix  # noqa: E402
 
 CONFIG = Path(__file__).resolve().parent.parent.parent / 'config'
 #: The last row of Table 3: metres, then degrees.

@@ -43,9 +43,9 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
-from stewart_kinematics.kinematics import as_poses, jacobian_condition
 from stewart_kinematics.limits import check_poses_array, LIMIT_NAMES
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.kinematics import as_poses, jacobian_condition
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Names and units of the six pose coordinates.
 AXES = ('X', 'Y', 'Z', 'alpha', 'beta', 'gamma')

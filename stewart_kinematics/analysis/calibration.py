@@ -49,11 +49,15 @@ from scipy.linalg import qr
 from scipy.optimize import least_squares
 
 from stewart_kinematics import limits
-from stewart_kinematics.geometry import Geometry
-from stewart_kinematics.kinematics import as_poses
-from stewart_kinematics.parameter_spec import (
-    ACTUATOR_PARAMETERS, all_specs, check_values, GEOMETRY_PARAMETERS)
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.geometry import Geometry
+from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+from stewart_kinematics.parameters import (
+    ACTUATOR_PARAMETERS,
+    all_specs,
+    check_values,
+    GEOMETRY_PARAMETERS,
+)
 import yaml
 
 #: Parameters of one leg: base joint (3), platform joint (3), actuator offset (1).

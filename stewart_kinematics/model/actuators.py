@@ -17,7 +17,7 @@ The six leg actuators as a motion controller sees them: their limits, names and 
 
 :class:`ActuatorLimits` holds how fast the legs may move (velocity, acceleration, jerk), the
 limits that timed motion must respect (:mod:`stewart_kinematics.trajectories`,
-:mod:`stewart_kinematics.streaming`). They are kept apart from
+:mod:`stewart_kinematics.motion.streaming`). They are kept apart from
 :class:`stewart_kinematics.Geometry`, which says *where* the platform may be (stroke, joint
 cones, singularity margin) and is checked on every single pose: a pose has no speed, and the
 IK and FK paths never need these limits.

@@ -35,14 +35,14 @@ from typing import Dict, List, Optional
 
 import numpy as np
 
-from stewart_kinematics.kinematics import (
+from stewart_kinematics.model.kinematics import (
     as_leg_lengths,
     as_poses,
     jacobian_condition,
     leg_lengths,
     leg_vectors,
 )
-from stewart_kinematics.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: How many failing samples :func:`check_samples` lists in full.
 LISTED_FAILURES = 10
@@ -297,7 +297,8 @@ def check_poses_array(geometry, poses, *, condition_of_refused=True) -> LimitChe
     >>> from stewart_kinematics import load_geometry
     >>> from stewart_kinematics.limits import check_poses_array
     >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
-    >>> poses = geometry.home_pose + [[0.0, 0, 0, 0, 0, 0], [0, 0, 0.2, 0, 0, 0], [0.1, 0, 0, 0, 0, 0]]
+    >>> poses = geometry.home_pose + [[0.0, 0, 0, 0, 0, 0], [0, 0, 0.2, 0, 0, 0],
+    ...                               [0.1, 0, 0, 0, 0, 0]]
     >>> checks = check_poses_array(geometry, poses)
     >>> checks.allowed, checks.excess('leg_length_max').max(axis=-1).round(6)
     (array([ True, False,  True]), array([-0.181145,  0.01638 , -0.15812 ]))

@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.actuators import ActuatorLimits
+from stewart_kinematics.model.actuators import ActuatorLimits
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.kinematics import as_poses
+from stewart_kinematics.model.kinematics import as_poses
 
 #: Relative slack when checking that (end - start) / step is a whole number of steps.
 STEP_COUNT_TOLERANCE = 1e-9
@@ -93,7 +93,7 @@ class Ramp:
         Build a ramp from the trajectory node's parameter values (metres and degrees).
 
         :param values: parameter name -> value, with the names of
-            :data:`stewart_kinematics.parameter_spec.RAMP_PARAMETERS`.
+            :data:`stewart_kinematics.parameters.RAMP_PARAMETERS`.
         :raises ValueError: naming the axis and its parameters, if the table is inconsistent.
         """
         names = ('position_start', 'position_step', 'position_end',

@@ -43,12 +43,16 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import findings, limits, parameter_spec
-from stewart_kinematics.assembly_modes import start_ambiguity
+from stewart_kinematics import findings, limits, parameters
+from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.kinematics import as_poses, forward_kinematics, ForwardKinematicsResult
-from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
-from stewart_kinematics.velocities import platform_twist, SingularPoseError
+from stewart_kinematics.model.kinematics import (
+    as_poses,
+    forward_kinematics,
+    ForwardKinematicsResult,
+)
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
 
 
 @dataclass(frozen=True)
@@ -56,7 +60,7 @@ class TrackerSettings:
     """
     The settings of a :class:`PoseTracker`: the solver parameters of fk_node, same names.
 
-    See :data:`stewart_kinematics.parameter_spec.SOLVER_PARAMETERS` for each one's meaning,
+    See :data:`stewart_kinematics.parameters.SOLVER_PARAMETERS` for each one's meaning,
     unit and allowed values; an invalid value raises ``ValueError`` naming it.
     """
 
@@ -70,8 +74,8 @@ class TrackerSettings:
     refuse_ambiguous_start: bool = False
 
     def __post_init__(self):
-        parameter_spec.check_values(
-            parameter_spec.SOLVER_PARAMETERS,
+        parameters.check_values(
+            parameters.SOLVER_PARAMETERS,
             {field.name: getattr(self, field.name) for field in fields(self)})
 
 
@@ -302,7 +306,7 @@ class PoseTracker:
         """
         Say why a first solution cannot be trusted to be in the platform's mode, or return None.
 
-        Runs :func:`stewart_kinematics.assembly_modes.start_ambiguity` from the last known
+        Runs :func:`stewart_kinematics.analysis.assembly_modes.start_ambiguity` from the last known
         pose; its answer is kept while no leg changes by more than
         ``assembly_guard_length_change``, so a platform at rest costs one search.
         """

@@ -13,153 +13,34 @@
 # limitations under the License.
 
 """
-Every ROS parameter of the package, declared once, and the reader of parameter files.
+Every ROS parameter of the package, declared once, grouped by what it configures.
 
-Each :class:`ParameterSpec` gives a parameter's name, type, default (``None``: required),
-description with its unit, read-only flag and validators. The nodes turn these specs into ROS
-declarations (:mod:`stewart_kinematics.ros.ros_parameters`), the core reads the same names
-from YAML (:func:`load_geometry`), and the README's parameter tables list them.
-
-A validator takes ``(name, value)`` and returns ``''`` when the value is allowed, else a sentence
-that names the parameter, the value and what is allowed. Nothing here imports ROS.
+The nodes turn these specs into ROS declarations (:mod:`stewart_kinematics.ros.ros_parameters`),
+the core reads the same names from YAML (:mod:`stewart_kinematics.parameters.files`), and the
+documentation's parameter tables are generated from them
+(:mod:`stewart_kinematics.parameters.tables`). Nothing here imports ROS.
 """
 
-import array
-from dataclasses import dataclass
 import difflib
 import math
-from typing import Any, Callable, Optional, Tuple
 
-import numpy as np
-
-from stewart_kinematics.frames import FrameTree, Transform
-from stewart_kinematics.geometry import Geometry
-import yaml
-
-Validator = Callable[[str, Any], str]
-
-# Parameter types, spelled as in rcl_interfaces/msg/ParameterType.
-BOOL = 'bool'
-INTEGER = 'integer'
-DOUBLE = 'double'
-STRING = 'string'
-DOUBLE_ARRAY = 'double_array'
-STRING_ARRAY = 'string_array'
-
-_PYTHON_TYPES = {
-    BOOL: (bool,),
-    INTEGER: (int,),
-    DOUBLE: (float,),
-    STRING: (str,),
-    # rclpy hands double arrays from parameter services over as array.array('d').
-    DOUBLE_ARRAY: (list, tuple, array.array),
-    STRING_ARRAY: (list, tuple),
-}
-
-
-@dataclass(frozen=True)
-class ParameterSpec:
-    """
-    Declaration of one ROS parameter.
-
-    :param name: parameter name.
-    :param value_type: one of ``bool``, ``integer``, ``double``, ``string``, ``double_array``.
-    :param description: what it means, with its unit.
-    :param default: value used when no parameter file sets it; ``None`` makes it required.
-    :param read_only: True where a change at run time makes no sense (the geometry).
-    :param validators: checks run on every value, at start-up and on every run-time change.
-    :param constraints: the allowed values in words, for the README table.
-    """
-
-    name: str
-    value_type: str
-    description: str
-    default: Any = None
-    read_only: bool = False
-    validators: Tuple[Validator, ...] = ()
-    constraints: str = ''
-
-    def check(self, value) -> str:
-        """
-        Check a value against the type and the validators.
-
-        :returns: ``''`` if the value is allowed, else the first reason it is not.
-        """
-        if value is None:
-            if self.default is None:
-                return (f"parameter '{self.name}' is required ({self.description}); set it in "
-                        'a parameter file')
-            return ''
-        # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
-        if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
-                self.value_type == INTEGER and isinstance(value, bool)):
-            hint = ' (write 1.0, not 1)' if self.value_type == DOUBLE else ''
-            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
-                    f'({type(value).__name__}){hint}')
-        if self.value_type == DOUBLE_ARRAY and not all(isinstance(item, float) for item in value):
-            return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
-                    f'{list(value)!r} (write 1.0, not 1)')
-        if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
-            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
-        for validator in self.validators:
-            reason = validator(self.name, value)
-            if reason:
-                return reason
-        return ''
-
-
-def fixed_length(length: int) -> Validator:
-    """Require an array of exactly ``length`` elements."""
-    def validate(name, value):
-        if len(value) != length:
-            return (f"parameter '{name}' must have exactly {length} elements, "
-                    f'got {len(value)}: {list(value)!r}')
-        return ''
-    return validate
-
-
-def finite(name, value) -> str:
-    """Require a finite number, or an array of finite numbers."""
-    values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
-    if not all(math.isfinite(item) for item in values):
-        return f"parameter '{name}' must be finite, got {value!r}"
-    return ''
-
-
-def in_range(low: float, high: float, *, low_inclusive: bool = True,
-             high_inclusive: bool = True) -> Validator:
-    """Require a number (or every element of an array) within ``[low, high]``."""
-    def validate(name, value):
-        values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
-        for item in values:
-            above_low = item >= low if low_inclusive else item > low
-            below_high = item <= high if high_inclusive else item < high
-            if not (above_low and below_high):
-                interval = (('[' if low_inclusive else '(') + f'{low:g}, {high:g}'
-                            + (']' if high_inclusive else ')'))
-                return f"parameter '{name}' must be in {interval}, got {value!r}"
-        return ''
-    return validate
-
-
-def zero_or_in_range(low: float, high: float) -> Validator:
-    """Require 0 (a feature turned off) or a number within ``[low, high]``."""
-    within = in_range(low, high)
-
-    def validate(name, value):
-        if value == 0.0 or not within(name, value):
-            return ''
-        return f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got {value!r}"
-    return validate
-
-
-def one_of(*allowed: str) -> Validator:
-    """Require one of the given strings."""
-    def validate(name, value):
-        if value not in allowed:
-            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {value!r}"
-        return ''
-    return validate
+from stewart_kinematics.parameters.spec import (
+    BOOL,
+    distinct_names,
+    DOUBLE,
+    DOUBLE_ARRAY,
+    finite,
+    fixed_length,
+    frame_name,
+    in_range,
+    INTEGER,
+    non_empty,
+    one_of,
+    ParameterSpec,
+    STRING,
+    STRING_ARRAY,
+    zero_or_in_range,
+)
 
 
 GEOMETRY_PARAMETERS = (
@@ -240,15 +121,6 @@ GEOMETRY_PARAMETERS = (
 )
 
 
-def distinct_names(name, value) -> str:
-    """Require non-empty, distinct strings (joint names)."""
-    if not all(value) or len(set(value)) != len(value):
-        return f"parameter '{name}' must hold distinct, non-empty names, got {list(value)!r}"
-    return ''
-
-
-#: The legs as the actuator interface sees them: shared by every JointState and
-#: JointTrajectory the package publishes or reads.
 ACTUATOR_PARAMETERS = (
     ParameterSpec(
         'joint_names', STRING_ARRAY,
@@ -315,7 +187,7 @@ SOLVER_PARAMETERS = (
         default=False, constraints='any'),
 )
 
-#: The assembly-mode margin that fk_node reports (see stewart_kinematics.assembly_modes).
+#: The assembly-mode margin that fk_node reports (see stewart_kinematics.analysis.assembly_modes).
 ASSEMBLY_MODE_PARAMETERS = (
     ParameterSpec(
         'assembly_mode_margin_period', DOUBLE,
@@ -335,20 +207,6 @@ ASSEMBLY_MODE_PARAMETERS = (
 )
 
 
-def frame_name(name, value) -> str:
-    """Require a tf frame name: no spaces, no leading slash (tf2 refuses those)."""
-    if value.startswith('/') or any(character.isspace() for character in value):
-        return (f"parameter '{name}' must be a frame name without spaces or a leading '/', "
-                f'got {value!r}')
-    return ''
-
-
-def non_empty(name, value) -> str:
-    """Require a non-empty string."""
-    return '' if value else f"parameter '{name}' must not be empty"
-
-
-#: The frame tree (stewart_kinematics.frames): names, and the user and tool frames' poses.
 FRAME_PARAMETERS = (
     ParameterSpec(
         'base_frame', STRING,
@@ -615,167 +473,3 @@ def check_values(specs, values: dict) -> None:
         reason = spec.check(values.get(spec.name))
         if reason:
             raise ValueError(reason)
-
-
-def read_parameter_file(path, node_name: Optional[str] = None) -> dict:
-    """
-    Read the parameters a node would get from a ROS 2 parameter file.
-
-    Sections apply as rcl applies them: ``/**`` first, then the section of ``node_name``
-    (``name``, ``/name`` or ``/namespace/name``), which overrides it.
-
-    :param path: a YAML file in the ``<node>: ros__parameters: {...}`` layout.
-    :param node_name: the node whose view to return: a bare name (``fk_node``) matches its
-        section in any namespace, a full name (``/robot_a/fk_node``) only that one; ``None``
-        reads only ``/**``.
-    :returns: parameter name -> value.
-    :raises ValueError: if the file is missing, is not valid YAML or has no such layout.
-    """
-    try:
-        with open(path, encoding='utf-8') as stream:
-            document = yaml.safe_load(stream)
-    except OSError as error:
-        raise ValueError(f'cannot read parameter file {path}: {error.strerror}') from error
-    except yaml.YAMLError as error:
-        raise ValueError(f'parameter file {path} is not valid YAML: {error}') from error
-    if not isinstance(document, dict):
-        raise ValueError(f'parameter file {path} must map node names to ros__parameters')
-
-    def applies(key, section):
-        if section == '/**' or '/' in section:
-            return key.lstrip('/') == section.lstrip('/')
-        return key.rsplit('/', 1)[-1] == section
-
-    values = {}
-    for section in ['/**'] + ([] if node_name is None else [node_name]):
-        for key, content in document.items():
-            if applies(str(key), section):
-                if not isinstance(content, dict) or not isinstance(
-                        content.get('ros__parameters'), dict):
-                    raise ValueError(
-                        f"section '{key}' of parameter file {path} has no ros__parameters map")
-                values.update(content['ros__parameters'])
-    return values
-
-
-def geometry_from_parameters(values: dict) -> Geometry:
-    """
-    Build a geometry from ROS parameter values, as the nodes declare them.
-
-    :param values: parameter name -> value, with the names and units of
-        :data:`GEOMETRY_PARAMETERS` (flat joint lists in metres, home orientation in degrees);
-        a missing optional one takes its default. A pivot point is the tool frame's origin
-        (:func:`frames_from_parameters`), not part of the geometry.
-    :raises ValueError: naming the parameter, if a value is missing or not allowed.
-    """
-    merged = defaults(GEOMETRY_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
-    check_values(GEOMETRY_PARAMETERS, merged)
-    home_pose = np.concatenate([
-        np.asarray(merged['home_position'], dtype=float),
-        np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
-    return Geometry(
-        base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
-        platform_joints=np.reshape(np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
-        home_pose=home_pose,
-        leg_length_min=float(merged['leg_length_min']),
-        leg_length_max=float(merged['leg_length_max']),
-        base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
-        platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
-        max_jacobian_condition=float(merged['max_jacobian_condition']))
-
-
-def frames_from_parameters(values: dict) -> FrameTree:
-    """
-    Build the frame tree from ROS parameter values, as the nodes declare them.
-
-    :param values: parameter name -> value, with the names and units of
-        :data:`FRAME_PARAMETERS` (positions in metres, orientations in degrees); a missing one
-        takes its default.
-    :raises ValueError: naming the parameter, if a value is not allowed, or for frame names
-        that repeat.
-    """
-    merged = defaults(FRAME_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
-    check_values(FRAME_PARAMETERS, merged)
-    return FrameTree(
-        base_frame=merged['base_frame'], platform_frame=merged['platform_frame'],
-        user_frame=merged['user_frame'],
-        user_pose=_frame_pose(merged['user_frame_position'],
-                              merged['user_frame_orientation_deg']),
-        tool_frame=merged['tool_frame'],
-        tool_pose=_frame_pose(merged['tool_frame_position'],
-                              merged['tool_frame_orientation_deg']))
-
-
-def frame_parameters_reason(values: dict) -> str:
-    """
-    Say why frame parameter values cannot make a frame tree, or return ``''``.
-
-    For a run-time change, where a rule between parameters (frame names must differ) decides.
-    """
-    try:
-        frames_from_parameters(values)
-    except ValueError as error:
-        return str(error)
-    return ''
-
-
-def _frame_pose(position, orientation_deg) -> Transform:
-    """Return the transform of a position (metres) and Euler angles (degrees)."""
-    return Transform.from_pose(np.concatenate([
-        np.asarray(position, dtype=float), np.radians(np.asarray(orientation_deg, dtype=float))]))
-
-
-def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
-    """
-    Read a geometry from ROS 2 parameter files, the same ones the nodes are given.
-
-    :param paths: a YAML file with the geometry under ``/**:`` (or under ``node_name``), or a
-        list of them applied in order, as repeated ``--params-file`` options are (for example
-        ``['config/paper_platform.yaml', 'config/example_limits.yaml']``).
-    :param node_name: also apply this node's sections, as that node would see them.
-    :raises ValueError: naming the file, if a file cannot be read or its geometry is not
-        allowed.
-
-    >>> from stewart_kinematics import load_geometry
-    >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
-    >>> geometry.leg_length_min, geometry.leg_length_max
-    (0.65, 0.9)
-    """
-    if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
-        paths = [paths]
-    values = {}
-    for path in paths:
-        values.update(read_parameter_file(path, node_name))
-    try:
-        check_known_names(values, 'the file')
-        return geometry_from_parameters(values)
-    except ValueError as error:
-        raise ValueError(f'{", ".join(map(str, paths))}: {error}') from error
-
-
-def markdown_table(specs) -> str:
-    """
-    Render the README's table of ``specs``: name, type, default, meaning, allowed values.
-
-    A test compares the README with this, so the documentation cannot drift from the code.
-    """
-    def shown(value):
-        if value is None:
-            return 'required'
-        if isinstance(value, float) and math.isinf(value):
-            return '`.inf`'
-        if isinstance(value, str):
-            return f"`'{value}'`"
-        if isinstance(value, bool):
-            return f'`{str(value).lower()}`'
-        return f'`{value}`'
-
-    lines = ['| Parameter | Type | Default | Meaning | Allowed | Run-time change |',
-             '| --- | --- | --- | --- | --- | --- |']
-    for spec in specs:
-        lines.append(
-            f'| `{spec.name}` | {spec.value_type} | {shown(spec.default)} | {spec.description} | '
-            f'{spec.constraints or "any"} | {"no (read-only)" if spec.read_only else "yes"} |')
-    return '\n'.join(lines)

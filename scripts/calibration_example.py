@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The README's calibration example: measurements of a synthetic built hexapod, to calibrate.
+The calibration example of doc/calibration.md: measurements of a synthetic built hexapod.
 
 The "built" platform is the paper's with every joint coordinate moved by up to 2 mm and every
 actuator's zero by up to 5 mm (seeded, so the files are the same every time). It is measured
@@ -27,7 +27,7 @@ mis-read tracker point, a glitching actuator). Writes to the output folder:
   layer on the nominal geometry;
 - ``true_platform.yaml``: the built platform's real parameters, to compare with the result.
 
-Run ``python -m stewart_kinematics.tools.calibration_example OUTPUT_DIR``; after calibrating,
+Run ``python scripts/calibration_example.py OUTPUT_DIR``; after calibrating,
 ``... OUTPUT_DIR --check calibrated.yaml`` drives the built platform with the nominal and the
 calibrated model and prints the pose errors it reaches.
 """
@@ -40,12 +40,16 @@ import sys
 
 import numpy as np
 
-from stewart_kinematics.calibration import (
-    load_measurements, measurement_poses, predict_actuator_positions, write_measurements,
-    write_parameter_file)
-from stewart_kinematics.kinematics import forward_kinematics
-from stewart_kinematics.parameter_spec import load_geometry, read_parameter_file
-from stewart_kinematics.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.analysis.calibration import (
+    load_measurements,
+    measurement_poses,
+    predict_actuator_positions,
+    write_measurements,
+    write_parameter_file,
+)
+from stewart_kinematics.model.kinematics import forward_kinematics
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.parameters import load_geometry, read_parameter_file
 from stewart_kinematics.tools.ramp_demo import default_config_directory
 
 SEED = 2026

@@ -22,7 +22,7 @@ The platform's frame tree: base, platform, and the user and tool frames hexapod 
 
 - The **base frame** is fixed; the geometry's base joints are given in it.
 - The **platform frame** moves with the platform; the platform joints are given in it, and a
-  pose of the kinematics (:func:`~stewart_kinematics.kinematics.inverse_kinematics`) places it.
+  pose of the kinematics (:func:`~stewart_kinematics.inverse_kinematics`) places it.
 - The **tool frame** is fixed to the platform (a tool centre point, a payload's centre): its
   origin is the pivot point. A commanded pose is the tool frame's, so a pure rotation turns the
   platform about that point, as hexapod controllers do; the default tool frame is the platform
@@ -39,7 +39,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from stewart_kinematics.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 
 @dataclass(frozen=True, eq=False)

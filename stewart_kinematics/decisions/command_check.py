@@ -42,8 +42,8 @@ import numpy as np
 
 from stewart_kinematics import findings, limits
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.kinematics import leg_lengths, twist_jacobian
-from stewart_kinematics.rotations import (
+from stewart_kinematics.model.kinematics import leg_lengths, twist_jacobian
+from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     normalize_quaternion,
     quaternion_to_matrix,

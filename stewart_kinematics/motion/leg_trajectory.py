@@ -1,0 +1,62 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Leg trajectories: a timed platform trajectory sampled for the six actuators.
+
+A :class:`LegTrajectory` is what a trajectory_msgs/JointTrajectory carries to
+joint_trajectory_controller: actuator positions, velocities and accelerations at times.
+
+Units: metres, seconds. Nothing here imports ROS.
+"""
+
+from dataclasses import dataclass
+from typing import Tuple
+
+import numpy as np
+
+from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+
+
+@dataclass(frozen=True)
+class LegTrajectory:
+    """
+    A timed trajectory of the six actuators, as a JointTrajectory carries it.
+
+    :param joint_names: leg 1..6.
+    :param times: time from start of each point, seconds, shape (M,).
+    :param positions: actuator positions (leg length minus offset), metres, shape (M, 6).
+    :param velocities: m/s, shape (M, 6).
+    :param accelerations: m/s^2, shape (M, 6).
+    """
+
+    joint_names: Tuple[str, ...]
+    times: np.ndarray
+    positions: np.ndarray
+    velocities: np.ndarray
+    accelerations: np.ndarray
+
+
+def leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInterface,
+                   rate: float) -> LegTrajectory:
+    """
+    Sample a timed trajectory for an actuator interface: every ``1 / rate`` s and at waypoints.
+
+    :param rate: points per second, hertz; every waypoint and the end are points too.
+    """
+    times = trajectory.sample_times(rate)
+    legs = trajectory.legs(geometry, times)
+    return LegTrajectory(actuators.joint_names, times, actuators.positions(legs.lengths),
+                         legs.velocities, legs.accelerations)

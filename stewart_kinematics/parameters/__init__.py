@@ -1,0 +1,97 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The parameters: every ROS parameter declared once, the parameter files, and what they build.
+
+:mod:`.spec` (one parameter's declaration and the validators), :mod:`.declarations` (every
+parameter of the package, by group), :mod:`.files` (parameter files read as rcl reads them),
+:mod:`.builders` (the geometry and frames from parameter values) and :mod:`.tables` (the
+documentation's parameter tables).
+
+May import: :mod:`stewart_kinematics.model`, numpy and PyYAML. Nothing here imports ROS.
+"""
+
+from stewart_kinematics.parameters.builders import (
+    frame_parameters_reason,
+    frames_from_parameters,
+    geometry_from_parameters,
+)
+from stewart_kinematics.parameters.declarations import (
+    ACTUATOR_PARAMETERS,
+    all_specs,
+    ASSEMBLY_MODE_PARAMETERS,
+    check_known_names,
+    check_values,
+    defaults,
+    FK_FRAME_PARAMETERS,
+    FRAME_PARAMETERS,
+    GEOMETRY_PARAMETERS,
+    IK_FRAME_PARAMETERS,
+    MARKER_PARAMETERS,
+    MOTION_PARAMETERS,
+    QUEUE_PARAMETERS,
+    RAMP_PARAMETERS,
+    REPLACED_PARAMETERS,
+    SOLVER_PARAMETERS,
+    STREAMING_PARAMETERS,
+    WORKSPACE_PARAMETERS,
+)
+from stewart_kinematics.parameters.files import load_geometry, read_parameter_file
+from stewart_kinematics.parameters.spec import (
+    BOOL,
+    DOUBLE,
+    DOUBLE_ARRAY,
+    INTEGER,
+    ParameterSpec,
+    STRING,
+    STRING_ARRAY,
+    Validator,
+)
+from stewart_kinematics.parameters.tables import markdown_table
+
+__all__ = [
+    'ACTUATOR_PARAMETERS',
+    'all_specs',
+    'ASSEMBLY_MODE_PARAMETERS',
+    'BOOL',
+    'check_known_names',
+    'check_values',
+    'defaults',
+    'DOUBLE',
+    'DOUBLE_ARRAY',
+    'FK_FRAME_PARAMETERS',
+    'FRAME_PARAMETERS',
+    'frame_parameters_reason',
+    'frames_from_parameters',
+    'geometry_from_parameters',
+    'GEOMETRY_PARAMETERS',
+    'IK_FRAME_PARAMETERS',
+    'INTEGER',
+    'load_geometry',
+    'markdown_table',
+    'MARKER_PARAMETERS',
+    'MOTION_PARAMETERS',
+    'ParameterSpec',
+    'QUEUE_PARAMETERS',
+    'RAMP_PARAMETERS',
+    'read_parameter_file',
+    'REPLACED_PARAMETERS',
+    'SOLVER_PARAMETERS',
+    'STREAMING_PARAMETERS',
+    'STRING',
+    'STRING_ARRAY',
+    'Validator',
+    'WORKSPACE_PARAMETERS',
+]

@@ -1,0 +1,179 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The declaration of one ROS parameter, and the validators a declaration uses.
+
+Each :class:`ParameterSpec` gives a parameter's name, type, default (``None``: required),
+description with its unit, read-only flag and validators. A validator takes ``(name, value)``
+and returns ``''`` when the value is allowed, else a sentence that names the parameter, the
+value and what is allowed. Nothing here imports ROS.
+"""
+
+import array
+from dataclasses import dataclass
+import math
+from typing import Any, Callable, Tuple
+
+
+Validator = Callable[[str, Any], str]
+
+# Parameter types, spelled as in rcl_interfaces/msg/ParameterType.
+BOOL = 'bool'
+INTEGER = 'integer'
+DOUBLE = 'double'
+STRING = 'string'
+DOUBLE_ARRAY = 'double_array'
+STRING_ARRAY = 'string_array'
+
+_PYTHON_TYPES = {
+    BOOL: (bool,),
+    INTEGER: (int,),
+    DOUBLE: (float,),
+    STRING: (str,),
+    # rclpy hands double arrays from parameter services over as array.array('d').
+    DOUBLE_ARRAY: (list, tuple, array.array),
+    STRING_ARRAY: (list, tuple),
+}
+
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """
+    Declaration of one ROS parameter.
+
+    :param name: parameter name.
+    :param value_type: one of ``bool``, ``integer``, ``double``, ``string``, ``double_array``.
+    :param description: what it means, with its unit.
+    :param default: value used when no parameter file sets it; ``None`` makes it required.
+    :param read_only: True where a change at run time makes no sense (the geometry).
+    :param validators: checks run on every value, at start-up and on every run-time change.
+    :param constraints: the allowed values in words, for the documentation table.
+    """
+
+    name: str
+    value_type: str
+    description: str
+    default: Any = None
+    read_only: bool = False
+    validators: Tuple[Validator, ...] = ()
+    constraints: str = ''
+
+    def check(self, value) -> str:
+        """
+        Check a value against the type and the validators.
+
+        :returns: ``''`` if the value is allowed, else the first reason it is not.
+        """
+        if value is None:
+            if self.default is None:
+                return (f"parameter '{self.name}' is required ({self.description}); set it in "
+                        'a parameter file')
+            return ''
+        # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
+        if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
+                self.value_type == INTEGER and isinstance(value, bool)):
+            hint = ' (write 1.0, not 1)' if self.value_type == DOUBLE else ''
+            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
+                    f'({type(value).__name__}){hint}')
+        if self.value_type == DOUBLE_ARRAY and not all(isinstance(item, float) for item in value):
+            return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
+                    f'{list(value)!r} (write 1.0, not 1)')
+        if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
+            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
+        for validator in self.validators:
+            reason = validator(self.name, value)
+            if reason:
+                return reason
+        return ''
+
+
+def fixed_length(length: int) -> Validator:
+    """Require an array of exactly ``length`` elements."""
+    def validate(name, value):
+        if len(value) != length:
+            return (f"parameter '{name}' must have exactly {length} elements, "
+                    f'got {len(value)}: {list(value)!r}')
+        return ''
+    return validate
+
+
+def finite(name, value) -> str:
+    """Require a finite number, or an array of finite numbers."""
+    values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
+    if not all(math.isfinite(item) for item in values):
+        return f"parameter '{name}' must be finite, got {value!r}"
+    return ''
+
+
+def in_range(low: float, high: float, *, low_inclusive: bool = True,
+             high_inclusive: bool = True) -> Validator:
+    """Require a number (or every element of an array) within ``[low, high]``."""
+    def validate(name, value):
+        values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
+        for item in values:
+            above_low = item >= low if low_inclusive else item > low
+            below_high = item <= high if high_inclusive else item < high
+            if not (above_low and below_high):
+                interval = (('[' if low_inclusive else '(') + f'{low:g}, {high:g}'
+                            + (']' if high_inclusive else ')'))
+                return f"parameter '{name}' must be in {interval}, got {value!r}"
+        return ''
+    return validate
+
+
+def zero_or_in_range(low: float, high: float) -> Validator:
+    """Require 0 (a feature turned off) or a number within ``[low, high]``."""
+    within = in_range(low, high)
+
+    def validate(name, value):
+        if value == 0.0 or not within(name, value):
+            return ''
+        return f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got {value!r}"
+    return validate
+
+
+def one_of(*allowed: str) -> Validator:
+    """Require one of the given strings."""
+    def validate(name, value):
+        if value not in allowed:
+            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {value!r}"
+        return ''
+    return validate
+
+
+def distinct_names(name, value) -> str:
+    """Require non-empty, distinct strings (joint names)."""
+    if not all(value) or len(set(value)) != len(value):
+        return f"parameter '{name}' must hold distinct, non-empty names, got {list(value)!r}"
+    return ''
+
+
+#: The legs as the actuator interface sees them: shared by every JointState and
+
+
+def frame_name(name, value) -> str:
+    """Require a tf frame name: no spaces, no leading slash (tf2 refuses those)."""
+    if value.startswith('/') or any(character.isspace() for character in value):
+        return (f"parameter '{name}' must be a frame name without spaces or a leading '/', "
+                f'got {value!r}')
+    return ''
+
+
+def non_empty(name, value) -> str:
+    """Require a non-empty string."""
+    return '' if value else f"parameter '{name}' must not be empty"
+
+
+#: The frame tree (stewart_kinematics.model.frames): names, and the user and tool frames' poses.
