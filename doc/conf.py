@@ -43,10 +43,12 @@ extensions = [
 
 root_doc = 'index'
 source_suffix = {'.md': 'markdown', '.rst': 'restructuredtext'}
-# rosdoc2 writes an index.rst of its own beside ours (ours is index.md), and rosdoc2 0.2.1 also
-# copies this folder to user_docs/ and runs sphinx-apidoc (newer versions honour
-# never_run_sphinx_apidoc in rosdoc2.yaml): none of that is part of this site.
-exclude_patterns = ['_build', 'ext', 'index.rst', 'user_docs', 'user_docs*.rst', 'modules.rst',
+# rosdoc2 writes pages of its own beside ours: an index.rst (ours is index.md), the README and
+# package.xml as "standard documents" (the README's links point into the repository, not into
+# this site), and rosdoc2 0.2.1 also copies this folder to user_docs/ and runs sphinx-apidoc
+# (newer versions honour never_run_sphinx_apidoc in rosdoc2.yaml). None of that is this site.
+exclude_patterns = ['_build', 'ext', 'index.rst', 'README.md', '__*.rst', 'standard_docs',
+                    'standards.rst', 'user_docs', 'user_docs*.rst', 'modules.rst',
                     'stewart_kinematics*.rst']
 templates_path = []
 
