@@ -157,7 +157,16 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     :returns: a :class:`TravelRanges`.
     :raises ValueError: if the start pose breaks a limit (its violations are listed).
 
-    >>> print(travel_ranges(geometry).table())  # doctest: +SKIP
+    >>> from stewart_kinematics import load_geometry, travel_ranges
+    >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
+    >>> print(travel_ranges(geometry).table())  # doctest: +NORMALIZE_WHITESPACE
+    axis      negative    positive  stopped at negative end by         stopped at positive end by
+    X      -383.825 mm  387.664 mm   base_joint_max_angle, leg 5        base_joint_max_angle, leg 1
+    Y      -372.253 mm  382.272 mm   base_joint_max_angle, leg 3        base_joint_max_angle, leg 2
+    Z       -52.080 mm  183.457 mm   leg_length_min, leg 3              leg_length_max, leg 5
+    alpha   -20.123 deg  20.123 deg  leg_length_min, leg 1              leg_length_min, leg 4
+    beta    -22.985 deg  16.830 deg  leg_length_min, leg 5              leg_length_min, leg 3
+    gamma   -82.416 deg  83.183 deg  max_jacobian_condition             max_jacobian_condition
     """
     start = _start_pose(geometry, pose)
     per_axis = np.repeat(np.asarray(step, dtype=float), 3)
