@@ -49,13 +49,15 @@ import numpy as np
 from stewart_kinematics.model import kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
-#: Cells of the grid per pose coordinate (5 ** 6 = 15,625 cells; 416 bytes each). More cells
-#: start closer, but the solve's step count falls in steps: on the paper's platform, 4 to 7
-#: per axis take the same mean number of steps, as the last steps converge quadratically.
+#: Cells of the grid per pose coordinate (5 ** 6 = 15,625 cells; 416 bytes each), odd so that
+#: home is the centre of one. More cells start closer, but the step count hardly follows: on
+#: the paper's platform, 7 per axis (49 MB) save 0.1 of the 3.2 steps of a cold solve, as the
+#: last steps converge quadratically.
 CELLS_PER_AXIS = 5
 #: Half-width of the grid in each position coordinate, in platform radii (the RMS distance of
-#: the platform joints from their centroid): 0.12 m on the paper's platform.
-REACH = 0.8
+#: the platform joints from their centroid): 0.15 m on the paper's platform, whose Table 3
+#: ramp ends 0.1 m, 0.15 m and 0.1 m from home.
+REACH = 1.0
 #: Half-width of the grid in each Euler angle, radians.
 TURN = math.radians(20.0)
 #: Largest condition number of a sample's dimensionless Jacobian (see
@@ -72,16 +74,19 @@ class StartTable:
     Working-mode samples of one geometry on a grid around home, indexed by the first step.
 
     :param geometry: a :class:`stewart_kinematics.Geometry`.
+    :param cells: cells per coordinate (default :data:`CELLS_PER_AXIS`).
+    :param reach: half-width in position, platform radii (default :data:`REACH`).
+    :param turn: half-width in each Euler angle, radians (default :data:`TURN`).
 
-    Build it through the forward solver (it builds one per geometry on the first cold solve);
-    it can be built directly to inspect it.
+    The forward solver builds one per geometry, with the defaults, on the first cold solve;
+    build one directly to inspect it or to study another size.
     """
 
-    def __init__(self, geometry):
+    def __init__(self, geometry, cells=CELLS_PER_AXIS, reach=REACH, turn=TURN):
         start = time.process_time()
-        cells = self.cells = CELLS_PER_AXIS
+        self.cells = cells
         home = np.asarray(geometry.home_pose, dtype=float)
-        half_width = np.array([REACH * geometry.platform_radius] * 3 + [TURN] * 3)
+        half_width = np.array([reach * geometry.platform_radius] * 3 + [turn] * 3)
         home_jacobian = kinematics.jacobian(geometry, home)
         home_lengths = kinematics.inverse_kinematics(geometry, home)
         # The index: cell coordinates (the first step's coordinates in cells from the grid's
@@ -96,7 +101,7 @@ class StartTable:
         centres = np.stack(np.meshgrid(*axes, indexing='ij'), axis=-1).reshape(-1, 6)
         lengths = home_lengths + (centres - home) @ home_jacobian.T
         samples, kept = _solve_samples(geometry, centres, lengths)
-        kept &= _working_mode(geometry, home, samples, kept, home_jacobian, width)
+        kept &= _working_mode(geometry, home, samples, kept, home_jacobian, width, cells)
         #: Per cell: sample pose (6), its leg lengths (6) and cos, sin of its beta and gamma
         #: (4): all a start needs but the inverse twist Jacobian, which :attr:`inverses` holds.
         self.entries = np.zeros((cells ** 6, 16))
@@ -129,14 +134,18 @@ class StartTable:
         if not (0.0 <= min(coordinates) and max(coordinates) < cells):
             return -1
         index = 0
-        for coordinate in coordinates:
-            index = index * cells + int(coordinate)
+        try:
+            for coordinate in coordinates:
+                index = index * cells + int(coordinate)
+        except ValueError:  # a NaN (absurd lengths: inf - inf) that min and max let through
+            return -1
         return index if self.kept[index] else -1
 
     def cells_of(self, lengths):
         """:meth:`cell` of each row of ``lengths`` (n, 6), with the same arithmetic: (n,)."""
-        coordinates = np.stack(_cell_coordinates(self.index_rows, self.index_offset,
-                                                 list(lengths.T)), axis=-1)
+        with np.errstate(over='ignore', invalid='ignore'):  # absurd lengths: not inside
+            coordinates = np.stack(_cell_coordinates(self.index_rows, self.index_offset,
+                                                     list(lengths.T)), axis=-1)
         inside = np.all((coordinates >= 0.0) & (coordinates < self.cells), axis=-1)
         index = np.zeros(len(lengths), dtype=np.int64)
         for column in np.where(inside[:, None], coordinates, 0.0).T:
@@ -175,7 +184,7 @@ def _solve_samples(geometry, centres, lengths):
     return poses, solved & (condition <= MAX_CONDITION)
 
 
-def _working_mode(geometry, home, samples, solved, home_jacobian, width):
+def _working_mode(geometry, home, samples, solved, home_jacobian, width, cells):
     """
     Which samples belong to home's assembly mode: connected to the home cell, same orientation.
 
@@ -187,12 +196,12 @@ def _working_mode(geometry, home, samples, solved, home_jacobian, width):
     :param home_jacobian: the Jacobian at home, whose columns times ``width`` are the changes
         of the leg lengths from one cell to the next along each coordinate.
     :param width: the cells' widths, metres and radians, shape (6,).
+    :param cells: cells per coordinate.
     """
     def determinants(poses):
         return np.linalg.det(kinematics.twist_jacobian(
             geometry, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:])))
 
-    cells = CELLS_PER_AXIS
     ok = solved.copy()
     ok[solved] = np.sign(determinants(samples[solved])) == np.sign(determinants(home[None]))
     # Each sample's Euler Jacobian inverse: the first-order prediction of its neighbours.
