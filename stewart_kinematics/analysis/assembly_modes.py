@@ -385,7 +385,7 @@ class AssemblyModeMarginMonitor:
         self.latest_lengths = None
         self.latest_seconds = None
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
-        # Build the start systems now, in the background (about 1 s, once per process).
+        # Build the start systems now, in the background (under a second, once per process).
         self._warm_up = self._pool.submit(geometry_start_system, geometry)
         self._running = None
 

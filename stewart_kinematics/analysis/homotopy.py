@@ -25,9 +25,9 @@ Every complex solution of six leg lengths, found by homotopy continuation; the m
    every ``Q_i`` lies in one linear space of quadrics. With a random complex linear chart
    ``c . z = 1`` the system is 8 quadratic and linear equations in 8 unknowns, whose generic
    number of solutions is 40 (Raghavan 1993; Ronga and Vust 1995; Husty 1996).
-2. **Start systems.** Once per process (about 1 s, :func:`start_system`): a random complex
+2. **Start systems.** Once per process (0.3 to 0.5 s, :func:`start_system`): a random complex
    platform with a known solution; monodromy loops (tracking that solution around loops in the
-   space of platforms) give the other 39. Once per geometry (about 0.05 s,
+   space of platforms) give the other 39. Once per geometry (about 0.03 s,
    :func:`geometry_start_system`): its 40 solutions tracked to the given geometry with random
    complex leg lengths near its home lengths; a degenerate geometry keeps fewer (the others go
    to infinity).
@@ -309,7 +309,7 @@ class StartSystem:
 @functools.lru_cache(maxsize=None)
 def start_system(seed=START_SEED) -> StartSystem:
     """
-    Build the start system of the homotopies, once per process and seed (about 1 s).
+    Build the start system of the homotopies, once per process and seed (0.3 to 0.5 s).
 
     A random complex platform (joints and lengths) is made to pass through a random complex
     pose, which is one solution; monodromy loops (its solutions tracked from this platform to
@@ -388,7 +388,7 @@ def geometry_start_system(geometry):
     """
     Build (once per geometry) its start system: its solutions for random complex lengths.
 
-    Tracked once from :func:`start_system` (the 40 paths of a general platform, about 0.05 s),
+    Tracked once from :func:`start_system` (the 40 paths of a general platform, about 0.03 s),
     cached per geometry. The homotopies of :func:`path_ends` then change only the leg lengths,
     a parameter homotopy within the geometry's own family, along paths two to four times
     shorter; a degenerate geometry's lost solutions are not tracked again.

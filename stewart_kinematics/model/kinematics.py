@@ -670,11 +670,12 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
     Without an initial guess (a cold solve), the solve starts from the geometry's start table
     (:mod:`stewart_kinematics.model.start_table`, built on the first cold solve, 0.1 to 0.3 s):
     one Newton step from the working-mode sample nearest the lengths, with that sample's
-    Jacobian, so that it takes about three steps instead of four from home. Where the table
-    has no sample (lengths far from the workspace around home, or in another assembly mode),
-    where the home pose solves the lengths already, or where the solve from the table does
-    not converge, it starts from the home pose as a solve given ``geometry.home_pose`` does,
-    and returns that solve's result. ``iterations`` counts the steps after the start.
+    Jacobian, so that it takes about three steps instead of four from home (home is the
+    middle cell's sample: its own lengths take no step). Where the table has no sample
+    (lengths far from the workspace around home, or in another assembly mode), or where the
+    solve from the table does not converge, it starts from the home pose as a solve given
+    ``geometry.home_pose`` does, and returns that solve's result. ``iterations`` counts the
+    steps after the start.
 
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param lengths: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
