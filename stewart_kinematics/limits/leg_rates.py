@@ -28,8 +28,9 @@ import numpy as np
 
 from stewart_kinematics.limits.base import Bound, LEG, Limit
 
-#: Relative slack on a rate limit, for rounding only: a sampled motion timed to meet a limit
-#: exactly (a retimed trajectory) reaches it to within a few units in the last place.
+#: Relative slack on a rate limit for sampled motion, for rounding only: a motion timed to meet
+#: a limit exactly (a retimed trajectory, a jerk-limited stream) reaches it to within a few units
+#: in the last place of its samples.
 RATE_SLACK = 1e-9
 
 
@@ -42,20 +43,22 @@ class LegRate(Limit):
     :param quantity: the field of the samples it reads: ``velocities``, ``accelerations`` or
         ``jerks``.
     :param unit: ``m/s``, ``m/s^2`` or ``m/s^3``.
+    :param slack: relative slack on ``allowed``, for the rounding of sampled motion
+        (:data:`RATE_SLACK`); 0 for a strict limit.
     """
 
-    def __init__(self, name: str, allowed: float, quantity: str, unit: str):
+    def __init__(self, name: str, allowed: float, quantity: str, unit: str, slack: float = 0.0):
         self.quantity = quantity
-        self.bounds = ((Bound(name, allowed, True, LEG, unit, slack=RATE_SLACK),)
+        self.bounds = ((Bound(name, allowed, True, LEG, unit, slack=slack),)
                        if allowed < math.inf else ())
 
     @classmethod
-    def all_of(cls, actuator_limits):
+    def all_of(cls, actuator_limits, slack: float = 0.0):
         """Return the velocity, acceleration and jerk evaluators of :class:`ActuatorLimits`."""
-        return (cls('leg_velocity_max', actuator_limits.velocity_max, 'velocities', 'm/s'),
+        return (cls('leg_velocity_max', actuator_limits.velocity_max, 'velocities', 'm/s', slack),
                 cls('leg_acceleration_max', actuator_limits.acceleration_max, 'accelerations',
-                    'm/s^2'),
-                cls('leg_jerk_max', actuator_limits.jerk_max, 'jerks', 'm/s^3'))
+                    'm/s^2', slack),
+                cls('leg_jerk_max', actuator_limits.jerk_max, 'jerks', 'm/s^3', slack))
 
     def values(self, arrays):
         """Return ``|x|`` of the samples' quantity, (6, n)."""

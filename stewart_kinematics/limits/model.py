@@ -68,9 +68,13 @@ class LimitModel:
     :param geometry: a :class:`stewart_kinematics.Geometry` (its stroke, joint cones,
         singularity margin and ``leg_radius``), or ``None`` for leg-state limits alone.
     :param actuator_limits: leg velocity, acceleration and jerk limits; ``None``: none.
+    :param rate_slack: relative slack on those limits, for the rounding of sampled motion
+        (:data:`~stewart_kinematics.limits.leg_rates.RATE_SLACK` for a trajectory's samples or
+        a stream's steps); 0 (the default) checks them strictly, as for a twist.
     """
 
-    def __init__(self, geometry=None, actuator_limits: Optional[ActuatorLimits] = None):
+    def __init__(self, geometry=None, actuator_limits: Optional[ActuatorLimits] = None, *,
+                 rate_slack: float = 0.0):
         self.geometry = geometry
         self.actuator_limits = actuator_limits or ActuatorLimits()
         pose_limits = () if geometry is None else (
@@ -81,7 +85,7 @@ class LimitModel:
         self.pose_limits = tuple(limit for limit in pose_limits if limit.bounds)
         #: The evaluators of the leg-state limits that are set, in report order.
         self.leg_state_limits = tuple(limit for limit in stroke + LegRate.all_of(
-            self.actuator_limits) if limit.bounds)
+            self.actuator_limits, rate_slack) if limit.bounds)
         self._bounds = {bound.name: bound
                         for limit in self.pose_limits + self.leg_state_limits
                         for bound in limit.bounds}
@@ -140,10 +144,27 @@ class LimitModel:
             raise ValueError(f'pose must be finite, got position {position.tolist()}')
         if not self.pose_limits:
             return []
-        legs = PoseLegs.of_matrices(self.geometry, position[None, :], rotation[None, :, :])
+        legs = self.pose_legs(position, rotation)
         if not np.all(np.isfinite(legs.lengths)):
             raise ValueError(f'leg lengths must be finite (metres), got '
                              f'{legs.lengths[:, 0].tolist()}: a pose beyond any reach')
+        return self.violations_of(legs, condition=condition)
+
+    def pose_legs(self, position, rotation) -> PoseLegs:
+        """
+        Return the legs of one pose, as every pose limit reads them (for :meth:`violations_of`).
+
+        :param position: metres, shape (3,), finite; ``rotation``: shape (3, 3), finite.
+        """
+        return PoseLegs.of_matrices(self.geometry, position[None, :], rotation[None, :, :])
+
+    def violations_of(self, legs: PoseLegs, *, condition=None) -> List[Violation]:
+        """
+        Every pose limit that the one pose of ``legs`` breaks, in report order.
+
+        :param legs: :meth:`pose_legs` of a pose whose lengths are finite.
+        :param condition: its condition number when already known, or ``None``.
+        """
         violations = []
         for limit in self.pose_limits:
             if condition is not None and isinstance(limit, SingularityMargin):
