@@ -290,7 +290,7 @@ class CommandCheck:
         scale = self.limits.leg_velocity_scale(velocities)
         if scale == 1.0:
             return LegVelocityCommand(velocities)
-        violations = self.limits.check_leg_states(velocities=velocities).violations(0)
+        violations = self.limits.leg_state_violations(velocities=velocities)
         if self.twist_over_limit == 'refuse':
             return LegVelocityCommand(None, Finding(
                 findings.TOO_FAST,

@@ -228,7 +228,7 @@ class PoseTracker:
                                  f'{lengths.shape}')
         except ValueError as error:
             return PoseEstimate(None, Finding(findings.INVALID_LENGTHS, str(error)))
-        violations = self.limits.check_leg_states(lengths=lengths).violations(0)
+        violations = self.limits.leg_state_violations(lengths=lengths)
         if violations:
             return PoseEstimate(None, findings.out_of_limits('the leg lengths are', violations))
         lengths = np.array(lengths, dtype=float)

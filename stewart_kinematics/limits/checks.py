@@ -93,7 +93,7 @@ def leg_length_violations(geometry, lengths) -> List[Violation]:
     lengths = as_leg_lengths(lengths)
     if lengths.shape != (6,):
         raise ValueError(f'expected the 6 lengths of one pose, got shape {lengths.shape}')
-    return LimitModel.of_geometry(geometry).check_leg_states(lengths=lengths).violations(0)
+    return LimitModel.of_geometry(geometry).leg_state_violations(lengths=lengths)
 
 
 def joint_angles(geometry, position, rotation):

@@ -172,9 +172,7 @@ class LimitModel:
                 results = ((values, limit.bounds[0].broken(values)),)
             else:
                 results = limit.evaluate(legs)
-            for bound, (values, broken) in zip(limit.bounds, results):
-                violations += [bound.violation(row, float(values[row, 0]))
-                               for row in np.flatnonzero(broken[:, 0])]
+            violations += _violations(limit.bounds, results)
         return violations
 
     # Many poses -------------------------------------------------------------------------------
@@ -249,6 +247,36 @@ class LimitModel:
             samples, 'lengths' if isinstance(limit, Stroke) else limit.quantity) is not None)
         return self._check(samples.count, samples.take, limits, True, True)
 
+    def leg_state_violations(self, lengths=None, velocities=None, accelerations=None,
+                             jerks=None) -> List[Violation]:
+        """
+        Every leg-state limit that one sample breaks: :meth:`check_leg_states` of one sample.
+
+        The per-step check of a stream and of a twist: the evaluators on the one sample,
+        without the arrays of a batch.
+
+        :param lengths: metres, shape (6,); ``velocities``, ``accelerations`` and ``jerks``
+            likewise, each optional (its limits are then not checked).
+        :raises ValueError: if a quantity given does not have shape (6,).
+        """
+        given = {}
+        for name, values in (('lengths', lengths), ('velocities', velocities),
+                             ('accelerations', accelerations), ('jerks', jerks)):
+            if values is not None:
+                values = np.asarray(values, dtype=float)
+                if values.shape != (6,):
+                    raise ValueError(f'{name} of one leg state must have shape (6,), got '
+                                     f'{values.shape}')
+                given[name] = values[:, None]
+        samples = LegSamples(**given)
+        violations = []
+        for limit in self.leg_state_limits:
+            if getattr(samples, 'lengths' if isinstance(limit, Stroke)
+                       else limit.quantity) is None:
+                continue
+            violations += _violations(limit.bounds, limit.evaluate(samples))
+        return violations
+
     def leg_velocity_scale(self, velocities) -> float:
         """
         Return the largest factor in (0, 1] that brings leg velocities within the limit.
@@ -296,6 +324,13 @@ class LimitModel:
             for limit, result in zip(dear, results):
                 _store(limit, result, target, values, broken, allowed)
         return LimitChecks(self, tuple(bounds), values, broken, allowed)
+
+
+def _violations(bounds, results) -> List[Violation]:
+    """The violations of one pose or sample (column 0) in an evaluator's ``results``."""
+    return [bound.violation(row, float(values[row, 0]))
+            for bound, (values, broken) in zip(bounds, results) if broken.any()
+            for row in np.flatnonzero(broken[:, 0])]
 
 
 def _store(limit, results, target, values, broken, allowed):

@@ -284,10 +284,9 @@ class CommandFilter:
         if not (np.all(np.isfinite(lengths)) and np.all(np.isfinite(velocities))
                 and np.all(np.isfinite(accelerations))):
             return False
-        checks = self.model.check_leg_states(
+        return not self.model.leg_state_violations(
             lengths=lengths, velocities=velocities, accelerations=accelerations,
             jerks=(accelerations - self._acceleration) / self.period)
-        return bool(checks.allowed[0])
 
     def _advance(self, state, plan, finding=None) -> FilteredCommand:
         """Make ``state`` the command, at its time along ``plan``."""
@@ -307,7 +306,7 @@ class CommandFilter:
             return Finding(findings.INVALID_LENGTHS,
                            f'target lengths must be 6 finite, positive values (metres), got '
                            f'{values.tolist()}')
-        violations = self.model.check_leg_states(lengths=values).violations(0)
+        violations = self.model.leg_state_violations(lengths=values)
         if violations:
             return findings.out_of_limits('the target lengths are', violations)
         return None
