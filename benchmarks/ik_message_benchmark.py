@@ -37,9 +37,8 @@ import sys
 import tempfile
 import time
 
-import numpy as np
-
 from compare_revisions import import_baseline  # benchmarks/, the script's folder
+import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 #: Messages per round of each set.
@@ -97,7 +96,7 @@ def main(argv=None) -> int:
         with tempfile.TemporaryDirectory() as directory:
             old = import_baseline(old_root, directory)
             no_collision = Path(directory) / 'no_leg_radius.yaml'
-            no_collision.write_text("/**:\n  ros__parameters:\n    leg_radius: 0.0\n",
+            no_collision.write_text('/**:\n  ros__parameters:\n    leg_radius: 0.0\n',
                                     encoding='utf-8')
             limits = [config / 'paper_platform.yaml', config / 'example_limits.yaml']
             old_limits = [old_root / 'config' / 'paper_platform.yaml',

@@ -327,7 +327,7 @@ class LimitModel:
 
 
 def _violations(bounds, results) -> List[Violation]:
-    """The violations of one pose or sample (column 0) in an evaluator's ``results``."""
+    """Return the violations of one pose or sample (column 0) in an evaluator's results."""
     return [bound.violation(row, float(values[row, 0]))
             for bound, (values, broken) in zip(bounds, results) if broken.any()
             for row in np.flatnonzero(broken[:, 0])]

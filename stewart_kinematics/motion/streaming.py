@@ -257,10 +257,13 @@ class CommandFilter:
             if result not in (ruckig.Result.Working, ruckig.Result.Finished):
                 return None
             low, high = self._stroke
-            if not (math.isfinite(trajectory.duration) and all(
+            # A plan to a position must stay within the stroke all along. (ruckig's position
+            # extrema of a velocity-control plan are not reliable; each braking step is checked
+            # as every step is, below.)
+            if not math.isfinite(trajectory.duration) or aim is not None and not all(
                     extremum.min >= low - STROKE_ROUNDING
                     and extremum.max <= high + STROKE_ROUNDING
-                    for extremum in trajectory.position_extrema)):
+                    for extremum in trajectory.position_extrema):
                 return None
         except (ValueError, RuntimeError, ArithmeticError):
             # ruckig raises for inputs it refuses (RuckigError is a RuntimeError; an outcome
