@@ -215,3 +215,25 @@ def test_check_pose_matrices_equals_check_poses(limited):
                 == [(v.limit, v.legs) for v in by_matrices.violations(index)])
     with pytest.raises(ValueError, match='shapes'):
         model.check_pose_matrices(poses[:, :3], np.zeros((3, 3, 3)))
+
+
+def test_the_fast_leg_state_path_decides_as_the_general_one(limited):
+    """leg_state_allowed (floats) == no leg_state_violations (arrays), edge values included."""
+    model = LimitModel(limited, SPEEDS, rate_slack=1e-9)
+    rng = np.random.default_rng(6)
+    edges = [0.65, 0.9, 0.05, 0.25, 2.5, 0.05 * (1 + 1e-9), 0.05 * (1 + 2e-9),
+             math.nextafter(0.65, 0.0), math.nextafter(0.9, 1.0), math.nan, math.inf, -math.inf,
+             0.0, -0.05, -2.5 * (1 + 1e-9), 1e308]
+    decided = {True: 0, False: 0}
+    for _ in range(3000):
+        sample = {name: np.where(rng.random(6) < 0.03, rng.choice(edges, 6),
+                                 rng.uniform(low, high, 6)).tolist()
+                  for name, (low, high) in (('lengths', (0.64, 0.91)),
+                                            ('velocities', (-0.0505, 0.0505)),
+                                            ('accelerations', (-0.2525, 0.2525)),
+                                            ('jerks', (-2.525, 2.525)))}
+        given = dict(list(sample.items())[:int(rng.integers(1, 5))])
+        fast = model.leg_state_allowed(**given)
+        assert fast == (not model.leg_state_violations(**given)), given
+        decided[fast] += 1
+    assert min(decided.values()) > 100

@@ -70,6 +70,12 @@ class Bound:
             return ~(values <= self.allowed * (1.0 + self.slack))
         return ~(values >= self.allowed)
 
+    def holds(self, value: float) -> bool:
+        """Whether one value (a float) keeps the bound: :meth:`broken`'s comparison, negated."""
+        if self.upper:
+            return value <= self.allowed * (1.0 + self.slack)
+        return value >= self.allowed
+
     def excess(self, values: np.ndarray) -> np.ndarray:
         """How far beyond the bound, SI units: positive where broken, minus the margin left."""
         return values - self.allowed if self.upper else self.allowed - values
@@ -179,6 +185,15 @@ class Limit:
         Return the values of each bound, SI units, one array (k, n) per bound (may be shared).
 
         :param arrays: a :class:`PoseLegs` (pose limits) or :class:`LegSamples` (leg states).
+        """
+        raise NotImplementedError
+
+    def allows(self, sample: dict) -> bool:
+        """
+        Whether one sample keeps every bound, in floats: the fast path of one leg state.
+
+        :param sample: quantity name (``lengths``, ``velocities``, ...) -> six floats; only
+            evaluators of leg states implement it, with :meth:`values`' quantity.
         """
         raise NotImplementedError
 

@@ -33,9 +33,6 @@ from stewart_kinematics.limits.base import Bound, Limit, PAIR
 
 #: The rows of the 15 pairs, legs 0..5: first and second leg of each (see LEG_PAIRS).
 FIRST, SECOND = np.triu_indices(6, 1)
-#: Poses per sub-block: the 15-row temporaries of a sub-block stay in the processor's cache
-#: (measured on this machine: twice the rate of 1024).
-PAIR_BLOCK_SIZE = 256
 
 
 class LegCollision(Limit):
@@ -54,16 +51,8 @@ class LegCollision(Limit):
         self._offsets = tuple(offsets[:, axis:axis + 1].copy() for axis in range(3))
 
     def values(self, arrays):
-        """Distances between the legs' segments, metres, shape (15, n)."""
-        lx, ly, lz = arrays.vectors[:3]
-        count = arrays.count
-        distances = np.empty((15, count))
-        for start in range(0, count, PAIR_BLOCK_SIZE):
-            block = slice(start, start + PAIR_BLOCK_SIZE)
-            distances[:, block] = segment_distances(
-                lx[:, block], ly[:, block], lz[:, block], arrays.lengths[:, block],
-                self._offsets)
-        return (distances,)
+        """Return the distances between the legs' axes, metres, shape (15, n)."""
+        return (segment_distances(*arrays.vectors[:3], arrays.lengths, self._offsets),)
 
 
 def segment_distances(lx, ly, lz, lengths, offsets):

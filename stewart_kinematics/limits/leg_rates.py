@@ -64,6 +64,11 @@ class LegRate(Limit):
         """Return ``|x|`` of the samples' quantity, (6, n)."""
         return (np.abs(getattr(arrays, self.quantity)),)
 
+    def allows(self, sample: dict) -> bool:
+        """Whether six values (floats, ``sample[quantity]``) keep the limit: ``|x| <= allowed``."""
+        (bound,) = self.bounds
+        return all(bound.holds(abs(value)) for value in sample[self.quantity])
+
     def scale(self, values) -> float:
         """
         Return the largest factor in (0, 1] that brings every one of ``values`` within the limit.

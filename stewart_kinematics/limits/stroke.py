@@ -49,3 +49,8 @@ class Stroke(Limit):
     def values(self, arrays):
         """Return the leg lengths, (6, n), for each bound."""
         return (arrays.lengths,) * len(self.bounds)
+
+    def allows(self, sample: dict) -> bool:
+        """Whether six lengths (floats, ``sample['lengths']``) keep the stroke."""
+        lengths = sample['lengths']
+        return all(bound.holds(length) for bound in self.bounds for length in lengths)

@@ -147,10 +147,11 @@ class CommandFilter:
         refusal = self._refusal(lengths)
         if refusal is not None:
             return refusal
-        self._position = np.array(lengths, dtype=float)
-        self._velocity = np.zeros(6)
-        self._acceleration = np.zeros(6)
-        self._target = self._position.copy()
+        #: The command's state (lengths, velocities, accelerations), six floats each.
+        self._position = [float(length) for length in lengths]
+        self._velocity = [0.0] * 6
+        self._acceleration = [0.0] * 6
+        self._target = np.array(self._position)
         self._following = None
         return None
 
@@ -187,8 +188,7 @@ class CommandFilter:
             state = self._next_state(following)
             if state is not None:
                 return self._advance(state, following)
-        aim = self._aim()
-        plan = self._new_plan(aim)
+        plan = self._new_plan(self._aim())
         if plan is not None:
             state = self._next_state(plan)
             if state is not None:
@@ -207,20 +207,21 @@ class CommandFilter:
             self._following = following
             return self._advance(state, following, finding)
         self._following = None
-        return FilteredCommand(self._position.copy(), self._velocity.copy(),
-                               self._acceleration.copy(), False, True, Finding(
+        return FilteredCommand(np.array(self._position), np.array(self._velocity),
+                               np.array(self._acceleration), False, True, Finding(
                                    findings.STREAM_HELD,
                                    'no step within the limits could be computed: the last '
                                    'command stands'))
 
     def _new_aim(self, plan) -> bool:
         """Whether the plan followed no longer aims right: a new target, or a near aim point."""
-        if not np.array_equal(plan.target, self._target):
+        if plan.target is not self._target:
             return True
-        if np.array_equal(plan.aim, self._target):
+        if plan.final:
             return False
         # An aim point on the way to a far target: aim farther before the plan starts braking.
-        return float(np.max(np.abs(plan.aim - self._position))) < 0.5 * self.window
+        return max(abs(aim - position) for aim, position in zip(
+            plan.aim.tolist(), self._position)) < 0.5 * self.window
 
     def _aim(self):
         """Return the target, or the point :attr:`window` away on the straight line toward it."""
@@ -238,9 +239,9 @@ class CommandFilter:
             stroke.
         """
         ruckig = self._ruckig
-        self._input.current_position = self._position.tolist()
-        self._input.current_velocity = self._velocity.tolist()
-        self._input.current_acceleration = self._acceleration.tolist()
+        self._input.current_position = list(self._position)
+        self._input.current_velocity = list(self._velocity)
+        self._input.current_acceleration = list(self._acceleration)
         # Braking: each leg stops as soon as it can (no synchronisation, which would slow some
         # legs and let them run farther), so no farther than any plan it was following.
         self._input.control_interface = (ruckig.ControlInterface.Velocity if aim is None
@@ -269,7 +270,7 @@ class CommandFilter:
             # ruckig raises for inputs it refuses (RuckigError is a RuntimeError; an outcome
             # its Python enum lacks, such as -101, a ValueError): no plan.
             return None
-        return _Plan(trajectory, None if aim is None else aim.copy(), self._target.copy())
+        return _Plan(trajectory, aim, self._target)
 
     def _next_state(self, plan):
         """Return the state one period further along ``plan`` if every limit allows it, or None."""
@@ -279,25 +280,21 @@ class CommandFilter:
         except (ValueError, RuntimeError, ArithmeticError):
             return None
         low, high = self._stroke
-        state = (np.clip(position, low, high), np.array(velocity), np.array(acceleration), time)
-        return state if self._allowed(*state[:3]) else None
-
-    def _allowed(self, lengths, velocities, accelerations) -> bool:
-        """Whether a step from the current command is within every limit of :attr:`model`."""
-        if not (np.all(np.isfinite(lengths)) and np.all(np.isfinite(velocities))
-                and np.all(np.isfinite(accelerations))):
-            return False
-        return not self.model.leg_state_violations(
-            lengths=lengths, velocities=velocities, accelerations=accelerations,
-            jerks=(accelerations - self._acceleration) / self.period)
+        position = [min(max(length, low), high) for length in position]
+        jerks = [(new - old) / self.period for new, old in zip(acceleration, self._acceleration)]
+        if not all(map(math.isfinite, position + velocity + acceleration)) or (
+                not self.model.leg_state_allowed(lengths=position, velocities=velocity,
+                                                 accelerations=acceleration, jerks=jerks)):
+            return None
+        return position, velocity, acceleration, time
 
     def _advance(self, state, plan, finding=None) -> FilteredCommand:
         """Make ``state`` the command, at its time along ``plan``."""
         self._position, self._velocity, self._acceleration, plan.time = state
-        settled = (plan.aim is not None and plan.time >= plan.trajectory.duration
-                   and np.array_equal(plan.aim, self._target))
-        return FilteredCommand(self._position.copy(), self._velocity.copy(),
-                               self._acceleration.copy(), settled, False, finding)
+        settled = (plan.final and plan.target is self._target
+                   and plan.time >= plan.trajectory.duration)
+        return FilteredCommand(np.array(self._position), np.array(self._velocity),
+                               np.array(self._acceleration), settled, False, finding)
 
     def _refusal(self, lengths) -> Optional[Finding]:
         """Say why leg lengths cannot be a target, or return ``None``."""
@@ -316,9 +313,15 @@ class CommandFilter:
 
 
 class _Plan:
-    """A ruckig trajectory being followed: to rest at ``aim`` (``None``: braking), for a target."""
+    """
+    A ruckig trajectory being followed: to rest at ``aim`` (``None``: braking), for a target.
 
-    __slots__ = ('trajectory', 'aim', 'target', 'time')
+    ``target`` is the filter's target array it was made for (a new target is a new array);
+    ``final`` says that the aim is that target itself, not a point on the way.
+    """
+
+    __slots__ = ('trajectory', 'aim', 'target', 'final', 'time')
 
     def __init__(self, trajectory, aim, target):
         self.trajectory, self.aim, self.target, self.time = trajectory, aim, target, 0.0
+        self.final = aim is target
