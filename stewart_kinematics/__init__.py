@@ -83,6 +83,8 @@ from stewart_kinematics.parameters import (
     frames_from_parameters,
     geometry_from_parameters,
     load_geometry,
+    load_settings,
+    SolverSettings,
 )
 
 __all__ = [
@@ -120,6 +122,7 @@ __all__ = [
     'LegVelocityCommand',
     'LimitModel',
     'load_geometry',
+    'load_settings',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'measurement_poses',
@@ -135,6 +138,7 @@ __all__ = [
     'Ramp',
     'retime',
     'SingularPoseError',
+    'SolverSettings',
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',

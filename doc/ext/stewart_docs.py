@@ -20,6 +20,8 @@ The documentation's own Sphinx extension: tables generated from the code, and co
   ...) from its specs when the site is built, so a page cannot drift from the declarations.
 - ``{refusal-codes}`` renders every code the package emits, from the registry of
   :mod:`stewart_kinematics.findings`.
+- ``{node-interface} NODE`` renders a node's topics and services from their declaration in
+  :mod:`stewart_kinematics.ros.interfaces`.
 - Every public name of the package root must be documented as ``stewart_kinematics.<name>``
   (:func:`public_names`): the build warns, and so fails under ``-W``, when one is missing.
 
@@ -121,6 +123,22 @@ class RefusalCodes(MarkdownDirective):
         return refusal_codes_table()
 
 
+class NodeInterfaceTable(MarkdownDirective):
+    """``{node-interface} NODE``: a node's topics and services, from their declaration."""
+
+    required_arguments = 1
+
+    def markdown(self) -> str:
+        """Render the interface of the node named by the argument."""
+        from stewart_kinematics.ros.interfaces import markdown_table, NODE_INTERFACES
+        node = self.arguments[0]
+        if node not in NODE_INTERFACES:
+            raise KeyError(f'no node {node!r}; known: {sorted(NODE_INTERFACES)}')
+        # '<' outside code spans would be read as an HTML tag.
+        return re.sub(r'(`[^`]*`)|<', lambda match: match.group(1) or r'\<',
+                      markdown_table(NODE_INTERFACES[node]))
+
+
 def check_public_names(app, env):
     """Warn about every public name of the package root that no page documents."""
     objects = env.get_domain('py').objects
@@ -134,5 +152,6 @@ def setup(app):
     """Register the directives and the completeness check."""
     app.add_directive('parameter-table', ParameterTable)
     app.add_directive('refusal-codes', RefusalCodes)
+    app.add_directive('node-interface', NodeInterfaceTable)
     app.connect('env-check-consistency', check_public_names)
     return {'version': '1', 'parallel_read_safe': True, 'parallel_write_safe': True}

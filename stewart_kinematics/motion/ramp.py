@@ -33,6 +33,7 @@ import numpy as np
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import check_samples
 from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.parameters.settings import RampSettings
 
 #: How trajectory_node plays a ramp: rows on a timer, samples in time, or no ramp.
 RAMP_MODES = ('table', 'interpolate', 'off')
@@ -98,18 +99,16 @@ class Ramp:
         object.__setattr__(self, 'step_count', next(iter(counts.values()), 0))
 
     @classmethod
-    def from_parameters(cls, values: dict) -> 'Ramp':
+    def from_settings(cls, settings: RampSettings) -> 'Ramp':
         """
-        Build a ramp from the trajectory node's parameter values (metres and degrees).
+        Build a ramp from the trajectory node's ramp settings (metres and degrees).
 
-        :param values: parameter name -> value, with the names of
-            :data:`stewart_kinematics.parameters.RAMP_PARAMETERS`.
         :raises ValueError: naming the axis and its parameters, if the table is inconsistent.
         """
         names = ('position_start', 'position_step', 'position_end',
                  'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')
         try:
-            return cls.from_table(*(values[name] for name in names))
+            return cls.from_table(*(getattr(settings, name) for name in names))
         except ValueError as error:
             raise ValueError(f'{error} (parameters {", ".join(names)})') from error
 
@@ -194,14 +193,14 @@ class RampSchedule:
                 raise ValueError(f'{name} must be positive and finite, got {value!r}')
 
     @classmethod
-    def from_parameters(cls, values: dict) -> 'RampSchedule':
+    def from_settings(cls, settings: RampSettings) -> 'RampSchedule':
         """
-        Build the schedule from trajectory_node's parameter values (the ramp parameters).
+        Build the schedule from trajectory_node's ramp settings (the ramp parameters).
 
         :raises ValueError: naming the parameters, if the table or the timing is not allowed.
         """
-        return cls(Ramp.from_parameters(values), values['mode'], values['row_period'],
-                   values['publish_rate'], values['duration'], values['loop'])
+        return cls(Ramp.from_settings(settings), settings.mode, settings.row_period,
+                   settings.publish_rate, settings.duration, settings.loop)
 
     @property
     def plays(self) -> bool:

@@ -96,10 +96,15 @@ class CommandFilter:
     :raises ValueError: if a limit that must be finite is not, the period is not positive, or
         the starting lengths are not six finite numbers within the stroke.
 
+    >>> from stewart_kinematics import ActuatorLimits, CommandFilter, load_geometry
+    >>> home_lengths = load_geometry('config/paper_platform.yaml').home_leg_lengths
     >>> command_filter = CommandFilter(ActuatorLimits(0.05, 0.25, 2.5), 0.01, home_lengths)
-    ... # doctest: +SKIP
-    >>> command_filter.set_target(lengths)  # None, or the finding that refuses it # doctest: +SKIP
-    >>> command = command_filter.step()     # every 10 ms  # doctest: +SKIP
+    >>> command_filter.set_target(home_lengths + 0.01)   # every leg 10 mm longer: None, accepted
+    >>> command = command_filter.step()                  # every 10 ms
+    >>> command.velocities, command.settled              # m/s, after 10 ms
+    (array([0.000125, 0.000125, 0.000125, 0.000125, 0.000125, 0.000125]), False)
+    >>> command_filter.set_target([float('nan')] * 6).code
+    'invalid_lengths'
     """
 
     def __init__(self, actuator_limits: ActuatorLimits, period: float, lengths, geometry=None):

@@ -36,14 +36,12 @@ received while the tool frame is offset from the platform frame
 
 import threading
 
-from geometry_msgs.msg import Pose
+
 from nav_msgs.msg import Path
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import parameters
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
-from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import plan_motion
@@ -51,7 +49,15 @@ from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
 from stewart_kinematics.motion.ramp import RampSchedule
 from stewart_kinematics.motion.retiming import load_retiming
 from stewart_kinematics.motion.trajectory_check import trajectory_frame_refusal
-from stewart_kinematics.parameters import frames_from_parameters, geometry_from_parameters
+from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
+    frame_parameters_reason,
+    frames_from_settings,
+    geometry_from_settings,
+    TrajectoryNodeSettings,
+)
+from stewart_kinematics.ros.interfaces import TRAJECTORY_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_trajectory_message,
@@ -65,8 +71,8 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
-from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
+from stewart_kinematics.ros.ros_parameters import declare_settings
+from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
@@ -77,17 +83,16 @@ class TrajectoryNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        values = declare_parameters(
-            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
-            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
-        self.settings = values
-        self.geometry = geometry_from_parameters(values)
-        self.actuator_limits = ActuatorLimits.from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
-        self.schedule = RampSchedule.from_parameters(values)
+        self.settings = declare_settings(self, TrajectoryNodeSettings,
+                                         on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        self.actuator_limits = actuator_limits_from_settings(settings.geometry)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
+        self.schedule = RampSchedule.from_settings(settings.ramp)
         self.rows = self.schedule.ramp.rows
-        self.frames = frames_from_parameters(values)
+        self.frames = frames_from_settings(settings.frames)
         refusal = self.schedule.check(self.geometry, self.frames)
         if refusal is not None:
             raise ValueError(refusal.message)     # the node cannot start: main() says why
@@ -95,16 +100,16 @@ class TrajectoryNode(Node):
         # and the ramp, not in the first callback; a callback that needs them meanwhile waits
         # for the import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
-        depth = values['queue_depth']
-        self.publisher = create_output_publisher(self, Pose, 'target_pose', depth)
+        depth = settings.queue.queue_depth
+        self.publisher = create_output_publisher(self, TRAJECTORY_NODE['target_pose'], depth)
         self.leg_trajectory_publisher = create_output_publisher(
-            self, JointTrajectory, 'leg_trajectory', depth)
+            self, TRAJECTORY_NODE['leg_trajectory'], depth)
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
         create_input_subscription(
-            self, MultiDOFJointTrajectory, 'pose_trajectory', self.on_pose_trajectory, depth)
-        create_input_subscription(self, Path, 'pose_path', self.on_pose_path, depth)
+            self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
+        create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
         self.published = 0
         self.row_index = 0
         self.start_time = None
@@ -116,18 +121,24 @@ class TrajectoryNode(Node):
         if self.schedule.plays:
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
             self.get_logger().info(
-                f'{values["mode"]} ramp of {len(self.rows)} rows, '
-                + ('looping' if values['loop'] else 'once'))
+                f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
+                + ('looping' if settings.ramp.loop else 'once'))
+
+    def on_parameter_change(self, name, value):
+        """Take a validated run-time change (the motion settings, the tool frame) from now on."""
+        self.settings = self.settings.replace(**{name: value})
+        if name.startswith('tool_frame'):
+            self.frames = frames_from_settings(self.settings.frames)
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
-        wanted = self.settings['min_subscribers']
+        wanted = self.settings.ramp.min_subscribers
         if self.publisher.get_subscription_count() < wanted:
             self.get_logger().info(
                 f'waiting for {wanted} subscriber(s) on {self.publisher.topic_name}', once=True)
             return
         self.wait_timer.cancel()
-        self.wait_timer = self.create_timer(self.settings['start_delay'], self.start)
+        self.wait_timer = self.create_timer(self.settings.ramp.start_delay, self.start)
 
     def start(self):
         """Play the ramp: rows on a timer in table mode, samples in interpolate mode."""
@@ -172,17 +183,17 @@ class TrajectoryNode(Node):
         self.trajectory_accounting.receive()
         try:
             path = PoseTrajectory.from_quaternions(
-                **pose_trajectory_from_message(message, self.settings['base_frame']))
+                **pose_trajectory_from_message(message, self.settings.frames.base_frame))
         except ValueError as error:
             self.trajectory_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
             return
-        self.plan(path, self.settings['retime'], self.trajectory_accounting)
+        self.plan(path, self.settings.motion.retime, self.trajectory_accounting)
 
     def on_pose_path(self, message: Path):
         """Check, retime and publish a path of waypoints without timing, or refuse it."""
         self.path_accounting.receive()
         try:
-            positions, quaternions = path_from_message(message, self.settings['base_frame'])
+            positions, quaternions = path_from_message(message, self.settings.frames.base_frame)
             path = PoseTrajectory.path(self.geometry, positions,
                                        quaternion_to_matrix(quaternions))
         except ValueError as error:
@@ -197,22 +208,22 @@ class TrajectoryNode(Node):
             accounting.reject(refusal)
             return
         plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
-                           speed_scale=self.settings['speed_scale'],
-                           validation_rate=self.settings['validation_rate'])
+                           speed_scale=self.settings.motion.speed_scale,
+                           validation_rate=self.settings.motion.validation_rate)
         if not plan.accepted:
             accounting.reject(plan.refusal)
             return
         points = leg_trajectory(plan.trajectory, self.geometry, self.actuators,
-                                self.settings['publish_rate'])
+                                self.settings.ramp.publish_rate)
         header = Header(stamp=self.get_clock().now().to_msg(),
-                        frame_id=self.settings['base_frame'])
+                        frame_id=self.settings.frames.base_frame)
         accounting.publish(self.leg_trajectory_publisher,
                            joint_trajectory_message(header, points))
         self.get_logger().info(
             f'{accounting.topic}: {path.waypoint_count} waypoints accepted, '
             + ('retimed to ' if plan.retimed else 'timed ')
             + f'{plan.trajectory.duration:.3f} s; {len(points.times)} points on leg_trajectory')
-        if self.settings['play']:
+        if self.settings.motion.play:
             self.play(plan.trajectory)
 
     def play(self, trajectory):
@@ -222,7 +233,7 @@ class TrajectoryNode(Node):
             self.destroy_timer(self.play_timer)
         self.playing = trajectory
         self.play_start = self.get_clock().now()
-        self.play_timer = self.create_timer(1.0 / self.settings['publish_rate'],
+        self.play_timer = self.create_timer(1.0 / self.settings.ramp.publish_rate,
                                             self.publish_playing)
         self.publish_playing()
 
