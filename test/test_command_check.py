@@ -347,3 +347,12 @@ def test_a_refused_pose_reports_where_the_platform_would_have_been():
     assert_allclose(command.position, (0.0, 0.0, 0.62), rtol=0.0, atol=0.0)
     assert_allclose(command.rotation, np.eye(3), rtol=0.0, atol=0.0)
     assert command.legs_at_fault == (1, 2, 4, 5, 6)
+
+
+def test_the_twist_policy_parameter_takes_refuse_or_scale():
+    """twist_over_limit is checked by its spec: 'refuse' (the default) or 'scale'."""
+    from stewart_kinematics.parameters import StreamingSettings
+    assert StreamingSettings().twist_over_limit == 'refuse'
+    assert StreamingSettings(twist_over_limit='scale').twist_over_limit == 'scale'
+    with pytest.raises(ValueError, match='twist_over_limit'):
+        StreamingSettings(twist_over_limit='clamp')

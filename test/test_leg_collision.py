@@ -223,3 +223,18 @@ def test_a_platform_joint_on_its_base_joint_is_a_point_not_a_failure():
     assert np.all(np.isfinite(distances))
     expected = reference_distances(geometry, np.concatenate([position, np.zeros(3)])[None])
     assert_allclose(distances[:, 0], expected[0], rtol=0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize('value, words', [
+    (-0.01, "parameter 'leg_radius' must be in [0, 1]"), (math.nan, "'leg_radius' must be finite"),
+    (math.inf, "'leg_radius' must be finite"), (2.0, "'leg_radius' must be in [0, 1]")])
+def test_the_leg_radius_parameter_refuses_what_is_no_radius(value, words):
+    """A parameter file's leg_radius is checked by its spec: the node stops with this reason."""
+    from stewart_kinematics.parameters import GeometrySettings
+    values = {'base_joints': reference.BASE_JOINTS.ravel().tolist(),
+              'platform_joints': reference.PLATFORM_JOINTS.ravel().tolist(),
+              'home_position': list(reference.HOME[:3]), 'leg_radius': value}
+    with pytest.raises(ValueError, match=words.replace('[', r'\[').replace(']', r'\]')):
+        GeometrySettings.from_values(values)
+    values['leg_radius'] = 0.02
+    assert GeometrySettings.from_values(values).leg_radius == 0.02
