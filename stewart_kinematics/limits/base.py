@@ -177,6 +177,8 @@ class Limit:
 
     #: The bounds this evaluator checks, in the order it reports them.
     bounds: Tuple[Bound, ...] = ()
+    #: For an evaluator of leg states: the field of :class:`LegSamples` it reads.
+    quantity = None
     #: Whether it costs far more a pose than the cheap ones (stroke, joint cones).
     dear = False
 

@@ -77,10 +77,9 @@ class LimitModel:
                  rate_slack: float = 0.0):
         self.geometry = geometry
         self.actuator_limits = actuator_limits or ActuatorLimits()
-        pose_limits = () if geometry is None else (
-            Stroke.of(geometry), JointCones(geometry), SingularityMargin(geometry),
-            LegCollision(geometry))
         stroke = () if geometry is None else (Stroke.of(geometry),)
+        pose_limits = () if geometry is None else stroke + (
+            JointCones(geometry), SingularityMargin(geometry), LegCollision(geometry))
         #: The evaluators of the pose limits that are set, in report order.
         self.pose_limits = tuple(limit for limit in pose_limits if limit.bounds)
         #: The evaluators of the leg-state limits that are set, in report order.
@@ -243,8 +242,8 @@ class LimitModel:
         if len(shapes) > 1 or any(len(shape) != 2 or shape[1] != 6 for shape in shapes):
             raise ValueError(f'leg states must share one shape (N, 6), got {shapes}')
         samples = LegSamples(**{name: values.T for name, values in given.items()})
-        limits = tuple(limit for limit in self.leg_state_limits if getattr(
-            samples, 'lengths' if isinstance(limit, Stroke) else limit.quantity) is not None)
+        limits = tuple(limit for limit in self.leg_state_limits
+                       if getattr(samples, limit.quantity) is not None)
         return self._check(samples.count, samples.take, limits, True, True)
 
     def leg_state_violations(self, lengths=None, velocities=None, accelerations=None,
@@ -271,8 +270,7 @@ class LimitModel:
         samples = LegSamples(**given)
         violations = []
         for limit in self.leg_state_limits:
-            if getattr(samples, 'lengths' if isinstance(limit, Stroke)
-                       else limit.quantity) is None:
+            if getattr(samples, limit.quantity) is None:
                 continue
             violations += _violations(limit.bounds, limit.evaluate(samples))
         return violations
@@ -288,7 +286,7 @@ class LimitModel:
             each six floats.
         """
         return all(limit.allows(sample) for limit in self.leg_state_limits
-                   if ('lengths' if isinstance(limit, Stroke) else limit.quantity) in sample)
+                   if limit.quantity in sample)
 
     def leg_velocity_scale(self, velocities) -> float:
         """

@@ -33,6 +33,8 @@ class Stroke(Limit):
     :param leg_length_max: longest allowed leg length, metres (``inf``: not set).
     """
 
+    quantity = 'lengths'
+
     def __init__(self, leg_length_min: float, leg_length_max: float):
         self.bounds = tuple(
             Bound(name, allowed, upper, LEG, 'm')
