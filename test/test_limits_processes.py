@@ -28,20 +28,18 @@ refused by ik_node, in a trajectory and by the ramp's pre-check, with the two le
 import math
 import subprocess
 
-from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Pose, Twist
 import numpy as np
 import pytest
 import reference
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
-from test_motion_processes import pose_message, trajectory_message
+from test_motion_processes import pose_message, Recorder, trajectory_message
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 pytestmark = pytest.mark.process
 
-CLIENT_DEPTH = 100
-SETTLE_TIME = 0.5
+#: Seconds a node that cannot start has to exit.
 DEADLINE = 20.0
 VELOCITY_MAX, ACCELERATION_MAX, JERK_MAX = 0.05, 0.25, 2.5
 TABLE_3 = np.array(reference.TABLE_3)
@@ -77,45 +75,12 @@ def raw_pose(position, quaternion=(0.0, 0.0, 0.0, 1.0)):
     return message
 
 
-class Client:
-    """The test node's topics: subscriptions that collect, publishers, /diagnostics."""
-
-    def __init__(self, client, nodes):
-        """Use conftest's ``client``; a wait fails when one of ``nodes`` exits."""
-        self.client, self.nodes = client, nodes
-        self.received, self.publishers, self.subscriptions = {}, {}, []
-        self.statuses = []
-        self.client.node.create_subscription(
-            DiagnosticArray, '/diagnostics', lambda array: self.statuses.extend(array.status),
-            CLIENT_DEPTH)
-
-    def subscribe(self, message_type, topic):
-        """Collect the messages of ``topic`` in ``received[topic]``."""
-        self.received[topic] = []
-        self.subscriptions.append(self.client.node.create_subscription(
-            message_type, topic, self.received[topic].append, CLIENT_DEPTH))
-
-    def advertise(self, message_type, topic):
-        """Create a publisher on ``topic``."""
-        self.publishers[topic] = self.client.node.create_publisher(
-            message_type, topic, CLIENT_DEPTH)
-
-    def connect(self):
-        """Wait until every publisher and subscription matched, then settle."""
-        self.client.wait(lambda: all(p.get_subscription_count() >= 1
-                                     for p in self.publishers.values())
-                         and all(s.get_publisher_count() >= 1 for s in self.subscriptions),
-                         'every topic matched', self.nodes)
-        self.client.spin_for(SETTLE_TIME)
+class Client(Recorder):
+    """test_motion_processes' Recorder, with /diagnostics counters by key."""
 
     def publish(self, topic, message):
         """Publish one message on ``topic``."""
         self.publishers[topic].publish(message)
-
-    def wait_for(self, topic, count):
-        """Wait until ``count`` messages arrived on ``topic``."""
-        self.client.wait(lambda: len(self.received[topic]) >= count,
-                         f'{count} messages on {topic}', self.nodes)
 
     def counted(self, status_name, key, count=1):
         """Wait for a /diagnostics status ``status_name`` whose ``key`` counts ``count``."""
