@@ -118,7 +118,7 @@ class PoseEstimate(Decision):
 
     @property
     def pose_error_bound(self) -> Optional[float]:
-        """First-order bound on the pose error of the solution, metres and radians, or ``None``."""
+        """Proven bound on the pose error of the solution, metres and radians, or ``None``."""
         return None if self.solution is None else self.solution.pose_error_bound
 
 

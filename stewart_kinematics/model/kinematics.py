@@ -63,9 +63,12 @@ SINGULAR_JACOBIAN = 'singular Jacobian: the pose is at a singularity'
 DIVERGED = 'diverged: the next iterate left every plausible pose'
 INVALID_LENGTHS = 'not solved: leg lengths must be finite and positive (metres)'
 INVALID_GUESS = 'not solved: the initial guess must be finite'
-#: Rounding floor of a computed leg length, in units of the length's last place: the residual
-#: of a solve is known no better than this (see ForwardKinematicsResult.pose_error_bound).
-LENGTH_ROUNDING_ULPS = 4.0
+#: Rounding floor of a computed leg length, in units of the last place of ``|t| + |p_i| +
+#: |b_i|`` (the sizes of the terms summed in the leg vector): the residual of a solve is known
+#: no better than this (see ForwardKinematicsResult.pose_error_bound).
+LENGTH_ROUNDING_ULPS = 16.0
+#: Rounding of a computed smallest singular value, in units of the largest one's last place.
+SINGULAR_VALUE_ROUNDING_ULPS = 64.0
 #: Poses per block of a batched inverse kinematics: the temporaries of one block stay in the
 #: processor's cache, which doubles the throughput of batches of millions.
 IK_BLOCK_SIZE = 4096
@@ -599,34 +602,64 @@ class ForwardKinematicsResult:
     @cached_property
     def pose_error_bound(self) -> Union[float, np.ndarray]:
         """
-        Bound on how far :attr:`pose` can be from the exact pose of the given leg lengths.
+        Proven bound on the distance from :attr:`pose` to the nearest exact pose of the lengths.
 
-        One number in metres and radians: the larger of the bounds on the position error (m)
-        and on the rotation angle error (rad). From the leg length error ``e`` (the residual
-        plus the rounding floor of a computed length, ``LENGTH_ROUNDING_ULPS`` units in the last
-        place of the longest leg), a pose error ``dx`` meets ``J dx = dl`` with
-        ``|dl| <= sqrt(6) e``; with ``sigma`` the smallest singular value of the dimensionless
-        Jacobian (:func:`jacobian_condition`), the position error is at most
-        ``sqrt(6) e / sigma`` and the angle error that divided by ``rho``. The first-order
-        figure is doubled: near a fold singularity, where the leg lengths are quadratic in the
-        pose, the tangent meets the exact solution only halfway, and twice the first-order
-        estimate is Kantorovich's radius around a Newton iterate.
+        One number in metres and radians: the larger of the position error (m) and the
+        rotation angle error (rad) to the pose whose leg lengths are exactly the given ones,
+        the one nearest to :attr:`pose`. Near a fold singularity the same lengths have a second
+        pose close by (another assembly mode, across the fold): that one is not bounded, and
+        the bound is ``inf`` when the two cannot be told apart (below).
+
+        The proof, in the coordinates ``z = (dt, rho phi)`` of a move from :attr:`pose` (``dt``
+        the position change, ``phi`` the rotation vector, ``rho`` the platform radius): the
+        leg lengths are ``l(z) = l(0) + J z + q(z)`` with ``J`` the dimensionless Jacobian
+        (:func:`jacobian_condition`), smallest singular value ``sigma``, and each
+        ``|q_i(z)| <= M_i |z|^2 / 2``, where ``M_i = c_i^2 / l_i' + |p_i| / rho^2`` bounds the
+        second derivative of leg ``i`` along any line in the ball (``c_i = sqrt(1 + |p_i|^2 /
+        rho^2)``, ``l_i'`` the leg's shortest length in the ball). With the leg length error
+        ``e`` (the residual plus the rounding floor, ``LENGTH_ROUNDING_ULPS`` units in the last
+        place of ``|t| + |p_i| + |b_i|``), ``eta = sqrt(6) e / sigma`` and ``h = eta M /
+        sigma`` (``M`` the 2-norm of the ``M_i``), the map ``z -> -J^-1 (l(0) - lengths +
+        q(z))`` sends the ball of radius ``r = 2 eta / (1 + sqrt(1 - 2 h))`` into itself when
+        ``h <= 1/2`` (Kantorovich's condition), so it holds an exact solution (Brouwer), and
+        ``|dt| <= r``, ``|phi| <= r / rho``. The bound is ``r max(1, 1 / rho)``, at most twice
+        the first-order figure ``eta max(1, 1 / rho)``. Where ``h > 1/2`` no ball is proven
+        to hold a solution (the residual is too large for the curvature near a singularity):
+        ``inf``. ``sigma`` is lowered by its rounding, ``SINGULAR_VALUE_ROUNDING_ULPS`` units
+        in the last place of the largest singular value.
 
         On the paper's platform, within +-0.1 m and +-15 degrees of home: 5e-13 for the median
-        pose, up to 1.5e-10 where the residual is just under the default tolerance; 1e-5 within
-        1e-6 rad of the singularity at a yaw of 90.4 degrees, where the residual is still
-        1e-13 m. ``inf`` at a singularity and where the solve did not converge. A float for
-        one solve, an array (N,) for a batch.
+        pose, up to 1e-10 where the residual is just under the default tolerance; 4e-9 at 1e-3
+        rad from the singularity at a yaw of 90.38 degrees, and ``inf`` within about 1e-5 rad
+        of it, where a residual of 1e-13 m can leave converged solves microns off. ``inf`` at a
+        singularity and where the solve did not converge. A float for one solve, an array
+        (N,) for a batch.
         """
         geometry, lengths, _ = self._solve
         lengths = np.asarray(lengths, dtype=float)
-        error = self.residual + LENGTH_ROUNDING_ULPS * np.finfo(float).eps * np.max(
-            lengths, axis=-1)
-        radius = geometry.platform_radius
-        with np.errstate(divide='ignore', invalid='ignore'):
-            bound = (2.0 * math.sqrt(6.0) * max(1.0, 1.0 / radius) * error
-                     / self._singular_values[..., -1])
-        bound = np.where(np.asarray(self.converged) & (bound >= 0.0), bound, np.inf)
+        pose = np.asarray(self.pose, dtype=float)
+        rho = geometry.platform_radius
+        arms = np.linalg.norm(geometry.platform_joints, axis=-1)            # |p_i|, (6,)
+        sizes = (np.linalg.norm(pose[..., None, :3], axis=-1) + arms
+                 + np.linalg.norm(geometry.base_joints, axis=-1))         # (..., 6)
+        eps = np.finfo(float).eps
+        error = self.residual + LENGTH_ROUNDING_ULPS * eps * np.max(sizes, axis=-1)
+        singular_values = self._singular_values
+        sigma = singular_values[..., -1] - SINGULAR_VALUE_ROUNDING_ULPS * eps * (
+            singular_values[..., 0])
+        reach = np.sqrt(1.0 + (arms / rho) ** 2)                          # c_i, (6,)
+        with np.errstate(divide='ignore', invalid='ignore', over='ignore'):
+            eta = math.sqrt(6.0) * error / sigma
+            # The legs' shortest lengths within the largest ball considered, 2 eta.
+            shortest = (lengths - np.asarray(self.residual)[..., None]
+                        - 2.0 * np.asarray(eta)[..., None] * reach)
+            curvature = np.sqrt(np.sum(np.square(
+                reach ** 2 / shortest + arms / rho ** 2), axis=-1))
+            h = eta * curvature / sigma
+            radius = 2.0 * eta / (1.0 + np.sqrt(np.maximum(1.0 - 2.0 * h, 0.0)))
+            proven = (np.asarray(self.converged) & (sigma > 0.0) & (h <= 0.5)
+                      & np.all(shortest > 0.0, axis=-1) & (radius >= 0.0))
+            bound = np.where(proven, radius * max(1.0, 1.0 / rho), np.inf)
         return float(bound) if bound.ndim == 0 else bound
 
 
@@ -698,8 +731,10 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
             jacobian_inverse)
     targets = np.atleast_2d(lengths)
     guesses = np.atleast_2d(guess)
-    count = max(targets.shape[0], guesses.shape[0])
-    if guesses.shape[0] not in (1, count) or targets.shape[0] not in (1, count):
+    # One guess for every row of lengths, or one row of lengths for every guess; an empty
+    # batch (N = 0) gives an empty result, as inverse_kinematics does.
+    count = targets.shape[0] if guesses.shape[0] == 1 else guesses.shape[0]
+    if targets.shape[0] not in (1, count):
         raise ValueError(
             f'lengths {lengths.shape} and initial_guess {guess.shape} must hold the same '
             'number of poses, or one of them a single one')
