@@ -42,6 +42,7 @@ import numpy as np
 
 from stewart_kinematics import findings, limits
 from stewart_kinematics.findings import Decision, Finding
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import leg_lengths, twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
@@ -111,8 +112,11 @@ class CommandCheck:
         :returns: a :class:`LegCommand`; refused (code ``invalid_pose``, ``unreachable`` or
             ``out_of_limits``) rather than raised.
         """
-        position = np.asarray(position, dtype=float)
-        rotation = np.asarray(rotation, dtype=float)
+        try:
+            position = as_float_array(position, 'position')
+            rotation = as_float_array(rotation, 'rotation')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         invalid = _invalid_pose(position, rotation)
         if invalid:
             return LegCommand(None, refusal=Finding(findings.INVALID_POSE, invalid))
@@ -127,7 +131,10 @@ class CommandCheck:
         :param position: metres, base frame, shape (3,).
         :param quaternion: shape (4,).
         """
-        position = np.asarray(position, dtype=float)
+        try:
+            position = as_float_array(position, 'position')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         if position.shape != (3,) or not all(map(math.isfinite, position.tolist())):
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
@@ -146,12 +153,16 @@ class CommandCheck:
         # The lengths first: a leg of length zero (a platform joint on its base joint) has no
         # direction, so the joint angles and the Jacobian of the limits do not exist there.
         with np.errstate(over='ignore', invalid='ignore'):
-            lengths = leg_lengths(self.geometry, position, rotation)
-        if not all(0.0 < length < math.inf for length in lengths.tolist()):
+            try:
+                lengths = leg_lengths(self.geometry, position, rotation).tolist()
+            except ValueError:   # overflow
+                lengths = [math.inf] * 6
+        if not all(0.0 < length < math.inf for length in lengths):
             return LegCommand(None, refusal=Finding(
                 findings.UNREACHABLE,
-                f'its leg lengths must be finite and positive (metres), got {lengths.tolist()}: '
+                f'its leg lengths must be finite and positive (metres), got {lengths}: '
                 'a platform joint on its base joint, or a pose beyond any reach'))
+        lengths = np.array(lengths)
         violations = tuple(limits.check_pose(self.geometry, position, rotation))
         if violations:
             return LegCommand(None, violations, findings.out_of_limits('the pose is', violations))
@@ -164,7 +175,10 @@ class CommandCheck:
 
         :param pose: shape (6,).
         """
-        pose = np.asarray(pose, dtype=float)
+        try:
+            pose = as_float_array(pose, 'pose')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         if pose.shape != (6,) or not np.all(np.isfinite(pose)):
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
@@ -180,7 +194,10 @@ class CommandCheck:
         :returns: a :class:`LegVelocityCommand`; refused (code ``no_pose_yet`` or
             ``invalid_twist``) rather than raised.
         """
-        twist = np.asarray(twist, dtype=float)
+        try:
+            twist = as_float_array(twist, 'twist')
+        except ValueError as error:
+            return LegVelocityCommand(None, Finding(findings.INVALID_TWIST, str(error)))
         if twist.shape != (6,) or not np.all(np.isfinite(twist)):
             return LegVelocityCommand(None, Finding(
                 findings.INVALID_TWIST,
@@ -190,7 +207,14 @@ class CommandCheck:
             return LegVelocityCommand(None, Finding(
                 findings.NO_POSE_YET,
                 'no pose accepted yet, so no Jacobian to apply the twist at'))
-        return LegVelocityCommand(twist_jacobian(self.geometry, *self.last_pose) @ twist)
+        with np.errstate(over='ignore', invalid='ignore'):
+            velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
+        if not np.all(np.isfinite(velocities)):
+            return LegVelocityCommand(None, Finding(
+                findings.INVALID_TWIST,
+                f'the leg velocities of the twist {twist.tolist()} are beyond the float range '
+                '(about 1.8e308): the twist is too large'))
+        return LegVelocityCommand(velocities)
 
 
 def _invalid_pose(position, rotation) -> str:

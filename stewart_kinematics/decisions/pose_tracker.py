@@ -46,6 +46,7 @@ import numpy as np
 from stewart_kinematics import findings, limits, parameters
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import (
     as_poses,
     forward_kinematics,
@@ -240,7 +241,10 @@ class PoseTracker:
         :param velocities: leg velocities l_1'..l_6', metres per second, shape (6,).
         :returns: a :class:`TwistEstimate`, ``[vx, vy, vz, wx, wy, wz]`` in the base frame.
         """
-        velocities = np.asarray(velocities, dtype=float)
+        try:
+            velocities = as_float_array(velocities, 'leg velocities')
+        except ValueError as error:
+            return TwistEstimate(None, Finding(findings.INVALID_VELOCITIES, str(error)))
         if velocities.shape != (6,) or not np.all(np.isfinite(velocities)):
             return TwistEstimate(None, Finding(
                 findings.INVALID_VELOCITIES,
@@ -255,6 +259,8 @@ class PoseTracker:
                 findings.NEAR_SINGULARITY,
                 f'{error} (the singularity margin: the smaller of near_singularity_condition '
                 f'and max_jacobian_condition)'))
+        except ValueError as error:   # a twist beyond the float range
+            return TwistEstimate(None, Finding(findings.INVALID_VELOCITIES, str(error)))
 
     def _solve(self, lengths) -> ForwardKinematicsResult:
         """Solve from the last solution (with its Jacobian), then from home if that fails."""

@@ -39,6 +39,7 @@ import weakref
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, check_finite_output, preview
 from stewart_kinematics.model.rotations import (
     _ArrayOperations,
     euler_zyx_matrix_entries,
@@ -76,7 +77,7 @@ IK_BLOCK_SIZE = 4096
 
 def _as_rows(values, name) -> np.ndarray:
     """Return ``values`` as a float array of shape (6,) or (N, 6), or raise ValueError."""
-    values = np.asarray(values, dtype=float)
+    values = as_float_array(values, name)
     if values.ndim not in (1, 2) or values.shape[-1] != 6:
         raise ValueError(f'{name} must have shape (6,) or (N, 6), got {values.shape}')
     return values
@@ -377,15 +378,18 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     :param position: platform origin in the base frame, metres, shape (3,) or (N, 3).
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3).
     :returns: in the base frame, metres, shape (6, 3) or (N, 6, 3).
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[1:4] for leg in legs])
-    shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+        vectors = np.array([leg[1:4] for leg in legs])
+    else:
+        shape, (_, vectors) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        vectors = np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+    return _finite_result(vectors, 'the leg vectors', position, rotation)
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -407,15 +411,22 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3); build it
         from a quaternion with :func:`stewart_kinematics.model.rotations.quaternion_to_matrix`.
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
+    :raises ValueError: if a shape is wrong, the numbers of poses differ, a value is not
+        finite or the lengths overflow. The rotation is not checked to be one.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[0] for leg in legs])
-    shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return lengths.T.reshape(shape + (6,))
+        lengths = [leg[0] for leg in legs]
+        if all(map(math.isfinite, lengths)):
+            return np.array(lengths)
+        lengths = np.array(lengths)
+    else:
+        shape, (lengths, _) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        lengths = lengths.T.reshape(shape + (6,))
+    return _finite_result(lengths, 'the leg lengths', position, rotation)
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -425,25 +436,29 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, shape (6,) or (N, 6).
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
-    :raises ValueError: if a pose has the wrong shape or a non-finite value.
+    :raises ValueError: if a pose has the wrong shape or a non-finite value, or its lengths
+        overflow (a coordinate beyond about 1e154 m).
 
     >>> from stewart_kinematics import Geometry, inverse_kinematics
     >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
     >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])  # doctest: +SKIP
     array([0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488])
     """
-    poses = np.asarray(poses, dtype=float)
+    poses = as_float_array(poses, 'poses')
     constants = _constants(geometry)
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array(_single_euler_legs(constants, values, with_vectors=False))
+            lengths = _single_euler_legs(constants, values, with_vectors=False)
+            if all(map(math.isfinite, lengths)):
+                return np.array(lengths)
     poses = as_poses(poses)
-    lengths = np.empty((poses.shape[0], 6))
-    for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
+    batch = np.atleast_2d(poses)
+    lengths = np.empty((batch.shape[0], 6))
+    for start in range(0, batch.shape[0], IK_BLOCK_SIZE):
         stop = start + IK_BLOCK_SIZE
-        lengths[start:stop] = _batch_euler_legs(constants, poses[start:stop], False).T
-    return lengths
+        lengths[start:stop] = _batch_euler_legs(constants, batch[start:stop], False).T
+    return check_finite_output(lengths.reshape(poses.shape), 'the leg lengths', 'the poses')
 
 
 def twist_jacobian(geometry, position, rotation) -> np.ndarray:
@@ -460,15 +475,43 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
     :returns: shape (6, 6) or (N, 6, 6); translation columns dimensionless, rotation columns
         in metres per radian.
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_float_twist_rows(_single_legs(
+        jac = np.array(_float_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    else:
+        shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+        jac = _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    return _finite_result(jac, 'the twist Jacobian', position, rotation)
+
+
+def _as_position_rotation(position, rotation):
+    """Positions (..., 3) and rotation matrices (..., 3, 3) as float arrays, shapes checked."""
+    position = as_float_array(position, 'position')
+    rotation = as_float_array(rotation, 'rotation')
+    if position.shape[-1:] != (3,) or rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'position must have shape (3,) or (N, 3) and rotation (3, 3) or '
+                         f'(N, 3, 3), got {position.shape} and {rotation.shape}')
+    try:
+        np.broadcast_shapes(position.shape[:-1], rotation.shape[:-2])
+    except ValueError:
+        raise ValueError(f'position {position.shape} and rotation {rotation.shape} must hold '
+                         'the same number of poses, or one of them a single one') from None
+    return position, rotation
+
+
+def _finite_result(result, what, position, rotation):
+    """Return ``result``, or say why it is not finite: a non-finite input, or an overflow."""
+    if isinstance(result, np.ndarray) and result.size <= 36 and all(
+            map(math.isfinite, result.ravel().tolist())) or np.all(np.isfinite(result)):
+        return result
+    for name, values in (('position', position), ('rotation', rotation)):
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f'{name} must be finite, got {preview(values)}')
+    return check_finite_output(result, what, 'the position and rotation')
 
 
 def jacobian(geometry, poses) -> np.ndarray:
@@ -881,14 +924,17 @@ def _single_values(values, positive=False):
     :returns: a list of six floats, or None.
     """
     if isinstance(values, np.ndarray):
-        if values.shape != (6,):
+        if values.shape != (6,) or values.dtype.kind not in 'iuf':
             return None
         values = values.tolist()
     elif not isinstance(values, (list, tuple)) or len(values) != 6:
         return None
+    # Numbers only: a string or a bool is left to the full checks, which refuse it.
+    if not all(type(value) in (float, int) for value in values):
+        return None
     try:
         values = [float(value) for value in values]
-    except (TypeError, ValueError):
+    except OverflowError:   # an integer beyond the float range
         return None
     low = 0.0 if positive else -math.inf
     return values if all(low < value < math.inf for value in values) else None
