@@ -60,7 +60,7 @@ def as_float_array(values, name: str) -> np.ndarray:
             return array.astype(float)
         except (TypeError, ValueError, OverflowError):
             pass
-    raise ValueError(f'{name} must be numbers, got {preview(values)} '
+    raise ValueError(f'{name} must be numbers within the float range, got {preview(values)} '
                      f'({type(values).__name__})')
 
 

@@ -93,7 +93,8 @@ class FkNode(Node):
             + parameters.SOLVER_PARAMETERS + parameters.ASSEMBLY_MODE_PARAMETERS
             + parameters.FRAME_PARAMETERS + parameters.FK_FRAME_PARAMETERS
             + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
+            on_change=self.on_parameter_change, check=frame_parameters_reason,
+            node_options=kwargs)
         self.geometry = geometry_from_parameters(values)
         self.actuators = ActuatorInterface.from_parameters(values)
         self.tracker = PoseTracker.from_parameters(self.geometry, values)

@@ -95,7 +95,8 @@ class IkNode(Node):
             + parameters.MARKER_PARAMETERS + parameters.WORKSPACE_PARAMETERS
             + parameters.STREAMING_PARAMETERS
             + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
+            on_change=self.on_parameter_change, check=frame_parameters_reason,
+            node_options=kwargs)
         self.geometry = geometry_from_parameters(values)
         self.check = CommandCheck(self.geometry)
         # Replaced whole when a tool frame parameter changes: one tree per message.

@@ -79,7 +79,8 @@ class TrajectoryNode(Node):
         values = declare_parameters(
             self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
             + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
-            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
+            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS,
+            node_options=kwargs)
         self.settings = values
         self.geometry = geometry_from_parameters(values)
         self.actuator_limits = ActuatorLimits.from_parameters(values)
