@@ -372,7 +372,13 @@ def workspace_volume(geometry, orientation=None, *, position=None, resolution=0.
         for dimension in (0, 1):
             values = grid.coordinates[dimension][columns[dimension]]
             box[:, dimension] = values.min(), values.max()
-        box[:, 2] = heights.min(), heights.max()
+        # In z: the boundary crossings, and the grid's ends where a column reaches them (an
+        # unbounded workspace, such as a platform without limits, may have no crossing).
+        ends = [heights]
+        ends += [z[:1]] if np.any(grid.allowed[:, :, 0]) else []
+        ends += [z[-1:]] if np.any(grid.allowed[:, :, -1]) else []
+        ends = np.concatenate(ends)
+        box[:, 2] = ends.min(), ends.max()
     return WorkspaceVolume(base[3:].copy(), volume, box, float(resolution), points[:, :3],
                            limit, leg, grid.bounded)
 
