@@ -319,8 +319,9 @@ def _batch_rotation_legs(constants, position, rotation):
     shape = position.shape[:-1]
     position = position.reshape(-1, 3)
     rotation = rotation.reshape(-1, 3, 3)
-    legs = _batch_legs(constants, position,
-                       [rotation[:, row, column] for row in range(3) for column in range(3)])
+    with np.errstate(over='ignore', invalid='ignore'):   # the callers refuse an overflow
+        legs = _batch_legs(constants, position,
+                           [rotation[:, row, column] for row in range(3) for column in range(3)])
     return shape, legs
 
 
@@ -455,9 +456,10 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
     lengths = np.empty((batch.shape[0], 6))
-    for start in range(0, batch.shape[0], IK_BLOCK_SIZE):
-        stop = start + IK_BLOCK_SIZE
-        lengths[start:stop] = _batch_euler_legs(constants, batch[start:stop], False).T
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        for start in range(0, batch.shape[0], IK_BLOCK_SIZE):
+            stop = start + IK_BLOCK_SIZE
+            lengths[start:stop] = _batch_euler_legs(constants, batch[start:stop], False).T
     return check_finite_output(lengths.reshape(poses.shape), 'the leg lengths', 'the poses')
 
 
@@ -751,9 +753,10 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         if initial_guess.converged is True:
             jacobian_inverse = initial_guess._solve[2]
         initial_guess = initial_guess.pose
-    if not 0.0 < tolerance < np.inf:
+    if not (_is_real(tolerance) and 0.0 < tolerance < np.inf):
         raise ValueError(f'tolerance must be positive and finite (metres), got {tolerance!r}')
-    if int(max_iterations) != max_iterations or max_iterations < 1:
+    if not (_is_real(max_iterations) and math.isfinite(max_iterations)
+            and int(max_iterations) == max_iterations and max_iterations >= 1):
         raise ValueError(f'max_iterations must be a positive integer, got {max_iterations!r}')
     constants = _constants(geometry)
     # One solve: six valid floats each (the common case, checked without numpy's overhead).
@@ -911,6 +914,12 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
     return ForwardKinematicsResult(
         pose=poses, converged=reason == '', iterations=iterations, residual=residual,
         reason=tuple(reason.tolist()), _solve=(geometry, targets, None))
+
+
+def _is_real(value) -> bool:
+    """Whether ``value`` is a real number (a bool is not)."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, (bool, np.bool_))
 
 
 def _single_values(values, positive=False):

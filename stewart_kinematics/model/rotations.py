@@ -131,7 +131,11 @@ def zyx_angles(entries, operations=_FloatOperations):
     sin_gamma = r13 * sin_alpha - r12 * cos_alpha
     cos_gamma = r22 * cos_alpha - r23 * sin_alpha
     cos_beta = r32 * sin_alpha + r33 * cos_alpha
-    return alpha, operations.atan2(-r31, cos_beta), operations.atan2(sin_gamma + 0.0, cos_gamma)
+    gamma = operations.atan2(sin_gamma + 0.0, cos_gamma)
+    # atan2 of a tiny negative sine and a cosine of -1 rounds to -pi itself: the range is
+    # (-pi, pi], so that half turn is pi.
+    return (operations.where(alpha > -math.pi, alpha, math.pi), operations.atan2(-r31, cos_beta),
+            operations.where(gamma > -math.pi, gamma, math.pi))
 
 
 def matrix_to_euler_zyx(rotation):
