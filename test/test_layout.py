@@ -31,8 +31,8 @@ ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / 'README.md').read_text(encoding='utf-8')
 PACKAGE = 'stewart_kinematics'
 #: Top-level folders that are no part of the repository (made by tools, ignored by git).
-UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', 'build', 'install', 'log',
-             'demo_output', 'stewart_kinematics.egg-info', '__pycache__'}
+UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', '.hypothesis', 'build', 'install',
+             'log', 'demo_output', 'stewart_kinematics.egg-info', '__pycache__'}
 
 
 def layout_paths():
