@@ -42,9 +42,9 @@ PROFILE = os.environ.get('HYPOTHESIS_PROFILE', 'ci')
 #: Examples per test in the ``long`` profile, as a multiple of the ``ci`` count.
 LONG_FACTOR = 50
 
-_COMMON = dict(database=DATABASE, deadline=None, print_blob=True,
-               suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
-                                      HealthCheck.filter_too_much])
+_COMMON = {'database': DATABASE, 'deadline': None, 'print_blob': True,
+           'suppress_health_check': [HealthCheck.too_slow, HealthCheck.data_too_large,
+                                     HealthCheck.filter_too_much]}
 settings.register_profile('ci', max_examples=25, derandomize=False, **_COMMON)
 settings.register_profile('long', max_examples=25 * LONG_FACTOR, **_COMMON)
 settings.register_profile('replay', max_examples=25, phases=[Phase.explicit, Phase.reuse],
@@ -67,9 +67,9 @@ def covers(*names):
 
 # Geometries: the paper's platform, with and without the example limits.
 PAPER = paper_geometry()
-EXAMPLE_LIMITS = dict(leg_length_min=0.65, leg_length_max=0.90,
-                      base_joint_max_angle=math.radians(30.0),
-                      platform_joint_max_angle=math.radians(35.0), max_jacobian_condition=50.0)
+EXAMPLE_LIMITS = {'leg_length_min': 0.65, 'leg_length_max': 0.90,
+                  'base_joint_max_angle': math.radians(30.0),
+                  'platform_joint_max_angle': math.radians(35.0), 'max_jacobian_condition': 50.0}
 LIMITED = paper_geometry(**EXAMPLE_LIMITS)
 HOME_POSE = np.array(HOME)
 
@@ -115,7 +115,7 @@ def pose_batches(max_size=8, **ranges):
 
 
 def unit_quaternions():
-    """Unit quaternions (x, y, z, w), from random 4-vectors well away from zero."""
+    """Draw unit quaternions (x, y, z, w), from random 4-vectors well away from zero."""
     return st.tuples(*[floats(-1.0, 1.0)] * 4).filter(
         lambda q: sum(v * v for v in q) > 1e-2).map(lambda q: np.array(q) / np.linalg.norm(q))
 

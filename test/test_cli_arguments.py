@@ -170,3 +170,17 @@ def test_the_example_script_refuses_a_missing_check_file(tmp_path, capsys):
     (tmp_path / 'calibrated.yaml').write_text('/**:\n  ros__parameters:\n    a: 1.0\n')
     code, error = run(EXAMPLE.main, [tmp_path, '--check', tmp_path / 'calibrated.yaml'], capsys)
     assert code == 1 and 'true_platform.yaml' in error
+
+
+def test_a_quoted_number_layered_in_either_order_is_refused_by_the_tools(tmp_path, capsys):
+    quoted = tmp_path / 'quoted.yaml'
+    quoted.write_text('/**:\n  ros__parameters:\n    leg_length_max: "0.9"\n', encoding='utf-8')
+    for files in ([PLATFORM, quoted], [quoted, PLATFORM]):
+        arguments = [a for path in files for a in ('--params-file', path)]
+        code, error = run(workspace_report.main, arguments + ['--output', tmp_path / 'out'],
+                          capsys)
+        assert code == 1 and "'leg_length_max' must be of type double" in error, error
+        assert 'quoted.yaml' in error
+        code, error = run(calibrate.main, arguments + ['--propose', '10', '--poses-out',
+                                                       tmp_path / 'poses.csv'], capsys)
+        assert code == 1 and "'leg_length_max'" in error and 'quoted.yaml' in error

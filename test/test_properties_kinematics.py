@@ -28,7 +28,6 @@ import math
 from hypothesis import assume, given, strategies as st
 import numpy as np
 from numpy.testing import assert_allclose, assert_array_equal
-import pytest
 from properties import (
     assert_refused,
     budget,
@@ -45,6 +44,7 @@ from properties import (
     with_bad_entry,
     wrong_shapes,
 )
+import pytest
 from reference import BASE_JOINTS, leg_lengths as reference_lengths, PLATFORM_JOINTS
 from reference import rotation_zyx, singular_yaw
 
@@ -72,7 +72,7 @@ def twists():
 
 
 def geometries():
-    """Valid geometries: the paper's joints moved by up to 2 cm each."""
+    """Draw valid geometries: the paper's joints moved by up to 2 cm each."""
     offsets = st.tuples(*[floats(-0.02, 0.02)] * 36).map(lambda v: np.array(v).reshape(2, 6, 3))
     return offsets.map(lambda d: Geometry(BASE_JOINTS + d[0], PLATFORM_JOINTS + d[1],
                                           home_pose=HOME_POSE))

@@ -23,7 +23,6 @@ array of the right shape, or not a rotation, is refused naming the argument.
 from hypothesis import given, strategies as st
 import numpy as np
 from numpy.testing import assert_allclose
-import pytest
 from properties import (
     any_angles,
     assert_refused,
@@ -37,6 +36,7 @@ from properties import (
     with_bad_entry,
     wrong_shapes,
 )
+import pytest
 from reference import quaternion_from_euler, quaternion_matrix, rotation_angle, rotation_zyx
 
 from stewart_kinematics import (

@@ -48,7 +48,11 @@ from stewart_kinematics.parameters.declarations import (
     STREAMING_PARAMETERS,
     WORKSPACE_PARAMETERS,
 )
-from stewart_kinematics.parameters.files import load_geometry, read_parameter_file
+from stewart_kinematics.parameters.files import (
+    load_geometry,
+    read_parameter_file,
+    read_parameter_files,
+)
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DOUBLE,
@@ -87,6 +91,7 @@ __all__ = [
     'QUEUE_PARAMETERS',
     'RAMP_PARAMETERS',
     'read_parameter_file',
+    'read_parameter_files',
     'REPLACED_PARAMETERS',
     'SOLVER_PARAMETERS',
     'STREAMING_PARAMETERS',

@@ -43,7 +43,9 @@ def geometry_from_parameters(values: dict) -> Geometry:
     :raises ValueError: naming the parameter, if a value is missing or not allowed.
     """
     merged = defaults(GEOMETRY_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
+    # None is a value nobody set (as a spec's check takes it): the default stays.
+    merged.update({key: value for key, value in values.items()
+                   if key in merged and value is not None})
     check_values(GEOMETRY_PARAMETERS, merged)
     home_pose = np.concatenate([
         np.asarray(merged['home_position'], dtype=float),
@@ -70,7 +72,9 @@ def frames_from_parameters(values: dict) -> FrameTree:
         that repeat.
     """
     merged = defaults(FRAME_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
+    # None is a value nobody set (as a spec's check takes it): the default stays.
+    merged.update({key: value for key, value in values.items()
+                   if key in merged and value is not None})
     check_values(FRAME_PARAMETERS, merged)
     return FrameTree(
         base_frame=merged['base_frame'], platform_frame=merged['platform_frame'],

@@ -25,7 +25,7 @@ from typing import Optional
 
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters.builders import geometry_from_parameters
-from stewart_kinematics.parameters.declarations import check_known_names
+from stewart_kinematics.parameters.declarations import all_specs, check_known_names
 import yaml
 
 #: rcl's words for true and false (rcl_yaml_param_parser): YAML 1.1's, in three spellings.
@@ -192,6 +192,34 @@ def read_parameter_file(path, node_name: Optional[str] = None) -> dict:
     return values
 
 
+def read_parameter_files(paths, node_name: Optional[str] = None) -> dict:
+    """
+    Read layered parameter files as a node would get them: later files override earlier ones.
+
+    Unlike rcl's merge, which keeps one type per name and so drops a quoted ``"0.9"`` layered
+    over a double whatever the order, every file's own value must have its parameter's type.
+
+    :param paths: a file or a list of them, in the order of repeated ``--params-file``.
+    :param node_name: also apply this node's sections (see :func:`read_parameter_file`).
+    :returns: parameter name -> value.
+    :raises ValueError: naming the file, if a file cannot be read, names an unknown parameter
+        or gives a value of the wrong type.
+    """
+    if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
+        paths = [paths]
+    specs = {spec.name: spec for spec in all_specs()}
+    values = {}
+    for path in paths:
+        layer = read_parameter_file(path, node_name)
+        check_known_names(layer, f'parameter file {path}')
+        for name, value in layer.items():
+            reason = specs[name].type_reason(value) if value is not None else ''
+            if reason:
+                raise ValueError(f'{reason}, in parameter file {path}')
+        values.update(layer)
+    return values
+
+
 def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
     """
     Read a geometry from ROS 2 parameter files, the same ones the nodes are given.
@@ -207,11 +235,8 @@ def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
     """
     if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
         paths = [paths]
-    values = {}
-    for path in paths:
-        values.update(read_parameter_file(path, node_name))
+    values = read_parameter_files(paths, node_name)
     try:
-        check_known_names(values, 'the file')
         return geometry_from_parameters(values)
     except ValueError as error:
         raise ValueError(f'{", ".join(map(str, paths))}: {error}') from error

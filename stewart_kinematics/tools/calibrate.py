@@ -43,10 +43,9 @@ from stewart_kinematics.analysis.calibration_files import (
 )
 from stewart_kinematics.parameters import (
     ACTUATOR_PARAMETERS,
-    check_known_names,
     check_values,
     geometry_from_parameters,
-    read_parameter_file,
+    read_parameter_files,
 )
 from stewart_kinematics.tools.cli_arguments import (
     check_output_paths,
@@ -137,10 +136,7 @@ def main(argv=None) -> int:
     """Run stewart_calibrate; return the exit code."""
     arguments = parse_arguments(argv)
     try:
-        values = {}
-        for path in arguments.params_files:
-            values.update(read_parameter_file(path))
-        check_known_names(values, ', '.join(map(str, arguments.params_files)))
+        values = read_parameter_files(arguments.params_files)
         nominal = geometry_from_parameters(values)
         if arguments.propose is not None:
             return _propose(arguments, nominal)
