@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 
 
 @dataclass(frozen=True)
@@ -76,7 +77,8 @@ class CommandFilter:
                              'leg_acceleration_max (leg_jerk_max may be .inf), got '
                              f'{actuator_limits.velocity_max!r} and '
                              f'{actuator_limits.acceleration_max!r}')
-        if not (period > 0.0 and math.isfinite(period)):
+        if not (isinstance(period, (int, float)) and not isinstance(period, bool)
+                and 0.0 < period < math.inf):
             raise ValueError(f'the command period must be positive (seconds), got {period!r}')
         self._ruckig = ruckig
         self._generator = ruckig.Ruckig(6, period)
@@ -140,7 +142,7 @@ class CommandFilter:
 
 
 def _six(name, values):
-    values = np.array(values, dtype=float)
+    values = np.array(as_float_array(values, name))
     if values.shape != (6,) or not np.all(np.isfinite(values)):
         raise ValueError(f'{name} must be 6 finite values (metres), got {values.tolist()}')
     return values
