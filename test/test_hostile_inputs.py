@@ -126,3 +126,18 @@ def test_non_finite_angles_are_refused_by_the_conversions():
     for angles in ([math.nan, 0.0, 0.0], [[0.0, 0.0, math.inf]]):
         with pytest.raises(ValueError, match='Euler angles must be finite'):
             euler_zyx_to_matrix(angles)
+
+
+def test_angles_near_gimbal_lock_rebuild_the_rotation_to_rounding():
+    # Found by the property tests: within 1e-12 of gimbal lock alpha was snapped to 0 and the
+    # rotation rebuilt only to 1e-12 rad.
+    from reference import rotation_angle, rotation_zyx
+    from stewart_kinematics import matrix_to_euler_zyx
+    worst = 0.0
+    for alpha in np.linspace(-3.0, 3.0, 13):
+        for gap in (1e-11, 1e-12, 5e-13, 1e-14, 0.0):
+            for sign in (1.0, -1.0):
+                rotation = rotation_zyx(alpha, sign * (math.pi / 2 - gap), 0.7)
+                rebuilt = rotation_zyx(*matrix_to_euler_zyx(rotation))
+                worst = max(worst, rotation_angle(rebuilt, rotation))
+    assert worst < 2e-15

@@ -50,6 +50,7 @@ from stewart_kinematics import (
     FrameTree,
     geometry_from_parameters,
     load_geometry,
+    load_settings,
     Transform,
 )
 from stewart_kinematics.parameters import defaults, FRAME_PARAMETERS, GEOMETRY_PARAMETERS
@@ -214,3 +215,30 @@ def test_bad_parameter_values_are_refused_naming_the_parameter(tmp_path_factory,
         assert_refused(lambda: load_geometry(files), ('leg_length_max',))
     assert_refused(lambda: load_geometry(path.parent / 'absent.yaml'), ('absent.yaml',))
     assert PAPER.leg_length_max == math.inf
+
+
+@covers('load_settings')
+@budget(20)
+@given(floats(0.8, 1.2), floats(0.3, 0.6), st.sampled_from(['fk_node', None]))
+def test_settings_load_as_the_files_say_or_are_refused(tmp_path_factory, leg_length_max,
+                                                       leg_length_min, node_name):
+    from stewart_kinematics.parameters import FkNodeSettings, GeometrySettings
+    folder = tmp_path_factory.mktemp('settings')
+    platform = ROOT / 'config' / 'paper_platform.yaml'
+    limits = folder / 'limits.yaml'
+    limits.write_text(f'/**:\n  ros__parameters:\n    leg_length_max: {leg_length_max!r}\n'
+                      f'    leg_length_min: {leg_length_min!r}\n'
+                      'fk_node:\n  ros__parameters:\n    tolerance: 1e-10\n', encoding='utf-8')
+    settings = load_settings(GeometrySettings, [platform, limits], node_name)
+    assert settings.leg_length_max == leg_length_max
+    assert settings.leg_length_min == leg_length_min
+    fk = load_settings(FkNodeSettings, [platform, limits], node_name)
+    assert fk.solver.tolerance == (1e-10 if node_name else 1e-12)
+    quoted = folder / 'quoted.yaml'
+    quoted.write_text('/**:\n  ros__parameters:\n    leg_length_max: "0.9"\n', encoding='utf-8')
+    for files in ([platform, quoted], [quoted, platform]):
+        assert_refused(lambda: load_settings(GeometrySettings, files), ('leg_length_max',))
+    typo = folder / 'typo.yaml'
+    typo.write_text('/**:\n  ros__parameters:\n    leg_lenght_max: 0.9\n', encoding='utf-8')
+    assert_refused(lambda: load_settings(GeometrySettings, [platform, typo]),
+                   ("did you mean 'leg_length_max'",))

@@ -35,8 +35,9 @@ from stewart_kinematics.model.arrays import as_float_array, preview
 QUATERNION_NORM_MIN = 1e-9
 #: Where cos(beta) is below this (gimbal lock, or as near it as rounding cannot tell), alpha is
 #: set to 0 and gamma carries the whole rotation about the vertical; the angles rebuild the
-#: rotation just as exactly on either side (see :func:`matrix_to_euler_zyx`).
-GIMBAL_LOCK_COS_BETA = 1e-12
+#: rotation just as exactly on either side (see :func:`matrix_to_euler_zyx`). At 1e-12 the
+#: rotations snapped to alpha = 0 were rebuilt only to 1e-12 rad; at 1e-15, to 1e-15 rad.
+GIMBAL_LOCK_COS_BETA = 1e-15
 #: Largest deviation of ``R^T R`` from the identity of a matrix taken as a rotation: rounding
 #: and a product of a few rotations stay far below; a matrix that is no rotation goes beyond.
 ROTATION_MATRIX_TOLERANCE = 1e-6
@@ -65,6 +66,8 @@ def euler_zyx_to_matrix(angles):
     :returns: ``Rz(gamma) @ Ry(beta) @ Rx(alpha)``, shape (3, 3) or (..., 3, 3).
     :raises ValueError: if the shape is wrong or an angle is not finite.
 
+    >>> import numpy as np
+    >>> from stewart_kinematics import euler_zyx_to_matrix
     >>> euler_zyx_to_matrix([0.0, 0.0, np.pi / 2]).round(12) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
     """

@@ -142,6 +142,21 @@ def declare_parameters(node, specs, on_change=None, check=None,
     return values
 
 
+def declare_settings(node, settings_class, on_change=None, check=None,
+                     node_options: Optional[dict] = None):
+    """
+    Declare a node's parameters (:func:`declare_parameters`) and return them as its settings.
+
+    :param settings_class: the node's :class:`~stewart_kinematics.parameters.NodeSettings`
+        subclass, such as ``IkNodeSettings``: its specs are declared.
+    :param node_options: as for :func:`declare_parameters`.
+    :returns: an object of ``settings_class`` holding the values the node starts with.
+    """
+    values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check,
+                                node_options=node_options)
+    return settings_class.from_values(values)
+
+
 def remember_process_arguments(context, arguments: Optional[Sequence[str]]) -> None:
     """
     Record the arguments an rclpy context was initialised with (``None``: ``sys.argv``).
