@@ -213,7 +213,7 @@ def test_non_finite_values_are_refused_never_computed(pose, bad, data):
 
 
 @covers('inverse_kinematics', 'leg_lengths', 'leg_vectors', 'leg_velocities', 'platform_twist',
-        'forward_kinematics')
+        'forward_kinematics', 'jacobian', 'twist_jacobian')
 @budget(30)
 @given(poses_near_home(), HUGE, st.data())
 def test_huge_values_give_a_refusal_or_a_finite_result(pose, huge, data):
@@ -226,6 +226,9 @@ def test_huge_values_give_a_refusal_or_a_finite_result(pose, huge, data):
                          ('position', 'leg vectors')),
                         (lambda: leg_velocities(PAPER, pose, huge_twist),
                          ('twists', 'leg velocities')),
+                        (lambda: jacobian(PAPER, huge_pose), ('poses', 'Jacobian')),
+                        (lambda: twist_jacobian(PAPER, huge_pose[:3], np.eye(3)),
+                         ('position', 'Jacobian')),
                         (lambda: platform_twist(PAPER, pose, huge_twist),
                          ('leg velocities', 'twist'))]:
         try:

@@ -530,7 +530,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     """
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
-    jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
     beta, gamma = batch[:, 4], batch[:, 5]
     cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros((len(batch), 3, 3))
@@ -540,7 +541,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     euler_rate_axes[:, 1, 1] = cos_gamma
     euler_rate_axes[:, 2, 2] = 1.0
     jac[..., 3:] = jac[..., 3:] @ euler_rate_axes
-    return jac.reshape(poses.shape[:-1] + (6, 6))
+    return check_finite_output(jac.reshape(poses.shape[:-1] + (6, 6)), 'the Jacobian',
+                               'the poses')
 
 
 def jacobian_condition(geometry, position, rotation):
