@@ -494,6 +494,8 @@ def _as_position_rotation(position, rotation):
     """Positions (..., 3) and rotation matrices (..., 3, 3) as float arrays, shapes checked."""
     position = as_float_array(position, 'position')
     rotation = as_float_array(rotation, 'rotation')
+    if position.shape == (3,) and rotation.shape == (3, 3):   # one pose: the common case
+        return position, rotation
     if position.shape[-1:] != (3,) or rotation.shape[-2:] != (3, 3):
         raise ValueError(f'position must have shape (3,) or (N, 3) and rotation (3, 3) or '
                          f'(N, 3, 3), got {position.shape} and {rotation.shape}')

@@ -346,6 +346,8 @@ def _rotation_matrices(rotation):
     rotation = as_float_array(rotation, 'rotation matrix')
     if rotation.shape[-2:] != (3, 3):
         raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    if rotation.shape == (3, 3) and _is_rotation(rotation.ravel().tolist()):
+        return rotation   # one matrix (the nodes' case), checked in floats
     with np.errstate(over='ignore', invalid='ignore'):
         deviation = np.max(np.abs(np.swapaxes(rotation, -1, -2) @ rotation - np.eye(3)),
                            axis=(-2, -1), initial=0.0) if rotation.size else np.zeros(0)
@@ -355,6 +357,17 @@ def _rotation_matrices(rotation):
                          f'{ROTATION_MATRIX_TOLERANCE:g}, determinant +1, finite), got '
                          f'{preview(rotation)}')
     return rotation
+
+
+def _is_rotation(entries) -> bool:
+    """Whether nine floats, row by row, are a rotation (``_rotation_matrices``' test)."""
+    r11, r12, r13, r21, r22, r23, r31, r32, r33 = entries
+    columns = ((r11, r21, r31), (r12, r22, r32), (r13, r23, r33))
+    deviation = max(abs(sum(a * b for a, b in zip(columns[i], columns[j])) - (i == j))
+                    for i in range(3) for j in range(i, 3))
+    determinant = (r11 * (r22 * r33 - r23 * r32) - r12 * (r21 * r33 - r23 * r31)
+                   + r13 * (r21 * r32 - r22 * r31))
+    return deviation <= ROTATION_MATRIX_TOLERANCE and determinant > 0.0
 
 
 def rotation_angle_between(rotation_a, rotation_b):
