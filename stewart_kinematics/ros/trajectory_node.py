@@ -20,7 +20,8 @@ mode it publishes the table's rows, one every ``row_period``; in ``interpolate``
 the ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup
 tables do. Once, or looping. Before playing, it checks every pose it would publish against the
 limits of the geometry (the same parameters as ik_node) and refuses to start, listing the
-failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp.
+failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp. What is
+played when, and the check, are :class:`stewart_kinematics.motion.ramp.RampSchedule`'s.
 
 Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
 the platform) and ``pose_path`` (nav_msgs/msg/Path, waypoints without timing) are checked whole
@@ -28,25 +29,26 @@ and timed by :func:`stewart_kinematics.plan_motion` (retimed with ``retime`` or 
 an accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
 actuators' positions, velocities and accelerations, for joint_trajectory_controller) and, with
 ``play``, as poses on ``target_pose`` at ``publish_rate``. A refused one publishes nothing; the
-reason (time, segment, leg, limit) goes to the log and ``/diagnostics``.
+reason (time, segment, leg, limit) goes to the log and ``/diagnostics``. So does a trajectory
+received while the tool frame is offset from the platform frame
+(:func:`~stewart_kinematics.motion.trajectory_check.trajectory_frame_refusal`).
 """
 
 import threading
 
 
 from nav_msgs.msg import Path
-import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import limits
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import plan_motion
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
-from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.ramp import RampSchedule
 from stewart_kinematics.motion.retiming import load_retiming
+from stewart_kinematics.motion.trajectory_check import trajectory_frame_refusal
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     actuator_limits_from_settings,
@@ -72,8 +74,6 @@ from stewart_kinematics.ros.node_main import (
 from stewart_kinematics.ros.ros_parameters import declare_settings
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
-#: Refusal code of a trajectory sent while the tool frame is offset from the platform frame.
-TOOL_FRAME_NOT_SUPPORTED = 'tool_frame_not_supported'
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
 
@@ -90,14 +90,12 @@ class TrajectoryNode(Node):
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuator_limits = actuator_limits_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
-        self.ramp = Ramp.from_settings(settings.ramp)
-        self.rows = self.ramp.rows
+        self.schedule = RampSchedule.from_settings(settings.ramp)
+        self.rows = self.schedule.ramp.rows
         self.frames = frames_from_settings(settings.frames)
-        if settings.ramp.mode != 'off':
-            # The ramp's poses are the tool frame's, as ik_node reads them: check where they
-            # put the platform.
-            times, poses = self.planned_samples()
-            limits.check_samples(self.geometry, times, self.frames.platform_pose_vectors(poses))
+        refusal = self.schedule.check(self.geometry, self.frames)
+        if refusal is not None:
+            raise ValueError(refusal.message)     # the node cannot start: main() says why
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
         # and the ramp, not in the first callback; a callback that needs them meanwhile waits
         # for the import to finish (Python's import lock).
@@ -120,7 +118,7 @@ class TrajectoryNode(Node):
         self.playing = None
         self.play_start = None
         self.play_timer = None
-        if settings.ramp.mode != 'off':
+        if self.schedule.plays:
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
             self.get_logger().info(
                 f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
@@ -131,21 +129,6 @@ class TrajectoryNode(Node):
         self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             self.frames = frames_from_settings(self.settings.frames)
-
-    def planned_samples(self):
-        """
-        Return the times (seconds from the start of a pass) and poses the node will publish.
-
-        In interpolate mode the timer's jitter moves the real sample times a little; the ramp
-        is linear between rows, so those poses lie between samples checked here.
-        """
-        if self.settings.ramp.mode == 'table':
-            times = np.arange(len(self.rows)) * self.settings.ramp.row_period
-            return times, self.rows
-        duration = self.settings.ramp.duration
-        times = np.append(np.arange(0.0, duration, 1.0 / self.settings.ramp.publish_rate),
-                          duration)
-        return times, self.ramp.sample(times, duration)
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
@@ -160,13 +143,12 @@ class TrajectoryNode(Node):
     def start(self):
         """Play the ramp: rows on a timer in table mode, samples in interpolate mode."""
         self.wait_timer.cancel()
-        if self.settings.ramp.mode == 'table':
-            self.timer = self.create_timer(self.settings.ramp.row_period, self.publish_row)
+        if self.schedule.mode == 'table':
+            self.timer = self.create_timer(self.schedule.period, self.publish_row)
             self.publish_row()
         else:
             self.start_time = self.get_clock().now()
-            self.timer = self.create_timer(
-                1.0 / self.settings.ramp.publish_rate, self.publish_sample)
+            self.timer = self.create_timer(self.schedule.period, self.publish_sample)
             self.publish_sample()
 
     def publish_row(self):
@@ -179,10 +161,9 @@ class TrajectoryNode(Node):
 
     def publish_sample(self):
         """Publish the ramp's pose at the current time."""
-        duration = self.settings.ramp.duration
         elapsed = (self.get_clock().now() - self.start_time).nanoseconds * 1e-9
-        self.publish(self.ramp.sample(min(elapsed, duration), duration))
-        if elapsed >= duration:
+        self.publish(self.schedule.pose_at(elapsed))
+        if elapsed >= self.schedule.duration:
             self.start_time = self.get_clock().now()
             self.finish_pass()
 
@@ -193,7 +174,7 @@ class TrajectoryNode(Node):
 
     def finish_pass(self):
         """Start again when looping; otherwise stop the timer and say so."""
-        if not self.settings.ramp.loop:
+        if not self.schedule.loop:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 
@@ -222,13 +203,9 @@ class TrajectoryNode(Node):
 
     def plan(self, path, retime, accounting):
         """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
-        if not self.frames.tool_pose.is_identity():
-            # Trajectories are interpolated and checked as platform-frame poses; with another
-            # tool frame their velocities would have to be moved to it too.
-            accounting.reject(Finding(TOOL_FRAME_NOT_SUPPORTED, (
-                f'{accounting.topic} is planned for the platform frame, but tool_frame '
-                f"'{self.frames.tool_frame}' is offset from it: set tool_frame_position and "
-                'tool_frame_orientation_deg to zero to send trajectories')))
+        refusal = trajectory_frame_refusal(self.frames, accounting.topic)
+        if refusal is not None:
+            accounting.reject(refusal)
             return
         plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
                            speed_scale=self.settings.motion.speed_scale,
