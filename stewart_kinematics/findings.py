@@ -182,6 +182,11 @@ INVALID_TRAJECTORY = _register(
     'A malformed trajectory or path: another frame, more than one joint, times not '
     'increasing, velocities on only some points, a turn of half a revolution or more between '
     'two waypoints, two equal consecutive waypoints of a path.')
+TRAJECTORY_TOO_LONG = _register(
+    'trajectory_too_long', 'refusal',
+    '`check_trajectory`, `plan_motion` (trajectory_node)',
+    'A trajectory whose check would take more than 1,000,000 samples: refused before any '
+    'sample is computed, with the count.')
 TOOL_FRAME_NOT_SUPPORTED = _register(
     'tool_frame_not_supported', 'refusal',
     '`trajectory_frame_refusal` (trajectory_node: `pose_trajectory`, `pose_path`)',

@@ -33,6 +33,7 @@ from stewart_kinematics.findings import (
     OUT_OF_LIMITS,
     RETIMING_FAILED,
     TOO_FAST,
+    TRAJECTORY_TOO_LONG,
     violation_details,
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
@@ -42,6 +43,7 @@ from stewart_kinematics.motion.trajectory_check import (
     check_trajectory,
     DEFAULT_VALIDATION_RATE,
     SPEED_LIMITS,
+    too_long_to_check,
     TrajectoryCheck,
 )
 
@@ -76,12 +78,15 @@ class MotionPlan:
         Return why the trajectory is refused, as a finding to count and report; ``None``.
 
         Its code is :data:`OUT_OF_LIMITS` (stroke, cones, singularity margin), :data:`TOO_FAST`
-        (only leg velocity or acceleration broken) or :data:`RETIMING_FAILED`; its details
-        give the time, the segment and every violated limit.
+        (only leg velocity or acceleration broken), :data:`TRAJECTORY_TOO_LONG` (the check
+        would take too many samples) or :data:`RETIMING_FAILED`; its details give the time,
+        the segment and every violated limit.
         """
         if self.accepted:
             return None
         check = self.check
+        if check is not None and not check.complete:
+            return Finding(TRAJECTORY_TOO_LONG, self.reason)
         if check is None or check.accepted or not check.violations:
             return Finding(RETIMING_FAILED, self.reason)
         code = TOO_FAST if all(violation.limit in SPEED_LIMITS
@@ -131,6 +136,9 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     # slightly: stretch the timing by the largest excess over the check's samples.
     scaled = actuator_limits.scaled(speed_scale)
     for _ in range(MAX_STRETCHES):
+        refusal = too_long_to_check(trajectory, validation_rate)
+        if refusal is not None:
+            return MotionPlan(False, refusal.reason, None, refusal, True)
         legs = trajectory.legs(geometry, trajectory.sample_times(validation_rate))
         excess = max(np.abs(legs.velocities).max() / scaled.velocity_max,
                      math.sqrt(np.abs(legs.accelerations).max() / scaled.acceleration_max))

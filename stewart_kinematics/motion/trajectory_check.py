@@ -30,6 +30,7 @@ Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
+import math
 from typing import Optional, Tuple
 
 import numpy as np
@@ -48,6 +49,9 @@ SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 DEFAULT_VALIDATION_RATE = 1000.0
 #: Samples checked at once: bounds the memory of a long trajectory's check.
 CHECK_CHUNK = 20000
+#: Most samples a check takes (seconds of work); a trajectory that needs more is refused with
+#: a reason instead (``complete`` False), before any sample is computed.
+MAX_CHECK_SAMPLES = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -65,6 +69,8 @@ class TrajectoryCheck:
     :param peak_velocity_ratio: largest ``|leg velocity| / leg_velocity_max`` seen (0 when
         there is no velocity limit).
     :param peak_acceleration_ratio: likewise for the acceleration.
+    :param complete: False when the check was not made: it would need more than
+        :data:`MAX_CHECK_SAMPLES` samples (``accepted`` is then False too).
     """
 
     accepted: bool
@@ -75,6 +81,28 @@ class TrajectoryCheck:
     samples: int = 0
     peak_velocity_ratio: float = 0.0
     peak_acceleration_ratio: float = 0.0
+    complete: bool = True
+
+
+def too_long_to_check(trajectory: TimedTrajectory,
+                      validation_rate: float) -> Optional[TrajectoryCheck]:
+    """
+    Refuse to check a trajectory whose samples would exceed :data:`MAX_CHECK_SAMPLES`.
+
+    :returns: the incomplete :class:`TrajectoryCheck` that says so, or ``None`` to go on (a
+        rate that is not a positive number is left to the sampling to refuse).
+    """
+    if isinstance(validation_rate, bool) or not isinstance(validation_rate, (int, float)) or (
+            not 0.0 < validation_rate < math.inf):
+        return None
+    count = trajectory.duration * validation_rate + trajectory.path.waypoint_count + 1
+    if count <= MAX_CHECK_SAMPLES:
+        return None
+    return TrajectoryCheck(False, (
+        f'checking the trajectory ({trajectory.duration:.6g} s, '
+        f'{trajectory.path.waypoint_count:,} waypoints) at {validation_rate:g} Hz needs '
+        f'{count:,.0f} samples, more than the {MAX_CHECK_SAMPLES:,} a check may take: send it '
+        'in parts, or lower validation_rate'), complete=False)
 
 
 def check_trajectory(trajectory: TimedTrajectory, geometry,
@@ -90,9 +118,14 @@ def check_trajectory(trajectory: TimedTrajectory, geometry,
     Vectorised over samples, in chunks of :data:`CHECK_CHUNK`.
 
     :returns: a :class:`TrajectoryCheck`; its ``reason`` names the first failing time, the
-        waypoint segment (points k and k + 1), and each leg and limit broken there.
+        waypoint segment (points k and k + 1), and each leg and limit broken there; or, for a
+        trajectory that needs more than :data:`MAX_CHECK_SAMPLES` samples, says so
+        (``complete`` False) without sampling it.
     """
     actuator_limits = actuator_limits or ActuatorLimits()
+    refusal = too_long_to_check(trajectory, validation_rate)
+    if refusal is not None:
+        return refusal
     model = LimitModel(geometry, ActuatorLimits(actuator_limits.velocity_max,
                                                 actuator_limits.acceleration_max),
                        rate_slack=RATE_SLACK)

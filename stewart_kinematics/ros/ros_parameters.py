@@ -27,6 +27,10 @@ itself and rcl's merge hides two mistakes: a misspelt name is ignored (the defau
 a value whose type differs between two layered files is dropped for the other one (a quoted
 ``leg_length_max: "0.9"`` over a file's ``.inf`` leaves ``.inf``). Both stop the node at
 start-up, the parameter and the file named.
+
+:func:`declare_parameters` also installs :func:`stewart_kinematics.ros.rclpy_guards.
+guard_node`: rclpy's parameter services and sim-time clock survive the malformed requests and
+messages that rclpy itself would raise on.
 """
 
 import sys
@@ -42,6 +46,7 @@ from stewart_kinematics.parameters.files import (
     read_parameter_sections,
     section_applies,
 )
+from stewart_kinematics.ros.rclpy_guards import guard_node
 
 #: The command-line arguments each rclpy context was initialised with, as
 #: :func:`stewart_kinematics.ros.node_main.run_nodes` passed them (rclpy keeps them private).
@@ -109,6 +114,11 @@ def declare_parameters(node, specs, on_change=None, check=None,
 
     def validate(parameters):
         for parameter in parameters:
+            if not parameter.name:
+                # rclpy's check of undeclared names misses '' (it tests any(names)): the
+                # request would create a parameter without a name.
+                return SetParametersResult(successful=False,
+                                           reason='a parameter needs a name, got an empty one')
             spec = by_name.get(parameter.name)
             if spec is None or parameter.type_ == Parameter.Type.NOT_SET:
                 # Not ours, or a required parameter nobody set: reported after declaring.
@@ -126,6 +136,7 @@ def declare_parameters(node, specs, on_change=None, check=None,
         return SetParametersResult(successful=True)
 
     node.add_on_set_parameters_callback(validate)
+    guard_node(node)
     for spec in specs:
         default = _ROS_TYPES[spec.value_type] if spec.default is None else spec.default
         node.declare_parameter(spec.name, default, descriptor(spec))

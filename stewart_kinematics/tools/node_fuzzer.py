@@ -1,0 +1,628 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Fuzz a node as a process: hostile messages on every input, parameter changes, then checks.
+
+:func:`fuzz_node` starts a node's console script with the shipped parameter files, subscribes
+to every topic it publishes, and floods every topic it subscribes to (all read from its
+declaration in :data:`stewart_kinematics.ros.interfaces.NODE_INTERFACES`) with messages from
+:mod:`~stewart_kinematics.tools.fuzz_messages`, up to 1 kHz, mixing in run-time parameter
+changes from :mod:`~stewart_kinematics.tools.fuzz_parameters` through the node's parameter
+services. It then checks the invariants:
+
+- the node keeps running, answers a parameter request and each declared service within a
+  deadline after the flood, and stops cleanly on SIGINT (exit 0, no traceback);
+- every message it published is finite, with unit quaternions, and within the limits
+  (:mod:`~stewart_kinematics.tools.output_invariants`);
+- every parameter change that must be refused is, with a reason (naming the parameter when
+  the spec refuses the value), and the node then holds exactly the values it accepted;
+- its /diagnostics reports come about once a second and add up: received = published +
+  rejected per input, rejections by code summing to the rejections, every code registered,
+  never more received than sent.
+
+``python -m stewart_kinematics.tools.node_fuzzer --minutes 10`` (``scripts/fuzz_nodes.sh``)
+runs rounds over every declared node for longer; each round prints its seed, and ``--node
+NAME --seed S --messages N`` replays one.
+"""
+
+import argparse
+from dataclasses import dataclass, field
+import math
+from pathlib import Path
+import random
+import signal
+import sys
+import threading
+import time
+from typing import Dict, List, Optional, Sequence
+
+from rcl_interfaces.srv import (
+    DescribeParameters,
+    GetParameters,
+    ListParameters,
+    SetParameters,
+    SetParametersAtomically,
+)
+import rclpy
+
+from stewart_kinematics.parameters import (
+    ActuatorSettings,
+    FRAME_PARAMETERS,
+    geometry_from_parameters,
+    read_parameter_files,
+)
+from stewart_kinematics.parameters.files import read_parameter_sections
+from stewart_kinematics.ros.interfaces import (
+    NODE_INTERFACES,
+    PUBLISHER,
+    SERVICE,
+    SUBSCRIPTION,
+)
+from stewart_kinematics.tools.cli_arguments import number_in, positive_number
+from stewart_kinematics.tools.fuzz_client import DiagnosticsLog, paced, SpinningClient
+from stewart_kinematics.tools.fuzz_messages import (
+    choose_kind,
+    MessageFuzzer,
+    Plausible,
+    summarize,
+)
+from stewart_kinematics.tools.fuzz_parameters import (
+    EITHER,
+    ParameterFuzzer,
+    python_value,
+    REFUSED,
+)
+from stewart_kinematics.tools.node_processes import (
+    find_executable,
+    isolated_ros_environment,
+    NodeProcess,
+)
+from stewart_kinematics.tools.output_invariants import OutputInvariants
+
+#: Seconds to wait for discovery, an answer, or the node's first report.
+DEADLINE = 20.0
+#: Seconds the node may take to work through its queues after the flood.
+SETTLE_DEADLINE = 60.0
+#: Queue depth of the fuzzer's publishers and subscriptions (reliable, keep last).
+QUEUE_DEPTH = 100
+#: Names of the frame parameters: an accepted change gives the output checks a frame tree.
+FRAME_NAMES = frozenset(spec.name for spec in FRAME_PARAMETERS)
+#: Messages of each input whose mutations a failure report shows.
+KEPT_DESCRIPTIONS = 5
+#: Failing output messages kept for the final check against every frame tree.
+KEPT_FAILURES = 100
+#: The geometry and limits every node is fuzzed with, from the package's config/ folder.
+GEOMETRY_FILES = ('paper_platform.yaml', 'example_limits.yaml')
+
+
+def config_directory() -> Path:
+    """Return the package's config/ folder (installed or in the source tree)."""
+    from stewart_kinematics.tools.ramp_demo import default_config_directory
+    return default_config_directory()
+
+
+def parameter_files(node: str, directory: Optional[Path] = None) -> List[Path]:
+    """
+    Return the parameter files a node is fuzzed with: geometry and limits, then its own.
+
+    Its own: every other file of ``config/`` with a section for the node by name (such as
+    ``table3_ramp.yaml`` for trajectory_node), so a node added later with its own file is
+    started as its documentation starts it.
+    """
+    directory = directory or config_directory()
+    files = [directory / name for name in GEOMETRY_FILES]
+    for path in sorted(directory.glob('*.yaml')):
+        if path.name not in GEOMETRY_FILES and any(
+                key.strip('/') == node for key in read_parameter_sections(path)):
+            files.append(path)
+    return files
+
+
+@dataclass
+class FuzzSettings:
+    """
+    One fuzz run of one node.
+
+    :param node: a node of :data:`NODE_INTERFACES` (its console script has its name).
+    :param seed: the seed of every random draw: the same seed sends the same messages.
+    :param messages: messages to send in all, over every input.
+    :param rate: messages a second at most.
+    :param parameter_every: one parameter request (one to three changes) per this many
+        messages (0: none).
+    :param huge: messages with a sequence of 10^5 elements among them.
+    :param files: parameter files (default: :func:`parameter_files`).
+    :param arguments: more ``--ros-args`` arguments for the node.
+    """
+
+    node: str
+    seed: int
+    messages: int = 2000
+    rate: float = 1000.0
+    parameter_every: int = 50
+    huge: int = 1
+    files: Optional[Sequence[Path]] = None
+    arguments: Sequence[str] = ()
+
+    def replay_options(self) -> str:
+        """Return the command-line options that replay this run."""
+        return (f'--node {self.node} --seed {self.seed} --messages {self.messages} '
+                f'--rate {self.rate:g} --huge {self.huge}')
+
+
+@dataclass
+class FuzzReport:
+    """What a fuzz run sent, saw and found."""
+
+    settings: FuzzSettings
+    sent: Dict[str, int] = field(default_factory=dict)
+    kinds: Dict[str, int] = field(default_factory=dict)
+    outputs: Dict[str, int] = field(default_factory=dict)
+    parameter_changes: Dict[str, int] = field(default_factory=dict)
+    rejections: Dict[str, int] = field(default_factory=dict)
+    published: int = 0
+    reports: int = 0
+    duration: float = 0.0
+    #: Seconds of each phase: start and discovery, flood, answers and settling.
+    phases: Dict[str, float] = field(default_factory=dict)
+    problems: List[str] = field(default_factory=list)
+    #: The last messages sent to each input, in words (their mutations).
+    recent: Dict[str, List[str]] = field(default_factory=dict)
+    output: str = ''
+
+    def summary(self) -> str:
+        """Return the run's figures in a few lines."""
+        settings = self.settings
+        kinds = ', '.join(f'{kind} {count}' for kind, count in sorted(self.kinds.items()))
+        lines = [
+            f'FUZZ {settings.node} seed {settings.seed}: {sum(self.sent.values())} messages in '
+            f'{self.duration:.1f} s ({kinds}); sent by topic {dict(sorted(self.sent.items()))}',
+            f'FUZZ {settings.node} outputs seen {dict(sorted(self.outputs.items()))}; counted '
+            f'published {self.published}, rejected by code '
+            f'{dict(sorted(self.rejections.items()))}; {self.reports} DiagnosticArrays',
+            f'FUZZ {settings.node} parameter changes '
+            f'{dict(sorted(self.parameter_changes.items()))}; phases (s) '
+            + ', '.join(f'{name} {seconds:.1f}' for name, seconds in self.phases.items()),
+        ]
+        return '\n'.join(lines)
+
+    def failure(self) -> str:
+        """Return the problems, how to replay them and what was sent last, for a failure."""
+        lines = [f'{len(self.problems)} problem(s) fuzzing {self.settings.node}:']
+        lines += [f'  - {problem}' for problem in self.problems]
+        lines.append('Replay: python -m stewart_kinematics.tools.node_fuzzer '
+                     + self.settings.replay_options()
+                     + f' (or STEWART_FUZZ_SEED={self.settings.seed} for the test)')
+        for topic, recent in sorted(self.recent.items()):
+            lines.append(f'Last messages on {topic}: ' + ' | '.join(recent))
+        lines.append(self.summary())
+        lines.append(f'--- {self.settings.node} output ---\n{self.output[-20000:]}')
+        return '\n'.join(lines)
+
+
+class _Outputs:
+    """Subscription callbacks on every output of the node: counts and checked messages."""
+
+    def __init__(self, invariants: OutputInvariants):
+        self.invariants = invariants
+        self.counts: Dict[str, int] = {}
+        self.failures = []
+        self.failure_count = 0
+        self._lock = threading.Lock()
+
+    def callback(self, topic):
+        def on_message(message):
+            problems = self.invariants.problems(topic, message)
+            with self._lock:
+                self.counts[topic] = self.counts.get(topic, 0) + 1
+                if problems:
+                    self.failure_count += 1
+                    if len(self.failures) < KEPT_FAILURES:
+                        self.failures.append((topic, message))
+        return on_message
+
+    def problems(self) -> List[str]:
+        """Check the failing messages again, against every frame tree seen: what still fails."""
+        problems = []
+        with self._lock:
+            failures = list(self.failures)
+        for topic, message in failures:
+            for problem in self.invariants.problems(topic, message):
+                problems.append(f'published on {topic}: {problem}')
+        if problems and self.failure_count > len(failures):
+            problems.append(f'... {self.failure_count} failing output messages in all')
+        return problems
+
+
+class _ParameterRequests:
+    """The parameter requests sent during the flood, checked as their answers arrive."""
+
+    def __init__(self, fuzzer: ParameterFuzzer, invariants: OutputInvariants):
+        self.fuzzer = fuzzer
+        self.invariants = invariants
+        self.pending = []
+        self.sent = []
+        self.problems: List[str] = []
+        self.counts: Dict[str, int] = {}
+        self._lock = threading.Lock()
+
+    def send(self, client, changes, atomic: bool):
+        """Send a request of ``changes``; its answer is checked when it arrives."""
+        request = (SetParametersAtomically if atomic else SetParameters).Request(
+            parameters=[change.message for change in changes])
+        future = client.call_async(request)
+        self.pending.append(future)
+        self.sent.append((future, changes))
+        future.add_done_callback(lambda done: self._answer(done, changes, atomic))
+
+    def _answer(self, future, changes, atomic):
+        response = future.result()
+        with self._lock:
+            if response is None:
+                self.problems.append('a parameter request got no response')
+                return
+            if atomic:
+                result = response.result
+                must_refuse = [change for change in changes if change.expect == REFUSED]
+                if must_refuse and result.successful:
+                    self.problems.append(
+                        'an atomic request was accepted although it held '
+                        + '; '.join(change.describe() for change in must_refuse))
+                self._count('atomic ' + ('accepted' if result.successful else 'refused'))
+                if result.successful:
+                    for change in changes:
+                        self._apply(change)
+                return
+            if len(response.results) != len(changes):
+                self.problems.append(f'{len(changes)} changes got {len(response.results)} results')
+                return
+            for change, result in zip(changes, response.results):
+                self._check(change, result)
+
+    def _check(self, change, result):
+        if result.successful:
+            self._count('accepted')
+            if change.expect == REFUSED:
+                self.problems.append(f'accepted {change.describe()}')
+            else:
+                self._apply(change)
+            return
+        self._count('refused (must)' if change.expect == REFUSED else 'refused (valid value)')
+        if not result.reason:
+            self.problems.append(f'refused without a reason: {change.describe()}')
+        elif change.names_parameter and f"'{change.name}'" not in result.reason:
+            self.problems.append(f'refused with a reason that does not name the parameter: '
+                                 f'{change.describe()}: {result.reason!r}')
+
+    def _apply(self, change):
+        self.fuzzer.accepted(change)
+        if change.name in FRAME_NAMES:
+            self.invariants.add_frames(self.fuzzer.values)
+
+    def _count(self, what):
+        self.counts[what] = self.counts.get(what, 0) + 1
+
+    def done(self) -> bool:
+        """Whether every request has been answered."""
+        return all(future.done() for future in self.pending)
+
+    def forget_unanswered(self):
+        """
+        Give up on the requests not answered: their valid changes may or may not hold.
+
+        A value a lost request may have set is allowed for its parameter from now on
+        (:meth:`ParameterFuzzer.allow`), and so is its frame tree for the output checks.
+        """
+        with self._lock:
+            for future, changes in self.sent:
+                if future.done():
+                    continue
+                self._count('unanswered')
+                for change in changes:
+                    if change.expect == EITHER:
+                        self.fuzzer.allow(change)
+                        if change.name in FRAME_NAMES:
+                            self.invariants.add_frames({**self.fuzzer.values,
+                                                        change.name: change.value})
+
+
+def plausible_hints(files, node: str) -> Plausible:
+    """Return the :class:`Plausible` hints of the platform the parameter files describe."""
+    values = read_parameter_files(files, node)
+    geometry = geometry_from_parameters(values)
+    actuators = ActuatorSettings.from_values(values)
+    frames = [values.get(name) or default for name, default in (
+        ('base_frame', 'stewart_base'), ('platform_frame', 'stewart_platform'))]
+    frames += [values[name] for name in ('user_frame', 'tool_frame') if values.get(name)]
+    clock = rclpy.clock.Clock()
+
+    def stamp():
+        return clock.now().seconds_nanoseconds()
+
+    return Plausible(
+        home_position=tuple(geometry.home_pose[:3].tolist()),
+        home_leg_lengths=tuple(geometry.home_leg_lengths.tolist()),
+        actuator_offsets=tuple(actuators.actuator_offsets), joint_names=tuple(
+            actuators.joint_names), frames=tuple(frames), stamp=stamp)
+
+
+def fuzz_node(settings: FuzzSettings, context=None) -> FuzzReport:
+    """
+    Run one fuzz run of a node as a process and check the invariants.
+
+    Needs rclpy initialised on an isolated domain (:func:`isolated_ros_environment`; the
+    tests' fixtures do both). Starts and stops the node itself.
+
+    :param context: the rclpy context of the fuzzer's node (default: the global one).
+    :returns: the :class:`FuzzReport`; its ``problems`` are empty when every invariant holds.
+    """
+    interface = NODE_INTERFACES[settings.node]
+    files = list(settings.files or parameter_files(settings.node))
+    report = FuzzReport(settings)
+    rng = random.Random(settings.seed)
+    invariants = OutputInvariants.from_parameter_files(files, settings.node)
+    hints = plausible_hints(files, settings.node)
+    arguments = ['--ros-args']
+    for path in files:
+        arguments += ['--params-file', str(path)]
+    arguments += list(settings.arguments)
+    process = NodeProcess(find_executable(settings.node), arguments)
+    client = SpinningClient(rclpy.create_node(f'stewart_fuzzer_{settings.node}',
+                                              context=context))
+    try:
+        _run(settings, interface, process, client, rng, invariants, hints, report)
+    finally:
+        client.close()
+        code = process.stop()
+        report.output = process.output()
+        process.__exit__(None, None, None)
+    if code != 0:
+        report.problems.append(f'{settings.node} exited with code {code} on SIGINT')
+    if 'Traceback' in report.output:
+        report.problems.append(f'{settings.node} printed a traceback')
+    return report
+
+
+def _run(settings, interface, process, client, rng, invariants, hints, report):
+    """Run the body of :func:`fuzz_node`: discovery, flood, answers, checks."""
+    node = client.node
+    fqn = '/' + settings.node
+    diagnostics = DiagnosticsLog()
+    outputs = _Outputs(invariants)
+    phase_start = time.monotonic()
+
+    def phase(name):
+        nonlocal phase_start
+        now = time.monotonic()
+        report.phases[name] = now - phase_start
+        phase_start = now
+
+    for endpoint in interface.of_kind(PUBLISHER):
+        try:
+            message_type = endpoint.message_type
+        except ImportError:
+            continue   # an optional message package (tf2_msgs) that is not installed
+        callback = outputs.callback(endpoint.name)
+        if endpoint.name == '/diagnostics':
+            def callback(array, check=callback):
+                check(array)
+                diagnostics(array)
+        node.create_subscription(message_type, endpoint.name, callback, QUEUE_DEPTH)
+    inputs = []
+    for endpoint in interface.of_kind(SUBSCRIPTION):
+        publisher = node.create_publisher(endpoint.message_type, endpoint.name, QUEUE_DEPTH)
+        inputs.append((endpoint.name, publisher, MessageFuzzer(
+            endpoint.message_type, rng, hints, endpoint.name)))
+    services = {kind: node.create_client(kind, f'{fqn}/{name}') for kind, name in (
+        (SetParameters, 'set_parameters'), (SetParametersAtomically,
+                                            'set_parameters_atomically'),
+        (GetParameters, 'get_parameters'), (ListParameters, 'list_parameters'),
+        (DescribeParameters, 'describe_parameters'))}
+
+    def fail(problem):
+        report.problems.append(problem)
+        return report
+
+    if not client.wait(lambda: all(publisher.get_subscription_count() >= 1
+                                   for _, publisher, _ in inputs)
+                       and diagnostics.count(fqn) >= 1, DEADLINE, [process]):
+        return fail(f'{settings.node} not matched on its inputs and /diagnostics within '
+                    f'{DEADLINE} s (running: {process.running()})')
+    fuzzer = _parameter_fuzzer(client, services, rng)
+    if fuzzer is None:
+        return fail(f'{settings.node} did not list or describe its parameters')
+    requests = _ParameterRequests(fuzzer, invariants)
+    phase('start')
+
+    # The flood: inputs in random order, parameter requests mixed in, huge messages spread.
+    huge_inputs = [entry for entry in inputs if _has_sequence(entry[2].message_type)]
+    huge_at = {}
+    if huge_inputs and settings.huge:
+        for number in range(settings.huge):
+            topic, publisher, generator = huge_inputs[number % len(huge_inputs)]
+            index = (number + 1) * settings.messages // (settings.huge + 1)
+            huge_at[index] = (topic, publisher) + generator.message('huge')
+    start = time.monotonic()
+    recent = {topic: [] for topic, _, _ in inputs}
+    for index in paced(settings.rate, settings.messages):
+        if index in huge_at:
+            topic, publisher, message, done = huge_at[index]
+            kind = 'huge'
+        else:
+            topic, publisher, generator = inputs[rng.randrange(len(inputs))]
+            kind = choose_kind(rng)
+            message, done = generator.message(kind)
+        publisher.publish(message)
+        report.sent[topic] = report.sent.get(topic, 0) + 1
+        report.kinds[kind] = report.kinds.get(kind, 0) + 1
+        recent[topic] = (recent[topic] + [f'#{index} {kind}: {summarize(done) or "as drawn"}'])[
+            -KEPT_DESCRIPTIONS:]
+        if settings.parameter_every and index % settings.parameter_every == 0:
+            atomic = rng.random() < 0.1
+            changes = fuzzer.changes(rng.randint(1, 3))
+            requests.send(services[SetParametersAtomically if atomic else SetParameters],
+                          changes, atomic)
+        if index % 100 == 0 and not process.running():
+            report.recent = recent
+            return fail(f'{settings.node} exited during the flood, after message {index}')
+    report.duration = time.monotonic() - start
+    report.recent = recent
+    phase('flood')
+
+    # Alive and answering: a parameter request, then every declared service.
+    flood_end = diagnostics.count(fqn)
+    answer = client.call(services[GetParameters], GetParameters.Request(
+        names=sorted(fuzzer.descriptors)), DEADLINE)
+    if answer is None:
+        return fail(f'{settings.node} did not answer get_parameters within {DEADLINE} s after '
+                    f'the flood (running: {process.running()})')
+    for endpoint in interface.of_kind(SERVICE):
+        # A relative service name resolves in the namespace, as the node's does.
+        service = node.create_client(endpoint.message_type, endpoint.name)
+        if client.call(service, endpoint.message_type.Request(), DEADLINE) is None:
+            report.problems.append(f'{settings.node} did not answer {endpoint.name} within '
+                                   f'{DEADLINE} s')
+    # A request can be lost: the service's queue (depth 10) overflows while the node is busy,
+    # as a topic's does. The node may have applied a lost request's changes, or not.
+    client.wait(requests.done, DEADLINE, [process])
+    requests.forget_unanswered()
+    if not client.wait(lambda: diagnostics.settled(fqn, flood_end), SETTLE_DEADLINE,
+                       [process]):
+        report.problems.append(f'{settings.node} still receiving {SETTLE_DEADLINE} s after the '
+                               f'flood (running: {process.running()})')
+    phase('settle')
+    report.problems += requests.problems
+    report.problems += _held_value_problems(client, services, fuzzer)
+    report.problems += outputs.problems()
+    report.problems += diagnostics.problems(fqn, report.sent)
+    reports = diagnostics.reports(fqn)
+    report.reports = len(reports.stamps)
+    report.outputs = dict(outputs.counts)
+    report.parameter_changes = dict(requests.counts)
+    for counters in reports.latest.values():
+        report.published += counters['published']
+        for code, count in counters['rejected_by_code'].items():
+            report.rejections[code] = report.rejections.get(code, 0) + count
+    if not process.running():
+        report.problems.append(f'{settings.node} exited after the flood')
+    return report
+
+
+def _has_sequence(message_type) -> bool:
+    from rosidl_parser import definition
+    return any(isinstance(slot, definition.UnboundedSequence) for slot in message_type.SLOT_TYPES)
+
+
+def _parameter_fuzzer(client, services, rng) -> Optional[ParameterFuzzer]:
+    """List, describe and read the node's parameters; return the fuzzer of their changes."""
+    listed = client.call(services[ListParameters], ListParameters.Request(), DEADLINE)
+    if listed is None:
+        return None
+    names = sorted(listed.result.names)
+    described = client.call(services[DescribeParameters],
+                            DescribeParameters.Request(names=names), DEADLINE)
+    values = client.call(services[GetParameters], GetParameters.Request(names=names), DEADLINE)
+    if described is None or values is None:
+        return None
+    return ParameterFuzzer(rng, dict(zip(names, described.descriptors)),
+                           {name: python_value(value)
+                            for name, value in zip(names, values.values)})
+
+
+def _held_value_problems(client, services, fuzzer) -> List[str]:
+    """Return the writable parameters whose value is not the last one the node accepted."""
+    expected = fuzzer.checked_values()
+    names = sorted(expected)
+    answer = client.call(services[GetParameters], GetParameters.Request(names=names), DEADLINE)
+    if answer is None:
+        return ['no answer to the final get_parameters']
+    problems = []
+    for name, value in zip(names, answer.values):
+        held = python_value(value)
+        if not any(_same(held, allowed) for allowed in [expected[name]]
+                   + fuzzer.alternatives.get(name, [])):
+            problems.append(f'parameter {name} holds {held!r}, not {expected[name]!r}, the last '
+                            'value accepted')
+    return problems
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return a == b
+
+
+# The command line --------------------------------------------------------------------------
+
+
+def parse_arguments(argv):
+    """Command-line options of the long fuzz run."""
+    parser = argparse.ArgumentParser(
+        description='Fuzz every node of the package (or those named) as processes: rounds of '
+                    'hostile messages and parameter changes, each round with its own seed.')
+    parser.add_argument('--minutes', type=positive_number, default=None,
+                        help='run rounds until this many minutes have passed (default: one '
+                             'round)')
+    parser.add_argument('--node', action='append', choices=sorted(NODE_INTERFACES),
+                        help='fuzz this node (repeatable; default: every declared node)')
+    parser.add_argument('--seed', type=int, default=None,
+                        help='seed of the first round (default: random); round k uses seed + k')
+    parser.add_argument('--messages', type=int, default=20000,
+                        help='messages per node and round (default: 20000)')
+    parser.add_argument('--rate', type=number_in(1.0, 10000.0), default=1000.0,
+                        help='messages a second at most (default: 1000)')
+    parser.add_argument('--huge', type=int, default=3,
+                        help='messages with 10^5 elements per node and round (default: 3)')
+    arguments = parser.parse_args(argv)
+    if arguments.messages < 1 or arguments.huge < 0:
+        parser.error('--messages must be at least 1 and --huge at least 0')
+    return arguments
+
+
+def main(argv=None) -> int:
+    """Fuzz the nodes in rounds; exit 1 with the replay options of every failed round."""
+    arguments = parse_arguments(argv)
+    nodes = arguments.node or sorted(NODE_INTERFACES)
+    seed = arguments.seed if arguments.seed is not None else random.randrange(2 ** 32)
+    end = time.monotonic() + 60.0 * (arguments.minutes or 0.0)
+    failures = []
+    with isolated_ros_environment():
+        rclpy.init(args=[])
+        try:
+            for round_number in range(10 ** 9):
+                for node in nodes:
+                    settings = FuzzSettings(node, seed + round_number, arguments.messages,
+                                            arguments.rate, huge=arguments.huge)
+                    report = fuzz_node(settings)
+                    print(report.summary(), flush=True)
+                    if report.problems:
+                        print(report.failure(), flush=True)
+                        failures.append(settings.replay_options())
+                if time.monotonic() >= end:
+                    break
+        except KeyboardInterrupt:
+            print('interrupted', file=sys.stderr)
+        finally:
+            rclpy.try_shutdown()
+    for options in failures:
+        print(f'FAILED: replay with python -m stewart_kinematics.tools.node_fuzzer {options}')
+    print(f'{len(failures)} failed round(s)')
+    return 1 if failures else 0
+
+
+if __name__ == '__main__':
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    raise SystemExit(main())

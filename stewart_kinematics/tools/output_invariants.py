@@ -1,0 +1,292 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+What every message a node publishes must satisfy, whatever it was sent: the fuzzer's oracle.
+
+:class:`OutputInvariants` checks any published message, of any type, for two things without
+knowing its type: every number is finite, and every geometry_msgs/Quaternion is a unit one. A
+topic whose name says what it carries gets the limits too, checked with the package's
+:class:`~stewart_kinematics.limits.LimitModel` built from the same parameter files as the node:
+
+- ``leg_lengths``, ``leg_extensions`` (plus the home lengths), ``joint_commands`` (positions
+  plus ``actuator_offsets``) and ``leg_trajectory`` (each point): within the stroke;
+- ``leg_velocities``, and the velocities of ``joint_commands`` and ``leg_trajectory``:
+  within ``leg_velocity_max`` (and the trajectory's accelerations within
+  ``leg_acceleration_max``); a trajectory's times increase;
+- a topic named ``*pose`` or ``*pose_stamped`` (Pose or PoseStamped): the pose of the tool
+  frame, whose platform pose keeps every pose limit (stroke, joint cones, singularity margin,
+  leg collisions) under one of the frame trees the node had while the message was sent
+  (:meth:`OutputInvariants.add_frames` adds one after an accepted tool frame change).
+
+A topic of another name is still checked for finite numbers and unit quaternions: a node added
+later is covered by those without a change here. Limits are checked to a relative
+:data:`TOLERANCE`: the rounding of a pose sent as a quaternion, not a margin.
+"""
+
+import functools
+import math
+from typing import List, Sequence
+
+import numpy as np
+from rosidl_parser import definition
+
+from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
+    ActuatorSettings,
+    frames_from_parameters,
+    geometry_from_parameters,
+    GeometrySettings,
+    read_parameter_files,
+)
+from stewart_kinematics.tools.fuzz_messages import fields_of, type_name
+
+#: Relative slack on every limit (and absolute, in the limit's unit, near zero).
+TOLERANCE = 1e-9
+#: Largest distance of a published quaternion's norm from 1.
+QUATERNION_TOLERANCE = 1e-6
+#: Problems reported per message, at most.
+MAX_PROBLEMS = 3
+
+
+@functools.lru_cache(maxsize=None)
+def _fields(message_type):
+    return tuple(fields_of(message_type))
+
+
+def numbers_problems(message, path: str = '') -> List[str]:
+    """
+    Every non-finite number and non-unit quaternion of a message, in words (empty: none).
+
+    Walks the message through its rosidl fields, so any type is checked.
+    """
+    problems = []
+    if type_name(type(message)) == 'geometry_msgs/Quaternion':
+        norm = math.sqrt(message.x ** 2 + message.y ** 2 + message.z ** 2 + message.w ** 2)
+        if not abs(norm - 1.0) <= QUATERNION_TOLERANCE:
+            problems.append(f'{path or "quaternion"}: norm {norm!r}, not 1')
+    for name, slot_type in _fields(type(message)):
+        value = getattr(message, name)
+        where = f'{path}.{name}' if path else name
+        if isinstance(slot_type, definition.NamespacedType):
+            problems += numbers_problems(value, where)
+        elif isinstance(slot_type, definition.AbstractNestedType):
+            element = slot_type.value_type
+            if isinstance(element, definition.NamespacedType):
+                for index, item in enumerate(value):
+                    problems += numbers_problems(item, f'{where}[{index}]')
+                    if len(problems) >= MAX_PROBLEMS:
+                        break
+            elif isinstance(element, definition.BasicType) and element.typename in (
+                    'double', 'float', 'long double') and len(value):
+                array = np.asarray(value, dtype=float)
+                bad = np.flatnonzero(~np.isfinite(array))
+                if bad.size:
+                    problems.append(f'{where}[{bad[0]}] = {array[bad[0]]!r} '
+                                    f'({bad.size} non-finite)')
+        elif isinstance(slot_type, definition.BasicType) and slot_type.typename in (
+                'double', 'float', 'long double') and not math.isfinite(value):
+            problems.append(f'{where} = {value!r}')
+        if len(problems) >= MAX_PROBLEMS:
+            break
+    return problems[:MAX_PROBLEMS]
+
+
+def _beyond(values, low, high) -> np.ndarray:
+    """Return the indices of values outside [low, high], with the relative :data:`TOLERANCE`."""
+    values = np.asarray(values, dtype=float)
+    slack_low = TOLERANCE * max(1.0, abs(low)) if math.isfinite(low) else 0.0
+    slack_high = TOLERANCE * max(1.0, abs(high)) if math.isfinite(high) else 0.0
+    return np.flatnonzero(~((values >= low - slack_low) & (values <= high + slack_high)))
+
+
+class OutputInvariants:
+    """
+    Check published messages against the platform's limits and the numbers' sanity.
+
+    :param geometry: the platform (its stroke and pose limits).
+    :param actuator_limits: leg velocity and acceleration limits.
+    :param actuators: joint names and offsets (actuator positions = lengths - offsets).
+    :param frames: the frame tree the node starts with.
+    """
+
+    def __init__(self, geometry, actuator_limits, actuators, frames):
+        self.geometry = geometry
+        self.model = LimitModel(geometry)
+        self.actuator_limits = actuator_limits
+        self.actuators = actuators
+        #: Every frame tree the node may have had while publishing (a change is asynchronous).
+        self.frames = [frames]
+        self.stroke = (geometry.leg_length_min, geometry.leg_length_max)
+
+    @classmethod
+    def from_parameter_files(cls, paths: Sequence, node_name: str) -> 'OutputInvariants':
+        """Build the invariants of a node started with these parameter files."""
+        values = read_parameter_files(paths, node_name)
+        geometry = geometry_from_parameters(values)
+        return cls(geometry, actuator_limits_from_settings(GeometrySettings.from_values(values)),
+                   actuator_interface_from_settings(ActuatorSettings.from_values(values)),
+                   frames_from_parameters(values))
+
+    def add_frames(self, values) -> None:
+        """Add the frame tree of parameter values (after an accepted frame change)."""
+        frames = frames_from_parameters(values)
+        if frames not in self.frames:
+            self.frames.append(frames)
+
+    def problems(self, topic: str, message) -> List[str]:
+        """
+        Say what is wrong with a message published on ``topic`` (empty: nothing).
+
+        :param topic: the topic's name; its last part chooses the limit checks.
+        """
+        problems = numbers_problems(message)
+        if problems:
+            return problems
+        role = topic.rstrip('/').split('/')[-1]
+        kind = type_name(type(message))
+        check = _ROLE_CHECKS.get((role, kind))
+        if check is None and (role.endswith('pose') or role.endswith('pose_stamped')) and kind in (
+                'geometry_msgs/Pose', 'geometry_msgs/PoseStamped'):
+            check = OutputInvariants.pose_problems
+        return check(self, message)[:MAX_PROBLEMS] if check is not None else []
+
+    # The checks by role ------------------------------------------------------------------------
+
+    def length_problems(self, lengths, what: str) -> List[str]:
+        """Leg lengths outside the stroke, or not six of them."""
+        lengths = np.asarray(lengths, dtype=float)
+        if lengths.shape != (6,):
+            return [f'{what}: {lengths.size} values, not 6']
+        low, high = self.stroke
+        return [f'{what}: leg {index + 1} length {lengths[index]!r} m outside the stroke '
+                f'[{low}, {high}]' for index in _beyond(lengths, max(low, 0.0), high)]
+
+    def rate_problems(self, values, limit: float, what: str, unit: str) -> List[str]:
+        """Rates beyond ``limit`` in magnitude."""
+        values = np.asarray(values, dtype=float)
+        return [f'{what}: leg {index + 1} {values[index]!r} {unit} beyond {limit} {unit}'
+                for index in _beyond(values, -limit, limit)]
+
+    def leg_lengths_problems(self, message) -> List[str]:
+        """``leg_lengths``: six lengths within the stroke."""
+        return self.length_problems(message.data[message.layout.data_offset:], 'leg_lengths')
+
+    def leg_extensions_problems(self, message) -> List[str]:
+        """``leg_extensions``: home lengths plus extensions within the stroke."""
+        data = np.asarray(message.data[message.layout.data_offset:], dtype=float)
+        if data.shape != (6,):
+            return [f'leg_extensions: {data.size} values, not 6']
+        return self.length_problems(data + self.geometry.home_leg_lengths, 'leg_extensions')
+
+    def leg_velocities_problems(self, message) -> List[str]:
+        """``leg_velocities``: six rates within leg_velocity_max."""
+        data = message.data[message.layout.data_offset:]
+        if len(data) != 6:
+            return [f'leg_velocities: {len(data)} values, not 6']
+        return self.rate_problems(data, self.actuator_limits.velocity_max, 'leg_velocities',
+                                  'm/s')
+
+    def joint_commands_problems(self, message) -> List[str]:
+        """``joint_commands``: the legs' joints, positions within the stroke, rates within."""
+        names = tuple(message.name)
+        if sorted(names) != sorted(self.actuators.joint_names) or len(message.position) != 6:
+            return [f'joint_commands: joints {names} with {len(message.position)} positions, '
+                    f'not {self.actuators.joint_names}']
+        order = self.actuators.order(list(names))
+        lengths = self.actuators.lengths(np.asarray(message.position, dtype=float)[order])
+        problems = self.length_problems(lengths, 'joint_commands')
+        if len(message.velocity):
+            problems += self.rate_problems(message.velocity, self.actuator_limits.velocity_max,
+                                           'joint_commands velocity', 'm/s')
+        return problems
+
+    def leg_trajectory_problems(self, message) -> List[str]:
+        """``leg_trajectory``: every point within the stroke and the rate limits, in time."""
+        problems = []
+        limits = self.actuator_limits
+        previous = -math.inf
+        names = list(message.joint_names)
+        if sorted(names) != sorted(self.actuators.joint_names):
+            return [f'leg_trajectory: joints {names}, not {self.actuators.joint_names}']
+        order = self.actuators.order(names)
+        for index, point in enumerate(message.points):
+            what = f'leg_trajectory point {index}'
+            time = point.time_from_start.sec + point.time_from_start.nanosec * 1e-9
+            if not time >= previous:
+                problems.append(f'{what}: time_from_start {time} s before {previous} s')
+            previous = time
+            positions = np.asarray(point.positions, dtype=float)
+            if positions.shape != (6,):
+                problems.append(f'{what}: {positions.size} positions')
+                continue
+            problems += self.length_problems(self.actuators.lengths(positions[order]), what)
+            if len(point.velocities):
+                problems += self.rate_problems(point.velocities, limits.velocity_max,
+                                               f'{what} velocity', 'm/s')
+            if len(point.accelerations):
+                problems += self.rate_problems(point.accelerations, limits.acceleration_max,
+                                               f'{what} acceleration', 'm/s^2')
+            if len(problems) >= MAX_PROBLEMS:
+                break
+        return problems
+
+    def pose_problems(self, message) -> List[str]:
+        """Say why a tool pose breaks a pose limit under every frame tree in force, if it does."""
+        frame_id = ''
+        if hasattr(message, 'header'):
+            frame_id = message.header.frame_id
+            message = message.pose
+        point, orientation = message.position, message.orientation
+        tool = Transform(np.array([point.x, point.y, point.z]), quaternion_to_matrix(
+            [orientation.x, orientation.y, orientation.z, orientation.w]))
+        reasons = []
+        for frames in self.frames:
+            try:
+                platform = frames.platform_from_tool(tool, frame_id)
+            except ValueError as error:
+                reasons.append(str(error))
+                continue
+            try:
+                violations = [violation for violation in self.model.check_pose(
+                    platform.position, platform.rotation)
+                    if violation.excess > TOLERANCE * max(1.0, abs(violation.allowed))]
+            except ValueError as error:
+                violations = [error]
+            if not violations:
+                return []
+            reasons.append('; '.join(map(str, violations[:MAX_PROBLEMS])))
+        return [f'pose ({point.x!r}, {point.y!r}, {point.z!r}) in {frame_id!r} breaks the '
+                f'limits under each of the {len(self.frames)} frame tree(s): '
+                + ' | '.join(reasons)]
+
+
+#: The limit checks of the topics whose name says what they carry, by (name, type).
+_ROLE_CHECKS = {
+    ('leg_lengths', 'std_msgs/Float64MultiArray'): OutputInvariants.leg_lengths_problems,
+    ('leg_extensions', 'std_msgs/Float64MultiArray'): OutputInvariants.leg_extensions_problems,
+    ('leg_velocities', 'std_msgs/Float64MultiArray'): OutputInvariants.leg_velocities_problems,
+    ('joint_commands', 'sensor_msgs/JointState'): OutputInvariants.joint_commands_problems,
+    ('leg_trajectory', 'trajectory_msgs/JointTrajectory'):
+        OutputInvariants.leg_trajectory_problems,
+}
+
+
+def checked_roles() -> List[str]:
+    """Return the topic names that get limit checks besides the numbers (for the docs)."""
+    return sorted({role for role, _ in _ROLE_CHECKS} | {'*pose', '*pose_stamped'})

@@ -1,0 +1,81 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Core defects the node fuzzer found (test_fuzz_nodes.py), each kept as the smallest example.
+
+Each failed before its fix; the fuzzer's message that found it is quoted in the docstring.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from stewart_kinematics.findings import TRAJECTORY_TOO_LONG
+from stewart_kinematics.motion.planning import plan_motion
+from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+from stewart_kinematics.motion.trajectory_check import check_trajectory, MAX_CHECK_SAMPLES
+from stewart_kinematics.parameters import (
+    actuator_limits_from_settings,
+    GeometrySettings,
+    load_geometry,
+    read_parameter_files,
+)
+
+pytestmark = pytest.mark.core
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+FILES = [CONFIG_DIRECTORY / 'paper_platform.yaml', CONFIG_DIRECTORY / 'example_limits.yaml']
+HOME = np.array([0.0, 0.0, 0.4325])
+
+
+@pytest.fixture(scope='module')
+def platform():
+    """Return the paper's platform with the example limits, and its actuator limits."""
+    values = read_parameter_files(FILES)
+    return load_geometry(FILES), actuator_limits_from_settings(GeometrySettings.from_values(
+        values))
+
+
+def test_a_path_to_a_far_waypoint_is_refused_without_sampling_it(platform):
+    """
+    A pose_path with one waypoint 10^9 m away: refused as too long to check, not a crash.
+
+    The fuzzer's path had a waypoint at 1e9 m: its nominal time by leg travel is 2e9 s, toppra
+    failed, and the check of the path as given asked numpy for 14.6 TiB of sample times
+    (MemoryError: trajectory_node exited).
+    """
+    geometry, limits = platform
+    path = PoseTrajectory.path(geometry, [HOME, HOME + [1e9, 0.0, 0.0]],
+                               np.stack([np.eye(3)] * 2))
+    plan = plan_motion(path, geometry, limits, retime_path=True)
+    assert not plan.accepted
+    assert plan.refusal.code == TRAJECTORY_TOO_LONG, plan.refusal
+    assert f'{MAX_CHECK_SAMPLES:,}' in plan.reason, plan.reason
+
+
+def test_a_check_that_needs_too_many_samples_is_refused_before_sampling(platform):
+    """check_trajectory of a 10^7 s trajectory at 1 kHz says so instead of allocating 10^10."""
+    geometry, limits = platform
+    path = PoseTrajectory.path(geometry, [HOME, HOME + [0.001, 0.0, 0.0]],
+                               np.stack([np.eye(3)] * 2))
+    long = PoseTrajectory(np.array([0.0, 1e7]), path.positions, path.rotations)
+    from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+    check = check_trajectory(TimedTrajectory.as_given(long), geometry, limits,
+                             validation_rate=1000.0)
+    assert not check.accepted and not check.complete
+    assert 'samples' in check.reason and check.samples == 0
+    plan = plan_motion(long, geometry, limits)
+    assert plan.refusal.code == TRAJECTORY_TOO_LONG
