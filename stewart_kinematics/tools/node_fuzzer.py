@@ -56,6 +56,7 @@ from rcl_interfaces.srv import (
     SetParametersAtomically,
 )
 import rclpy
+from rosidl_parser import definition
 
 from stewart_kinematics.parameters import (
     ActuatorSettings,
@@ -245,7 +246,7 @@ class _Outputs:
         return problems
 
 
-class _ParameterRequests:
+class ParameterRequests:
     """The parameter requests sent during the flood, checked as their answers arrive."""
 
     def __init__(self, fuzzer: ParameterFuzzer, invariants: OutputInvariants):
@@ -424,11 +425,7 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
         publisher = node.create_publisher(endpoint.message_type, endpoint.name, QUEUE_DEPTH)
         inputs.append((endpoint.name, publisher, MessageFuzzer(
             endpoint.message_type, rng, hints, endpoint.name)))
-    services = {kind: node.create_client(kind, f'{fqn}/{name}') for kind, name in (
-        (SetParameters, 'set_parameters'), (SetParametersAtomically,
-                                            'set_parameters_atomically'),
-        (GetParameters, 'get_parameters'), (ListParameters, 'list_parameters'),
-        (DescribeParameters, 'describe_parameters'))}
+    services = parameter_clients(node, fqn)
 
     def fail(problem):
         report.problems.append(problem)
@@ -439,14 +436,14 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
                        and diagnostics.count(fqn) >= 1, DEADLINE, [process]):
         return fail(f'{settings.node} not matched on its inputs and /diagnostics within '
                     f'{DEADLINE} s (running: {process.running()})')
-    fuzzer = _parameter_fuzzer(client, services, rng)
+    fuzzer = parameter_fuzzer_of(client, services, rng)
     if fuzzer is None:
         return fail(f'{settings.node} did not list or describe its parameters')
-    requests = _ParameterRequests(fuzzer, invariants)
+    requests = ParameterRequests(fuzzer, invariants)
     phase('start')
 
     # The flood: inputs in random order, parameter requests mixed in, huge messages spread.
-    huge_inputs = [entry for entry in inputs if _has_sequence(entry[2].message_type)]
+    huge_inputs = [entry for entry in inputs if has_sequence(entry[2].message_type)]
     huge_at = {}
     if huge_inputs and settings.huge:
         for number in range(settings.huge):
@@ -519,20 +516,34 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
     return report
 
 
-def _has_sequence(message_type) -> bool:
-    from rosidl_parser import definition
+def has_sequence(message_type) -> bool:
+    """Whether a message type has a sequence field (one that can be made huge)."""
     return any(isinstance(slot, definition.UnboundedSequence) for slot in message_type.SLOT_TYPES)
 
 
-def _parameter_fuzzer(client, services, rng) -> Optional[ParameterFuzzer]:
-    """List, describe and read the node's parameters; return the fuzzer of their changes."""
-    listed = client.call(services[ListParameters], ListParameters.Request(), DEADLINE)
+def parameter_clients(node, target: str) -> dict:
+    """Return clients of the parameter services of the node ``target`` (its full name), by type."""
+    return {kind: node.create_client(kind, f'{target}/{name}') for kind, name in (
+        (SetParameters, 'set_parameters'), (SetParametersAtomically, 'set_parameters_atomically'),
+        (GetParameters, 'get_parameters'), (ListParameters, 'list_parameters'),
+        (DescribeParameters, 'describe_parameters'))}
+
+
+def parameter_fuzzer_of(client, services, rng, timeout: float = DEADLINE
+                        ) -> Optional[ParameterFuzzer]:
+    """
+    List, describe and read a node's parameters; return the fuzzer of their changes.
+
+    :param services: the node's :func:`parameter_clients`.
+    :returns: the fuzzer, or ``None`` when a service did not answer within ``timeout``.
+    """
+    listed = client.call(services[ListParameters], ListParameters.Request(), timeout)
     if listed is None:
         return None
     names = sorted(listed.result.names)
     described = client.call(services[DescribeParameters],
-                            DescribeParameters.Request(names=names), DEADLINE)
-    values = client.call(services[GetParameters], GetParameters.Request(names=names), DEADLINE)
+                            DescribeParameters.Request(names=names), timeout)
+    values = client.call(services[GetParameters], GetParameters.Request(names=names), timeout)
     if described is None or values is None:
         return None
     return ParameterFuzzer(rng, dict(zip(names, described.descriptors)),

@@ -1,0 +1,683 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Soak with faults: every node under a steady stream for minutes, while things go wrong.
+
+Starts every node of :data:`stewart_kinematics.ros.interfaces.NODE_INTERFACES` from its
+console script with the shipped parameter files (as the fuzzer does:
+:func:`stewart_kinematics.tools.node_fuzzer.parameter_files`), trajectory_node looping the
+Table 3 ramp into ik_node, whose leg lengths feed fk_node. Then, for ``--minutes`` (10 by
+default):
+
+- a steady stream: plausible messages on every topic a node subscribes to and no node
+  publishes (``--stream-rate`` a second each; trajectories and paths one every two seconds);
+- a flood of bad messages every ``--flood-every`` seconds: ``--flood-seconds`` of mutated and
+  hostile messages at ``--flood-rate`` on the same topics;
+- node kills: every ``--kill-every`` seconds the next node in turn gets SIGKILL or SIGTERM (in
+  turn), then starts again;
+- parameter changes mid-stream: one request every ``--parameter-every`` seconds to a node, valid
+  and invalid changes through its parameter services, each answer checked;
+- sim time: ``--sim-time`` nodes (ik_node and trajectory_node by default) run with
+  ``use_sim_time:=true`` on a /clock this script publishes at 100 Hz, which jumps back and
+  forth every ``--jump-every`` seconds (back 30 s, forward an hour, back an hour, forward
+  11.6 days, back to the start), and now and then carries a hostile time (negative seconds,
+  nanoseconds beyond a second).
+
+Every message the nodes publish is checked (:mod:`stewart_kinematics.tools.output_invariants`:
+finite, unit quaternions, within the limits), every node's /diagnostics counted, and each
+node's resident memory sampled every ``--rss-every`` seconds. The report gives messages in and
+out per node, refusals by reason, crashes (a node that exits, or prints a traceback, when not
+killed by the soak; or that does not stop cleanly on SIGTERM or at the end on SIGINT: target
+0), non-finite outputs and outputs beyond a limit (target 0), parameter answers, kills and
+restarts, clock jumps, and the resident memory of each node (start and end after a warm-up,
+and the slope of each run of a node: flat). ``--figure rss.png`` draws it. Exits 1 when a
+target is missed. Run from the repository root::
+
+    .venv/bin/python benchmarks/soak.py                 # 10 minutes
+    .venv/bin/python benchmarks/soak.py --seconds 30    # as in the test suite
+"""
+
+import argparse
+from dataclasses import dataclass, field
+import fcntl
+import os
+from pathlib import Path
+import random
+import signal
+import sys
+import threading
+import time
+from typing import Dict, List, Optional
+
+from builtin_interfaces.msg import Time
+import numpy as np
+from rcl_interfaces.srv import SetParameters, SetParametersAtomically
+import rclpy
+from rosgraph_msgs.msg import Clock
+from rosidl_parser import definition
+
+from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
+from stewart_kinematics.tools.cli_arguments import number_in, positive_number
+from stewart_kinematics.tools.fuzz_client import (
+    DiagnosticsLog,
+    resident_kb,
+    SpinningClient,
+)
+from stewart_kinematics.tools.fuzz_messages import message_class, MessageFuzzer
+from stewart_kinematics.tools.fuzz_parameters import EITHER
+from stewart_kinematics.tools.node_fuzzer import (
+    FRAME_NAMES,
+    parameter_clients,
+    parameter_files,
+    parameter_fuzzer_of,
+    ParameterRequests,
+    plausible_hints,
+)
+from stewart_kinematics.tools.node_processes import (
+    find_executable,
+    isolated_ros_environment,
+    NodeProcess,
+)
+from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
+
+#: Extra start-up arguments of some nodes: trajectory_node loops the Table 3 ramp, a row
+#: every 0.2 s, so that the chain trajectory_node -> ik_node -> fk_node always has work.
+NODE_ARGUMENTS = {'trajectory_node': ['-p', 'loop:=true', '-p', 'row_period:=0.2']}
+#: Messages a second on a topic whose type carries a sequence of messages (a trajectory).
+SEQUENCE_RATE = 0.5
+#: Main loop period, seconds (the /clock rate is its inverse).
+TICK = 0.01
+#: Sim time at the start, seconds; and the jumps of the /clock, in turn, seconds.
+SIM_TIME_START = 1000.0
+CLOCK_JUMPS = (-30.0, 3600.0, -3600.0, 1e6, None)   # None: back to the start's time line
+#: Hostile /clock messages, one per cycle of jumps, in turn: (sec, nanosec); each is the only
+#: time on /clock for HOSTILE_CLOCK_SECONDS (rclpy's clock subscription has depth 1).
+HOSTILE_CLOCKS = ((-5, 0), (0, 4_294_967_295), (2 ** 31 - 1, 999_999_999))
+HOSTILE_CLOCK_SECONDS = 0.1
+#: Seconds a node's run is younger than when its memory is not yet counted (imports, caches).
+RSS_WARM_UP = 20.0
+#: Seconds a node gets to stop on SIGTERM or SIGINT.
+STOP_TIMEOUT = 10.0
+#: Seconds a new run gets to report on /diagnostics before a SIGTERM or SIGINT is sent anyway.
+READY_TIMEOUT = 20.0
+#: Examples kept of each kind of problem.
+KEPT_EXAMPLES = 5
+#: Fast DDS shared-memory files (see test_load_and_faults.py).
+SHM_DIRECTORY = Path('/dev/shm')
+SHM_PREFIX = 'fastrtps_'
+
+
+@dataclass
+class Run:
+    """One run of a node's process, from start to exit."""
+
+    number: int
+    process: NodeProcess
+    started: float
+    ended: Optional[float] = None
+    stopped_with: str = ''
+    exit_code: Optional[int] = None
+    rss: List[tuple] = field(default_factory=list)
+
+    def slope(self) -> Optional[float]:
+        """Resident memory growth after the warm-up, kB per minute (least squares), or None."""
+        points = [(t, kb) for t, kb in self.rss if t - self.started >= RSS_WARM_UP]
+        if len(points) < 3:
+            return None
+        times, values = np.array(points, dtype=float).T
+        return float(np.polyfit(times / 60.0, values, 1)[0])
+
+    def warm(self):
+        """Return the first and last resident memory after the warm-up, kB, or None."""
+        points = [kb for t, kb in self.rss if t - self.started >= RSS_WARM_UP]
+        return (points[0], points[-1]) if points else None
+
+
+class Slot:
+    """A node of the soak: its arguments and its runs."""
+
+    def __init__(self, name: str, sim_time: bool):
+        self.name = name
+        self.files = parameter_files(name)
+        self.arguments = ['--ros-args']
+        for path in self.files:
+            self.arguments += ['--params-file', str(path)]
+        self.arguments += NODE_ARGUMENTS.get(name, [])
+        if sim_time:
+            self.arguments += ['-p', 'use_sim_time:=true']
+        self.executable = find_executable(name)
+        self.runs: List[Run] = []
+
+    @property
+    def run(self) -> Run:
+        """Return the current run."""
+        return self.runs[-1]
+
+    def start(self):
+        """Start a new run."""
+        self.runs.append(Run(len(self.runs) + 1, NodeProcess(self.executable, self.arguments),
+                             time.monotonic()))
+
+
+class CounterTotals:
+    """Each diagnostic status's counters summed over the runs of its node."""
+
+    def __init__(self):
+        self.previous: Dict[str, Dict[str, object]] = {}
+        self.latest: Dict[str, Dict[str, object]] = {}
+
+    def update(self, latest: Dict[str, Dict[str, object]]):
+        """Take a node's latest counters; a counter that went down means a new run."""
+        for name, counters in latest.items():
+            last = self.latest.get(name)
+            if last is not None and counters['received'] < last['received']:
+                self.previous[name] = _add(self.previous.get(name), last)
+            self.latest[name] = counters
+
+    def totals(self) -> Dict[str, Dict[str, object]]:
+        """Return the counters of each status over every run."""
+        return {name: _add(self.previous.get(name), counters)
+                for name, counters in self.latest.items()}
+
+
+def _add(a, b):
+    if a is None:
+        return b
+    result = {key: a[key] + b[key] for key in ('received', 'published', 'rejected')}
+    for key in ('rejected_by_code', 'warned_by_code'):
+        result[key] = dict(a[key])
+        for code, count in b[key].items():
+            result[key][code] = result[key].get(code, 0) + count
+    return result
+
+
+class Soak:
+    """The soak: nodes, streams, faults and what was seen."""
+
+    def __init__(self, arguments):
+        self.arguments = arguments
+        self.rng = random.Random(arguments.seed)
+        self.slots = {name: Slot(name, name in arguments.sim_time)
+                      for name in arguments.nodes}
+        any_files = next(iter(self.slots.values())).files
+        self.invariants = OutputInvariants.from_parameter_files(any_files, None)
+        self.hints = plausible_hints(any_files, None)
+        self.diagnostics = DiagnosticsLog()
+        self.totals = {name: CounterTotals() for name in self.slots}
+        self.outputs: Dict[str, int] = {}
+        self.non_finite: List[str] = []
+        self.beyond_limits: List[str] = []
+        self.counts = {'non-finite': 0, 'beyond a limit': 0}
+        self.crashes: List[str] = []
+        self.kills: Dict[str, int] = {'SIGKILL': 0, 'SIGTERM': 0}
+        self.jumps = {'back': 0, 'forward': 0, 'hostile clock messages': 0}
+        self.sent: Dict[str, int] = {}
+        self.bad: Dict[str, int] = {}
+        self.parameter_counts: Dict[str, int] = {}
+        self.parameter_problems: List[str] = []
+        self.accounting_problems: List[str] = []
+        self.requests: List[ParameterRequests] = []
+        self.client = None
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+
+    # Outputs ------------------------------------------------------------------------------------
+
+    def output_callback(self, topic):
+        """Return the callback that checks and counts one output topic."""
+        def on_message(message):
+            problems = self.invariants.problems(topic, message)
+            with self._lock:
+                self.outputs[topic] = self.outputs.get(topic, 0) + 1
+                if problems:
+                    kind = 'non-finite' if numbers_problems(message) else 'beyond a limit'
+                    self.counts[kind] += 1
+                    examples = self.non_finite if kind == 'non-finite' else self.beyond_limits
+                    if len(examples) < KEPT_EXAMPLES:
+                        examples.append(f'{topic}: {"; ".join(problems)}')
+            if topic == '/diagnostics':
+                self.diagnostics(message)
+        return on_message
+
+    # The run -----------------------------------------------------------------------------------
+
+    def run(self, client) -> int:
+        """Run the soak for its duration; print the report; return the exit code."""
+        self.client = client
+        node = client.node
+        published = {endpoint.name: endpoint for interface in NODE_INTERFACES.values()
+                     if interface.node in self.slots for endpoint in interface.of_kind(PUBLISHER)}
+        subscribed = {endpoint.name: endpoint for interface in NODE_INTERFACES.values()
+                      if interface.node in self.slots
+                      for endpoint in interface.of_kind(SUBSCRIPTION)}
+        for name, endpoint in published.items():
+            try:
+                message_type = endpoint.message_type
+            except ImportError:
+                continue
+            node.create_subscription(message_type, name, self.output_callback(name), 100)
+        # The soak feeds only topics no node publishes: what a node publishes is an output,
+        # checked, and the soak's own messages must not be taken for one.
+        streams = []
+        for name, endpoint in sorted(subscribed.items()):
+            if name in published:
+                continue
+            rate = (SEQUENCE_RATE if _has_message_sequence(endpoint.message_type)
+                    else self.arguments.stream_rate)
+            streams.append([name, node.create_publisher(endpoint.message_type, name, 100),
+                            MessageFuzzer(endpoint.message_type, self.rng, self.hints, name),
+                            rate, 0.0])
+        clock = node.create_publisher(Clock, '/clock', 10)
+        for slot in self.slots.values():
+            slot.start()
+        parameter_thread = threading.Thread(target=self.parameter_loop, args=(client,),
+                                            name='soak_parameters', daemon=True)
+        parameter_thread.start()
+        arguments = self.arguments
+        start = time.monotonic()
+        end = start + arguments.seconds
+        next_kill = start + arguments.kill_every
+        next_flood = start + arguments.flood_every
+        next_jump = start + arguments.jump_every
+        next_rss = start
+        offset = 0.0
+        jump_index = 0
+        kill_index = 0
+        flood_until = hostile_until = 0.0
+        hostile = HOSTILE_CLOCKS[0]
+        flood_credit = 0.0
+        last = start
+        while True:
+            now = time.monotonic()
+            if now >= end:
+                break
+            elapsed, last = now - last, now
+            # The steady stream, and the flood when one is on.
+            for stream in streams:
+                stream[4] += elapsed * stream[3]
+                while stream[4] >= 1.0:
+                    stream[4] -= 1.0
+                    self.publish(stream, 'plausible', self.sent)
+            if now < flood_until:
+                flood_credit += elapsed * arguments.flood_rate
+                while flood_credit >= 1.0:
+                    flood_credit -= 1.0
+                    self.publish(self.rng.choice(streams),
+                                 self.rng.choice(('mutated', 'mutated', 'hostile')), self.bad)
+            elif now >= next_flood:
+                flood_until = now + arguments.flood_seconds
+                next_flood += arguments.flood_every
+            # The clock: jumps, and a hostile message once per cycle of jumps.
+            if now >= next_jump:
+                next_jump += arguments.jump_every
+                jump = CLOCK_JUMPS[jump_index % len(CLOCK_JUMPS)]
+                new_offset = 0.0 if jump is None else offset + jump
+                self.jumps['back' if new_offset < offset else 'forward'] += 1
+                offset = new_offset
+                if jump is None:
+                    hostile = HOSTILE_CLOCKS[(jump_index // len(CLOCK_JUMPS))
+                                             % len(HOSTILE_CLOCKS)]
+                    hostile_until = now + HOSTILE_CLOCK_SECONDS
+                    self.jumps['hostile clock messages'] += 1
+                jump_index += 1
+            if now < hostile_until:
+                # Alone on /clock for a while: rclpy's clock subscription keeps one message.
+                clock.publish(Clock(clock=Time(sec=hostile[0], nanosec=hostile[1])))
+            else:
+                sim = SIM_TIME_START + (now - start) + offset
+                clock.publish(Clock(clock=Time(sec=int(sim),
+                                               nanosec=int((sim % 1.0) * 1e9))))
+            # Faults: a kill in turn; a node that exited by itself is a crash, and restarts.
+            if now >= next_kill:
+                next_kill += arguments.kill_every
+                names = sorted(self.slots)
+                slot = self.slots[names[kill_index % len(names)]]
+                kill_signal = (signal.SIGKILL, signal.SIGTERM)[(kill_index // len(names)) % 2]
+                kill_index += 1
+                self.kill(slot, kill_signal)
+            for slot in self.slots.values():
+                if not slot.run.process.running():
+                    self.crashed(slot, 'exited by itself')
+            if now >= next_rss:
+                next_rss += arguments.rss_every
+                for slot in self.slots.values():
+                    kb = resident_kb(slot.run.process.process.pid)
+                    if kb is not None:
+                        slot.run.rss.append((now, kb))
+            for name, slot in self.slots.items():
+                self.totals[name].update(self.diagnostics.reports('/' + name).latest)
+            time.sleep(max(0.0, TICK - (time.monotonic() - now)))
+        self._stop.set()
+        parameter_thread.join(timeout=30.0)
+        client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
+        for slot in self.slots.values():
+            self.stop(slot, signal.SIGINT)
+        for name in self.slots:
+            self.totals[name].update(self.diagnostics.reports('/' + name).latest)
+        for requests in self.requests:
+            requests.forget_unanswered()
+            self.parameter_problems += requests.problems
+            for key, count in requests.counts.items():
+                self.parameter_counts[key] = self.parameter_counts.get(key, 0) + count
+        return self.report(time.monotonic() - start)
+
+    def publish(self, stream, kind, counts):
+        """Publish one message of a stream, of a kind (plausible, mutated, hostile)."""
+        name, publisher, generator = stream[:3]
+        message, _ = generator.message(kind)
+        publisher.publish(message)
+        counts[name] = counts.get(name, 0) + 1
+
+    # Faults -------------------------------------------------------------------------------------
+
+    def kill(self, slot: Slot, kill_signal):
+        """Kill a node's run with a signal; a SIGTERM must end it cleanly; then start again."""
+        self.kills[kill_signal.name] += 1
+        self.stop(slot, kill_signal)
+        slot.start()
+
+    def stop(self, slot: Slot, stop_signal):
+        """
+        Stop the current run with a signal and check how it ended.
+
+        A SIGTERM or SIGINT waits until the run has reported on /diagnostics (it is built and
+        spinning): in the first few tenths of a second Python is still importing, and a signal
+        then ends it as Python's defaults do (a KeyboardInterrupt traceback, or killed by
+        SIGTERM), before the node can handle it.
+        """
+        run = slot.run
+        process = run.process
+        if stop_signal != signal.SIGKILL:
+            self.client.wait(lambda: any(arrival > run.started for arrival in
+                                         self.diagnostics.reports('/' + slot.name).arrivals),
+                             READY_TIMEOUT, [process])
+        locks = _shm_lock_files(process.process.pid) if stop_signal == signal.SIGKILL else []
+        if process.running():
+            process.send_signal(stop_signal)
+        try:
+            code = process.process.wait(STOP_TIMEOUT)
+        except Exception:   # subprocess.TimeoutExpired: a node that ignores the signal
+            process.process.kill()
+            code = process.process.wait()
+            self.crash(slot, f'still running {STOP_TIMEOUT} s after {stop_signal.name}')
+        run.ended, run.stopped_with, run.exit_code = time.monotonic(), stop_signal.name, code
+        output = process.output()
+        process.__exit__(None, None, None)
+        if stop_signal != signal.SIGKILL and code != 0:
+            self.crash(slot, f'exit code {code} after {stop_signal.name}', output)
+        elif 'Traceback' in output:
+            self.crash(slot, f'a traceback (stopped with {stop_signal.name})', output)
+        _remove_dead_segments(locks)
+
+    def crashed(self, slot: Slot, what: str):
+        """Record a run that ended without being stopped, and start a new one."""
+        run = slot.run
+        run.ended, run.exit_code = time.monotonic(), run.process.process.poll()
+        output = run.process.output()
+        run.process.__exit__(None, None, None)
+        self.crash(slot, f'{what} with exit code {run.exit_code}', output)
+        slot.start()
+
+    def crash(self, slot: Slot, what: str, output: str = ''):
+        """Count a crash, with the end of the run's output."""
+        tail = '\n'.join(output.splitlines()[-25:])
+        self.crashes.append(f'{slot.name} run {slot.run.number}: {what}\n{tail}')
+
+    # Parameters ---------------------------------------------------------------------------------
+
+    def parameter_loop(self, client):
+        """Every --parameter-every seconds, one request of one to three changes to a node."""
+        rng = random.Random(self.arguments.seed + 1)
+        fuzzers = {}
+        clients = {}
+        while not self._stop.wait(self.arguments.parameter_every):
+            slot = self.slots[rng.choice(sorted(self.slots))]
+            run = slot.run
+            if not run.process.running() or time.monotonic() - run.started < 3.0:
+                continue
+            key = (slot.name, run.number)
+            if slot.name not in clients:
+                clients[slot.name] = parameter_clients(client.node, '/' + slot.name)
+            services = clients[slot.name]
+            if key not in fuzzers:
+                fuzzer = parameter_fuzzer_of(client, services, rng, timeout=5.0)
+                if fuzzer is None:
+                    continue
+                fuzzers[key] = fuzzer
+                self.requests.append(ParameterRequests(fuzzer, self.invariants))
+                fuzzers[key + ('requests',)] = self.requests[-1]
+            requests = fuzzers[key + ('requests',)]
+            changes = fuzzers[key].changes(rng.randint(1, 3))
+            # A valid change of the frames moves every pose: let the checks know beforehand.
+            for change in changes:
+                if change.expect == EITHER and change.name in FRAME_NAMES:
+                    self.invariants.add_frames({**fuzzers[key].values,
+                                                change.name: change.value})
+            atomic = rng.random() < 0.1
+            requests.send(services[SetParametersAtomically if atomic else SetParameters],
+                          changes, atomic)
+
+    # The report ---------------------------------------------------------------------------------
+
+    def report(self, duration: float) -> int:
+        """Print the report; return 0 when every target is met, else 1."""
+        arguments = self.arguments
+        lines = [f'SOAK {duration:.0f} s, seed {arguments.seed}: nodes '
+                 f'{", ".join(self.slots)}; sim time on {", ".join(arguments.sim_time) or "none"}']
+        lines.append(f'SOAK stream sent {sum(self.sent.values())} {_sorted(self.sent)}')
+        lines.append(f'SOAK bad messages sent {sum(self.bad.values())} {_sorted(self.bad)}')
+        for name in self.slots:
+            totals = self.totals[name].totals()
+            received = sum(counters['received'] for counters in totals.values())
+            published = sum(counters['published'] for counters in totals.values())
+            refused, warned = {}, {}
+            for counters in totals.values():
+                for code, count in counters['rejected_by_code'].items():
+                    refused[code] = refused.get(code, 0) + count
+                for code, count in counters['warned_by_code'].items():
+                    warned[code] = warned.get(code, 0) + count
+            reports = self.diagnostics.reports('/' + name)
+            lines.append(f'SOAK {name}: in {received}, out {published}, refused by reason '
+                         f'{_sorted(refused)}, warnings {_sorted(warned)}; '
+                         f'{len(reports.stamps)} DiagnosticArrays in {duration:.0f} s, at most '
+                         f'{_most_in_a_second(reports.arrivals)} in one second; '
+                         f'{len(self.slots[name].runs)} runs')
+            # The counts of the last run add up (the rate is not checked: sim time jumps).
+            self.accounting_problems += [
+                problem for problem in self.diagnostics.problems('/' + name)
+                if 'DiagnosticArrays over' not in problem]
+        lines.append(f'SOAK outputs seen {sum(self.outputs.values())} {_sorted(self.outputs)}')
+        lines.append(f'SOAK accounting problems {len(self.accounting_problems)} (target 0)')
+        lines += [f'  {problem}' for problem in self.accounting_problems]
+        lines.append(f'SOAK crashes {len(self.crashes)} (target 0)')
+        lines += [f'  {crash}' for crash in self.crashes]
+        lines.append(f'SOAK non-finite outputs {self.counts["non-finite"]} (target 0)')
+        lines += [f'  {example}' for example in self.non_finite]
+        lines.append(f'SOAK outputs beyond a limit {self.counts["beyond a limit"]} (target 0)')
+        lines += [f'  {example}' for example in self.beyond_limits]
+        lines.append(f'SOAK kills {_sorted(self.kills)}; clock {_sorted(self.jumps)}')
+        lines.append(f'SOAK parameter answers {_sorted(self.parameter_counts)}; problems '
+                     f'{len(self.parameter_problems)} (target 0)')
+        lines += [f'  {problem}' for problem in self.parameter_problems[:KEPT_EXAMPLES]]
+        lines.append('SOAK resident memory (kB) per run of each node, after a '
+                     f'{RSS_WARM_UP:.0f} s warm-up: node run: lived s, start, end, slope kB/min')
+        for name, slot in self.slots.items():
+            for run in slot.runs:
+                warm = run.warm()
+                slope = run.slope()
+                lived = (run.ended or time.monotonic()) - run.started
+                lines.append(
+                    f'SOAK rss {name} run {run.number}: {lived:.0f} s, '
+                    + (f'{warm[0]} -> {warm[1]}' if warm else 'too short')
+                    + (f', slope {slope:+.1f}' if slope is not None else '')
+                    + (f' ({run.stopped_with})' if run.stopped_with else ''))
+        print('\n'.join(lines), flush=True)
+        if arguments.figure:
+            self.figure(arguments.figure)
+        missed = (self.crashes or self.counts['non-finite'] or self.counts['beyond a limit']
+                  or self.parameter_problems or self.accounting_problems)
+        return 1 if missed else 0
+
+    def figure(self, path):
+        """Draw the resident memory of every run of every node over time, as a PNG."""
+        import matplotlib
+        matplotlib.use('Agg')
+        from matplotlib import pyplot
+        figure, axes = pyplot.subplots(figsize=(7.0, 3.2), dpi=100)
+        origin = min(run.started for slot in self.slots.values() for run in slot.runs)
+        for index, (name, slot) in enumerate(self.slots.items()):
+            colour = f'C{index}'
+            for number, run in enumerate(slot.runs):
+                if run.rss:
+                    times, values = zip(*run.rss)
+                    axes.plot((np.array(times) - origin) / 60.0, np.array(values) / 1024.0,
+                              color=colour, label=name if number == 0 else None)
+        axes.set_xlabel('time (min); a gap: the node was killed and started again')
+        axes.set_ylabel('resident memory (MiB)')
+        axes.set_title('Soak: resident memory of each node')
+        axes.legend(loc='lower right', fontsize='small')
+        figure.tight_layout()
+        figure.savefig(path)
+        print(f'SOAK figure {path}')
+
+
+def _sorted(counts) -> str:
+    return str(dict(sorted(counts.items())))
+
+
+def _most_in_a_second(arrivals) -> int:
+    """Return the most arrivals (monotonic seconds, in order) within any one second."""
+    most, first = 0, 0
+    for last, arrival in enumerate(arrivals):
+        while arrival - arrivals[first] > 1.0:
+            first += 1
+        most = max(most, last - first + 1)
+    return most
+
+
+def _has_message_sequence(message_type) -> bool:
+    """Whether a message type has a sequence of messages (trajectory points, path poses)."""
+    for slot in message_type.SLOT_TYPES:
+        if isinstance(slot, definition.NamespacedType):
+            if _has_message_sequence(message_class(slot)):
+                return True
+        elif isinstance(slot, definition.AbstractNestedType) and isinstance(
+                slot.value_type, definition.NamespacedType):
+            return True
+    return False
+
+
+def _shm_lock_files(pid):
+    """Return the lock files of the Fast DDS shared-memory segments a process owns."""
+    locks = []
+    try:
+        descriptors = list(Path(f'/proc/{pid}/fd').iterdir())
+    except OSError:
+        return locks
+    for descriptor in descriptors:
+        try:
+            target = Path(os.readlink(descriptor))
+        except OSError:
+            continue
+        if (target.parent == SHM_DIRECTORY and target.name.startswith(SHM_PREFIX)
+                and target.name.endswith('_el') and 'port' not in target.name):
+            locks.append(target)
+    return locks
+
+
+def _remove_dead_segments(locks):
+    """Remove the segments of a killed node whose lock no living process holds (SIGKILL)."""
+    for lock_file in locks:
+        segment = lock_file.with_name(lock_file.name[:-len('_el')])
+        try:
+            descriptor = os.open(lock_file, os.O_RDONLY)
+        except FileNotFoundError:
+            continue
+        try:
+            fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            continue
+        finally:
+            os.close(descriptor)
+        for path in (segment, lock_file):
+            try:
+                path.unlink()
+            except FileNotFoundError:
+                pass
+
+
+def parse_arguments(argv):
+    """Command-line options of the soak."""
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    duration = parser.add_mutually_exclusive_group()
+    duration.add_argument('--minutes', type=positive_number, default=10.0,
+                          help='how long, minutes (default: 10)')
+    duration.add_argument('--seconds', type=positive_number, default=None,
+                          help='how long, seconds (instead of --minutes)')
+    parser.add_argument('--seed', type=int, default=None, help='seed (default: random)')
+    parser.add_argument('--nodes', nargs='+', choices=sorted(NODE_INTERFACES),
+                        default=sorted(NODE_INTERFACES), help='nodes (default: every one)')
+    parser.add_argument('--sim-time', nargs='*', default=None,
+                        help='nodes on sim time (default: ik_node trajectory_node)')
+    parser.add_argument('--stream-rate', type=number_in(0.1, 1000.0), default=50.0,
+                        help='steady messages a second on each input topic (default: 50)')
+    parser.add_argument('--kill-every', type=positive_number, default=60.0,
+                        help='seconds between two kills (default: 60)')
+    parser.add_argument('--flood-every', type=positive_number, default=30.0,
+                        help='seconds between two floods of bad messages (default: 30)')
+    parser.add_argument('--flood-seconds', type=positive_number, default=3.0,
+                        help='seconds of each flood (default: 3)')
+    parser.add_argument('--flood-rate', type=number_in(1.0, 5000.0), default=1000.0,
+                        help='bad messages a second during a flood (default: 1000)')
+    parser.add_argument('--jump-every', type=positive_number, default=20.0,
+                        help='seconds between two /clock jumps (default: 20)')
+    parser.add_argument('--parameter-every', type=positive_number, default=2.0,
+                        help='seconds between two parameter requests (default: 2)')
+    parser.add_argument('--rss-every', type=positive_number, default=5.0,
+                        help='seconds between two memory samples (default: 5)')
+    parser.add_argument('--figure', type=Path, default=None,
+                        help='write a PNG of the resident memory over time here')
+    arguments = parser.parse_args(argv)
+    arguments.seconds = arguments.seconds or 60.0 * arguments.minutes
+    if arguments.seed is None:
+        arguments.seed = random.SystemRandom().randrange(2 ** 32)
+    if arguments.sim_time is None:
+        arguments.sim_time = [name for name in ('ik_node', 'trajectory_node')
+                              if name in arguments.nodes]
+    unknown = sorted(set(arguments.sim_time) - set(arguments.nodes))
+    if unknown:
+        parser.error(f'--sim-time names nodes that do not run: {unknown}')
+    return arguments
+
+
+def main(argv=None) -> int:
+    """Run the soak on an isolated ROS domain; return 0 when every target is met."""
+    arguments = parse_arguments(argv)
+    with isolated_ros_environment():
+        rclpy.init(args=[])
+        client = SpinningClient(rclpy.create_node('stewart_soak'))
+        soak = Soak(arguments)
+        try:
+            return soak.run(client)
+        finally:
+            for slot in soak.slots.values():
+                if slot.runs and slot.run.process.running():
+                    slot.run.process.stop()
+            client.close()
+            rclpy.try_shutdown()
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,55 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The soak with faults (benchmarks/soak.py), 30 s of it, as a user runs it.
+
+Every declared node under a steady stream, with SIGKILL and SIGTERM and restarts, parameter
+changes, a /clock jumping back and forth (and a hostile one) under sim time, and floods of bad
+messages, compressed into 30 s: the script must meet its targets (no crash, no non-finite
+output, nothing beyond a limit, every parameter answer right, counts that add up: exit code
+0). The 10-minute run and its figures are in doc/testing_adversarial.md. Run with ``-s`` to see
+the report (lines starting ``SOAK``).
+"""
+
+from pathlib import Path
+import re
+import subprocess
+import sys
+
+import pytest
+
+pytestmark = pytest.mark.process
+
+SOAK = Path(__file__).resolve().parent.parent / 'benchmarks' / 'soak.py'
+#: The 30 s soak: a kill every 7 s (SIGKILL for the first three, then SIGTERM), a flood every
+#: 10 s, a clock jump every 3 s (a hostile clock message at the fifth).
+ARGUMENTS = ['--seconds', '30', '--kill-every', '7', '--flood-every', '10', '--flood-seconds',
+             '2', '--jump-every', '3', '--parameter-every', '1', '--rss-every', '2']
+
+
+def test_thirty_seconds_of_soak_meet_every_target():
+    """No crash, nothing non-finite or beyond a limit; kills of both kinds and clock jumps."""
+    run = subprocess.run([sys.executable, str(SOAK), *ARGUMENTS], capture_output=True,
+                         text=True, timeout=300)
+    report = '\n'.join(line for line in run.stdout.splitlines() if line.startswith(('SOAK',
+                                                                                    '  ')))
+    print(report)
+    assert run.returncode == 0, f'{report}\n--- stderr ---\n{run.stderr[-5000:]}'
+    kills = re.search(r"kills \{'SIGKILL': (\d+), 'SIGTERM': (\d+)\}", report)
+    assert kills and int(kills[1]) >= 1 and int(kills[2]) >= 1, report
+    assert re.search(r"'back': [1-9]", report) and re.search(r"'forward': [1-9]", report)
+    assert re.search(r"'hostile clock messages': [1-9]", report), report
+    for target in ('crashes 0', 'non-finite outputs 0', 'outputs beyond a limit 0'):
+        assert f'SOAK {target} (target 0)' in report, report
