@@ -52,6 +52,7 @@ target is missed. Run from the repository root::
 import argparse
 from dataclasses import dataclass, field
 import fcntl
+import math
 import os
 from pathlib import Path
 import random
@@ -71,6 +72,8 @@ from rosidl_parser import definition
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.fuzz_client import (
+    alive,
+    descendants,
     DiagnosticsLog,
     resident_kb,
     SpinningClient,
@@ -112,6 +115,8 @@ RSS_WARM_UP = 20.0
 STOP_TIMEOUT = 10.0
 #: Seconds a new run gets to report on /diagnostics before a SIGTERM or SIGINT is sent anyway.
 READY_TIMEOUT = 20.0
+#: Seconds the processes a stopped run started (workers) have to exit after it.
+ORPHAN_GRACE = 5.0
 #: Examples kept of each kind of problem.
 KEPT_EXAMPLES = 5
 #: Fast DDS shared-memory files (see test_load_and_faults.py).
@@ -228,6 +233,9 @@ class Soak:
         self.parameter_counts: Dict[str, int] = {}
         self.parameter_problems: List[str] = []
         self.accounting_problems: List[str] = []
+        #: (when to look, node, run, pids) of the processes of stopped runs; those left behind.
+        self.orphan_checks: List[tuple] = []
+        self.orphans: List[str] = []
         self.requests: List[ParameterRequests] = []
         self.client = None
         self._lock = threading.Lock()
@@ -358,12 +366,16 @@ class Soak:
                         slot.run.rss.append((now, kb))
             for name, slot in self.slots.items():
                 self.totals[name].update(self.diagnostics.reports('/' + name).latest)
+            self.check_orphans(now)
             time.sleep(max(0.0, TICK - (time.monotonic() - now)))
         self._stop.set()
         parameter_thread.join(timeout=30.0)
         client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
         for slot in self.slots.values():
             self.stop(slot, signal.SIGINT)
+        client.wait(lambda: not any(alive(pid) for check in self.orphan_checks
+                                    for pid in check[3]), ORPHAN_GRACE)
+        self.check_orphans(math.inf)
         for name in self.slots:
             self.totals[name].update(self.diagnostics.reports('/' + name).latest)
         for requests in self.requests:
@@ -399,6 +411,7 @@ class Soak:
         """
         run = slot.run
         process = run.process
+        self.watch_children(slot, run)
         if stop_signal != signal.SIGKILL:
             self.client.wait(lambda: any(arrival > run.started for arrival in
                                          self.diagnostics.reports('/' + slot.name).arrivals),
@@ -420,6 +433,28 @@ class Soak:
         elif 'Traceback' in output:
             self.crash(slot, f'a traceback (stopped with {stop_signal.name})', output)
         _remove_dead_segments(locks)
+
+    def watch_children(self, slot: Slot, run: Run):
+        """Look, ORPHAN_GRACE seconds after this, for processes of the run still alive."""
+        children = descendants(run.process.process.pid)
+        if children:
+            self.orphan_checks.append((time.monotonic() + ORPHAN_GRACE, slot.name, run.number,
+                                       children))
+
+    def check_orphans(self, now: float):
+        """Count (and kill) the processes of stopped runs still alive after the grace."""
+        due = [check for check in self.orphan_checks if check[0] <= now]
+        self.orphan_checks = [check for check in self.orphan_checks if check[0] > now]
+        for _, name, number, children in due:
+            for pid in children:
+                if alive(pid):
+                    try:
+                        command = Path(f'/proc/{pid}/cmdline').read_bytes().replace(
+                            b'\0', b' ').decode(errors='replace')[:100]
+                        os.kill(pid, signal.SIGKILL)
+                    except OSError:
+                        continue
+                    self.orphans.append(f'{name} run {number}: pid {pid} {command}')
 
     def crashed(self, slot: Slot, what: str):
         """Record a run that ended without being stopped, and start a new one."""
@@ -503,6 +538,9 @@ class Soak:
         lines += [f'  {problem}' for problem in self.accounting_problems]
         lines.append(f'SOAK crashes {len(self.crashes)} (target 0)')
         lines += [f'  {crash}' for crash in self.crashes]
+        lines.append(f'SOAK processes left behind by stopped runs {len(self.orphans)} '
+                     '(target 0)')
+        lines += [f'  {orphan}' for orphan in self.orphans[:KEPT_EXAMPLES]]
         lines.append(f'SOAK non-finite outputs {self.counts["non-finite"]} (target 0)')
         lines += [f'  {example}' for example in self.non_finite]
         lines.append(f'SOAK outputs beyond a limit {self.counts["beyond a limit"]} (target 0)')
@@ -527,7 +565,7 @@ class Soak:
         if arguments.figure:
             self.figure(arguments.figure)
         missed = (self.crashes or self.counts['non-finite'] or self.counts['beyond a limit']
-                  or self.parameter_problems or self.accounting_problems)
+                  or self.parameter_problems or self.accounting_problems or self.orphans)
         return 1 if missed else 0
 
     def figure(self, path):

@@ -79,3 +79,27 @@ def test_a_check_that_needs_too_many_samples_is_refused_before_sampling(platform
     assert 'samples' in check.reason and check.samples == 0
     plan = plan_motion(long, geometry, limits)
     assert plan.refusal.code == TRAJECTORY_TOO_LONG
+
+
+def test_a_frame_offset_too_far_for_the_arithmetic_is_refused():
+    """
+    tool_frame_position and user_frame_position: within 1 km, or refused naming the parameter.
+
+    The fuzzer set tool_frame_position to about 1e308 m (finite, so allowed), and fk_node then
+    published estimated poses some 1e308 m away: a platform pose within every limit, lost in
+    the rounding of the offset, and for an offset along two axes at a turned platform the sum
+    overflows to inf, a non-finite output.
+    """
+    from stewart_kinematics.parameters import FrameSettings, frames_from_settings
+    for name in ('tool_frame_position', 'user_frame_position'):
+        with pytest.raises(ValueError, match=name):
+            FrameSettings(**{name: (1.7e308, 1.7e308, 0.0)})
+        with pytest.raises(ValueError, match=name):
+            FrameSettings(**{name: (0.0, 1001.0, 0.0)})
+    # At the bound, a tool pose keeps the platform pose to well below a micrometre.
+    frames = frames_from_settings(FrameSettings(tool_frame_position=(1000.0, -1000.0, 1000.0)))
+    platform = np.array([0.01, -0.02, 0.45, 0.1, -0.05, 0.785])
+    tool = frames.tool_pose_vector(platform)
+    from stewart_kinematics.model.frames import Transform
+    back = frames.platform_from_tool(Transform.from_pose(tool)).as_pose()
+    np.testing.assert_allclose(back, platform, atol=1e-9)

@@ -214,6 +214,10 @@ ASSEMBLY_MODE_PARAMETERS = (
 )
 
 
+#: Largest coordinate of a user or tool frame's origin, metres: a frame further away loses
+#: the platform's pose in the rounding of its offset (and at 1e308 m the sum overflows).
+FRAME_OFFSET_MAX = 1000.0
+
 FRAME_PARAMETERS = (
     ParameterSpec(
         'base_frame', STRING,
@@ -234,8 +238,9 @@ FRAME_PARAMETERS = (
     ParameterSpec(
         'user_frame_position', DOUBLE_ARRAY,
         'Origin of user_frame in the base frame, X, Y, Z, metres',
-        default=[0.0, 0.0, 0.0], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX)),
+        constraints='3 values in [-1000, 1000]'),
     ParameterSpec(
         'user_frame_orientation_deg', DOUBLE_ARRAY,
         'Orientation of user_frame in the base frame, alpha, beta, gamma '
@@ -253,8 +258,9 @@ FRAME_PARAMETERS = (
         'Origin of the tool frame in the platform frame, X, Y, Z, metres: the pivot point. '
         'Commanded and estimated poses are those of the tool frame, so a pure rotation turns '
         'the platform about this point',
-        default=[0.0, 0.0, 0.0], validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
+        default=[0.0, 0.0, 0.0],
+        validators=(fixed_length(3), finite, in_range(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX)),
+        constraints='3 values in [-1000, 1000]'),
     ParameterSpec(
         'tool_frame_orientation_deg', DOUBLE_ARRAY,
         'Orientation of the tool frame in the platform frame, alpha, beta, gamma '

@@ -27,6 +27,7 @@ last one is still running is skipped.
 
 import multiprocessing
 import os
+import queue
 import threading
 
 import numpy as np
@@ -42,6 +43,9 @@ from stewart_kinematics.ros.node_main import create_output_publisher
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
 WORKER_NICENESS = 10
+#: Seconds between two looks of an idle worker process at whether its node still runs: a node
+#: killed with SIGKILL cannot stop it, and it would wait for jobs forever.
+PARENT_CHECK_PERIOD = 1.0
 #: How often ik_node looks for a first subscriber of workspace_markers without travel
 #: ranges, seconds (with them, at each travel range).
 MARKER_CHECK_PERIOD = 1.0
@@ -200,7 +204,9 @@ class WorkspaceWorker:
     DDS threads is unsafe), at a lower scheduling priority; jobs run one after the other;
     each result, or the exception as a ``RuntimeError``, goes to ``on_result(tag, value)``,
     called in a reader thread. Closing terminates the process at once, so a node never waits
-    for a computation to exit.
+    for a computation to exit. A node that dies without closing it (SIGKILL) leaves it idle:
+    it then exits by itself within :data:`PARENT_CHECK_PERIOD`, and multiprocessing's
+    forkserver and resource tracker after it.
 
     :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
     :param on_result: called with each job's tag and result.
@@ -210,8 +216,9 @@ class WorkspaceWorker:
         context = multiprocessing.get_context('forkserver')
         self.jobs, self.results = context.Queue(), context.Queue()
         self.on_result = on_result
-        self.process = context.Process(target=_serve, args=(geometry, self.jobs, self.results),
-                                       name='workspace', daemon=True)
+        self.process = context.Process(
+            target=_serve, args=(geometry, self.jobs, self.results, os.getpid()),
+            name='workspace', daemon=True)
         self.process.start()
         self.reader = threading.Thread(target=self._read, name='workspace results',
                                        daemon=True)
@@ -245,14 +252,38 @@ class WorkspaceWorker:
             channel.cancel_join_thread()
 
 
-def _serve(geometry, jobs, results):
-    """Run jobs until the parent terminates the process (the worker process's main)."""
+def _serve(geometry, jobs, results, node_pid):
+    """
+    Run jobs until the node terminates the process, or is gone (the worker process's main).
+
+    :param node_pid: the node's process: once it no longer exists, the worker exits.
+    """
     # Below the node on a busy machine: the command path comes first.
     os.nice(WORKER_NICENESS)
     while True:
-        tag, function, args, kwargs = jobs.get()
+        try:
+            tag, function, args, kwargs = jobs.get(timeout=PARENT_CHECK_PERIOD)
+        except queue.Empty:
+            if not _running(node_pid):
+                return
+            continue
         try:
             value = function(geometry, *args, **kwargs)
         except Exception as error:   # sent back as text: any exception pickles as this one
             value = RuntimeError(f'{type(error).__name__}: {error}')
         results.put((tag, value))
+
+
+def _running(pid) -> bool:
+    """Whether a process exists (a zombie counts as gone where /proc tells)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    try:
+        with open(f'/proc/{pid}/stat') as stat:
+            return stat.read().rsplit(')', 1)[1].split()[0] != 'Z'
+    except OSError:
+        return True

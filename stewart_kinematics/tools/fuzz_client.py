@@ -20,11 +20,13 @@ on a schedule and waits for answers with a deadline. :class:`DiagnosticsLog` kee
 the DiagnosticArrays it published and the counters of each of its statuses
 (:mod:`stewart_kinematics.ros.message_accounting`), and checks them: counts that add up, codes
 from the registry, about one array a second. :func:`paced` yields on a monotonic schedule,
-and :func:`resident_kb` reads a process's resident memory.
+:func:`resident_kb` reads a process's resident memory, and :func:`descendants` and
+:func:`alive` find the processes a node started (a worker must not outlive its node).
 """
 
 from dataclasses import dataclass, field
 import itertools
+from pathlib import Path
 import threading
 import time
 from typing import Dict, List, Optional
@@ -66,6 +68,34 @@ def resident_kb(pid: int) -> Optional[int]:
     except (FileNotFoundError, ProcessLookupError):
         return None
     return None
+
+
+def descendants(pid: int) -> List[int]:
+    """Return the pids of every living descendant of a process, read from /proc."""
+    children: Dict[int, List[int]] = {}
+    for entry in Path('/proc').iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / 'stat').read_text().rsplit(')', 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(entry.name))
+    found, stack = [], [pid]
+    while stack:
+        for child in children.get(stack.pop(), []):
+            found.append(child)
+            stack.append(child)
+    return found
+
+
+def alive(pid: int) -> bool:
+    """Whether a process exists and is not a zombie."""
+    try:
+        state = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != 'Z'
 
 
 class SpinningClient:
@@ -194,13 +224,20 @@ class DiagnosticsLog:
         """Return how many arrays of ``node`` arrived."""
         return len(self.reports(node).stamps)
 
-    def settled(self, node: str, since: int) -> bool:
-        """Whether two reports of ``node`` after report ``since`` show no new message received."""
+    def settled(self, node: str, since: int, topics=None) -> bool:
+        """
+        Whether the last two reports of ``node``, after report ``since``, show nothing new.
+
+        :param topics: the input topics to look at (default: every status with counters); a
+            status of the node's own making, such as ik_node's ``command_stream``, counts for
+            as long as it runs.
+        """
         reports = self.reports(node)
         if len(reports.stamps) < since + 2:
             return False
         return all(len(history) >= 2 and history[-1] == history[-2]
-                   for history in reports.received.values())
+                   for name, history in reports.received.items()
+                   if topics is None or name.split(': ', 1)[-1] in topics)
 
     def problems(self, node: str, sent: Optional[Dict[str, int]] = None) -> List[str]:
         """

@@ -25,6 +25,10 @@ allows may be accepted (a rule between parameters, such as distinct frame names,
 refuse it). A parameter without a spec (``use_sim_time``, ``qos_overrides.*``) only gets the
 changes that must be refused: its meaning is rclpy's, and switching the clock is the soak's
 business.
+
+:func:`start_variant` draws start-up values of the read-only parameters that choose what a node
+does (streamed commands, a broadcast, the ramp's mode, queue depths...), so that a fuzz run
+also covers the code paths the shipped files leave off.
 """
 
 from dataclasses import dataclass
@@ -75,6 +79,10 @@ REFUSED = 'refused'
 EITHER = 'either'
 #: Integers worth trying on an integer parameter.
 HOSTILE_INTEGERS = (0, -1, 1, 2 ** 31, 2 ** 63 - 1, -2 ** 63, 10 ** 6)
+#: What a start-up variant leaves as the parameter files set it: the platform, its limits, its
+#: actuators and its frames, which the output checks and the plausible messages read.
+FIXED_AT_START = frozenset(spec.name for spec in parameters.GEOMETRY_PARAMETERS
+                           + parameters.ACTUATOR_PARAMETERS + parameters.FRAME_PARAMETERS)
 
 
 @dataclass(frozen=True)
@@ -245,3 +253,50 @@ def _as_checked(spec, value):
     if spec.value_type == parameters.DOUBLE_ARRAY:
         return [float(item) for item in value]
     return value
+
+
+def start_variant(rng: random.Random, share: float = 0.5) -> Dict[str, object]:
+    """
+    Draw start-up values for some read-only parameters of the package (not the platform's).
+
+    Each read-only parameter outside :data:`FIXED_AT_START` gets, with probability ``share``, a
+    value its spec allows: the other boolean, another of the quoted choices of a string, or a
+    number near its default (twice, half, or 10 or 100 where the default is 0: a rate that turns
+    a feature on). A node ignores the parameters it does not declare.
+
+    :returns: parameter name -> value, for ``-p name:=value`` (see :func:`argument`).
+    """
+    variant = {}
+    for spec in parameters.all_specs():
+        if not spec.read_only or spec.name in FIXED_AT_START or rng.random() >= share:
+            continue
+        default = spec.default
+        if spec.value_type == parameters.BOOL:
+            candidates = [not default]
+        elif spec.value_type == parameters.STRING:
+            candidates = [choice for choice in spec.constraints.split("'")[1::2]
+                          if choice != default]
+        elif spec.value_type == parameters.DOUBLE and isinstance(default, float) and (
+                math.isfinite(default)):
+            candidates = [default * 2.0, default / 2.0] if default else [10.0, 100.0]
+        elif spec.value_type == parameters.INTEGER and isinstance(default, int):
+            candidates = [default * 2, default // 2] if default else [1, 5]
+        else:
+            continue
+        candidates = [value for value in candidates if not spec.check(value)]
+        if candidates:
+            variant[spec.name] = rng.choice(candidates)
+    return variant
+
+
+def argument(name: str, value) -> str:
+    """Return ``name:=value`` as rcl reads a ``-p`` value (YAML): ``true``, ``1.0``, ``'x'``."""
+    if isinstance(value, bool):
+        text = 'true' if value else 'false'
+    elif isinstance(value, float):
+        text = repr(value)
+    elif isinstance(value, str):
+        text = "'" + value.replace("'", "''") + "'"
+    else:
+        text = str(value)
+    return f'{name}:={text}'

@@ -71,6 +71,7 @@ from stewart_kinematics.ros.interfaces import (
     SERVICE,
     SUBSCRIPTION,
 )
+from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.fuzz_client import DiagnosticsLog, paced, SpinningClient
 from stewart_kinematics.tools.fuzz_messages import (
@@ -80,10 +81,12 @@ from stewart_kinematics.tools.fuzz_messages import (
     summarize,
 )
 from stewart_kinematics.tools.fuzz_parameters import (
+    argument,
     EITHER,
     ParameterFuzzer,
     python_value,
     REFUSED,
+    start_variant,
 )
 from stewart_kinematics.tools.node_processes import (
     find_executable,
@@ -145,6 +148,9 @@ class FuzzSettings:
     :param huge: messages with a sequence of 10^5 elements among them.
     :param files: parameter files (default: :func:`parameter_files`).
     :param arguments: more ``--ros-args`` arguments for the node.
+    :param variant: start the node with a :func:`~stewart_kinematics.tools.fuzz_parameters.
+        start_variant` of its read-only parameters, drawn from the seed (a variant the node
+        refuses to start with, saying why, is reported and the run made without it).
     """
 
     node: str
@@ -155,11 +161,13 @@ class FuzzSettings:
     huge: int = 1
     files: Optional[Sequence[Path]] = None
     arguments: Sequence[str] = ()
+    variant: bool = True
 
     def replay_options(self) -> str:
         """Return the command-line options that replay this run."""
         return (f'--node {self.node} --seed {self.seed} --messages {self.messages} '
-                f'--rate {self.rate:g} --huge {self.huge}')
+                f'--rate {self.rate:g} --huge {self.huge}'
+                + ('' if self.variant else ' --no-variant'))
 
 
 @dataclass
@@ -181,12 +189,18 @@ class FuzzReport:
     #: The last messages sent to each input, in words (their mutations).
     recent: Dict[str, List[str]] = field(default_factory=dict)
     output: str = ''
+    #: The start-up variant the node ran with (``-p`` arguments), and why one was dropped.
+    variant: List[str] = field(default_factory=list)
+    variant_refused: str = ''
 
     def summary(self) -> str:
         """Return the run's figures in a few lines."""
         settings = self.settings
         kinds = ', '.join(f'{kind} {count}' for kind, count in sorted(self.kinds.items()))
         lines = [
+            f'FUZZ {settings.node} seed {settings.seed}, started with '
+            f'{" ".join(self.variant) or "the files alone"}'
+            + (f' (a variant refused: {self.variant_refused})' if self.variant_refused else ''),
             f'FUZZ {settings.node} seed {settings.seed}: {sum(self.sent.values())} messages in '
             f'{self.duration:.1f} s ({kinds}); sent by topic {dict(sorted(self.sent.items()))}',
             f'FUZZ {settings.node} outputs seen {dict(sorted(self.outputs.items()))}; counted '
@@ -368,16 +382,31 @@ def fuzz_node(settings: FuzzSettings, context=None) -> FuzzReport:
     :param context: the rclpy context of the fuzzer's node (default: the global one).
     :returns: the :class:`FuzzReport`; its ``problems`` are empty when every invariant holds.
     """
+    variant = []
+    if settings.variant:
+        drawn = start_variant(random.Random(f'{settings.seed} variant'))
+        variant = [word for name, value in sorted(drawn.items())
+                   for word in ('-p', argument(name, value))]
+    report = _fuzz_once(settings, variant, context)
+    if variant and report.variant_refused:
+        refused = report.variant_refused
+        report = _fuzz_once(settings, [], context)
+        report.variant_refused = refused
+    return report
+
+
+def _fuzz_once(settings: FuzzSettings, variant: List[str], context) -> FuzzReport:
+    """Fuzz a node started with ``variant`` (``-p`` arguments); see :func:`fuzz_node`."""
     interface = NODE_INTERFACES[settings.node]
     files = list(settings.files or parameter_files(settings.node))
-    report = FuzzReport(settings)
+    report = FuzzReport(settings, variant=variant[1::2])
     rng = random.Random(settings.seed)
     invariants = OutputInvariants.from_parameter_files(files, settings.node)
     hints = plausible_hints(files, settings.node)
     arguments = ['--ros-args']
     for path in files:
         arguments += ['--params-file', str(path)]
-    arguments += list(settings.arguments)
+    arguments += variant + list(settings.arguments)
     process = NodeProcess(find_executable(settings.node), arguments)
     client = SpinningClient(rclpy.create_node(f'stewart_fuzzer_{settings.node}',
                                               context=context))
@@ -388,11 +417,25 @@ def fuzz_node(settings: FuzzSettings, context=None) -> FuzzReport:
         code = process.stop()
         report.output = process.output()
         process.__exit__(None, None, None)
+    refusal = _start_refusal(report.output) if variant and not report.sent else ''
+    if refusal and code == EXIT_START_FAILED and 'Traceback' not in report.output:
+        # A variant the node cannot start with, and says why: allowed, not a problem.
+        report.variant_refused = refusal
+        report.problems = []
+        return report
     if code != 0:
         report.problems.append(f'{settings.node} exited with code {code} on SIGINT')
     if 'Traceback' in report.output:
         report.problems.append(f'{settings.node} printed a traceback')
     return report
+
+
+def _start_refusal(output: str) -> str:
+    """Return the reason of a node's fatal 'cannot start' log line, or ''."""
+    for line in output.splitlines():
+        if 'cannot start:' in line:
+            return line.split('cannot start:', 1)[1].strip()
+    return ''
 
 
 def _run(settings, interface, process, client, rng, invariants, hints, report):
@@ -494,7 +537,7 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
     # as a topic's does. The node may have applied a lost request's changes, or not.
     client.wait(requests.done, DEADLINE, [process])
     requests.forget_unanswered()
-    if not client.wait(lambda: diagnostics.settled(fqn, flood_end), SETTLE_DEADLINE,
+    if not client.wait(lambda: diagnostics.settled(fqn, flood_end, report.sent), SETTLE_DEADLINE,
                        [process]):
         report.problems.append(f'{settings.node} still receiving {SETTLE_DEADLINE} s after the '
                                f'flood (running: {process.running()})')
@@ -597,6 +640,10 @@ def parse_arguments(argv):
                         help='messages a second at most (default: 1000)')
     parser.add_argument('--huge', type=int, default=3,
                         help='messages with 10^5 elements per node and round (default: 3)')
+    parser.add_argument('--no-variant', dest='variant', action='store_false',
+                        help='start the nodes with the parameter files alone (default: with a '
+                             'start-up variant of their read-only parameters drawn from the '
+                             'seed)')
     arguments = parser.parse_args(argv)
     if arguments.messages < 1 or arguments.huge < 0:
         parser.error('--messages must be at least 1 and --huge at least 0')
@@ -616,7 +663,8 @@ def main(argv=None) -> int:
             for round_number in range(10 ** 9):
                 for node in nodes:
                     settings = FuzzSettings(node, seed + round_number, arguments.messages,
-                                            arguments.rate, huge=arguments.huge)
+                                            arguments.rate, huge=arguments.huge,
+                                            variant=arguments.variant)
                     report = fuzz_node(settings)
                     print(report.summary(), flush=True)
                     if report.problems:

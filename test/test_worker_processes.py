@@ -1,0 +1,70 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A node killed with SIGKILL leaves no process of its own behind.
+
+Found by the soak (benchmarks/soak.py): ik_node computes its workspace in a worker process
+(started through multiprocessing's forkserver, with a resource tracker); when ik_node was
+killed, the worker waited for jobs forever, and it, the forkserver and the tracker were still
+running twenty minutes later, three processes more for every kill. The node runs as a process
+with a workspace_markers subscriber (which starts the worker); its descendants are read from
+/proc before the kill and must all be gone within the deadline after it.
+"""
+
+import os
+from pathlib import Path
+import signal
+import time
+
+import pytest
+
+from stewart_kinematics.tools.fuzz_client import alive, descendants
+from stewart_kinematics.tools.node_processes import NodeProcess
+from visualization_msgs.msg import MarkerArray
+
+pytestmark = pytest.mark.process
+
+CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+#: Seconds the processes left behind have to exit.
+DEADLINE = 20.0
+
+
+def test_a_killed_ik_node_leaves_no_worker_process_behind(client):
+    """SIGKILL ik_node while its workspace worker runs: every process it started exits too."""
+    node = NodeProcess('ik_node', ['--ros-args', '--params-file',
+                                   str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
+                                   '--params-file', str(CONFIG_DIRECTORY / 'example_limits.yaml')])
+    left = []
+    try:
+        markers = []
+        client.node.create_subscription(MarkerArray, 'workspace_markers', markers.append, 10)
+        # The worker starts once workspace_markers has a subscriber; the markers prove it ran.
+        client.wait(lambda: markers, 'workspace_markers from the worker', [node])
+        started = descendants(node.process.pid)
+        assert started, 'ik_node started no worker process'
+        node.process.kill()
+        assert node.process.wait(DEADLINE) == -signal.SIGKILL
+        deadline = time.monotonic() + DEADLINE
+        while time.monotonic() < deadline and any(alive(pid) for pid in started):
+            time.sleep(0.1)
+        left = [pid for pid in started if alive(pid)]
+        commands = {pid: Path(f'/proc/{pid}/cmdline').read_bytes().replace(b'\0', b' ')[:120]
+                    for pid in left if alive(pid)}
+        assert not left, f'{len(left)} of {len(started)} processes left behind: {commands}'
+    finally:
+        for pid in left:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+        node.__exit__(None, None, None)
