@@ -16,9 +16,14 @@
 Whole-trajectory check: every sample of a timed trajectory against every limit.
 
 :func:`check_trajectory` samples a :class:`~stewart_kinematics.motion.pose_trajectory.
-TimedTrajectory` densely in time and reports the first sample that breaks a limit of the
-geometry (stroke, joint cones, singularity margin) or of the actuators (leg velocity, leg
-acceleration), naming the time, the waypoint segment, the leg and the limit.
+TimedTrajectory` piece by piece (between waypoints, and gridpoints of a retiming: see
+:meth:`~stewart_kinematics.motion.pose_trajectory.TimedTrajectory.sample_times`), at the
+validation rate but at most :data:`~stewart_kinematics.motion.pose_trajectory.
+MAX_PIECE_SAMPLES` samples in a piece, so that its cost is bounded whatever the trajectory
+lasts; beyond :data:`MAX_CHECK_SAMPLES` samples it refuses to check rather than run for
+minutes. It reports the first sample that breaks a limit of the geometry (stroke, joint cones,
+singularity margin) or of the actuators (leg velocity, leg acceleration), naming the time, the
+waypoints around it, the leg and the limit.
 
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
@@ -33,14 +38,19 @@ from stewart_kinematics.limits.checks import joint_angles, Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.kinematics import jacobian_condition, twist_jacobian
 from stewart_kinematics.model.velocities import leg_states, PoseSamples
-from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+from stewart_kinematics.motion.pose_trajectory import MAX_PIECE_SAMPLES, TimedTrajectory
+from stewart_kinematics.motion.retiming import raise_if_cancelled
 
 #: The leg speed limits, as :class:`~stewart_kinematics.limits.Violation` names them.
 SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 #: Default sampling rate of the whole-trajectory check, hertz.
 DEFAULT_VALIDATION_RATE = 1000.0
-#: Samples checked at once: bounds the memory of a long trajectory's check.
-CHECK_CHUNK = 20000
+#: Samples checked at once: bounds the memory of a long trajectory's check, and the time
+#: between two looks at the cancel flag (about 0.1 s).
+CHECK_CHUNK = 10000
+#: Most samples a check takes (a few seconds of work); a trajectory that needs more is
+#: refused with a reason instead (``complete`` False).
+MAX_CHECK_SAMPLES = 1_000_000
 #: Relative slack on the leg velocity and acceleration limits, for rounding only.
 SPEED_LIMIT_SLACK = 1e-9
 
@@ -52,14 +62,16 @@ class TrajectoryCheck:
 
     :param accepted: True when no sample breaks a limit.
     :param reason: ``''``, or what the first failing sample breaks: time, segment, legs,
-        limits.
+        limits; or why the check was not made.
     :param time: clock time of the first failing sample, seconds, or ``None``.
-    :param segment: ``(k, k + 1)``, the waypoints around it, or ``None``.
+    :param segment: ``(k, k + 1)``, the waypoints around it (numbered as given), or ``None``.
     :param violations: every limit the first failing sample breaks.
     :param samples: how many samples were checked.
     :param peak_velocity_ratio: largest ``|leg velocity| / leg_velocity_max`` seen (0 when
         there is no velocity limit).
     :param peak_acceleration_ratio: likewise for the acceleration.
+    :param complete: False when the check was not made: it would need more than
+        ``max_samples`` samples (``accepted`` is then False too).
     """
 
     accepted: bool
@@ -70,26 +82,43 @@ class TrajectoryCheck:
     samples: int = 0
     peak_velocity_ratio: float = 0.0
     peak_acceleration_ratio: float = 0.0
+    complete: bool = True
 
 
 def check_trajectory(trajectory: TimedTrajectory, geometry,
                      actuator_limits: Optional[ActuatorLimits] = None, *,
-                     validation_rate: float = DEFAULT_VALIDATION_RATE) -> TrajectoryCheck:
+                     validation_rate: float = DEFAULT_VALIDATION_RATE,
+                     max_samples: int = MAX_CHECK_SAMPLES, cancel=None) -> TrajectoryCheck:
     """
     Check every sample of a timed trajectory against every limit; stop at the first failure.
 
-    Samples every ``1 / validation_rate`` seconds, at every waypoint and at the end, against
-    the stroke, joint cones and singularity margin of ``geometry`` and the leg velocity and
-    acceleration limits of ``actuator_limits`` (``None``: none). Vectorised over samples, in
-    chunks of :data:`CHECK_CHUNK`.
+    Samples each piece of the trajectory (between waypoints, and between gridpoints of a
+    retiming) at both ends and every ``1 / validation_rate`` seconds or closer, with at most
+    :data:`~stewart_kinematics.motion.pose_trajectory.MAX_PIECE_SAMPLES` intervals per piece,
+    against the stroke, joint cones and singularity margin of ``geometry`` and the leg
+    velocity and acceleration limits of ``actuator_limits`` (``None``: none). Vectorised over
+    samples, in chunks of :data:`CHECK_CHUNK`.
 
+    :param max_samples: a trajectory that needs more samples is not checked: the result says
+        so (``complete`` False), before any sample is computed.
+    :param cancel: ``None``, or an event: set, the check stops between two chunks with
+        :class:`~stewart_kinematics.motion.retiming.Cancelled`.
     :returns: a :class:`TrajectoryCheck`; its ``reason`` names the first failing time, the
-        waypoint segment (points k and k + 1), and each leg and limit broken there.
+        waypoints around it (as numbered in the input), and each leg and limit broken there.
     """
     actuator_limits = actuator_limits or ActuatorLimits()
+    count = trajectory.sample_count(validation_rate)
+    if count > max_samples:
+        return TrajectoryCheck(False, (
+            f'checking the trajectory ({trajectory.duration:.6g} s, '
+            f'{trajectory.path.waypoint_count:,} waypoints) at {validation_rate:g} Hz, at most '
+            f'{MAX_PIECE_SAMPLES} samples between two waypoints, needs {count:,} samples, more '
+            f'than the {max_samples:,} a check may take: send it in parts, or lower '
+            'validation_rate'), complete=False)
     times = trajectory.sample_times(validation_rate)
     peak_velocity = peak_acceleration = 0.0
     for start in range(0, times.shape[0], CHECK_CHUNK):
+        raise_if_cancelled(cancel)
         chunk = times[start:start + CHECK_CHUNK]
         poses = trajectory.sample(chunk)
         legs = leg_states(geometry, poses)
@@ -100,16 +129,16 @@ def check_trajectory(trajectory: TimedTrajectory, geometry,
         if failing.size:
             first = int(failing[0])
             time = float(chunk[first])
-            segment = int(trajectory.segments(np.array([time]))[0])
+            segment = trajectory.path.points(int(trajectory.segments(np.array([time]))[0]))
             violations = tuple(
                 Violation(name, leg + 1 if values.ndim == 2 else None,
                           float(values[first, leg] if values.ndim == 2 else values[first]),
                           allowed, unit)
                 for name, mask, values, (allowed, unit) in broken
                 for leg in np.flatnonzero(np.atleast_1d(mask[first])))
-            reason = (f't = {time:.4f} s, between points {segment} and {segment + 1}: '
+            reason = (f't = {time:.4f} s, between points {segment[0]} and {segment[1]}: '
                       + '; '.join(str(violation) for violation in violations))
-            return TrajectoryCheck(False, reason, time, (segment, segment + 1), violations,
+            return TrajectoryCheck(False, reason, time, segment, violations,
                                    start + first + 1, peak_velocity, peak_acceleration)
     return TrajectoryCheck(True, samples=times.shape[0], peak_velocity_ratio=peak_velocity,
                            peak_acceleration_ratio=peak_acceleration)
