@@ -42,12 +42,14 @@ ASSEMBLY_MODE_MARGIN = 'assembly_mode_margin'
 NEAR_SINGULARITY = 'near_singularity'
 #: Refusals of a trajectory: only leg velocity or acceleration broken, no timing found, a
 #: trajectory that is malformed (for a caller that converts messages), one that needs more
-#: samples than a check may take, and one replaced by a newer one before it was decided.
+#: samples than a check may take, one replaced by a newer one before it was decided, and an
+#: unexpected error while planning it (a bug, with the error's text).
 TOO_FAST = 'too_fast'
 RETIMING_FAILED = 'retiming_failed'
 INVALID_TRAJECTORY = 'invalid_trajectory'
 TRAJECTORY_TOO_LONG = 'trajectory_too_long'
 SUPERSEDED = 'superseded'
+PLANNING_ERROR = 'planning_error'
 
 
 @dataclass(frozen=True)

@@ -23,15 +23,27 @@ limits of the geometry (the same parameters as ik_node) and refuses to start, li
 failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp.
 
 Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
-the platform) and ``pose_path`` (nav_msgs/msg/Path, waypoints without timing) are checked whole
-and timed by :func:`stewart_kinematics.plan_motion` (retimed with ``retime`` or for a path);
-an accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
+the tool frame, with its twists and accelerations when given) and ``pose_path``
+(nav_msgs/msg/Path, waypoints without timing), in the base frame or the user frame, are
+planned by :class:`stewart_kinematics.MotionPlanner`: moved from the tool frame to the
+platform frame, checked whole and timed (retimed with ``retime``, and always for a path). An
+accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
 actuators' positions, velocities and accelerations, for joint_trajectory_controller) and, with
-``play``, as poses on ``target_pose`` at ``publish_rate``. A refused one publishes nothing; the
-reason (time, segment, leg, limit) goes to the log and ``/diagnostics``.
+``play``, as poses of the tool frame on ``target_pose`` at ``publish_rate``. A refused one
+publishes nothing; the reason (time, waypoints, leg, limit) goes to the log and
+``/diagnostics``.
+
+Planning runs in a worker thread (:class:`PlanningWorker`), never in the executor: the node
+answers parameters, services and diagnostics, and takes new messages, while a long trajectory
+is checked. A new trajectory or path replaces the one being planned, which is answered with
+``superseded``; a stop (SIGINT) cancels it within one step of the work (about 0.1 s). A
+parameter changed at run time (tool frame, ``retime``, ``speed_scale``, ``validation_rate``,
+``play``) applies from the next message on, exactly as it would from a start-up with it.
 """
 
+from dataclasses import dataclass, field
 import threading
+from typing import Any, Callable, Optional
 
 from geometry_msgs.msg import Pose
 from nav_msgs.msg import Path
@@ -40,15 +52,18 @@ from rclpy.node import Node
 from std_msgs.msg import Header
 
 from stewart_kinematics import limits, parameters
-from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
+from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY, PLANNING_ERROR, SUPERSEDED
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
-from stewart_kinematics.motion.planning import plan_motion
-from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+from stewart_kinematics.motion.planning import MotionPlanner
 from stewart_kinematics.motion.ramp import Ramp
-from stewart_kinematics.motion.retiming import load_retiming
-from stewart_kinematics.parameters import frames_from_parameters, geometry_from_parameters
+from stewart_kinematics.motion.retiming import Cancelled, load_retiming
+from stewart_kinematics.parameters import (
+    frame_parameters_reason,
+    frames_from_parameters,
+    geometry_from_parameters,
+)
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_trajectory_message,
@@ -65,10 +80,13 @@ from stewart_kinematics.ros.node_main import (
 from stewart_kinematics.ros.ros_parameters import declare_parameters
 from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
-#: Refusal code of a trajectory sent while the tool frame is offset from the platform frame.
-TOOL_FRAME_NOT_SUPPORTED = 'tool_frame_not_supported'
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
+#: Longest a stopping node waits for the worker to leave the step it is in, seconds.
+WORKER_STOP_TIMEOUT = 1.0
+#: Parameters whose run-time change makes a new planner (applied from the next message on).
+PLANNER_PARAMETERS = frozenset(
+    spec.name for spec in parameters.FRAME_PARAMETERS + parameters.MOTION_PARAMETERS)
 
 
 class TrajectoryNode(Node):
@@ -76,10 +94,11 @@ class TrajectoryNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        values = declare_parameters(
-            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
-            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
+        specs = (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
+                 + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
+                 + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
+        values = declare_parameters(self, specs, on_change=self.on_parameter_change,
+                                    check=frame_parameters_reason)
         self.settings = values
         self.geometry = geometry_from_parameters(values)
         self.actuator_limits = ActuatorLimits.from_parameters(values)
@@ -87,14 +106,15 @@ class TrajectoryNode(Node):
         self.ramp = Ramp.from_parameters(values)
         self.rows = self.ramp.rows
         self.frames = frames_from_parameters(values)
+        self.planner = self.make_planner(values)
         if values['mode'] != 'off':
             # The ramp's poses are the tool frame's, as ik_node reads them: check where they
             # put the platform.
             times, poses = self.planned_samples()
             limits.check_samples(self.geometry, times, self.frames.platform_pose_vectors(poses))
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
-        # and the ramp, not in the first callback; a callback that needs them meanwhile waits
-        # for the import to finish (Python's import lock).
+        # and the ramp, not in the first plan; a plan that needs them meanwhile waits for the
+        # import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
         depth = values['queue_depth']
         self.publisher = create_output_publisher(self, Pose, 'target_pose', depth)
@@ -103,6 +123,7 @@ class TrajectoryNode(Node):
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
+        self.worker = PlanningWorker(self, self.on_planned)
         create_input_subscription(
             self, MultiDOFJointTrajectory, 'pose_trajectory', self.on_pose_trajectory, depth)
         create_input_subscription(self, Path, 'pose_path', self.on_pose_path, depth)
@@ -119,6 +140,26 @@ class TrajectoryNode(Node):
             self.get_logger().info(
                 f'{values["mode"]} ramp of {len(self.rows)} rows, '
                 + ('looping' if values['loop'] else 'once'))
+
+    def make_planner(self, values) -> 'PlanSettings':
+        """Build the planner and the output settings of ``values``, as at start-up."""
+        frames = frames_from_parameters(values)
+        return PlanSettings(
+            MotionPlanner(self.geometry, self.actuator_limits, frames,
+                          retime=values['retime'], speed_scale=values['speed_scale'],
+                          validation_rate=values['validation_rate']),
+            self.actuators, values['publish_rate'], values['play'], values['base_frame'])
+
+    def on_parameter_change(self, name, value):
+        """Apply a validated run-time change: a new planner for the next message."""
+        if name in PLANNER_PARAMETERS:
+            self.settings = dict(self.settings, **{name: value})
+            self.planner = self.make_planner(self.settings)
+
+    def destroy_node(self):
+        """Stop the worker (a plan under way is cancelled), then destroy the node."""
+        self.worker.close()
+        return super().destroy_node()
 
     def planned_samples(self):
         """
@@ -186,77 +227,224 @@ class TrajectoryNode(Node):
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 
     def on_pose_trajectory(self, message: MultiDOFJointTrajectory):
-        """Check, time (with ``retime``) and publish a platform trajectory, or refuse it."""
+        """Hand a platform trajectory to the worker: checked and timed (``retime``) there."""
         self.trajectory_accounting.receive()
-        try:
-            path = PoseTrajectory.from_quaternions(
-                **pose_trajectory_from_message(message, self.settings['base_frame']))
-        except ValueError as error:
-            self.trajectory_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
-            return
-        self.plan(path, self.settings['retime'], self.trajectory_accounting)
+        settings = self.planner
+        self.worker.submit(PlanningJob(
+            self.trajectory_accounting, settings, len(message.points), lambda cancel: (
+                settings.planner.plan_trajectory(**pose_trajectory_from_message(message),
+                                                 cancel=cancel))))
 
     def on_pose_path(self, message: Path):
-        """Check, retime and publish a path of waypoints without timing, or refuse it."""
+        """Hand a path of waypoints without timing to the worker: always retimed there."""
         self.path_accounting.receive()
-        try:
-            positions, quaternions = path_from_message(message, self.settings['base_frame'])
-            path = PoseTrajectory.path(self.geometry, positions,
-                                       quaternion_to_matrix(quaternions))
-        except ValueError as error:
-            self.path_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
-            return
-        self.plan(path, True, self.path_accounting)
+        settings = self.planner
 
-    def plan(self, path, retime, accounting):
-        """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
-        if not self.frames.tool_pose.is_identity():
-            # Trajectories are interpolated and checked as platform-frame poses; with another
-            # tool frame their velocities would have to be moved to it too.
-            accounting.reject(Finding(TOOL_FRAME_NOT_SUPPORTED, (
-                f'{accounting.topic} is planned for the platform frame, but tool_frame '
-                f"'{self.frames.tool_frame}' is offset from it: set tool_frame_position and "
-                'tool_frame_orientation_deg to zero to send trajectories')))
+        def plan(cancel):
+            positions, quaternions, frame_id = path_from_message(message)
+            return settings.planner.plan_path(positions, quaternions, frame_id, cancel=cancel)
+        self.worker.submit(PlanningJob(self.path_accounting, settings, len(message.poses), plan))
+
+    def on_planned(self, job: 'PlanningJob', outcome):
+        """
+        Publish a plan the worker finished, or count its refusal (executor thread).
+
+        :param outcome: a :class:`PlannedTrajectory`, a :class:`Finding` (superseded, or an
+            error of the worker), never an exception.
+        """
+        accounting = job.accounting
+        if isinstance(outcome, Finding):
+            accounting.reject(outcome)
             return
-        plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
-                           speed_scale=self.settings['speed_scale'],
-                           validation_rate=self.settings['validation_rate'])
+        plan = outcome.plan
         if not plan.accepted:
             accounting.reject(plan.refusal)
             return
-        points = leg_trajectory(plan.trajectory, self.geometry, self.actuators,
-                                self.settings['publish_rate'])
-        header = Header(stamp=self.get_clock().now().to_msg(),
-                        frame_id=self.settings['base_frame'])
-        accounting.publish(self.leg_trajectory_publisher,
-                           joint_trajectory_message(header, points))
+        message = outcome.message
+        message.header = Header(stamp=self.get_clock().now().to_msg(),
+                                frame_id=job.settings.base_frame)
+        accounting.publish(self.leg_trajectory_publisher, message)
         self.get_logger().info(
-            f'{accounting.topic}: {path.waypoint_count} waypoints accepted, '
+            f'{accounting.topic}: {job.waypoints} waypoints accepted, '
             + ('retimed to ' if plan.retimed else 'timed ')
-            + f'{plan.trajectory.duration:.3f} s; {len(points.times)} points on leg_trajectory')
-        if self.settings['play']:
-            self.play(plan.trajectory)
+            + f'{plan.trajectory.duration:.3f} s; {len(message.points)} points on '
+            'leg_trajectory')
+        if job.settings.play:
+            self.play(plan.trajectory, job.settings)
 
-    def play(self, trajectory):
-        """Stream a timed trajectory's poses on ``target_pose``; a new one replaces it."""
+    def play(self, trajectory, settings: 'PlanSettings'):
+        """Stream a timed trajectory's tool poses on ``target_pose``; a new one replaces it."""
         if self.play_timer is not None:
             self.play_timer.cancel()
             self.destroy_timer(self.play_timer)
-        self.playing = trajectory
+        self.playing = trajectory, settings.planner.frames
         self.play_start = self.get_clock().now()
-        self.play_timer = self.create_timer(1.0 / self.settings['publish_rate'],
-                                            self.publish_playing)
+        self.play_timer = self.create_timer(1.0 / settings.publish_rate, self.publish_playing)
         self.publish_playing()
 
     def publish_playing(self):
-        """Publish the pose of the trajectory being played at the current time."""
+        """Publish the tool frame's pose on the trajectory being played, at the current time."""
+        trajectory, frames = self.playing
         elapsed = (self.get_clock().now() - self.play_start).nanoseconds * 1e-9
-        duration = self.playing.duration
-        sample = self.playing.sample([min(elapsed, duration)])
-        self.publisher.publish(pose_message(sample.positions[0], sample.rotations[0]))
+        duration = trajectory.duration
+        sample = trajectory.sample([min(elapsed, duration)])
+        tool = frames.tool_from_platform(Transform(sample.positions[0], sample.rotations[0]))
+        self.publisher.publish(pose_message(tool.position, tool.rotation))
         self.published += 1
         if elapsed >= duration:
             self.play_timer.cancel()
+
+
+@dataclass(frozen=True)
+class PlanSettings:
+    """
+    What a trajectory is planned and published with: one snapshot of the parameters.
+
+    :param planner: the core's planner (geometry, limits, frames, retiming, check rate).
+    :param actuators: joint names and offsets of leg_trajectory.
+    :param publish_rate: points per second of leg_trajectory, and of the poses played.
+    :param play: also play an accepted trajectory on target_pose.
+    :param base_frame: frame of leg_trajectory's header.
+    """
+
+    planner: MotionPlanner
+    actuators: ActuatorInterface
+    publish_rate: float
+    play: bool
+    base_frame: str
+
+
+@dataclass
+class PlanningJob:
+    """
+    One message to plan in the worker.
+
+    :param accounting: the input's message accounting (where its answer is counted).
+    :param settings: the parameters it is planned with (those when it arrived).
+    :param waypoints: how many waypoints the message has, for the log.
+    :param plan: ``plan(cancel) -> MotionPlan``: converts the message and plans it.
+    """
+
+    accounting: Any
+    settings: PlanSettings
+    waypoints: int
+    plan: Callable
+    cancel: threading.Event = field(default_factory=threading.Event)
+
+    def run(self):
+        """
+        Plan, then sample and convert an accepted plan (worker thread).
+
+        :returns: a :class:`PlannedTrajectory`, or the :class:`Finding` of a message that
+            cannot be converted.
+        :raises Cancelled: when ``cancel`` is set meanwhile.
+        """
+        try:
+            plan = self.plan(self.cancel)
+        except ValueError as error:   # the message cannot be converted
+            return Finding(INVALID_TRAJECTORY, str(error))
+        if not plan.accepted:
+            return PlannedTrajectory(plan)
+        points = leg_trajectory(plan.trajectory, self.settings.planner.geometry,
+                                self.settings.actuators, self.settings.publish_rate)
+        return PlannedTrajectory(plan, joint_trajectory_message(Header(), points))
+
+
+@dataclass(frozen=True)
+class PlannedTrajectory:
+    """An answer of the worker: the plan and, accepted, its leg_trajectory message."""
+
+    plan: Any
+    message: Optional[JointTrajectory] = None
+
+
+class PlanningWorker:
+    """
+    A thread that plans one message at a time, off the executor; the newest replaces the rest.
+
+    :meth:`submit` (executor thread) makes a job the next one: a job still waiting is answered
+    ``superseded`` at once, and the one running is cancelled (its work stops at its next step
+    and it is answered ``superseded`` too). Each answer goes back to the executor through a
+    guard condition, which calls ``on_done(job, outcome)`` there, so that all publishing and
+    counting happens on the executor. An unexpected error in the work (a bug) is answered with
+    ``planning_error`` and the thread goes on. :meth:`close` cancels the work and waits at
+    most :data:`WORKER_STOP_TIMEOUT` for the thread (a daemon, so it never holds up the exit).
+
+    :param node: the node whose executor gets the answers.
+    :param on_done: ``on_done(job, outcome)``, outcome a :class:`PlannedTrajectory` or a
+        :class:`Finding`.
+    """
+
+    def __init__(self, node, on_done):
+        self.node = node
+        self.on_done = on_done
+        self._condition = threading.Condition()
+        self._next = None
+        self._running = None
+        self._answers = []
+        self._closed = False
+        self._handoff = node.create_guard_condition(self._deliver)
+        self._thread = threading.Thread(target=self._serve, name='trajectory planning',
+                                        daemon=True)
+        self._thread.start()
+
+    def submit(self, job: PlanningJob) -> None:
+        """Plan ``job`` next: it replaces a job waiting, and cancels the one running."""
+        with self._condition:
+            replaced, self._next = self._next, job
+            if self._running is not None:
+                self._running.cancel.set()
+            self._condition.notify()
+        if replaced is not None:
+            self.on_done(replaced, _superseded(replaced))
+
+    def _serve(self):
+        while True:
+            with self._condition:
+                while self._next is None and not self._closed:
+                    self._condition.wait()
+                if self._closed:
+                    return
+                job, self._next = self._next, None
+                self._running = job
+            try:
+                outcome = job.run()
+            except Cancelled:
+                outcome = _superseded(job)
+            except Exception as error:  # noqa: B902 - a bug must not leave messages unanswered
+                outcome = Finding(PLANNING_ERROR, f'planning failed unexpectedly: '
+                                  f'{type(error).__name__}: {error}')
+            with self._condition:
+                self._running = None
+                if self._closed:
+                    return
+                self._answers.append((job, outcome))
+            self._handoff.trigger()
+
+    def _deliver(self):
+        """Hand the finished answers to ``on_done`` (executor thread)."""
+        with self._condition:
+            answers, self._answers = self._answers, []
+        for job, outcome in answers:
+            self.on_done(job, outcome)
+
+    def close(self) -> None:
+        """Cancel the work under way, stop the thread, free the guard condition."""
+        with self._condition:
+            self._closed = True
+            if self._running is not None:
+                self._running.cancel.set()
+                self.node.get_logger().info(
+                    f'{self._running.accounting.topic}: planning cancelled, the node stops')
+            self._condition.notify()
+        self._thread.join(WORKER_STOP_TIMEOUT)
+        self.node.destroy_guard_condition(self._handoff)
+
+
+def _superseded(job):
+    """Return the answer of a job that a newer message replaced."""
+    return Finding(SUPERSEDED, f'{job.accounting.topic}: replaced by a newer trajectory or path '
+                   'before it was decided')
 
 
 def main(args=None) -> int:
