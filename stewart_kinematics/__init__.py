@@ -82,6 +82,8 @@ from stewart_kinematics.parameters import (
     frames_from_parameters,
     geometry_from_parameters,
     load_geometry,
+    load_settings,
+    SolverSettings,
 )
 
 __all__ = [
@@ -118,6 +120,7 @@ __all__ = [
     'LegTrajectory',
     'LegVelocityCommand',
     'load_geometry',
+    'load_settings',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'measurement_poses',
@@ -134,6 +137,7 @@ __all__ = [
     'Ramp',
     'retime',
     'SingularPoseError',
+    'SolverSettings',
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',

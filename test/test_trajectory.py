@@ -26,6 +26,7 @@ import pytest
 from reference import TABLE_3, TABLE_3_END
 
 from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.parameters import RampSettings
 
 pytestmark = pytest.mark.core
 
@@ -205,10 +206,10 @@ def test_step_of_the_wrong_sign_is_named_in_degrees():
                         [0.0, 0.0, 0.0], [-1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
 
 
-def test_from_parameters_names_the_parameters():
-    """Ramp.from_parameters adds the parameter names to a table error."""
+def test_from_settings_names_the_parameters():
+    """Ramp.from_settings adds the parameter names to a table error."""
     values = {'position_start': [0.0, 0.0, 0.0], 'position_step': [0.1, 0.0, 0.0],
               'position_end': [0.35, 0.0, 0.0], 'orientation_start_deg': [0.0, 0.0, 0.0],
               'orientation_step_deg': [0.0, 0.0, 0.0], 'orientation_end_deg': [0.0, 0.0, 0.0]}
     with pytest.raises(ValueError, match='not a whole number.*parameters position_start'):
-        Ramp.from_parameters(values)
+        Ramp.from_settings(RampSettings(**values))

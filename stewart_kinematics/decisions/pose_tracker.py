@@ -37,13 +37,13 @@ geometry, or that jumped to another assembly mode; an accepted solution near a s
 comes with a warning. Nothing raises for lengths it cannot use, and nothing here imports ROS.
 """
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
 import math
 from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import findings, limits, parameters
+from stewart_kinematics import findings, limits
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.model.kinematics import (
@@ -53,34 +53,7 @@ from stewart_kinematics.model.kinematics import (
 )
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
-
-
-@dataclass(frozen=True)
-class TrackerSettings:
-    """
-    The settings of a :class:`PoseTracker`: the solver parameters of fk_node, same names.
-
-    See :data:`stewart_kinematics.parameters.SOLVER_PARAMETERS` for each one's meaning,
-    unit and allowed values; an invalid value raises ``ValueError`` naming it.
-    """
-
-    tolerance: float = 1e-12
-    max_iterations: int = 50
-    near_singularity_condition: float = 100.0
-    pose_tolerance: float = 1e-9
-    assembly_guard_length_change: float = 0.005
-    assembly_guard_position_change: float = 0.05
-    assembly_guard_angle_change_deg: float = 10.0
-    refuse_ambiguous_start: bool = False
-
-    def __post_init__(self):
-        parameters.check_values(
-            parameters.SOLVER_PARAMETERS,
-            {field.name: getattr(self, field.name) for field in fields(self)})
-
-
-#: The names of the settings, as parameter names.
-SETTING_NAMES = tuple(field.name for field in fields(TrackerSettings))
+from stewart_kinematics.parameters.settings import SolverSettings
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,14 +119,13 @@ class PoseTracker:
     compares with. :meth:`reset` forgets it.
 
     :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
-    :param settings: :class:`TrackerSettings` fields by name (``tolerance=1e-10``, ...).
-    :raises ValueError: for an unknown or invalid setting.
+    :param settings: the solver's tolerance, iterations and checks (fk_node's solver
+        parameters); default: every default, ``SolverSettings()``.
     """
 
-    def __init__(self, geometry, **settings):
+    def __init__(self, geometry, settings: Optional[SolverSettings] = None):
         self.geometry = geometry
-        self.settings = TrackerSettings()
-        self.configure(**settings)
+        self.settings = SolverSettings() if settings is None else settings
         #: The pose the next solve starts from: the last accepted one, or home after a reset.
         self.last_pose = geometry.home_pose
         #: The leg lengths of the last accepted pose, metres, or ``None`` after a reset.
@@ -164,21 +136,15 @@ class PoseTracker:
         #: After a start or reset: the last start_ambiguity check, with its lengths.
         self._start_check = None
 
-    @classmethod
-    def from_parameters(cls, geometry, values: dict) -> 'PoseTracker':
-        """Build a tracker from parameter values, such as a node's; other names are ignored."""
-        return cls(geometry, **{name: values[name] for name in SETTING_NAMES if name in values})
-
-    def configure(self, **settings):
+    def configure(self, settings: SolverSettings):
         """
-        Change settings by name, such as the tolerance (``tolerance=1e-10``).
+        Take new settings from the next update on, such as ``settings.replace(tolerance=1e-10)``.
 
-        :raises ValueError: for an unknown name or an invalid value; nothing changes then.
+        The state (the last solution) is kept.
         """
-        unknown = sorted(set(settings) - set(SETTING_NAMES))
-        if unknown:
-            raise ValueError(f'unknown tracker setting(s) {unknown}; known: {SETTING_NAMES}')
-        self.settings = replace(self.settings, **settings)
+        if not isinstance(settings, SolverSettings):
+            raise TypeError(f'settings must be SolverSettings, got {type(settings).__name__}')
+        self.settings = settings
 
     def reset(self, pose=None):
         """
@@ -327,7 +293,7 @@ class PoseTracker:
              ('search_complete', str(check.complete))))
 
 
-def assembly_mode_jump(settings: TrackerSettings, last_pose, last_lengths, pose,
+def assembly_mode_jump(settings: SolverSettings, last_pose, last_lengths, pose,
                        lengths) -> Optional[Finding]:
     """
     Say why ``pose`` looks like a jump to another assembly mode, or return ``None``.

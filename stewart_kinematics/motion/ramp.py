@@ -26,6 +26,7 @@ import math
 import numpy as np
 
 from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.parameters.settings import RampSettings
 
 #: Relative slack when checking that (end - start) / step is a whole number of steps.
 STEP_COUNT_TOLERANCE = 1e-9
@@ -88,18 +89,16 @@ class Ramp:
         object.__setattr__(self, 'step_count', next(iter(counts.values()), 0))
 
     @classmethod
-    def from_parameters(cls, values: dict) -> 'Ramp':
+    def from_settings(cls, settings: RampSettings) -> 'Ramp':
         """
-        Build a ramp from the trajectory node's parameter values (metres and degrees).
+        Build a ramp from the trajectory node's ramp settings (metres and degrees).
 
-        :param values: parameter name -> value, with the names of
-            :data:`stewart_kinematics.parameters.RAMP_PARAMETERS`.
         :raises ValueError: naming the axis and its parameters, if the table is inconsistent.
         """
         names = ('position_start', 'position_step', 'position_end',
                  'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')
         try:
-            return cls.from_table(*(values[name] for name in names))
+            return cls.from_table(*(getattr(settings, name) for name in names))
         except ValueError as error:
             raise ValueError(f'{error} (parameters {", ".join(names)})') from error
 

@@ -44,25 +44,28 @@ limits and none near the last known pose.
 import math
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
-from geometry_msgs.msg import Pose, PoseStamped, Twist
+from geometry_msgs.msg import PoseStamped
 import numpy as np
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
-from stewart_kinematics import findings, parameters
+from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import PoseTracker, SETTING_NAMES
+from stewart_kinematics.decisions.pose_tracker import PoseTracker
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    FkNodeSettings,
     frame_parameters_reason,
-    frames_from_parameters,
-    geometry_from_parameters,
+    frames_from_settings,
+    geometry_from_settings,
+    SolverSettings,
 )
+from stewart_kinematics.ros.interfaces import FK_NODE
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
     MessageAccounting,
@@ -76,11 +79,12 @@ from stewart_kinematics.ros.message_conversions import (
     twist_to_message,
 )
 from stewart_kinematics.ros.node_main import (
+    create_declared_service,
     create_input_subscription,
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 
 
@@ -89,63 +93,60 @@ class FkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        values = declare_parameters(
-            self,
-            parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.SOLVER_PARAMETERS + parameters.ASSEMBLY_MODE_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.FK_FRAME_PARAMETERS
-            + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
-        self.geometry = geometry_from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
-        self.tracker = PoseTracker.from_parameters(self.geometry, values)
+        self.settings = declare_settings(self, FkNodeSettings, on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
+        self.tracker = PoseTracker(self.geometry, settings.solver)
         # Replaced whole when a tool frame parameter changes: one tree per message.
-        self.frames = frames_from_parameters(values)
-        self.estimated_pose_frame = values['estimated_pose_frame'] or self.frames.base_frame
+        self.frames = frames_from_settings(settings.frames)
+        self.estimated_pose_frame = (settings.fk_frames.estimated_pose_frame
+                                     or self.frames.base_frame)
         self.frames.reference(self.estimated_pose_frame)   # a ValueError stops the start
-        depth = values['queue_depth']
-        self.pose_publisher = create_output_publisher(self, Pose, 'estimated_pose', depth)
+        depth = settings.queue.queue_depth
+        self.pose_publisher = create_output_publisher(self, FK_NODE['estimated_pose'], depth)
         self.stamped_publisher = create_output_publisher(
-            self, PoseStamped, 'estimated_pose_stamped', depth)
-        self.twist_publisher = create_output_publisher(self, Twist, 'estimated_twist', depth)
-        self.tf = TransformBroadcaster(self) if values['publish_tf'] else None
+            self, FK_NODE['estimated_pose_stamped'], depth)
+        self.twist_publisher = create_output_publisher(self, FK_NODE['estimated_twist'], depth)
+        self.tf = TransformBroadcaster(self, dynamic=FK_NODE['/tf'], static=FK_NODE[
+            '/tf_static']) if settings.fk_frames.publish_tf else None
         if self.tf is not None:
             self.tf.send_static(self.frames.static_transforms(), self.get_clock().now().to_msg())
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
         self.velocity_accounting = diagnostics.accounting('leg_velocities')
+        create_input_subscription(self, FK_NODE['leg_lengths'], self.on_leg_lengths, depth)
+        create_input_subscription(self, FK_NODE['joint_states'], self.on_joint_states, depth)
         create_input_subscription(
-            self, Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
-        create_input_subscription(self, JointState, 'joint_states', self.on_joint_states, depth)
-        create_input_subscription(
-            self, Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
-        self.create_service(Trigger, 'reset_tracker', self.on_reset_tracker)
+            self, FK_NODE['leg_velocities'], self.on_leg_velocities, depth)
+        create_declared_service(self, FK_NODE['reset_tracker'], self.on_reset_tracker)
         self.margin = None
-        if values['assembly_mode_margin_period'] > 0.0:
+        margin = settings.assembly_modes
+        if margin.assembly_mode_margin_period > 0.0:
             self.margin = AssemblyModeMarginReport(
                 self, diagnostics, AssemblyModeMarginMonitor(
-                    self.geometry, values['assembly_mode_margin_warning']))
+                    self.geometry, margin.assembly_mode_margin_warning))
             diagnostics.reporters.append(self.margin)   # with the inputs, once a second
-            self.create_timer(values['assembly_mode_margin_period'], self.on_margin_timer)
+            self.create_timer(margin.assembly_mode_margin_period, self.on_margin_timer)
         self.get_logger().info(
-            f'ready: tolerance {values["tolerance"]:g} m, '
-            f'at most {values["max_iterations"]} iterations')
+            f'ready: tolerance {settings.solver.tolerance:g} m, '
+            f'at most {settings.solver.max_iterations} iterations')
 
     def on_parameter_change(self, name, value):
         """Pass a solver parameter (already validated) to the tracker; take a new tool frame."""
+        self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             old = self.frames
-            self.frames = frames_from_parameters(
-                {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameters.FRAME_PARAMETERS})
+            self.frames = frames_from_settings(self.settings.frames)
             if self.tf is not None:
                 if old.tool_frame != self.frames.tool_frame:
                     self.tf.forget_static(old.tool_frame)
                 self.tf.send_static(self.frames.static_transforms(),
                                     self.get_clock().now().to_msg())
-        if name in SETTING_NAMES:
-            self.tracker.configure(**{name: value})
+        if name in SolverSettings.names():
+            self.tracker.configure(self.settings.solver)
         if name == 'assembly_mode_margin_warning' and self.margin is not None:
             self.margin.monitor.warning_distance = value
 

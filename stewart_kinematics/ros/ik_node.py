@@ -45,21 +45,23 @@ and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.mes
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
-from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64MultiArray, Header
+from std_msgs.msg import Header
 
-from stewart_kinematics import findings, parameters
+from stewart_kinematics import findings
 from stewart_kinematics.decisions.command_check import CommandCheck
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
     frame_parameters_reason,
-    frames_from_parameters,
-    geometry_from_parameters,
+    frames_from_settings,
+    geometry_from_settings,
+    IkNodeSettings,
 )
+from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import platform_markers
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
@@ -74,10 +76,9 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
-from visualization_msgs.msg import MarkerArray
 
 #: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
 WRONG_FRAME = 'wrong_frame'
@@ -90,66 +91,61 @@ class IkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
-        values = declare_parameters(
-            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.IK_FRAME_PARAMETERS
-            + parameters.MARKER_PARAMETERS + parameters.WORKSPACE_PARAMETERS
-            + parameters.STREAMING_PARAMETERS
-            + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
-        self.geometry = geometry_from_parameters(values)
+        self.settings = declare_settings(self, IkNodeSettings, on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
         self.check = CommandCheck(self.geometry)
         # Replaced whole when a tool frame parameter changes: one tree per message.
-        self.frames = frames_from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
+        self.frames = frames_from_settings(settings.frames)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
         # Streaming: commands at command_rate toward the latest accepted pose, from the home
         # pose (where the platform is assumed to start), once a first pose is accepted.
         self.command_filter = None
         self.streaming = False
-        if values['command_rate'] > 0.0:
-            self.command_filter = CommandFilter(ActuatorLimits.from_parameters(values),
-                                                1.0 / values['command_rate'],
+        command_rate = settings.streaming.command_rate
+        if command_rate > 0.0:
+            self.command_filter = CommandFilter(actuator_limits_from_settings(settings.geometry),
+                                                1.0 / command_rate,
                                                 self.geometry.home_leg_lengths)
-        self.base_frame = values['base_frame']
-        self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
+        self.base_frame = settings.frames.base_frame
+        marker_rate = settings.markers.marker_rate
+        self.marker_period_ns = 1e9 / marker_rate if marker_rate else None
         self.last_marker_ns = None
-        depth = values['queue_depth']
-        self.lengths_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_lengths', depth)
+        depth = settings.queue.queue_depth
+        self.lengths_publisher = create_output_publisher(self, IK_NODE['leg_lengths'], depth)
         self.extensions_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_extensions', depth)
+            self, IK_NODE['leg_extensions'], depth)
         # Commands, not measurements: joint_states is left to the actuators' driver.
         self.joint_command_publisher = create_output_publisher(
-            self, JointState, 'joint_commands', depth)
+            self, IK_NODE['joint_commands'], depth)
         self.velocities_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_velocities', depth)
-        self.marker_publisher = create_output_publisher(
-            self, MarkerArray, 'platform_markers', depth)
-        self.tf = TransformBroadcaster(self, static=False) if (
-            values['publish_commanded_tf']) else None
+            self, IK_NODE['leg_velocities'], depth)
+        self.marker_publisher = create_output_publisher(self, IK_NODE['platform_markers'], depth)
+        self.tf = TransformBroadcaster(self, dynamic=IK_NODE['/tf']) if (
+            settings.ik_frames.publish_commanded_tf) else None
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('target_pose')
         self.stamped_accounting = diagnostics.accounting('target_pose_stamped')
         self.twist_accounting = diagnostics.accounting('target_twist')
-        create_input_subscription(self, Pose, 'target_pose', self.on_target_pose, depth)
+        create_input_subscription(self, IK_NODE['target_pose'], self.on_target_pose, depth)
         create_input_subscription(
-            self, PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
-        create_input_subscription(self, Twist, 'target_twist', self.on_target_twist, depth)
+            self, IK_NODE['target_pose_stamped'], self.on_target_pose_stamped, depth)
+        create_input_subscription(self, IK_NODE['target_twist'], self.on_target_twist, depth)
         if self.command_filter is not None:
             self.create_timer(self.command_filter.period, self.publish_streamed_command)
         self.workspace = WorkspaceReporter(
-            self, self.geometry, self.base_frame, values['workspace_resolution'],
-            values['travel_range_rate'], lambda: self.check.last_pose, depth)
+            self, self.geometry, self.base_frame, settings.workspace.workspace_resolution,
+            settings.workspace.travel_range_rate, lambda: self.check.last_pose, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
 
     def on_parameter_change(self, name, value):
         """Apply a validated run-time change: a new tool frame, or a new workspace resolution."""
+        self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
-            self.frames = frames_from_parameters(
-                {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameters.FRAME_PARAMETERS})
+            self.frames = frames_from_settings(self.settings.frames)
         elif name == 'workspace_resolution':
             self.workspace.set_resolution(value)
 

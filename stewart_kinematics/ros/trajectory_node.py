@@ -45,25 +45,28 @@ from dataclasses import dataclass, field
 import threading
 from typing import Any, Callable, Optional
 
-from geometry_msgs.msg import Pose
 from nav_msgs.msg import Path
 import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import limits, parameters
+from stewart_kinematics import limits
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY, PLANNING_ERROR, SUPERSEDED
-from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import MotionPlanner
 from stewart_kinematics.motion.ramp import Ramp
 from stewart_kinematics.motion.retiming import Cancelled, load_retiming
 from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
     frame_parameters_reason,
-    frames_from_parameters,
-    geometry_from_parameters,
+    frames_from_settings,
+    geometry_from_settings,
+    TrajectoryNodeSettings,
 )
+from stewart_kinematics.ros.interfaces import TRAJECTORY_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_trajectory_message,
@@ -77,16 +80,13 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_settings
 from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
 #: Longest a stopping node waits for the worker to leave the step it is in, seconds.
 WORKER_STOP_TIMEOUT = 1.0
-#: Parameters whose run-time change makes a new planner (applied from the next message on).
-PLANNER_PARAMETERS = frozenset(
-    spec.name for spec in parameters.FRAME_PARAMETERS + parameters.MOTION_PARAMETERS)
 
 
 class TrajectoryNode(Node):
@@ -94,20 +94,18 @@ class TrajectoryNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        specs = (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-                 + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
-                 + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
-        values = declare_parameters(self, specs, on_change=self.on_parameter_change,
-                                    check=frame_parameters_reason)
-        self.settings = values
-        self.geometry = geometry_from_parameters(values)
-        self.actuator_limits = ActuatorLimits.from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
-        self.ramp = Ramp.from_parameters(values)
+        self.settings = declare_settings(self, TrajectoryNodeSettings,
+                                         on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        self.actuator_limits = actuator_limits_from_settings(settings.geometry)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
+        self.ramp = Ramp.from_settings(settings.ramp)
         self.rows = self.ramp.rows
-        self.frames = frames_from_parameters(values)
-        self.planner = self.make_planner(values)
-        if values['mode'] != 'off':
+        self.frames = frames_from_settings(settings.frames)
+        self.planner = self.make_planner(settings)
+        if settings.ramp.mode != 'off':
             # The ramp's poses are the tool frame's, as ik_node reads them: check where they
             # put the platform.
             times, poses = self.planned_samples()
@@ -116,17 +114,17 @@ class TrajectoryNode(Node):
         # and the ramp, not in the first plan; a plan that needs them meanwhile waits for the
         # import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
-        depth = values['queue_depth']
-        self.publisher = create_output_publisher(self, Pose, 'target_pose', depth)
+        depth = settings.queue.queue_depth
+        self.publisher = create_output_publisher(self, TRAJECTORY_NODE['target_pose'], depth)
         self.leg_trajectory_publisher = create_output_publisher(
-            self, JointTrajectory, 'leg_trajectory', depth)
+            self, TRAJECTORY_NODE['leg_trajectory'], depth)
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
         self.worker = PlanningWorker(self, self.on_planned)
         create_input_subscription(
-            self, MultiDOFJointTrajectory, 'pose_trajectory', self.on_pose_trajectory, depth)
-        create_input_subscription(self, Path, 'pose_path', self.on_pose_path, depth)
+            self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
+        create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
         self.published = 0
         self.row_index = 0
         self.start_time = None
@@ -135,26 +133,29 @@ class TrajectoryNode(Node):
         self.playing = None
         self.play_start = None
         self.play_timer = None
-        if values['mode'] != 'off':
+        if settings.ramp.mode != 'off':
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
             self.get_logger().info(
-                f'{values["mode"]} ramp of {len(self.rows)} rows, '
-                + ('looping' if values['loop'] else 'once'))
+                f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
+                + ('looping' if settings.ramp.loop else 'once'))
 
-    def make_planner(self, values) -> 'PlanSettings':
-        """Build the planner and the output settings of ``values``, as at start-up."""
-        frames = frames_from_parameters(values)
+    def make_planner(self, settings) -> 'PlanSettings':
+        """Build the planner and the output settings of ``settings``, as at start-up."""
+        motion = settings.motion
         return PlanSettings(
-            MotionPlanner(self.geometry, self.actuator_limits, frames,
-                          retime=values['retime'], speed_scale=values['speed_scale'],
-                          validation_rate=values['validation_rate']),
-            self.actuators, values['publish_rate'], values['play'], values['base_frame'])
+            MotionPlanner(self.geometry, self.actuator_limits,
+                          frames_from_settings(settings.frames), retime=motion.retime,
+                          speed_scale=motion.speed_scale,
+                          validation_rate=motion.validation_rate),
+            self.actuators, settings.ramp.publish_rate, motion.play, settings.frames.base_frame)
 
     def on_parameter_change(self, name, value):
-        """Apply a validated run-time change: a new planner for the next message."""
-        if name in PLANNER_PARAMETERS:
-            self.settings = dict(self.settings, **{name: value})
-            self.planner = self.make_planner(self.settings)
+        """Take a validated run-time change (the motion settings, the tool frame) from now on."""
+        self.settings = self.settings.replace(**{name: value})
+        if name.startswith('tool_frame'):
+            self.frames = frames_from_settings(self.settings.frames)
+        # A new planner for the next message; the one being planned keeps its own.
+        self.planner = self.make_planner(self.settings)
 
     def destroy_node(self):
         """Stop the worker (a plan under way is cancelled), then destroy the node."""
@@ -168,34 +169,34 @@ class TrajectoryNode(Node):
         In interpolate mode the timer's jitter moves the real sample times a little; the ramp
         is linear between rows, so those poses lie between samples checked here.
         """
-        if self.settings['mode'] == 'table':
-            times = np.arange(len(self.rows)) * self.settings['row_period']
+        if self.settings.ramp.mode == 'table':
+            times = np.arange(len(self.rows)) * self.settings.ramp.row_period
             return times, self.rows
-        duration = self.settings['duration']
-        times = np.append(np.arange(0.0, duration, 1.0 / self.settings['publish_rate']),
+        duration = self.settings.ramp.duration
+        times = np.append(np.arange(0.0, duration, 1.0 / self.settings.ramp.publish_rate),
                           duration)
         return times, self.ramp.sample(times, duration)
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
-        wanted = self.settings['min_subscribers']
+        wanted = self.settings.ramp.min_subscribers
         if self.publisher.get_subscription_count() < wanted:
             self.get_logger().info(
                 f'waiting for {wanted} subscriber(s) on {self.publisher.topic_name}', once=True)
             return
         self.wait_timer.cancel()
-        self.wait_timer = self.create_timer(self.settings['start_delay'], self.start)
+        self.wait_timer = self.create_timer(self.settings.ramp.start_delay, self.start)
 
     def start(self):
         """Play the ramp: rows on a timer in table mode, samples in interpolate mode."""
         self.wait_timer.cancel()
-        if self.settings['mode'] == 'table':
-            self.timer = self.create_timer(self.settings['row_period'], self.publish_row)
+        if self.settings.ramp.mode == 'table':
+            self.timer = self.create_timer(self.settings.ramp.row_period, self.publish_row)
             self.publish_row()
         else:
             self.start_time = self.get_clock().now()
             self.timer = self.create_timer(
-                1.0 / self.settings['publish_rate'], self.publish_sample)
+                1.0 / self.settings.ramp.publish_rate, self.publish_sample)
             self.publish_sample()
 
     def publish_row(self):
@@ -208,7 +209,7 @@ class TrajectoryNode(Node):
 
     def publish_sample(self):
         """Publish the ramp's pose at the current time."""
-        duration = self.settings['duration']
+        duration = self.settings.ramp.duration
         elapsed = (self.get_clock().now() - self.start_time).nanoseconds * 1e-9
         self.publish(self.ramp.sample(min(elapsed, duration), duration))
         if elapsed >= duration:
@@ -222,7 +223,7 @@ class TrajectoryNode(Node):
 
     def finish_pass(self):
         """Start again when looping; otherwise stop the timer and say so."""
-        if not self.settings['loop']:
+        if not self.settings.ramp.loop:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 

@@ -22,13 +22,12 @@ installation; where it is missing (ROS from PyPI wheels), nothing is broadcast a
 says so once in its log, the rest works as before.
 """
 
-from geometry_msgs.msg import Pose, Transform as TransformMessage, TransformStamped
+from geometry_msgs.msg import Transform as TransformMessage, TransformStamped
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from std_msgs.msg import Header
 
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.rotations import matrix_to_quaternion, quaternion_to_matrix
-from stewart_kinematics.ros.message_conversions import position_quaternion_from_message
+from stewart_kinematics.model.rotations import matrix_to_quaternion
 from stewart_kinematics.ros.node_main import create_output_publisher
 
 try:
@@ -44,28 +43,6 @@ TF2_MSGS_MISSING = (
     'tf2_msgs is not installed, so nothing is broadcast on /tf and /tf_static; every other '
     'topic works. It comes with every ROS 2 installation (source /opt/ros/jazzy/setup.bash); '
     'without one, scripts/build_tf2_msgs.sh builds it into a venv')
-
-
-def transform_from_pose_message(message: Pose) -> Transform:
-    """
-    Return the transform a geometry_msgs/msg/Pose places (the frame's pose in its parent).
-
-    :returns: the transform and the norm of the message's quaternion (it is normalised).
-    :raises ValueError: for a coordinate that is not finite, or a zero or non-finite
-        quaternion.
-    """
-    position, quaternion, norm = position_quaternion_from_message(message)
-    return Transform(position, quaternion_to_matrix(quaternion)), norm
-
-
-def pose_message_from_transform(transform: Transform) -> Pose:
-    """Return the geometry_msgs/msg/Pose of a transform (unit quaternion, ``w >= 0``)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = transform.position.tolist()
-    orientation = message.orientation
-    orientation.x, orientation.y, orientation.z, orientation.w = (
-        matrix_to_quaternion(transform.rotation).tolist())
-    return message
 
 
 def transform_stamped(parent: str, child: str, transform: Transform, stamp) -> TransformStamped:
@@ -85,23 +62,23 @@ class TransformBroadcaster:
     A node's publishers of ``/tf`` and ``/tf_static``; inert, with one log line, without tf2_msgs.
 
     :param node: the broadcasting node.
-    :param dynamic: create the ``/tf`` publisher.
-    :param static: create the ``/tf_static`` publisher.
+    :param dynamic: the node's declared ``/tf`` endpoint
+        (:mod:`stewart_kinematics.ros.interfaces`), or ``None`` for no ``/tf`` publisher.
+    :param static: likewise for ``/tf_static``.
     """
 
-    def __init__(self, node, *, dynamic=True, static=True):
+    def __init__(self, node, *, dynamic=None, static=None):
         self.available = TFMessage is not None
         self._tf = self._tf_static = None
         self._static_transforms = {}
         if not self.available:
-            if dynamic or static:
+            if dynamic is not None or static is not None:
                 node.get_logger().warning(TF2_MSGS_MISSING)
             return
-        if dynamic:
-            self._tf = create_output_publisher(node, TFMessage, '/tf', TF_QOS)
-        if static:
-            self._tf_static = create_output_publisher(
-                node, TFMessage, '/tf_static', TF_STATIC_QOS)
+        if dynamic is not None:
+            self._tf = create_output_publisher(node, dynamic, TF_QOS)
+        if static is not None:
+            self._tf_static = create_output_publisher(node, static, TF_STATIC_QOS)
 
     def has_listeners(self) -> bool:
         """Whether anyone subscribes ``/tf``: a 1 kHz stream then skips building transforms."""

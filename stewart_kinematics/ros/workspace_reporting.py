@@ -30,15 +30,14 @@ import os
 import threading
 
 import numpy as np
-from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
+from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
 from stewart_kinematics.ros.node_main import create_output_publisher
-from visualization_msgs.msg import MarkerArray
 
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
@@ -102,11 +101,9 @@ class WorkspaceReporter:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # Without rclpy's default QoS event handlers, and one timer for both outputs: every
         # entity of a node adds to its executor's work at each message of the command stream.
-        self.marker_publisher = node.create_publisher(
-            MarkerArray, 'workspace_markers', latched,
-            event_callbacks=PublisherEventCallbacks(use_default_callbacks=False))
-        self.travel_publisher = create_output_publisher(
-            node, Float64MultiArray, 'travel_ranges', depth)
+        self.marker_publisher = create_output_publisher(
+            node, IK_NODE['workspace_markers'], latched)
+        self.travel_publisher = create_output_publisher(node, IK_NODE['travel_ranges'], depth)
         self.travel_rate = travel_range_rate
         self.timer = node.create_timer(
             1.0 / travel_range_rate if travel_range_rate > 0.0 else MARKER_CHECK_PERIOD,
@@ -134,7 +131,7 @@ class WorkspaceReporter:
         """Start the workspace computation if it is due and someone subscribes."""
         if self.markers_due and self.marker_publisher.get_subscription_count():
             self.markers_due = False
-            self._submit('markers', self.marker_generation, 'workspace_shell',
+            self._submit('markers', self.marker_generation, workspace.workspace_shell,
                          resolution=self.resolution)
 
     def request_travel_ranges(self):
@@ -148,7 +145,7 @@ class WorkspaceReporter:
         if self.travel is not None and np.array_equal(self.travel[0], pose):
             self.travel_publisher.publish(self.travel[1])
             return
-        self._submit('travel', pose, 'travel_ranges', pose)
+        self._submit('travel', pose, workspace.travel_ranges, pose)
 
     def _submit(self, kind, tag, function, *args, **kwargs):
         if self.worker is None:
@@ -221,7 +218,12 @@ class WorkspaceWorker:
         self.reader.start()
 
     def submit(self, tag, function, *args, **kwargs):
-        """Queue ``workspace.<function>(geometry, *args, **kwargs)``; ``tag`` names the job."""
+        """
+        Queue ``function(geometry, *args, **kwargs)``; ``tag`` names the job.
+
+        :param function: a function of :mod:`stewart_kinematics.analysis.workspace` (module-level:
+            it reaches the worker process pickled by its qualified name).
+        """
         self.jobs.put((tag, function, args, kwargs))
 
     def _read(self):
@@ -250,7 +252,7 @@ def _serve(geometry, jobs, results):
     while True:
         tag, function, args, kwargs = jobs.get()
         try:
-            value = getattr(workspace, function)(geometry, *args, **kwargs)
+            value = function(geometry, *args, **kwargs)
         except Exception as error:   # sent back as text: any exception pickles as this one
             value = RuntimeError(f'{type(error).__name__}: {error}')
         results.put((tag, value))

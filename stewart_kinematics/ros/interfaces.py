@@ -1,0 +1,239 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Every node's interface, declared once: its topics and services, their types, QoS and meaning.
+
+The nodes create their publishers, subscriptions and services from these declarations
+(:func:`stewart_kinematics.ros.node_main.create_output_publisher` and its siblings take an
+:class:`Endpoint`), the tests check that a running node offers exactly what is declared, and
+the documentation's node tables are generated from them. Topic names are relative (namespaces
+and remaps apply), except the ROS-wide ``/tf``, ``/tf_static`` and ``/diagnostics``.
+
+Message types are named as ROS names them (``geometry_msgs/msg/Pose``) and imported on first
+use, so this module imports no ROS package: the documentation reads it without rclpy, and
+``tf2_msgs`` stays optional.
+"""
+
+from dataclasses import dataclass
+import importlib
+from typing import Tuple
+
+#: Kinds of endpoint.
+SUBSCRIPTION = 'subscription'
+PUBLISHER = 'publisher'
+SERVICE = 'service'
+
+#: The QoS of the package's endpoints, in words (the nodes build the profiles).
+QUEUE = 'reliable, keep last queue_depth'
+LATCHED = 'reliable, transient local, depth 1 (latched)'
+TF = 'reliable, keep last 100 (as tf2_ros broadcasts)'
+TF_STATIC = 'reliable, transient local, keep last 1 (as tf2_ros static broadcasts)'
+DIAGNOSTICS = 'reliable, keep last 10'
+SERVICE_QOS = 'services default'
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """
+    One topic or service of a node.
+
+    :param name: topic or service name, relative unless it starts with ``/``.
+    :param kind: :data:`SUBSCRIPTION`, :data:`PUBLISHER` or :data:`SERVICE`.
+    :param type_name: the message or service type, as ``package/msg/Name`` or
+        ``package/srv/Name``.
+    :param qos: the QoS, in words (see the constants of this module).
+    :param meaning: what it carries, with units and frames.
+    :param condition: when the node has it (a parameter that turns it on), ``''``: always.
+    """
+
+    name: str
+    kind: str
+    type_name: str
+    qos: str
+    meaning: str
+    condition: str = ''
+
+    @property
+    def message_type(self):
+        """Return the message or service class, imported now (``ImportError`` if missing)."""
+        package, kind, name = self.type_name.split('/')
+        return getattr(importlib.import_module(f'{package}.{kind}'), name)
+
+
+@dataclass(frozen=True)
+class NodeInterface:
+    """
+    A node's topics and services, in the order the node creates them.
+
+    :param node: the node's default name.
+    :param endpoints: every :class:`Endpoint`.
+    """
+
+    node: str
+    endpoints: Tuple[Endpoint, ...]
+
+    def __getitem__(self, name: str) -> Endpoint:
+        """Return the endpoint of a topic or service name; ``KeyError`` naming the known ones."""
+        for endpoint in self.endpoints:
+            if endpoint.name == name:
+                return endpoint
+        raise KeyError(f'{self.node} declares no {name!r}; it has '
+                       + ', '.join(endpoint.name for endpoint in self.endpoints))
+
+    def of_kind(self, kind: str) -> Tuple[Endpoint, ...]:
+        """Return the endpoints of one kind, in order."""
+        return tuple(endpoint for endpoint in self.endpoints if endpoint.kind == kind)
+
+
+#: The endpoints every node of the package has.
+DIAGNOSTICS_TOPIC = Endpoint(
+    '/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+    'One report a second: per input topic, messages received, published and refused, refusals '
+    'counted by code, the latest reason with its details')
+
+IK_NODE = NodeInterface('ik_node', (
+    Endpoint('target_pose', SUBSCRIPTION, 'geometry_msgs/msg/Pose', QUEUE,
+             'Commanded pose of the tool frame (by default the platform frame) in the base '
+             'frame: metres and a unit quaternion (a non-unit quaternion is normalised with a '
+             'warning). The outputs carry the time of arrival.'),
+    Endpoint('target_pose_stamped', SUBSCRIPTION, 'geometry_msgs/msg/PoseStamped', QUEUE,
+             "The same with a header: in `base_frame` (or `''`) or `user_frame`, another "
+             'frame is refused with the reason; its stamp is carried to `joint_commands`.'),
+    Endpoint('target_twist', SUBSCRIPTION, 'geometry_msgs/msg/Twist', QUEUE,
+             "Velocity of the tool frame's origin (m/s) and angular velocity (rad/s), base "
+             'frame (about the same point as the poses), applied at the last accepted pose.'),
+    Endpoint('leg_lengths', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             'Six leg lengths of each accepted pose, metres, leg 1..6; layout: one dimension '
+             'labelled `leg`, size 6.'),
+    Endpoint('leg_extensions', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             "Each length minus its length at the home pose (the paper's q_i), metres, same "
+             'layout; built only while someone subscribes.'),
+    Endpoint('joint_commands', PUBLISHER, 'sensor_msgs/msg/JointState', QUEUE,
+             'The legs as prismatic joints named `joint_names`, position = commanded length '
+             'minus `actuator_offsets` (m), with the stamp of the stamped pose (or the time of '
+             'arrival), for a ros2_control or actuator driver; built only while someone '
+             'subscribes. With `command_rate` > 0: streamed at that rate through the '
+             'jerk-limited filter instead, with velocities.'),
+    Endpoint('leg_velocities', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             'Rates of change of the leg lengths for each accepted `target_twist`, m/s, '
+             'through the analytic Jacobian.'),
+    Endpoint('platform_markers', PUBLISHER, 'visualization_msgs/msg/MarkerArray', QUEUE,
+             'For RViz (fixed frame `base_frame`): base outline, platform outline and the six '
+             'legs at the poses received, at most `marker_rate` times a second; a leg that '
+             'breaks a limit is red, even in a refused pose, so you see what was asked and why '
+             'it was refused.'),
+    Endpoint('workspace_markers', PUBLISHER, 'visualization_msgs/msg/MarkerArray', LATCHED,
+             'The boundary of the constant-orientation workspace at the home orientation, as '
+             'points coloured by the limit met there, namespace `<ns>/workspace`, after a '
+             'DELETEALL. Computed once the topic has a subscriber and again when '
+             '`workspace_resolution` changes, in a worker process, so the command path never '
+             'waits for it.'),
+    Endpoint('travel_ranges', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             'About `travel_range_rate` times a second: from the last accepted pose (home '
+             'before the first), the largest move along each axis alone before a limit, 12 '
+             'values `[X-, X+, Y-, Y+, Z-, Z+, alpha-, alpha+, beta-, beta+, gamma-, gamma+]` '
+             'as offsets from the pose (m, rad; the negative ends <= 0); layout: dimensions '
+             '`axis` (size 6, stride 12) and `end` (size 2, stride 2). Computed in the same '
+             'worker process, only while the topic has a subscriber and the pose has moved.'),
+    Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
+             'Each accepted command as `base_frame` -> `<platform_frame>_commanded`, with the '
+             "command's stamp.", condition='publish_commanded_tf'),
+    DIAGNOSTICS_TOPIC,
+))
+
+FK_NODE = NodeInterface('fk_node', (
+    Endpoint('leg_lengths', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             'Six measured leg lengths, metres, leg 1..6 (`layout.data_offset` honoured; a bare '
+             '`data: [...]` is fine).'),
+    Endpoint('joint_states', SUBSCRIPTION, 'sensor_msgs/msg/JointState', QUEUE,
+             'Measured legs as joints named `joint_names` (any order; other joints ignored; a '
+             'message naming none of them belongs to another platform and is skipped, so two '
+             'hexapods can share one `/joint_states`), positions plus `actuator_offsets` as '
+             'leg lengths; with velocities for every leg, the twist is published too.'),
+    Endpoint('leg_velocities', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             'Rates of change of the leg lengths, m/s, turned into the twist at the last '
+             'estimated pose.'),
+    Endpoint('estimated_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
+             'The pose of the tool frame (by default the platform frame) in the base frame '
+             'whose leg lengths match; metres, unit quaternion with `w >= 0`.'),
+    Endpoint('estimated_pose_stamped', PUBLISHER, 'geometry_msgs/msg/PoseStamped', QUEUE,
+             'The same in `estimated_pose_frame` (base or user frame), with the stamp of the '
+             'joint state it comes from (or the time of arrival); built only while someone '
+             'subscribes.'),
+    Endpoint('estimated_twist', PUBLISHER, 'geometry_msgs/msg/Twist', QUEUE,
+             "Velocity of the tool frame's origin and angular velocity (m/s, rad/s, base "
+             'frame: about the same point as the poses) from leg velocities.'),
+    Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
+             '`base_frame` -> `platform_frame`: the estimated platform pose, with the stamp of '
+             'the lengths it comes from; sent only while someone listens (needs tf2_msgs).',
+             condition='publish_tf'),
+    Endpoint('/tf_static', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF_STATIC,
+             'The named user and tool frames, again when the tool frame changes.',
+             condition='publish_tf'),
+    Endpoint('reset_tracker', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Forget the last solution: the next solve starts from the home pose (homing, a '
+             'restart, lengths from another session). Answers `success: true`.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + ' (iterations, residual, condition number, pose error '
+             'bound), near-singularity warnings; and the status `fk_node: assembly mode '
+             'margin`: the distance from the last solution to the nearest other real assembly '
+             'mode within the limits, WARN below `assembly_mode_margin_warning`.'),
+))
+
+TRAJECTORY_NODE = NodeInterface('trajectory_node', (
+    Endpoint('pose_trajectory', SUBSCRIPTION, 'trajectory_msgs/msg/MultiDOFJointTrajectory',
+             QUEUE, 'Waypoints of one joint, the tool frame (by default the platform frame): '
+             'per point one transform (the tool frame in the header frame, `base_frame` or '
+             '`user_frame`), `time_from_start` (0 to 1e6 s, strictly increasing; the first '
+             'point is time 0 of the output), optionally one twist on every point (about the '
+             "tool frame's origin, header frame) and with them one acceleration (then the "
+             'motion is C2). Planned in a worker: checked whole, timed or retimed, then handed '
+             'on; a newer trajectory or path replaces one not yet decided (`superseded`).'),
+    Endpoint('pose_path', SUBSCRIPTION, 'nav_msgs/msg/Path', QUEUE,
+             'Waypoints of the tool frame without timing, in `base_frame` or `user_frame`: '
+             'always retimed (repeated waypoints merged).'),
+    Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
+             "The ramp's poses (tool frame, base frame, metres, unit quaternion); with `play`, "
+             "the tool frame's poses of an accepted trajectory at `publish_rate`."),
+    Endpoint('leg_trajectory', PUBLISHER, 'trajectory_msgs/msg/JointTrajectory', QUEUE,
+             'An accepted trajectory for the actuators: `joint_names`, and per point (every '
+             '`1 / publish_rate` s or closer, at most 256 between two waypoints, and at every '
+             'waypoint) the actuator positions (leg length '
+             'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2) and '
+             '`time_from_start`, as joint_trajectory_controller takes it.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + ', with the time, segment and violated limits of a '
+             'refused trajectory.'),
+))
+
+#: Every node's interface, by node name.
+NODE_INTERFACES = {
+    interface.node: interface for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE)}
+
+
+def markdown_table(interface: NodeInterface) -> str:
+    """
+    Render a node's interface as the documentation's table: name, kind, type, QoS, meaning.
+
+    A test compares the documentation with this, so it cannot drift from the code.
+    """
+    lines = ['| Topic or service | Kind | Type | QoS | Meaning |',
+             '| --- | --- | --- | --- | --- |']
+    for endpoint in interface.endpoints:
+        meaning = endpoint.meaning + (f' (with `{endpoint.condition}`)'
+                                      if endpoint.condition else '')
+        lines.append(f'| `{endpoint.name}` | {endpoint.kind} | `{endpoint.type_name}` | '
+                     f'{endpoint.qos} | {meaning} |')
+    return '\n'.join(lines)
