@@ -77,7 +77,6 @@ def parameter_table(group: str) -> str:
 CODE_SOURCES = {
     'findings.py': None,
     'ros/ik_node.py': ('WRONG_FRAME',),
-    'ros/trajectory_node.py': ('TOOL_FRAME_NOT_SUPPORTED',),
 }
 
 #: What each code means and who emits it, until the registry of issue 18 carries both.
@@ -138,20 +137,31 @@ MEANINGS = {
         'A timed trajectory, not retimed, that breaks a leg velocity or acceleration limit, '
         'naming the time, the segment, the legs and the limits.'),
     'retiming_failed': (
-        '`plan_motion` (trajectory_node)',
-        'toppra found no timing of the path within the leg limits.'),
+        '`plan_motion`, `MotionPlanner` (trajectory_node)',
+        'No timing of the path within the leg limits: the path crosses a singularity (the '
+        'platform moves while the legs do not), or toppra failed on its grid; the details give '
+        'the cause, the waypoints and the leg.'),
     'invalid_trajectory': (
+        '`MotionPlanner` (trajectory_node: `pose_trajectory`, `pose_path`)',
+        'A malformed trajectory or path: another frame, more than one joint, no point or one, '
+        'more than 100,000, times not finite, negative, beyond 1e6 s or not increasing, '
+        'velocities or accelerations on only some points, a zero quaternion, a turn of half a '
+        'revolution or more between two waypoints, a path of fewer than two different poses.'),
+    'trajectory_too_long': (
+        '`check_trajectory`, `plan_motion` (trajectory_node)',
+        'A trajectory whose check would take more than 1,000,000 samples (at most 256 between '
+        'two waypoints): refused before any sample is computed, with the count.'),
+    'superseded': (
         'trajectory_node (`pose_trajectory`, `pose_path`)',
-        'A malformed trajectory or path: another frame, more than one joint, times not '
-        'increasing, velocities on only some points, a turn of half a revolution or more '
-        'between two waypoints, two equal consecutive waypoints of a path.'),
+        'A trajectory or path replaced by a newer one before it was decided (the newest '
+        'message is planned; the one under way is cancelled).'),
+    'planning_error': (
+        'trajectory_node (`pose_trajectory`, `pose_path`)',
+        'An unexpected error while planning (a bug): the message gives the error; the node '
+        'goes on.'),
     'wrong_frame': (
         'ik_node (`target_pose_stamped`)',
         "A stamped pose in a frame other than `base_frame`, `user_frame` or `''`."),
-    'tool_frame_not_supported': (
-        'trajectory_node (`pose_trajectory`, `pose_path`)',
-        'A trajectory or path received while the tool frame is offset from the platform frame '
-        '(trajectories are planned for the platform frame).'),
 }
 
 

@@ -37,18 +37,15 @@ from stewart_kinematics.findings import Decision, Finding, violation_details
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.frames import FrameTree
 from stewart_kinematics.model.rotations import quaternion_to_matrix
-from stewart_kinematics.model.velocities import leg_states
 from stewart_kinematics.motion.pose_trajectory import (
     PoseTrajectory,
     SingularPathError,
     TimedTrajectory,
 )
-from stewart_kinematics.motion.retiming import raise_if_cancelled, retime, RetimingError
+from stewart_kinematics.motion.retiming import retime, RetimingError
 from stewart_kinematics.motion.trajectory_check import (
-    CHECK_CHUNK,
     check_trajectory,
     DEFAULT_VALIDATION_RATE,
-    MAX_CHECK_SAMPLES,
     SPEED_LIMITS,
     TrajectoryCheck,
 )
@@ -92,9 +89,9 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     speed_scale``, and is refused if any sample breaks a limit, leg velocity and acceleration
     included. With it, the path through its waypoint poses is retimed (:func:`retime`: its own
     times, velocities and accelerations are dropped, repeated waypoints merged) and the result
-    checked whole; where the motion between toppra's gridpoints exceeds a leg limit, the
-    timing is first stretched uniformly by that excess (times :data:`STRETCH_MARGIN`), until
-    every sample is within.
+    checked whole (:func:`retime` keeps every leg within its limits at the check's samples;
+    should a sample still exceed a leg limit, the timing is stretched uniformly by that excess
+    times :data:`STRETCH_MARGIN`, and checked again).
 
     :param path: the trajectory; a path without timing comes from :meth:`PoseTrajectory.path`
         and must be retimed.
@@ -112,7 +109,8 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
                                  validation_rate=validation_rate, cancel=cancel)
         return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check)
     try:
-        trajectory = retime(path, geometry, actuator_limits, speed_scale, cancel=cancel)
+        trajectory = retime(path, geometry, actuator_limits, speed_scale,
+                            sample_rate=validation_rate, cancel=cancel)
     except SingularPathError as error:
         return MotionPlan(Finding(findings.RETIMING_FAILED, str(error), (
             ('cause', 'singularity'), ('segment', f'points {error.point} and after'))),
@@ -123,8 +121,6 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     except ValueError as error:
         return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)), retimed=True)
     scaled = actuator_limits.scaled(speed_scale)
-    trajectory = trajectory.stretched(_excess(trajectory, geometry, scaled, validation_rate,
-                                              cancel) * STRETCH_MARGIN)
     for _ in range(MAX_STRETCHES):
         check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate,
                                  cancel=cancel)
@@ -135,28 +131,6 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
         trajectory = trajectory.stretched(max(_speed_excess(violation)
                                               for violation in check.violations) * STRETCH_MARGIN)
     return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check, True)
-
-
-def _excess(trajectory, geometry, limits, validation_rate, cancel) -> float:
-    """
-    How much slower the trajectory must be played to keep every leg within its limits.
-
-    The largest of ``|velocity| / velocity_max`` and ``sqrt(|acceleration| /
-    acceleration_max)`` over the check's samples (1 when they are within), in chunks.
-    """
-    if trajectory.sample_count(validation_rate) > MAX_CHECK_SAMPLES:
-        return 1.0   # the check refuses it, saying why
-    times = trajectory.sample_times(validation_rate)
-    excess = 1.0
-    for start in range(0, times.shape[0], CHECK_CHUNK):
-        raise_if_cancelled(cancel)
-        legs = leg_states(geometry, trajectory.sample(times[start:start + CHECK_CHUNK]))
-        if math.isfinite(limits.velocity_max):
-            excess = max(excess, float(np.abs(legs.velocities).max()) / limits.velocity_max)
-        if math.isfinite(limits.acceleration_max):
-            excess = max(excess, math.sqrt(float(np.abs(legs.accelerations).max())
-                                           / limits.acceleration_max))
-    return excess
 
 
 def _speed_excess(violation) -> float:

@@ -52,11 +52,12 @@ import numpy as np
 from stewart_kinematics.model.kinematics import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
+    matrix_to_quaternion,
     matrix_to_rotation_vector,
     quaternion_to_matrix,
     rotation_vector_to_matrix,
 )
-from stewart_kinematics.model.velocities import _cross, leg_states, LegStates, PoseSamples
+from stewart_kinematics.model.velocities import leg_states, LegStates, PoseSamples
 
 #: Most waypoints a trajectory may have.
 MAX_WAYPOINTS = 100_000
@@ -203,6 +204,7 @@ class PoseTrajectory:
         self._coefficients = _position_coefficients(positions, velocities, accelerations, steps)
         self._increments = _rotation_increments(rotations, body_rates, body_accelerations,
                                                 steps, self.degree)
+        self._start_quaternions = matrix_to_quaternion(rotations[:-1])
 
     @classmethod
     def from_poses(cls, times, poses, velocities=None, angular_velocities=None, **kwargs):
@@ -323,7 +325,8 @@ class PoseTrajectory:
         h = h[:, None]
         coefficients = self._coefficients[k]
         positions, velocities, accelerations = _polynomial(coefficients, s[:, None])
-        omega, alpha, rotations = _cumulative_rotation(self.rotations[k], self._increments[k], s)
+        omega, alpha, rotations = _cumulative_rotation(self._start_quaternions[k],
+                                                       self._increments[k], s)
         # Outside [t_0, t_N-1] the platform rests at the first or last waypoint.
         outside = ((times < self.times[0]) | (times > self.times[-1]))[:, None]
         return PoseSamples(
@@ -649,23 +652,50 @@ def _cumulative_rotation(start, increments, s):
 
     With ``A_j = R_k exp(b_1 w_1) ... exp(b_j-1 w_j-1)`` and ``c_j = A_j w_j``:
     ``omega = sum b_j' c_j`` and ``alpha = sum b_j'' c_j + sum over i < j of
-    b_i' b_j' c_i x c_j``.
+    b_i' b_j' c_i x c_j``. The frames are composed as unit quaternions, component by
+    component (a third of the cost of composing matrices), and turned into matrices once.
 
-    :param start: ``R_k`` per sample, (M, 3, 3); ``increments``: ``w_j``, (M, n, 3).
+    :param start: ``R_k`` per sample as unit quaternions ``(x, y, z, w)``, (M, 4);
+        ``increments``: ``w_j``, (M, n, 3).
+    :returns: ``(omega, alpha, rotations)``: (M, 3), (M, 3), (M, 3, 3).
     """
     degree = increments.shape[1]
     values, first, second = _cumulative_basis(s, degree)
-    frame = start
-    omega = np.zeros((s.shape[0], 3))
-    alpha = np.zeros((s.shape[0], 3))
+    x, y, z, w = (start[:, axis] for axis in range(4))
+    omega = [np.zeros(s.shape[0]) for _ in range(3)]
+    alpha = [np.zeros(s.shape[0]) for _ in range(3)]
     for j in range(degree):
-        w = increments[:, j]
-        column = np.einsum('mij,mj->mi', frame, w)
-        turning = first[j][:, None] * column
-        alpha += second[j][:, None] * column + _cross(omega, turning)
-        omega += turning
-        frame = frame @ rotation_vector_to_matrix(values[j][:, None] * w)
-    return omega, alpha, frame
+        vector = [increments[:, j, axis] for axis in range(3)]
+        # c_j: w_j rotated by the frame (t = 2 u x v; v + w t + u x t).
+        t = [2.0 * value for value in _cross3((x, y, z), vector)]
+        column = [v + w * tv + cross for v, tv, cross in zip(vector, t, _cross3((x, y, z), t))]
+        turning = [first[j] * value for value in column]
+        bend = _cross3(omega, turning)
+        for axis in range(3):
+            alpha[axis] += second[j] * column[axis] + bend[axis]
+            omega[axis] += turning[axis]
+        # The frame turns by exp(b_j w_j): the quaternion (sin(a / 2) n, cos(a / 2)).
+        angle = values[j] * np.sqrt(vector[0] ** 2 + vector[1] ** 2 + vector[2] ** 2)
+        small = angle < 1e-4
+        half_sine = np.where(small, 0.5 - angle * angle / 48.0,
+                             np.sin(0.5 * angle) / np.where(small, 1.0, angle)) * values[j]
+        ex, ey, ez, ew = (half_sine * vector[0], half_sine * vector[1], half_sine * vector[2],
+                          np.cos(0.5 * angle))
+        x, y, z, w = (w * ex + x * ew + y * ez - z * ey, w * ey - x * ez + y * ew + z * ex,
+                      w * ez + x * ey - y * ex + z * ew, w * ew - x * ex - y * ey - z * ez)
+    norm = np.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / norm, y / norm, z / norm, w / norm
+    rotations = np.stack([
+        1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w),
+        2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w),
+        2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
+        axis=-1).reshape(-1, 3, 3)
+    return np.stack(omega, axis=-1), np.stack(alpha, axis=-1), rotations
+
+
+def _cross3(a, b):
+    """Cross product of two vectors given as three component arrays each."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def _angles_between(first, second):

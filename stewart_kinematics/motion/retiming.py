@@ -57,13 +57,16 @@ STOPPED_LEG_SLOPE = 1e-4
 #: the velocity limit bounds nothing.
 MAX_SQUARED_RATE = 1e4
 #: Samples of the path that measure its length and curvature for the grid.
-MEASURE_SAMPLES = 4096
+MEASURE_SAMPLES = 2048
 #: Most times toppra solves again with lower limits where the motion between two gridpoints
 #: exceeds them by more than REFINEMENT_TOLERANCE (relative), lowered by the excess times
 #: REFINEMENT_MARGIN.
 REFINEMENTS = 3
 REFINEMENT_TOLERANCE = 1e-3
 REFINEMENT_MARGIN = 1.002
+#: The uniform stretch of what is left is its excess times this: the stretched timing's samples
+#: fall on other points of the path (a check then stretches again if need be).
+FINAL_STRETCH_MARGIN = 1.0001
 #: Samples of a refinement taken at once.
 REFINEMENT_CHUNK = 10000
 
@@ -129,9 +132,10 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
     check samples it (at ``sample_rate``, see :meth:`TimedTrajectory.sample_times`), and
     where a grid interval exceeds a limit, the limits at its two gridpoints are lowered by
     that excess and toppra solves again (at most :data:`REFINEMENTS` times): a local
-    correction, which leaves the rest of the path at full speed.
-    :func:`~stewart_kinematics.motion.planning.plan_motion` then checks every sample and
-    stretches the timing uniformly by what is left (a few tenths of a percent at most).
+    correction, which leaves the rest of the path at full speed. What is left (a tenth of a
+    percent, typically) is removed by a uniform stretch, so that the result is within every
+    leg limit at those samples; :func:`~stewart_kinematics.motion.planning.plan_motion` then
+    checks it whole.
 
     :param trajectory: a path, or a timed trajectory whose timing is replaced.
     :param sample_rate: hertz, the rate at which the refinement samples the timing.
@@ -169,16 +173,17 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
     for refinement in range(REFINEMENTS + 1):
         timed = _solve(path, grid, leg_path, curvatures, speed, scaled, factors)
         raise_if_cancelled(cancel)
-        if refinement == REFINEMENTS:
-            break
         excess = _interval_excess(timed, geometry, scaled, sample_rate, cancel)
-        if not excess.max() > 1.0 + REFINEMENT_TOLERANCE:
+        if refinement == REFINEMENTS or not excess.max() > 1.0 + REFINEMENT_TOLERANCE:
             break
         over = np.flatnonzero(excess > 1.0)
         for ends in (over, over + 1):
             factors[ends] = np.minimum(factors[ends],
                                        factors[ends] / (excess[over] * REFINEMENT_MARGIN))
-    return timed
+    # What is left over (at most REFINEMENT_TOLERANCE, unless the refinements ran out): a
+    # uniform stretch, which divides velocities by it and accelerations by its square.
+    peak = float(excess.max())
+    return timed.stretched(peak * FINAL_STRETCH_MARGIN) if peak > 1.0 else timed
 
 
 def _solve(path, grid, leg_path, curvatures, speed, limits, factors) -> TimedTrajectory:
