@@ -64,11 +64,12 @@ MEASURE_SAMPLES = 2048
 REFINEMENTS = 3
 REFINEMENT_TOLERANCE = 1e-3
 REFINEMENT_MARGIN = 1.002
-#: The uniform stretch of what is left is its excess times this: the stretched timing's samples
-#: fall on other points of the path (a check then stretches again if need be).
+#: The timing is stretched uniformly by what the refinements leave, times this: a margin for
+#: the motion between the samples (1e-4 of each limit, a hundred times what it exceeds them
+#: by there on the shipped examples).
 FINAL_STRETCH_MARGIN = 1.0001
-#: Samples of a refinement taken at once.
-REFINEMENT_CHUNK = 10000
+#: Samples of a refinement taken at once (between two looks at the cancel flag).
+REFINEMENT_CHUNK = 2500
 
 
 class RetimingError(ValueError):
@@ -180,10 +181,10 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
         for ends in (over, over + 1):
             factors[ends] = np.minimum(factors[ends],
                                        factors[ends] / (excess[over] * REFINEMENT_MARGIN))
-    # What is left over (at most REFINEMENT_TOLERANCE, unless the refinements ran out): a
-    # uniform stretch, which divides velocities by it and accelerations by its square.
-    peak = float(excess.max())
-    return timed.stretched(peak * FINAL_STRETCH_MARGIN) if peak > 1.0 else timed
+    # What is left over (at most REFINEMENT_TOLERANCE, unless the refinements ran out), and
+    # a margin for the motion between the samples: a uniform stretch, which divides
+    # velocities by it and accelerations by its square.
+    return timed.stretched(max(float(excess.max()), 1.0) * FINAL_STRETCH_MARGIN)
 
 
 def _solve(path, grid, leg_path, curvatures, speed, limits, factors) -> TimedTrajectory:

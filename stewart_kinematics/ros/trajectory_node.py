@@ -42,6 +42,7 @@ parameter changed at run time (tool frame, ``retime``, ``speed_scale``, ``valida
 """
 
 from dataclasses import dataclass, field
+import os
 import threading
 from typing import Any, Callable, Optional
 
@@ -85,8 +86,11 @@ from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
-#: Longest a stopping node waits for the worker to leave the step it is in, seconds.
-WORKER_STOP_TIMEOUT = 1.0
+#: Longest a stopping node waits for the worker to leave the step it is in, seconds (then
+#: it leaves it behind: a daemon thread, which publishes nothing once the node is closed).
+WORKER_STOP_TIMEOUT = 0.25
+#: Scheduling priority of the planning thread below the executor's (nice(2) increment).
+WORKER_NICENESS = 10
 
 
 class TrajectoryNode(Node):
@@ -400,6 +404,12 @@ class PlanningWorker:
             self.on_done(replaced, _superseded(replaced))
 
     def _serve(self):
+        # Below the executor's thread: on a busy machine the kernel runs the node's callbacks
+        # first (Linux gives each thread its own niceness).
+        try:
+            os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), WORKER_NICENESS)
+        except (AttributeError, OSError):  # not Linux: the thread runs at the node's priority
+            pass
         while True:
             with self._condition:
                 while self._next is None and not self._closed:
@@ -420,7 +430,8 @@ class PlanningWorker:
                 if self._closed:
                     return
                 self._answers.append((job, outcome))
-            self._handoff.trigger()
+                # Under the lock: close() destroys the guard condition only after it.
+                self._handoff.trigger()
 
     def _deliver(self):
         """Hand the finished answers to ``on_done`` (executor thread)."""
@@ -438,8 +449,8 @@ class PlanningWorker:
                 self.node.get_logger().info(
                     f'{self._running.accounting.topic}: planning cancelled, the node stops')
             self._condition.notify()
+            self.node.destroy_guard_condition(self._handoff)
         self._thread.join(WORKER_STOP_TIMEOUT)
-        self.node.destroy_guard_condition(self._handoff)
 
 
 def _superseded(job):
