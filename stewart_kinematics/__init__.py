@@ -50,6 +50,7 @@ from stewart_kinematics.analysis.workspace import (
 from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.decisions.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
@@ -119,6 +120,7 @@ __all__ = [
     'LegCommand',
     'LegTrajectory',
     'LegVelocityCommand',
+    'LimitModel',
     'load_geometry',
     'load_settings',
     'matrix_to_euler_zyx',

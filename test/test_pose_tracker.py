@@ -275,3 +275,54 @@ def test_settings_are_validated_and_used():
     assert 'no convergence within 1 iterations' in slow.reason
     tracker.configure(tracker.settings.replace(max_iterations=50))
     assert tracker.update(lengths_of(TABLE3[10])).accepted
+
+
+def test_a_joint_state_gives_the_pose_and_its_twist_or_a_warning():
+    """update(lengths, velocities): the twist at the new pose; a refused twist only warns."""
+    tracker = PoseTracker(geometry())
+    velocities = np.full(6, 0.001)
+    estimate = tracker.update(lengths_of(TABLE3[3]), velocities)
+    assert estimate.accepted
+    assert_allclose(estimate.twist, platform_twist(geometry(), estimate.pose, velocities),
+                    rtol=0.0, atol=1e-15)
+    malformed = tracker.update(lengths_of(TABLE3[4]), [math.nan] * 6)
+    assert malformed.accepted and malformed.twist is None
+    assert [warning.code for warning in malformed.warnings] == ['invalid_velocities']
+    without = tracker.update(lengths_of(TABLE3[5]))
+    assert without.accepted and without.twist is None and without.warnings == ()
+
+
+class FakeMonitor:
+    """Stands in for AssemblyModeMarginMonitor: its latest margin and warning."""
+
+    def __init__(self, latest, warning=''):
+        self.latest, self._warning, self.latest_seconds = latest, warning, 0.012
+
+    def warning(self):
+        """Return the warning sentence, as the monitor decides it."""
+        return self._warning
+
+
+class FakeMargin:
+    """An AssemblyModeMargin's fields."""
+
+    def __init__(self, complete=True, nearest=True):
+        self.position, self.angle, self.distance = 0.2, 0.5, 0.25
+        self.modes_within_limits, self.complete, self.reason = 2, complete, 'time out'
+        self.nearest = object() if nearest else None
+
+
+def test_margin_status_warns_when_the_margin_is_small_or_the_search_incomplete():
+    """The level fk_node reports: OK, or WARN with an assembly_mode_margin finding."""
+    from stewart_kinematics.decisions.pose_tracker import margin_status
+    assert margin_status(FakeMonitor(None)).warning is None
+    fine = margin_status(FakeMonitor(FakeMargin()))
+    assert fine.warning is None and fine.message.startswith('nearest other assembly mode')
+    assert dict(fine.values)['computed_in_ms'] == '12.0'
+    alone = margin_status(FakeMonitor(FakeMargin(nearest=False)))
+    assert alone.message == 'no other assembly mode within the limits'
+    close = margin_status(FakeMonitor(FakeMargin(), 'another assembly mode lies 0.01 m'))
+    assert close.warning.code == 'assembly_mode_margin' and close.message.startswith('another')
+    incomplete = margin_status(FakeMonitor(FakeMargin(complete=False)))
+    assert incomplete.warning is not None and 'search was incomplete: time out' in (
+        incomplete.message)

@@ -519,12 +519,69 @@ def _condition_number(singular_values):
 
 def _dimensionless_singular_values(geometry, position, rotation):
     """Singular values, largest first, of the Jacobian of :func:`jacobian_condition`."""
-    jac = twist_jacobian(geometry, position, rotation)
-    jac[..., 3:] /= geometry.platform_radius
-    singular_values = np.linalg.svd(jac, compute_uv=False)
+    return _singular_values(_dimensionless(geometry, twist_jacobian(geometry, position, rotation)))
+
+
+def _dimensionless(geometry, twist_jacobians):
+    """Divide the rotation columns of twist Jacobians by ``rho``, in place; return them."""
+    twist_jacobians[..., 3:] /= geometry.platform_radius
+    return twist_jacobians
+
+
+def _singular_values(jacobians):
+    """Singular values, largest first, of Jacobians (..., 6, 6); 0 last for a zero row."""
+    singular_values = np.linalg.svd(jacobians, compute_uv=False)
     # A zero row (a leg of zero length) is an exact singularity, whatever rounding says.
-    singular_values[..., -1] *= ~np.any(np.all(jac == 0.0, axis=-1), axis=-1)
+    singular_values[..., -1] *= ~np.any(np.all(jacobians == 0.0, axis=-1), axis=-1)
     return singular_values
+
+
+# The leg arrays of a batch, for the limits model (stewart_kinematics.limits), which evaluates
+# every limit on them: the formulas above, exposed in their batch layout (legs by poses).
+
+def leg_arrays(geometry, positions, rotation_entries):
+    """
+    Legs of a batch of poses, leg by pose: :func:`_legs`, the one leg formula, on arrays.
+
+    :param positions: platform origins in the base frame, metres, shape (n, 3).
+    :param rotation_entries: ``(r11, r12, ..., r33)`` of the platform-to-base rotations, nine
+        arrays (n,): :func:`stewart_kinematics.model.rotations.zyx_entries` of Euler angles,
+        or the entries of rotation matrices.
+    :returns: ``(lengths, (lx, ly, lz, ax, ay, az))``: the leg lengths, shape (6, n), and the
+        components of the leg vectors ``t + R p_i - b_i`` and of the rotated platform joints
+        ``R p_i``, each (6, n), metres, base frame. One pose (n = 1) is computed in floats,
+        as :func:`leg_lengths` computes one pose: the same values to the bit, three times
+        faster than the arrays.
+    """
+    positions = np.asarray(positions, dtype=float)
+    if positions.shape == (1, 3):
+        legs = np.array(_single_legs(_constants(geometry), positions[0].tolist(),
+                                     [float(entry[0]) for entry in rotation_entries]))
+        return legs[:, 0:1], tuple(legs[:, column:column + 1] for column in range(1, 7))
+    return _batch_legs(_constants(geometry), positions, rotation_entries)
+
+
+def dimensionless_jacobians(geometry, lengths, vectors) -> np.ndarray:
+    """
+    Dimensionless Jacobians of :func:`jacobian_condition` from :func:`leg_arrays`' output.
+
+    Rows ``[u_i, (R p_i x u_i) / rho]`` (the twist rows of :func:`twist_jacobian`, rotation
+    columns divided by ``rho``); a leg of zero length gives a zero row.
+
+    :param lengths: shape (6, n); ``vectors``: the six arrays (6, n) of :func:`leg_arrays`.
+    :returns: shape (n, 6, 6).
+    """
+    return _dimensionless(geometry, _batch_twist_jacobian(lengths, vectors))
+
+
+def conditions_of_jacobians(jacobians) -> np.ndarray:
+    """
+    Condition numbers of :func:`dimensionless_jacobians`, as :func:`jacobian_condition` gives.
+
+    :param jacobians: shape (n, 6, 6).
+    :returns: shape (n,); ``inf`` where a Jacobian is singular or has a zero row.
+    """
+    return _condition_number(_singular_values(jacobians))
 
 
 @dataclass(frozen=True, eq=False)

@@ -41,8 +41,6 @@ solution (after a start or reset_tracker) when the lengths allow several modes w
 limits and none near the last known pose.
 """
 
-import math
-
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
 import numpy as np
@@ -53,7 +51,7 @@ from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import PoseTracker
+from stewart_kinematics.decisions.pose_tracker import margin_status, PoseTracker
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -186,13 +184,10 @@ class FkNode(Node):
         except ValueError as error:
             self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
-        if self.estimate(lengths, message.header, self.joint_state_accounting) and (
-                velocities is not None):
-            twist = self.tracker.twist(velocities)
-            if twist.accepted:
-                self.twist_publisher.publish(twist_to_message(self.tool_twist(twist.twist)))
-            else:  # the pose went out: the message counts as published, its twist as a warning
-                self.joint_state_accounting.warn(twist.refusal)
+        estimate = self.estimate(lengths, message.header, self.joint_state_accounting,
+                                 velocities)
+        if estimate.twist is not None:
+            self.twist_publisher.publish(twist_to_message(self.tool_twist(estimate.twist)))
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""
@@ -218,19 +213,22 @@ class FkNode(Node):
         self.get_logger().info(response.message)
         return response
 
-    def estimate(self, lengths, header: Header, accounting: MessageAccounting) -> bool:
+    def estimate(self, lengths, header: Header, accounting: MessageAccounting,
+                 velocities=None):
         """
         Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
         :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``.
-        :returns: whether a pose was published.
+        :param velocities: the leg velocities of a joint state, or ``None``.
+        :returns: the tracker's :class:`~stewart_kinematics.PoseEstimate` (with the twist of
+            the velocities, if any, for the caller to publish).
         """
-        estimate = self.tracker.update(lengths)
+        estimate = self.tracker.update(lengths, velocities)
         for warning in estimate.warnings:
             accounting.warn(warning)
         if not estimate.accepted:
             accounting.reject(estimate.refusal)
-            return False
+            return estimate
         frames = self.frames
         accounting.publish(self.pose_publisher,
                            pose_to_message(frames.tool_pose_vector(estimate.pose)))
@@ -243,7 +241,7 @@ class FkNode(Node):
         if self.tf is not None and self.tf.has_listeners():
             self.tf.send(frames.base_frame, frames.platform_frame,
                          Transform.from_pose(estimate.pose), header.stamp)
-        return True
+        return estimate
 
 
 class AssemblyModeMarginReport:
@@ -262,36 +260,14 @@ class AssemblyModeMarginReport:
         self._log_throttle = LogThrottle(node.get_logger(), WARNING_PERIOD)
 
     def report(self) -> DiagnosticStatus:
-        """Return the latest margin: WARN with the core's reason when it is too small."""
-        warning = self.monitor.warning()
-        margin = self.monitor.latest
-        if warning:
-            self._log_throttle.log(findings.ASSEMBLY_MODE_MARGIN, warning)
-        values = []
-        if margin is None:
-            level, message = DiagnosticStatus.OK, 'no solution yet, or not computed yet'
-        else:
-            level = DiagnosticStatus.WARN if warning else DiagnosticStatus.OK
-            if warning:
-                message = warning
-            elif margin.nearest is None:
-                message = 'no other assembly mode within the limits'
-            else:
-                message = (f'nearest other assembly mode within the limits: {margin.position:.4g} '
-                           f'm and {math.degrees(margin.angle):.4g} deg away')
-            if not margin.complete:
-                level = DiagnosticStatus.WARN
-                message += f'; the search was incomplete: {margin.reason}'
-            values = [('margin_position_m', f'{margin.position:.6g}'),
-                      ('margin_angle_deg', f'{math.degrees(margin.angle):.6g}'),
-                      ('margin_distance_m', f'{margin.distance:.6g}'),
-                      ('modes_within_limits', str(margin.modes_within_limits)),
-                      ('search_complete', str(margin.complete)),
-                      ('computed_in_ms', f'{self.monitor.latest_seconds * 1e3:.1f}')]
+        """Return the latest margin: WARN with the core's reason when it deserves a warning."""
+        status = margin_status(self.monitor)
+        if status.warning is not None:
+            self._log_throttle.log(status.warning.code, status.warning.message)
         return DiagnosticStatus(
-            level=level, name=self.status_name, message=message,
-            hardware_id=self.hardware_id,
-            values=[KeyValue(key=key, value=value) for key, value in values])
+            level=DiagnosticStatus.WARN if status.warning else DiagnosticStatus.OK,
+            name=self.status_name, message=status.message, hardware_id=self.hardware_id,
+            values=[KeyValue(key=key, value=value) for key, value in status.values])
 
 
 def main(args=None) -> int:

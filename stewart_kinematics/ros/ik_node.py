@@ -37,9 +37,13 @@ computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command pa
 ``<platform_frame>_commanded``.
 
 A change of the tool frame at run time applies from the next message on. What to command and
-what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a
-limit of the geometry is refused, never clamped); the node converts the messages, publishes,
-and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
+what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (the frame a pose is given
+in, a non-unit quaternion, a pose that breaks a limit: refused, never clamped; a twist beyond
+the leg velocity limit: refused, or scaled to it with ``twist_over_limit: 'scale'``) and, for
+streamed commands, by :class:`stewart_kinematics.CommandFilter` (every step within the stroke
+and the leg velocity, acceleration and jerk limits; reported on ``/diagnostics`` as the
+``command_stream`` input). The node converts the messages, publishes, and counts each refusal
+with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -47,11 +51,8 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import findings
 from stewart_kinematics.decisions.command_check import CommandCheck
-from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
@@ -64,13 +65,7 @@ from stewart_kinematics.parameters import (
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import platform_markers
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
-from stewart_kinematics.ros.message_conversions import (
-    joint_state_message,
-    legs_to_message,
-    position_quaternion_from_message,
-    QUATERNION_NORM_TOLERANCE,
-    twist_from_message,
-)
+from stewart_kinematics.ros.message_conversions import joint_state_message, legs_to_message
 from stewart_kinematics.ros.node_main import (
     create_input_subscription,
     create_output_publisher,
@@ -80,8 +75,6 @@ from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
 
-#: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
-WRONG_FRAME = 'wrong_frame'
 #: Suffix of the commanded platform frame's name on /tf.
 COMMANDED_SUFFIX = '_commanded'
 
@@ -95,7 +88,9 @@ class IkNode(Node):
                                          check=frame_parameters_reason)
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
-        self.check = CommandCheck(self.geometry)
+        actuator_limits = actuator_limits_from_settings(settings.geometry)
+        self.check = CommandCheck(self.geometry, actuator_limits,
+                                  twist_over_limit=settings.streaming.twist_over_limit)
         # Replaced whole when a tool frame parameter changes: one tree per message.
         self.frames = frames_from_settings(settings.frames)
         self.actuators = actuator_interface_from_settings(settings.actuators)
@@ -105,9 +100,8 @@ class IkNode(Node):
         self.streaming = False
         command_rate = settings.streaming.command_rate
         if command_rate > 0.0:
-            self.command_filter = CommandFilter(actuator_limits_from_settings(settings.geometry),
-                                                1.0 / command_rate,
-                                                self.geometry.home_leg_lengths)
+            self.command_filter = CommandFilter(actuator_limits, 1.0 / command_rate,
+                                                self.geometry.home_leg_lengths, self.geometry)
         self.base_frame = settings.frames.base_frame
         marker_rate = settings.markers.marker_rate
         self.marker_period_ns = 1e9 / marker_rate if marker_rate else None
@@ -128,6 +122,9 @@ class IkNode(Node):
         self.accounting = diagnostics.accounting('target_pose')
         self.stamped_accounting = diagnostics.accounting('target_pose_stamped')
         self.twist_accounting = diagnostics.accounting('target_twist')
+        # The steps of the stream, as an input of their own: each counted, given or held.
+        self.stream_accounting = (diagnostics.accounting('command_stream')
+                                  if self.command_filter is not None else None)
         create_input_subscription(self, IK_NODE['target_pose'], self.on_target_pose, depth)
         create_input_subscription(
             self, IK_NODE['target_pose_stamped'], self.on_target_pose_stamped, depth)
@@ -163,13 +160,7 @@ class IkNode(Node):
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
         self.stamped_accounting.receive()
-        frames = self.frames
-        try:
-            frames.reference(message.header.frame_id)
-        except ValueError as error:
-            self.stamped_accounting.reject(Finding(WRONG_FRAME, str(error)))
-            return
-        self.command(message.pose, message.header, self.stamped_accounting, frames)
+        self.command(message.pose, message.header, self.stamped_accounting, self.frames)
 
     def command(self, pose: Pose, header: Header, accounting: MessageAccounting, frames):
         """
@@ -178,20 +169,15 @@ class IkNode(Node):
         :param pose: the tool frame's pose, in ``header.frame_id`` (base or user frame).
         :param frames: the frame tree to apply, the same for the whole message.
         """
-        try:
-            position, quaternion, norm = position_quaternion_from_message(pose)
-        except ValueError as error:
-            accounting.reject(Finding(findings.INVALID_POSE, str(error)))
-            return
-        if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
-            self.get_logger().warning(
-                f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
-                '(said once)', once=True)
-        position, rotation = frames.platform_in_base(
-            position, quaternion_to_matrix(quaternion), header.frame_id)
-        command = self.check.pose(position, rotation)
+        point, orientation = pose.position, pose.orientation
+        command = self.check.tool_pose(
+            (point.x, point.y, point.z), (orientation.x, orientation.y, orientation.z,
+                                          orientation.w), frames, header.frame_id)
+        for warning in command.warnings:
+            accounting.warn(warning)
         if command.violations or command.accepted:
-            self.publish_markers(header, position, rotation, command.violations)
+            self.publish_markers(header, command.position, command.rotation,
+                                 command.legs_at_fault)
         if not command.accepted:
             accounting.reject(command.refusal)
             return
@@ -203,31 +189,44 @@ class IkNode(Node):
             self.extensions_publisher.publish(
                 legs_to_message(lengths - self.geometry.home_leg_lengths))
         if self.command_filter is not None:
-            self.command_filter.set_target(lengths)
+            refusal = self.command_filter.set_target(lengths)
+            if refusal is not None:
+                self.stream_accounting.warn(refusal)
             self.streaming = True
         elif self.joint_command_publisher.get_subscription_count():
             self.joint_command_publisher.publish(
                 joint_state_message(header, lengths, actuators=self.actuators))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
-                         Transform(position, rotation), header.stamp)
+                         Transform(command.position, command.rotation), header.stamp)
 
     def publish_streamed_command(self):
-        """Publish the next filtered command (position, velocity), once a pose was accepted."""
+        """
+        Publish the next filtered command (position, velocity), once a pose was accepted.
+
+        A step the filter could not compute within the limits (held) publishes nothing: the
+        last command stands. Its reason, and that of a step that brakes, is counted.
+        """
         if not self.streaming:
             return
+        accounting = self.stream_accounting
+        accounting.receive()
         command = self.command_filter.step()
-        if self.joint_command_publisher.get_subscription_count():
-            header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-            self.joint_command_publisher.publish(joint_state_message(
-                header, command.lengths, command.velocities, actuators=self.actuators))
+        if command.held:
+            accounting.reject(command.finding)
+            return
+        if command.finding is not None:
+            accounting.warn(command.finding)
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
+        accounting.publish(self.joint_command_publisher, joint_state_message(
+            header, command.lengths, command.velocities, actuators=self.actuators))
 
-    def publish_markers(self, header, position, rotation, violations):
+    def publish_markers(self, header, position, rotation, legs_at_fault):
         """
         Publish the platform's markers, at most at marker_rate and only to a subscriber.
 
-        Refused poses are shown too, with the offending legs in red: what was asked, and why
-        it was refused.
+        Refused poses are shown too, with the offending legs in red (``None`` among
+        ``legs_at_fault``: all six): what was asked, and why it was refused.
         """
         if self.marker_period_ns is None or self.marker_publisher.get_subscription_count() == 0:
             return
@@ -238,21 +237,20 @@ class IkNode(Node):
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(
             Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
-            rotation, [violation.leg for violation in violations],
+            rotation, legs_at_fault,
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):
         """Publish the leg velocities of a tool-frame twist at the last accepted pose."""
         self.twist_accounting.receive()
-        try:
-            twist = twist_from_message(message)
-        except ValueError as error:
-            self.twist_accounting.reject(Finding(findings.INVALID_TWIST, str(error)))
-            return
+        linear, angular = message.linear, message.angular
+        twist = (linear.x, linear.y, linear.z, angular.x, angular.y, angular.z)
         if self.check.last_pose is not None:
             # About the tool frame's origin, as every pose topic: moved to the platform's.
             twist = self.frames.platform_twist_from_tool(twist, self.check.last_pose[1])
         command = self.check.twist(twist)
+        for warning in command.warnings:
+            self.twist_accounting.warn(warning)
         if not command.accepted:
             self.twist_accounting.reject(command.refusal)
             return

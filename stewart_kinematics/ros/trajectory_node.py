@@ -20,7 +20,8 @@ mode it publishes the table's rows, one every ``row_period``; in ``interpolate``
 the ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup
 tables do. Once, or looping. Before playing, it checks every pose it would publish against the
 limits of the geometry (the same parameters as ik_node) and refuses to start, listing the
-failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp.
+failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp. What is
+played when, and the check, are :class:`stewart_kinematics.motion.ramp.RampSchedule`'s.
 
 Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
 the tool frame, with its twists and accelerations when given) and ``pose_path``
@@ -47,17 +48,15 @@ import threading
 from typing import Any, Callable, Optional
 
 from nav_msgs.msg import Path
-import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import limits
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY, PLANNING_ERROR, SUPERSEDED
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import MotionPlanner
-from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.ramp import RampSchedule
 from stewart_kinematics.motion.retiming import Cancelled, load_retiming
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
@@ -105,15 +104,13 @@ class TrajectoryNode(Node):
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuator_limits = actuator_limits_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
-        self.ramp = Ramp.from_settings(settings.ramp)
-        self.rows = self.ramp.rows
+        self.schedule = RampSchedule.from_settings(settings.ramp)
+        self.rows = self.schedule.ramp.rows
         self.frames = frames_from_settings(settings.frames)
         self.planner = self.make_planner(settings)
-        if settings.ramp.mode != 'off':
-            # The ramp's poses are the tool frame's, as ik_node reads them: check where they
-            # put the platform.
-            times, poses = self.planned_samples()
-            limits.check_samples(self.geometry, times, self.frames.platform_pose_vectors(poses))
+        refusal = self.schedule.check(self.geometry, self.frames)
+        if refusal is not None:
+            raise ValueError(refusal.message)     # the node cannot start: main() says why
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
         # and the ramp, not in the first plan; a plan that needs them meanwhile waits for the
         # import to finish (Python's import lock).
@@ -137,7 +134,7 @@ class TrajectoryNode(Node):
         self.playing = None
         self.play_start = None
         self.play_timer = None
-        if settings.ramp.mode != 'off':
+        if self.schedule.plays:
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
             self.get_logger().info(
                 f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
@@ -166,21 +163,6 @@ class TrajectoryNode(Node):
         self.worker.close()
         return super().destroy_node()
 
-    def planned_samples(self):
-        """
-        Return the times (seconds from the start of a pass) and poses the node will publish.
-
-        In interpolate mode the timer's jitter moves the real sample times a little; the ramp
-        is linear between rows, so those poses lie between samples checked here.
-        """
-        if self.settings.ramp.mode == 'table':
-            times = np.arange(len(self.rows)) * self.settings.ramp.row_period
-            return times, self.rows
-        duration = self.settings.ramp.duration
-        times = np.append(np.arange(0.0, duration, 1.0 / self.settings.ramp.publish_rate),
-                          duration)
-        return times, self.ramp.sample(times, duration)
-
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
         wanted = self.settings.ramp.min_subscribers
@@ -194,13 +176,12 @@ class TrajectoryNode(Node):
     def start(self):
         """Play the ramp: rows on a timer in table mode, samples in interpolate mode."""
         self.wait_timer.cancel()
-        if self.settings.ramp.mode == 'table':
-            self.timer = self.create_timer(self.settings.ramp.row_period, self.publish_row)
+        if self.schedule.mode == 'table':
+            self.timer = self.create_timer(self.schedule.period, self.publish_row)
             self.publish_row()
         else:
             self.start_time = self.get_clock().now()
-            self.timer = self.create_timer(
-                1.0 / self.settings.ramp.publish_rate, self.publish_sample)
+            self.timer = self.create_timer(self.schedule.period, self.publish_sample)
             self.publish_sample()
 
     def publish_row(self):
@@ -213,10 +194,9 @@ class TrajectoryNode(Node):
 
     def publish_sample(self):
         """Publish the ramp's pose at the current time."""
-        duration = self.settings.ramp.duration
         elapsed = (self.get_clock().now() - self.start_time).nanoseconds * 1e-9
-        self.publish(self.ramp.sample(min(elapsed, duration), duration))
-        if elapsed >= duration:
+        self.publish(self.schedule.pose_at(elapsed))
+        if elapsed >= self.schedule.duration:
             self.start_time = self.get_clock().now()
             self.finish_pass()
 
@@ -227,7 +207,7 @@ class TrajectoryNode(Node):
 
     def finish_pass(self):
         """Start again when looping; otherwise stop the timer and say so."""
-        if not self.settings.ramp.loop:
+        if not self.schedule.loop:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 
