@@ -175,8 +175,9 @@ def test_a_trajectory_needing_more_samples_than_a_check_takes_is_refused_before_
     ([0.0, math.inf], 'point 1 has time inf s'),
     ([-1.0, 1.0], 'point 0 has time -1.0 s'),
     ([0.0, 1e300], 'point 1 has time 1e+300 s'),
-    ([0.0, 2.0, 1.0], 'increase strictly, got 2 s then 1 s (points 1 and 2)'),
+    ([0.0, 2.0, 1.0], 'by 1e-09 s at least, got 2 s then 1 s (points 1 and 2)'),
     ([0.0, 1.0, 1.0], 'increase strictly'),
+    ([0.0, 5e-324, 1e-323], 'by 1e-09 s at least'),
 ])
 def test_malformed_times_are_refused_with_the_point_and_why(times, words):
     """Non-finite, negative, absurd, non-increasing times, no point, one point."""
@@ -184,6 +185,21 @@ def test_malformed_times_are_refused_with_the_point_and_why(times, words):
     for retime_path in (False, True):
         plan = planner(retime_path).plan_trajectory(times, *waypoints(poses))
         assert plan.refusal.code == 'invalid_trajectory' and words in plan.reason
+
+
+@pytest.mark.parametrize('retime_path', [False, True])
+def test_positions_and_rates_no_platform_reaches_are_refused(retime_path):
+    """1e308 m, or a velocity of 1e6 m/s: no motion of a platform, refused by name."""
+    far = np.array([HOME, HOME, HOME])
+    far[1, 0] = 1e308
+    plan = planner(retime_path).plan_trajectory([0.0, 1.0, 2.0], *waypoints(far))
+    assert plan.refusal.code == 'invalid_trajectory'
+    assert 'point 1: positions [1e+308, 0.0, 0.4325] m, beyond 1000 m' in plan.reason
+    fast = np.zeros((2, 3))
+    fast[1, 2] = 1e6
+    plan = planner(retime_path).plan_trajectory([0.0, 1.0], *waypoints([HOME, LIFT]), fast,
+                                                np.zeros((2, 3)))
+    assert 'point 1: velocities' in plan.reason and 'm/s: no motion' in plan.reason
 
 
 def test_too_many_waypoints_and_empty_paths_are_refused():

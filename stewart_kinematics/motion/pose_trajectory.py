@@ -63,6 +63,11 @@ from stewart_kinematics.model.velocities import leg_states, LegStates, PoseSampl
 MAX_WAYPOINTS = 100_000
 #: Latest time a waypoint may have, seconds from the start (about 11.6 days).
 MAX_TIME = 1e6
+#: Smallest step between two waypoint times, seconds (the resolution of a ROS Duration).
+MIN_TIME_STEP = 1e-9
+#: Largest coordinate of a waypoint's position (m), velocity (m/s, rad/s) or acceleration
+#: (m/s^2, rad/s^2): beyond, it is no motion of a platform (and squares would overflow).
+MAX_MAGNITUDE = 1e3
 #: Two waypoints closer than this (metres, and radians) are the same pose.
 SAME_POSE_TOLERANCE = 1e-9
 #: On a path, a waypoint less than this leg travel (metres) from the last one kept is merged.
@@ -104,10 +109,11 @@ def waypoint_times(times) -> np.ndarray:
         raise ValueError(f'point {index} has time {float(times[index])!r} s: waypoint times '
                          f'must be finite, from 0 to {MAX_TIME:g} s (about 11.6 days)')
     steps = np.diff(times)
-    if not np.all(steps > 0.0):
-        index = int(np.argmin(steps > 0.0))
-        raise ValueError(f'waypoint times must increase strictly, got {times[index]:.9g} s '
-                         f'then {times[index + 1]:.9g} s (points {index} and {index + 1})')
+    if not np.all(steps >= MIN_TIME_STEP):
+        index = int(np.argmin(steps >= MIN_TIME_STEP))
+        raise ValueError(f'waypoint times must increase strictly, by {MIN_TIME_STEP:g} s at '
+                         f'least, got {times[index]:.9g} s then {times[index + 1]:.9g} s '
+                         f'(points {index} and {index + 1})')
     return times
 
 
@@ -151,7 +157,7 @@ class PoseTrajectory:
         times = waypoint_times(times)
         count = times.shape[0]
         steps = np.diff(times)
-        positions = _array('positions', positions, (count, 3))
+        positions = _array('positions', positions, (count, 3), 'm')
         rotations = _array('rotations', rotations, (count, 3, 3))
         error = np.abs(rotations @ np.swapaxes(rotations, -1, -2) - np.eye(3)).max()
         if error > 1e-6 or np.any(np.linalg.det(rotations) < 0.0):
@@ -183,17 +189,18 @@ class PoseTrajectory:
                     np.diff(positions, axis=0) / steps[:, None], steps, resting)
                 body_rates = _three_point_tangents(turns / steps[:, None], steps, resting)
         else:
-            velocities = _array('velocities', velocities, (count, 3))
-            angular_velocities = _array('angular velocities', angular_velocities, (count, 3))
+            velocities = _array('velocities', velocities, (count, 3), 'm/s')
+            angular_velocities = _array('angular velocities', angular_velocities, (count, 3),
+                                        'rad/s')
             body_rates = np.einsum('nji,nj->ni', rotations, angular_velocities)
         self.degree = 3
         if body_accelerations is not None:
             self.degree = 5
         elif accelerations is not None:
             self.degree = 5
-            accelerations = _array('accelerations', accelerations, (count, 3))
+            accelerations = _array('accelerations', accelerations, (count, 3), 'm/s^2')
             body_accelerations = np.einsum('nji,nj->ni', rotations, _array(
-                'angular accelerations', angular_accelerations, (count, 3)))
+                'angular accelerations', angular_accelerations, (count, 3), 'rad/s^2'))
         for array in (times, positions, rotations, velocities, body_rates):
             array.flags.writeable = False
         self.times, self.positions, self.rotations = times, positions, rotations
@@ -248,7 +255,7 @@ class PoseTrajectory:
         :raises SingularPathError: if the platform moves between two waypoints while the legs
             hardly do (:data:`SINGULAR_RATIO`): the way between them crosses a singularity.
         """
-        positions = _array('positions', positions, (None, 3))
+        positions = _array('positions', positions, (None, 3), 'm')
         count = positions.shape[0]
         if count < 2 or count > MAX_WAYPOINTS:
             waypoint_times(np.arange(count, dtype=float))   # raises, saying why
@@ -708,8 +715,13 @@ def _angles_between(first, second):
     return np.arctan2(np.linalg.norm(skew, axis=-1) / 2.0, cosine)
 
 
-def _array(name, value, shape):
-    """Convert to a finite float array of ``shape`` (``None`` entries: any length)."""
+def _array(name, value, shape, unit=None):
+    """
+    Convert to a finite float array of ``shape`` (``None`` entries: any length).
+
+    :param unit: for positions and their derivatives: the unit of :data:`MAX_MAGNITUDE`,
+        beyond which a value is refused (no motion of a platform).
+    """
     try:
         array = np.array(value, dtype=float)
     except (TypeError, ValueError) as error:
@@ -721,4 +733,8 @@ def _array(name, value, shape):
         raise ValueError(f'{name} must have shape {shown}, got {array.shape}')
     if not np.all(np.isfinite(array)):
         raise ValueError(f'{name} must be finite')
+    if unit is not None and array.size and np.abs(array).max() > MAX_MAGNITUDE:
+        index = int(np.argmax(np.abs(array).max(axis=-1)))
+        raise ValueError(f'point {index}: {name} {array[index].tolist()} {unit}, beyond '
+                         f'{MAX_MAGNITUDE:g} {unit}: no motion of a platform')
     return array

@@ -37,6 +37,7 @@ from stewart_kinematics.model.rotations import (
     quaternion_to_euler_zyx,
 )
 from stewart_kinematics.motion.leg_trajectory import LegTrajectory
+from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 #: Label of the one layout dimension of a leg array message.
@@ -200,6 +201,7 @@ def pose_trajectory_from_message(message: MultiDOFJointTrajectory) -> dict:
         raise ValueError(f'the trajectory must have one joint, the platform; got '
                          f'{len(message.joint_names)}: {list(message.joint_names)}')
     points = message.points
+    _check_count(len(points))
     if any(len(point.transforms) != 1 for point in points):
         raise ValueError('every trajectory point must have exactly one transform (the '
                          'platform, or the tool frame, in the frame of the header)')
@@ -237,6 +239,7 @@ def path_from_message(message: Path):
         or not finite.
     """
     frame_id = message.header.frame_id
+    _check_count(len(message.poses))
     for index, stamped in enumerate(message.poses):
         if stamped.header.frame_id and stamped.header.frame_id != frame_id:
             raise ValueError(f'pose {index} of the path is in frame '
@@ -248,6 +251,13 @@ def path_from_message(message: Path):
                                             p.orientation.z, p.orientation.w)
                                            for p in poses], 4))
     return positions, quaternions, frame_id
+
+
+def _check_count(count):
+    """Refuse more waypoints than a trajectory may have before converting any (ValueError)."""
+    if count > MAX_WAYPOINTS:
+        raise ValueError(f'a trajectory may have at most {MAX_WAYPOINTS:,} waypoints, got '
+                         f'{count:,}: send it in parts')
 
 
 def _rows(values, width):
