@@ -33,7 +33,6 @@ Adding a limit is adding an evaluator and listing it here. Nothing here imports 
 
 import math
 from typing import Dict, List, Optional
-import weakref
 
 import numpy as np
 
@@ -57,8 +56,8 @@ LEG_STATE_LIMIT_NAMES = ('leg_length_min', 'leg_length_max', 'leg_velocity_max',
 #: cache (measured fastest between 512 and 2048).
 CHECK_BLOCK_SIZE = 1024
 
-#: The model of the pose limits of each geometry still alive (see LimitModel.of_geometry).
-_MODELS = weakref.WeakKeyDictionary()
+#: The attribute of a geometry that keeps its pose limits' model (see LimitModel.of_geometry).
+_MODEL_ATTRIBUTE = '_limit_model'
 
 
 class LimitModel:
@@ -91,12 +90,18 @@ class LimitModel:
 
     @classmethod
     def of_geometry(cls, geometry) -> 'LimitModel':
-        """Return the model of a geometry's pose limits, built once per geometry and kept."""
-        try:
-            return _MODELS[geometry]
-        except KeyError:
-            model = _MODELS[geometry] = cls(geometry)
-            return model
+        """
+        Return the model of a geometry's pose limits, built once per geometry and kept on it.
+
+        Kept as an attribute of the geometry (a cycle the garbage collector frees with it), not
+        in a table keyed by geometry: a table's value holding its key would keep every
+        geometry alive.
+        """
+        model = geometry.__dict__.get(_MODEL_ATTRIBUTE)
+        if model is None:
+            model = cls(geometry)
+            object.__setattr__(geometry, _MODEL_ATTRIBUTE, model)
+        return model
 
     @property
     def pose_limit_names(self):
