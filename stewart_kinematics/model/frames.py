@@ -39,6 +39,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 
@@ -56,8 +57,8 @@ class Transform:
 
     def __post_init__(self):
         """Store float copies; refuse anything but a finite (3,) and a rotation (3, 3)."""
-        position = np.array(self.position, dtype=float)
-        rotation = np.array(self.rotation, dtype=float)
+        position = np.array(as_float_array(self.position, 'position'))
+        rotation = np.array(as_float_array(self.rotation, 'rotation'))
         if position.shape != (3,) or rotation.shape != (3, 3):
             raise ValueError(f'a transform needs a position of shape (3,) and a rotation of '
                              f'shape (3, 3), got {position.shape} and {rotation.shape}')
@@ -77,7 +78,7 @@ class Transform:
         The angles follow the package's convention, ``R = Rz(gamma) Ry(beta) Rx(alpha)``. An
         all-zero pose gives :data:`IDENTITY` itself, which the frame tree skips at no cost.
         """
-        pose = np.asarray(pose, dtype=float)
+        pose = as_float_array(pose, 'pose')
         if pose.shape != (6,):
             raise ValueError(f'a pose vector has 6 values, got shape {pose.shape}')
         if not pose.any():
@@ -254,7 +255,7 @@ class FrameTree:
         """
         positions = _vectors('positions', positions)
         count = positions.shape[0]
-        rotations = np.asarray(rotations, dtype=float)
+        rotations = as_float_array(rotations, 'rotations')
         if rotations.shape != (count, 3, 3):
             raise ValueError(f'rotations must have shape ({count}, 3, 3), got {rotations.shape}')
         vectors = [None if value is None else _vectors(name, value, count) for name, value in (
@@ -288,11 +289,12 @@ class FrameTree:
         :returns: ``[v - w x d, w]`` with ``d = R_platform p_tool``; the twist itself when the
             tool frame's origin is the platform's.
         """
-        twist = np.asarray(twist, dtype=float)
-        if not self.tool_pose.position.any():
-            return twist
-        offset = np.asarray(platform_rotation, dtype=float) @ self.tool_pose.position
-        return np.concatenate([twist[:3] - np.cross(twist[3:], offset), twist[3:]])
+        twist = as_float_array(twist, 'twist')
+        if not self.tool_pose.position.any() or twist.shape != (6,):
+            return twist   # a wrong shape is the caller's to refuse, with its reason
+        offset = as_float_array(platform_rotation, 'platform_rotation') @ self.tool_pose.position
+        with np.errstate(all='ignore'):   # a NaN or huge twist stays one: refused by the caller
+            return np.concatenate([twist[:3] - np.cross(twist[3:], offset), twist[3:]])
 
     def tool_twist_from_platform(self, twist, platform_rotation) -> np.ndarray:
         """
@@ -300,11 +302,12 @@ class FrameTree:
 
         The inverse of :meth:`platform_twist_from_tool`: ``[v + w x d, w]``.
         """
-        twist = np.asarray(twist, dtype=float)
-        if not self.tool_pose.position.any():
+        twist = as_float_array(twist, 'twist')
+        if not self.tool_pose.position.any() or twist.shape != (6,):
             return twist
-        offset = np.asarray(platform_rotation, dtype=float) @ self.tool_pose.position
-        return np.concatenate([twist[:3] + np.cross(twist[3:], offset), twist[3:]])
+        offset = as_float_array(platform_rotation, 'platform_rotation') @ self.tool_pose.position
+        with np.errstate(all='ignore'):
+            return np.concatenate([twist[:3] + np.cross(twist[3:], offset), twist[3:]])
 
     def static_transforms(self):
         """
@@ -323,10 +326,7 @@ class FrameTree:
 
 def _vectors(name, values, count=None):
     """Convert to a float array of shape (N, 3), or (count, 3), saying what is wrong."""
-    try:
-        array = np.array(values, dtype=float)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f'{name} must be numbers: {error}') from None
+    array = np.array(as_float_array(values, name))
     if array.size == 0 and count in (None, 0):
         return array.reshape(0, 3)
     if array.ndim != 2 or array.shape[1] != 3 or (count is not None and array.shape[0] != count):

@@ -35,6 +35,7 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding, violation_details
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.frames import FrameTree
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.pose_trajectory import (
@@ -239,10 +240,7 @@ class MotionPlanner:
 
 def _rows(name, values, width):
     """Convert to a float array of shape (N, width), saying what is wrong otherwise."""
-    try:
-        array = np.array(values, dtype=float)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f'{name} must be numbers: {error}') from None
+    array = np.array(as_float_array(values, name))
     if array.size == 0:
         return array.reshape(0, width)
     if array.ndim != 2 or array.shape[1] != width:
