@@ -101,8 +101,8 @@ def test_an_accepted_plan_puts_the_tool_frame_on_every_waypoint(data, retime):
 
 @covers('MotionPlanner')
 @budget(30)
-@given(waypoint_sets(max_size=3), st.sampled_from(['times', 'positions', 'quaternions',
-                                                    'velocities']),
+@given(waypoint_sets(max_size=3),
+       st.sampled_from(['times', 'positions', 'quaternions', 'velocities']),
        st.one_of(NOT_NUMBERS, NON_FINITE, st.sampled_from([1e308, -1.0, 2.0 ** 31])),
        st.booleans())
 def test_hostile_fields_are_refused_as_invalid_trajectories(data, field, bad, retime):
