@@ -45,6 +45,16 @@ NEAR_SINGULARITY = 'near_singularity'
 TOO_FAST = 'too_fast'
 RETIMING_FAILED = 'retiming_failed'
 INVALID_TRAJECTORY = 'invalid_trajectory'
+#: Motion cueing (stewart_kinematics.cueing): a vehicle motion sample refused (malformed, not
+#: finite or absurd), a sample whose time does not come after the previous one's, and warnings:
+#: a gap in the input, the cue scaled toward neutral to keep the limits, the actuators' speed
+#: limits holding the platform back, and a pose held because it would have left the limits.
+INVALID_VEHICLE_MOTION = 'invalid_vehicle_motion'
+TIME_NOT_INCREASING = 'time_not_increasing'
+INPUT_GAP = 'input_gap'
+CUE_SCALED = 'cue_scaled'
+ACTUATOR_LIMITED = 'actuator_limited'
+LIMITS_HELD = 'limits_held'
 
 
 @dataclass(frozen=True)
