@@ -131,7 +131,8 @@ def delay(times, reference, delayed, max_delay: float = MAX_DELAY) -> float:
     Seconds by which ``delayed`` lags ``reference``: the peak of their cross-correlation.
 
     Both are resampled on an even grid of the median step; the peak is refined by a parabola
-    through its three samples. NaN when either is constant.
+    through its three samples. NaN when either is constant; plus or minus infinity when the
+    peak lies at the end of the window searched (no delay within ``max_delay`` explains them).
 
     :param max_delay: largest lag searched either way, seconds.
     """
@@ -150,6 +151,9 @@ def delay(times, reference, delayed, max_delay: float = MAX_DELAY) -> float:
     window = np.concatenate([correlation[-lags:], correlation[:lags + 1]]) if lags else \
         correlation[:1]
     peak = int(np.argmax(window))
+    if peak in (0, window.size - 1) and lags:
+        # The best lag is at the end of the window: the delay is beyond it (or undefined).
+        return math.copysign(math.inf, peak - lags)
     offset = 0.0
     if 0 < peak < window.size - 1:
         left, centre, right = window[peak - 1], window[peak], window[peak + 1]

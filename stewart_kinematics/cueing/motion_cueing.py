@@ -203,7 +203,7 @@ class MotionCueing:
                 return Finding(
                     INVALID_VEHICLE_MOTION,
                     f'{name} of magnitude {norm:.6g} {unit} is beyond {largest:g} {unit}: '
-                    'absurd for a vehicle; taken as rest', ((name, str(vector.tolist())),))
+                    'absurd for a vehicle', ((name, str(vector.tolist())),))
         return None
 
     def cue(self, time, specific_force, angular_velocity) -> CueStep:

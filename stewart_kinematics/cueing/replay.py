@@ -105,7 +105,7 @@ def replay(cueing: MotionCueing, times, specific_force, angular_velocity,
         try:
             step = cueing.step(times[index], forces[index], rates[index])
         except ValueError as error:
-            raise ValueError(f'sample {index} (time {times[index]!r} s): {error}') from None
+            raise ValueError(f'sample {index} (time {float(times[index])!r} s): {error}') from None
         for name in ('poses', 'lengths'):
             outputs[name][index] = getattr(step, 'pose' if name == 'poses' else name)
         for name in ('displacement', 'angles', 'tilt', 'tilt_rate', 'workspace_scale',

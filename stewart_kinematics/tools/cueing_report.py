@@ -290,7 +290,7 @@ def targets(name, evaluation):
             result.append((f'correlation >= 0.8 ({axis.axis})',
                            axis.correlation >= CORRELATION_TARGET, f'{axis.correlation:.3f}'))
             result.append((f'delay <= 50 ms ({axis.axis})', abs(axis.delay) <= DELAY_TARGET,
-                           f'{axis.delay * 1e3:.0f} ms'))
+                           f'{_number(axis.delay * 1e3, ".0f")} ms'))
     return result
 
 
@@ -322,7 +322,12 @@ def markdown_table(results) -> str:
 
 
 def _number(value, spec='.3f'):
-    return '-' if math.isnan(value) else format(value, spec)
+    if math.isnan(value):
+        return '-'
+    if math.isinf(value):
+        from stewart_kinematics.cueing.evaluation import MAX_DELAY
+        return f'> {MAX_DELAY * 1e3:.0f}' if value > 0 else f'< -{MAX_DELAY * 1e3:.0f}'
+    return format(value, spec)
 
 
 def write_figure(path: Path, name, replay, evaluation, geometry):
@@ -365,10 +370,10 @@ def _inputs(options):
     from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
     if options.csv is not None:
         times, forces, rates = load_csv(options.csv)
-        yield options.csv.stem, times, forces, rates, None
+        yield options.csv.name, times, forces, rates, None
     elif options.mcap is not None:
         times, forces, rates = load_mcap(options.mcap, options.topic)
-        yield mcap_file(options.mcap).stem, times, forces, rates, None
+        yield mcap_file(options.mcap).name, times, forces, rates, None
     else:
         names = options.scenario or ['all']
         names = SCENARIO_NAMES if 'all' in names else list(dict.fromkeys(names))
@@ -378,8 +383,9 @@ def _inputs(options):
                    generated.rest_time)
 
 
-def run(options, stream=sys.stdout):
+def run(options, stream=None):
     """Replay every input and write the outputs; return ``(results, every target met)``."""
+    stream = sys.stdout if stream is None else stream
     from stewart_kinematics import travel_ranges
     from stewart_kinematics.cueing import evaluate, MotionCueing, replay
     values = read_parameters(options.params_files)
@@ -391,7 +397,10 @@ def run(options, stream=sys.stdout):
         cueing = MotionCueing(geometry, settings, template.actuator_limits)
         progress = None if options.quiet else ProgressBar(name)
         started = time.perf_counter()
-        played = replay(cueing, times, forces, rates, progress)
+        try:
+            played = replay(cueing, times, forces, rates, progress)
+        except ValueError as error:
+            raise ValueError(f'{name}: {error}') from None
         seconds = time.perf_counter() - started
         evaluation = evaluate(played, geometry, template.actuator_limits,
                               settings.tilt_rate_max, rest=rest, travel=travel,
@@ -406,7 +415,8 @@ def run(options, stream=sys.stdout):
             print(f'  {"met   " if ok else "MISSED"} {target}: {value}', file=stream)
         numbers[name] = _numbers(evaluation, met)
         if not options.no_figures:
-            write_figure(options.output / f'{name}.png', name, played, evaluation, geometry)
+            write_figure(options.output / f'{Path(name).stem}.png', name, played, evaluation,
+                         geometry)
     table = markdown_table(results)
     (options.output / 'cueing_results.md').write_text(table + '\n', encoding='utf-8')
     with open(options.output / 'cueing_results.yaml', 'w', encoding='utf-8') as out:
