@@ -15,8 +15,8 @@
 """
 Benchmark calibration: the time to calibrate from 50 poses, against baselines in the same run.
 
-The README's worked example platform (the paper's, joints moved by up to 2 mm, offsets by up to
-5 mm), measured at 50 poses with 5 um / 10 urad tracker noise, 1 um actuator noise and two
+The documentation's worked example platform (the paper's, joints moved by up to 2 mm, offsets by
+up to 5 mm), measured at 50 poses with 5 um / 10 urad tracker noise, 1 um actuator noise and two
 spoilt measurements. Timed, medians of repeated runs:
 
 - ``calibrate`` as shipped (robust loss, outlier rejection, final fit, standard deviations);
@@ -52,7 +52,7 @@ from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import load_geometry
 
 ROOT = Path(__file__).resolve().parent.parent
-# The README's worked example lives in scripts/, outside the installed package.
+# The documentation's worked example lives in scripts/, outside the installed package.
 sys.path.insert(0, str(ROOT / 'scripts'))
 import calibration_example  # noqa: E402,I100
 

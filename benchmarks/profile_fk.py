@@ -15,7 +15,7 @@
 """
 Where a cold forward-kinematics solve spends its time, against basic-robotics' compiled kernel.
 
-The figures behind the README's note on the compiled peer: ``cProfile`` of our cold solves
+The figures behind the benchmark page's note on the compiled peer: ``cProfile`` of our cold solves
 (time per solve by function with and without its callees, calls per solve), ``timeit`` of the
 numpy calls a Newton step makes on 6-element arrays, and ``timeit`` of basic-robotics'
 numba-compiled ``SPFKinSpaceR`` stopped after one iteration and run to convergence (in its

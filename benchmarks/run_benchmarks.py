@@ -16,10 +16,10 @@
 Benchmark the kinematics and the nodes against baselines measured in the same run.
 
 Run with ``scripts/run_benchmarks.sh`` (sets up the venv, the baseline packages and the ROS
-environment); ``scripts/run_benchmarks.sh --update-readme`` also copies the tables into the
-README. Prints, and writes to ``benchmarks/results.md``: one table of medians, rates, ratios
-against their baseline, success rates and worst errors; then every target of :data:`TARGETS`,
-met or not.
+environment); ``scripts/run_benchmarks.sh --update-docs`` also copies the tables into
+doc/benchmarks.md. Prints, and writes to ``benchmarks/results.md``: one table of medians, rates,
+ratios against their baseline, success rates and worst errors; then every target of
+:data:`TARGETS`, met or not.
 
 Every ratio is measured :data:`ROUNDS` times in one invocation (the kinematics rounds one after
 the other, the node rounds interleaved across the nodes); the table gives the median ratio and
@@ -65,7 +65,7 @@ ROOT = Path(__file__).resolve().parent.parent
 PLATFORM_FILE = ROOT / 'config' / 'paper_platform.yaml'
 SOLVER_FILE = ROOT / 'config' / 'solver.yaml'
 RESULTS_FILE = Path(__file__).resolve().with_name('results.md')
-#: Every target the benchmark judges, in the order printed. The README's target table is
+#: Every target the benchmark judges, in the order printed. The docs' target table is
 #: generated from the results and test/test_benchmark_tables.py checks it lists exactly these.
 TARGETS = (
     'IK one pose >= 10x faster than basic-robotics SP.IK',
@@ -87,7 +87,7 @@ PAPER_TOLERANCE = 1e-4
 FINITE_DIFFERENCE_STEP = 1e-6
 #: basic-robotics' top frame for its compiled FK: this far above the paper's platform frame
 #: along the platform's z axis, in the plane of the platform joints (five of the paper's six are
-#: at z = 0.275 m; p_3 is at 0.257 m, see the README), metres.
+#: at z = 0.275 m; p_3 is at 0.257 m, see doc/conventions.md), metres.
 PLATE_FRAME_OFFSET = 0.275
 #: Iteration cap of basic-robotics' compiled FK here (its own default, 10000, takes 30 ms on
 #: every pose it does not solve, which would not fit in the time budget).
@@ -408,7 +408,7 @@ class Table:
 
 
 def block(name, text):
-    """Return a block of results.md, between the markers update_readme_tables.py copies."""
+    """Return a block of results.md, between the markers update_doc_tables.py copies."""
     return f'<!-- benchmark: {name} -->\n{text}\n<!-- end benchmark -->\n'
 
 
@@ -831,7 +831,7 @@ def main(argv=None) -> int:
     print(text)
     args.output.write_text(
         '# Benchmark results\n\nWritten by benchmarks/run_benchmarks.py; '
-        'scripts/update_readme_tables.py copies the blocks into README.md.\n\n' + text,
+        'scripts/update_doc_tables.py copies the blocks into doc/benchmarks.md.\n\n' + text,
         encoding='utf-8')
     print(f'written to {args.output}', file=sys.stderr)
     return 0

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The README's calibration example: measurements of a synthetic built hexapod, to calibrate.
+The calibration example of doc/calibration.md: measurements of a synthetic built hexapod.
 
 The "built" platform is the paper's with every joint coordinate moved by up to 2 mm and every
 actuator's zero by up to 5 mm (seeded, so the files are the same every time). It is measured

@@ -5,15 +5,15 @@
 # Set up .venv/ if needed, add the baseline packages of benchmarks/requirements.txt (scipy,
 # basic-robotics; not needed otherwise), then run benchmarks/run_benchmarks.py on an isolated
 # ROS domain: it prints the tables and writes them to benchmarks/results.md. Takes about three
-# minutes. With --update-readme (first argument), scripts/update_readme_tables.py then copies
-# the new tables into README.md. Other arguments go to run_benchmarks.py (try --help); exits
-# with its code.
+# minutes. With --update-docs (first argument; --update-readme is the old name of the same
+# flag), scripts/update_doc_tables.py then copies the new tables into doc/benchmarks.md. Other
+# arguments go to run_benchmarks.py (try --help); exits with its code.
 
 set -euo pipefail
 
-update_readme=false
-if [[ "${1:-}" == "--update-readme" ]]; then
-    update_readme=true
+update_docs=false
+if [[ "${1:-}" == "--update-docs" || "${1:-}" == "--update-readme" ]]; then
+    update_docs=true
     shift
 fi
 
@@ -33,6 +33,6 @@ rm -f "${log}"
 source "${root}/scripts/ros_env.sh"
 cd "${root}"
 "${root}/.venv/bin/python" -W ignore "${root}/benchmarks/run_benchmarks.py" "$@"
-if [[ "${update_readme}" == true ]]; then
-    "${root}/.venv/bin/python" "${root}/scripts/update_readme_tables.py"
+if [[ "${update_docs}" == true ]]; then
+    "${root}/.venv/bin/python" "${root}/scripts/update_doc_tables.py"
 fi

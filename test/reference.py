@@ -125,6 +125,12 @@ def quaternion_product(q, r):
             qw * rw - qx * rx_ - qy * ry_ - qz * rz_)
 
 
+def axis_angle_quaternion(axis, angle):
+    """Quaternion ``(x, y, z, w)`` of a rotation by ``angle`` (radians) about a unit ``axis``."""
+    half = 0.5 * angle
+    return np.array([*(math.sin(half) * np.asarray(axis, dtype=float)), math.cos(half)])
+
+
 def quaternion_from_euler(alpha, beta, gamma):
     """
     Return the unit quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``, ``w >= 0``.

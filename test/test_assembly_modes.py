@@ -336,17 +336,18 @@ def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
     assert (check.modes_within_limits, check.near_known_pose) == (1, 0)
 
 
-def test_readme_table_of_the_modes_at_the_end_of_table_3_is_current():
+def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
     import importlib.util
     script = Path(__file__).resolve().parent.parent / 'scripts' / 'figures' / 'assembly_modes.py'
     spec = importlib.util.spec_from_file_location('assembly_modes_figure', script)
     figure = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(figure)
     markdown_table, table_3_end_modes = figure.markdown_table, figure.table_3_end_modes
-    readme = (Path(__file__).resolve().parent.parent / 'README.md').read_text(encoding='utf-8')
+    page = (Path(__file__).resolve().parent.parent / 'doc' / 'assembly_modes.md').read_text(
+        encoding='utf-8')
     _, modes = table_3_end_modes()
-    assert markdown_table(modes) in readme, (
-        'README.md is out of date: run python scripts/figures/assembly_modes.py')
+    assert markdown_table(modes) in page, (
+        'doc/assembly_modes.md is out of date: run python scripts/figures/assembly_modes.py')
 
 
 def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper):

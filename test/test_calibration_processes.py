@@ -15,9 +15,9 @@
 """
 stewart_calibrate as a user runs it, and ik_node started on the calibrated parameter file.
 
-The README's worked example end to end, as processes: the example's measurements are written,
-``stewart_calibrate`` calibrates from them (finding the two spoilt measurements) and writes
-``calibrated.yaml`` and the residual figure; ``ik_node`` then starts with
+The worked example of doc/calibration.md end to end, as processes: the example's measurements
+are written, ``stewart_calibrate`` calibrates from them (finding the two spoilt measurements) and
+writes ``calibrated.yaml`` and the residual figure; ``ik_node`` then starts with
 ``--params-file calibrated.yaml`` alone and publishes, for a commanded pose, the leg lengths of
 the calibrated joints, computed here with the leg formula from the file read with PyYAML.
 """
@@ -77,7 +77,7 @@ EXAMPLE_SCRIPT = Path(__file__).resolve().parent.parent / 'scripts' / 'calibrati
 
 @pytest.fixture(scope='module')
 def example(tmp_path_factory):
-    """Write the README example's files and calibrate from them with stewart_calibrate."""
+    """Write the worked example's files and calibrate from them with stewart_calibrate."""
     from pathlib import Path
     config = Path(__file__).resolve().parent.parent / 'config'
     directory = tmp_path_factory.mktemp('calibration_example')
@@ -127,17 +127,18 @@ def test_calibration_cuts_the_pose_error_of_the_built_platform(example):
     assert position < 10.0 and angle < 20.0
 
 
-def test_readme_worked_example_is_this_output(example):
-    # The README's excerpt of the worked example is the output of its commands.
+def test_docs_worked_example_is_this_output(example):
+    # The calibration page's excerpt of the worked example is the output of its commands.
     from pathlib import Path
-    readme = (Path(__file__).resolve().parent.parent / 'README.md').read_text(encoding='utf-8')
-    excerpt = re.search(r'```text\n(poses: 50 measured.*?)```', readme, re.DOTALL)
-    assert excerpt, 'worked example excerpt not found in README.md'
+    page = (Path(__file__).resolve().parent.parent / 'doc' / 'calibration.md').read_text(
+        encoding='utf-8')
+    excerpt = re.search(r'```text\n(poses: 50 measured.*?)```', page, re.DOTALL)
+    assert excerpt, 'worked example excerpt not found in doc/calibration.md'
     _, _, code, out, err = example
     assert code == 0, out + err
     for line in excerpt.group(1).splitlines():
         if line != '...':
-            assert line in out, f'README line not in the output: {line!r}'
+            assert line in out, f'doc/calibration.md line not in the output: {line!r}'
 
 
 def test_ik_node_runs_on_the_calibrated_file_and_publishes_its_lengths(

@@ -20,14 +20,11 @@ written out in numpy. There the nearest other real mode lies 0.2385 m and 135.3 
 (combined distance 0.427 m; test_assembly_modes.py checks it against a multi-start search).
 """
 
-import math
-
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Pose
-import numpy as np
 import pytest
+from reference import leg_lengths, TABLE_3_END
 from std_msgs.msg import Float64MultiArray
-import yaml
 
 pytestmark = pytest.mark.process
 
@@ -35,20 +32,6 @@ CLIENT_DEPTH = 100
 SETTLE_TIME = 0.5
 MARGIN_STATUS = '/fk_node: assembly mode margin'
 LENGTHS_STATUS = '/fk_node: leg_lengths'
-
-
-def table_3_end_lengths(config_directory):
-    with open(config_directory / 'paper_platform.yaml', encoding='utf-8') as stream:
-        parameters = yaml.safe_load(stream)['/**']['ros__parameters']
-    base = np.reshape(parameters['base_joints'], (6, 3))
-    platform = np.reshape(parameters['platform_joints'], (6, 3))
-    alpha, beta, gamma = (math.radians(a) for a in (15.0, -15.0, 20.0))
-    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    rotation = (np.array([[cg, -sg, 0.0], [sg, cg, 0.0], [0.0, 0.0, 1.0]])
-                @ np.array([[cb, 0.0, sb], [0.0, 1.0, 0.0], [-sb, 0.0, cb]])
-                @ np.array([[1.0, 0.0, 0.0], [0.0, ca, -sa], [0.0, sa, ca]]))
-    return np.linalg.norm(np.array([0.1, 0.15, 0.5325]) + platform @ rotation.T - base, axis=1)
 
 
 class FkProcess:
@@ -94,7 +77,7 @@ def test_margin_reported_on_diagnostics_and_warned_below_the_parameter(
         client, start_node, config_directory):
     fk = FkProcess(client, start_node, config_directory, {
         'assembly_mode_margin_period': 0.2, 'assembly_mode_margin_warning': 1.0})
-    fk.publish(table_3_end_lengths(config_directory))
+    fk.publish(leg_lengths(TABLE_3_END))
     status = fk.wait_for_status(MARGIN_STATUS, lambda s: 'margin_position_m' in values_of(s),
                                 'the assembly-mode margin on /diagnostics')
     values = values_of(status)
@@ -110,7 +93,7 @@ def test_margin_reported_on_diagnostics_and_warned_below_the_parameter(
 
 def test_ambiguous_start_refused_with_the_reason(client, start_node, config_directory):
     fk = FkProcess(client, start_node, config_directory, {'refuse_ambiguous_start': 'true'})
-    fk.publish(table_3_end_lengths(config_directory))
+    fk.publish(leg_lengths(TABLE_3_END))
     status = fk.wait_for_status(
         LENGTHS_STATUS, lambda s: 'rejected ambiguous_assembly_mode' in values_of(s),
         'the ambiguous start rejected on /diagnostics')

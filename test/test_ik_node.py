@@ -66,18 +66,6 @@ def paper_joints():
     return triples(parameters['base_joints']), triples(parameters['platform_joints'])
 
 
-def paper_rotation(alpha, beta, gamma):
-    """Return R = Rz(gamma) Ry(beta) Rx(alpha) entry by entry, r11..r33 as in the paper."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cb, sb = math.cos(beta), math.sin(beta)
-    cg, sg = math.cos(gamma), math.sin(gamma)
-    return [
-        [cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa],
-        [sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa],
-        [-sb, cb * sa, cb * ca],
-    ]
-
-
 def pose_message(position, quaternion):
     """Build a Pose from a position and a quaternion (x, y, z, w)."""
     message = Pose()

@@ -396,11 +396,11 @@ def test_play_ramp_accepts_only_true_or_false(launch):
         launch(play_ramp='maybe')
 
 
-def test_readme_lists_the_launch_arguments_and_their_defaults(stand_ins, share_directory):
-    """The README's table of launch arguments names every declared one, with its default."""
-    readme = (ROOT / 'README.md').read_text(encoding='utf-8')
-    table = re.search(r'\| Argument \| Default \| Meaning \|\n\| --- .*\n((?:\|.*\n)+)', readme)
-    assert table, 'no launch argument table in README.md'
+def test_docs_list_the_launch_arguments_and_their_defaults(stand_ins, share_directory):
+    """The docs' table of launch arguments names every declared one, with its default."""
+    page = (ROOT / 'doc' / 'ros_workspace.md').read_text(encoding='utf-8')
+    table = re.search(r'\| Argument \| Default \| Meaning \|\n\| --- .*\n((?:\|.*\n)+)', page)
+    assert table, 'no launch argument table in doc/ros_workspace.md'
     rows = dict(re.findall(r'^\| `([^`]+)` \| `([^`]*)`', table.group(1), re.MULTILINE))
     declared = {entity.name: entity.default_value for entity in launch_description().entities
                 if isinstance(entity, DeclareLaunchArgument)}

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The README's Layout table names every module of the package and every top-level folder.
+The architecture page's layout table names every module of the package and every top-level folder.
 
 So it cannot go stale: a new module or folder fails here with its path until it has a row,
 and a row for a path that no longer exists fails too.
@@ -22,13 +22,16 @@ and a row for a path that no longer exists fails too.
 from pathlib import Path
 import re
 import subprocess
+import sys
 
 import pytest
 
 pytestmark = pytest.mark.core
 
 ROOT = Path(__file__).resolve().parent.parent
-README = (ROOT / 'README.md').read_text(encoding='utf-8')
+#: The documentation page with the layout table.
+PAGE_NAME = 'doc/architecture.md'
+PAGE = (ROOT / PAGE_NAME).read_text(encoding='utf-8')
 PACKAGE = 'stewart_kinematics'
 #: Top-level folders that are no part of the repository (made by tools, ignored by git).
 UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', 'build', 'install', 'log',
@@ -36,9 +39,9 @@ UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', 'build', 'install', '
 
 
 def layout_paths():
-    """Paths named in backquotes in the first column of the README's Layout table."""
-    section = re.search(r'\n## Layout\n(.*?)(?:\n## |\Z)', README, re.DOTALL)
-    assert section, 'README.md has no "## Layout" section'
+    """Paths named in backquotes in the first column of the architecture page's Layout table."""
+    section = re.search(r'\n## Layout\n(.*?)(?:\n## |\Z)', PAGE, re.DOTALL)
+    assert section, f'{PAGE_NAME} has no "## Layout" section'
     first_cells = re.findall(r'^\| ([^|]+) \|', section.group(1), re.MULTILINE)
     paths = set()
     for cell in first_cells:
@@ -77,17 +80,40 @@ def test_every_module_and_package_folder_has_a_layout_row():
     """Each .py under stewart_kinematics/ and each of its folders is named in the table."""
     named = layout_paths()
     missing = sorted(package_paths() - named)
-    assert not missing, ('README.md Layout table: add a row for ' + ', '.join(missing))
+    assert not missing, (f'{PAGE_NAME} Layout table: add a row for ' + ', '.join(missing))
 
 
 def test_every_top_level_folder_has_a_layout_row():
     """Each top-level folder of the repository is named in the table (as `folder/`)."""
     named = layout_paths()
     missing = sorted(top_level_folders() - named)
-    assert not missing, ('README.md Layout table: add a row for ' + ', '.join(missing))
+    assert not missing, (f'{PAGE_NAME} Layout table: add a row for ' + ', '.join(missing))
 
 
 def test_every_layout_row_exists():
     """No row names a file or folder that is not there."""
     gone = sorted(path for path in layout_paths() if not (ROOT / path).exists())
-    assert not gone, 'README.md Layout table names paths that do not exist: ' + ', '.join(gone)
+    assert not gone, f'{PAGE_NAME} Layout table names paths that do not exist: ' + ', '.join(gone)
+
+
+def test_import_rules_table_is_the_checked_rule():
+    """The architecture page's table of import rules says what test_core_imports enforces."""
+    sys.path.insert(0, str(ROOT / 'test'))
+    try:
+        from test_core_imports import MAY_IMPORT
+    finally:
+        sys.path.remove(str(ROOT / 'test'))
+    heading = '## The rules: what each folder may import'
+    section = re.search(rf'\n{heading}\n(.*?)\n## ', PAGE, re.DOTALL)
+    assert section, f'{PAGE_NAME} has no "{heading}" section'
+    rows = re.findall(r'^\| `([\w.]+)/?` \| ([^|]+) \|', section.group(1), re.MULTILINE)
+    stated = {}
+    for folder, cell in rows:
+        part = folder.removesuffix('.py')
+        # What a parenthesis adds is a one-module exception (test_core_imports.EXCEPTIONS).
+        names = re.findall(r'`([\w/.]+)`', cell.split('(')[0])
+        stated[part] = {name.removesuffix('/').removesuffix('.py').replace('/', '.')
+                        for name in names} | ({part} if 'itself' in cell or names else set())
+    for part, allowed in MAY_IMPORT.items():
+        assert part in stated, f'{PAGE_NAME}: no row for {part} in the import rules'
+        assert stated[part] == allowed | ({part} if part != 'findings' else set()), part

@@ -34,6 +34,7 @@ import pytest
 from reference import (
     quaternion_from_euler as quaternion,
     quaternion_matrix,
+    rotation_vector_matrix,
     rotation_zyx as rotation_matrix,
 )
 from sensor_msgs.msg import JointState
@@ -79,14 +80,6 @@ def pose_lengths(geometry, pose):
     return reference_lengths(geometry, pose[:3], rotation_matrix(*pose[3:]))
 
 
-def rotation_about(vector):
-    """Rotation by the rotation vector ``vector`` (axis times angle), Rodrigues' formula."""
-    angle = np.linalg.norm(vector)
-    x, y, z = vector / angle
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
-
-
 def finite_difference_leg_velocities(geometry, pose, twist):
     """Rates of change of the leg lengths, by a central difference along the twist's motion."""
     position, rotation = pose[:3], rotation_matrix(*pose[3:])
@@ -94,7 +87,7 @@ def finite_difference_leg_velocities(geometry, pose, twist):
 
     def lengths_after(dt):
         return reference_lengths(geometry, position + twist[:3] * dt,
-                                 rotation_about(twist[3:] * dt) @ rotation)
+                                 rotation_vector_matrix(twist[3:] * dt) @ rotation)
     return (lengths_after(h) - lengths_after(-h)) / (2.0 * h)
 
 

@@ -29,6 +29,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from reference import quaternion_from_euler
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 
@@ -55,11 +56,7 @@ def table3_pose(elapsed):
     """
     fraction = min(max(elapsed / DURATION, 0.0), 1.0)
     position = np.array([0.0, 0.0, 0.4325]) + fraction * np.array([0.1, 0.15, 0.1])
-    alpha, beta, gamma = np.radians(fraction * np.array([15.0, -15.0, 20.0]))
-    ca, sa, cb, sb = np.cos(alpha / 2), np.sin(alpha / 2), np.cos(beta / 2), np.sin(beta / 2)
-    cg, sg = np.cos(gamma / 2), np.sin(gamma / 2)
-    quaternion = [sa * cb * cg - ca * sb * sg, ca * sb * cg + sa * cb * sg,
-                  ca * cb * sg - sa * sb * cg, ca * cb * cg + sa * sb * sg]
+    quaternion = quaternion_from_euler(*np.radians(fraction * np.array([15.0, -15.0, 20.0])))
     return np.concatenate([position, quaternion])
 
 

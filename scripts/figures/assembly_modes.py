@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The README's table and figure of every assembly mode at the end of the paper's Table 3.
+The documentation's table and figure of every assembly mode at the end of the paper's Table 3.
 
 ``python scripts/figures/assembly_modes.py [docs/assembly_modes.png]`` prints
 the table (Markdown) and draws the modes side by side, each platform with its legs and base,

@@ -215,9 +215,10 @@ def assembly_modes(geometry, lengths, reference_pose=None) -> AssemblyModes:
         pose is malformed.
 
     >>> from stewart_kinematics import assembly_modes, load_geometry
-    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
-    >>> modes = assembly_modes(geometry, geometry.home_leg_lengths)  # doctest: +SKIP
-    >>> len(modes), modes.complete, modes.modes[0].pose  # doctest: +SKIP
+    >>> geometry = load_geometry('config/paper_platform.yaml')
+    >>> modes = assembly_modes(geometry, geometry.home_leg_lengths)
+    >>> len(modes), modes.complete, modes.modes[0].pose.round(6)
+    (10, True, array([0.    , 0.    , 0.4325, 0.    , 0.    , 0.    ]))
     """
     lengths = as_leg_lengths(lengths)
     if lengths.shape != (6,):

@@ -287,20 +287,6 @@ def predict_actuator_positions(geometry: Geometry, actuator_offsets, poses) -> n
     return _predict(parameters, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]))
 
 
-def identification_jacobian(geometry: Geometry, poses) -> np.ndarray:
-    """
-    Differentiate the N x 6 actuator positions by the 42 parameters (unscaled).
-
-    :param geometry: the platform whose parameters to differentiate at.
-    :param poses: shape (N, 6), metres and radians.
-    :returns: shape (6N, 42), row ``6 k + i`` for pose k and leg i, columns in
-        :data:`PARAMETER_NAMES` order (dimensionless: metres per metre).
-    """
-    poses = np.atleast_2d(as_poses(poses))
-    parameters = _parameter_vector(geometry, np.zeros(6))
-    return _jacobian(parameters, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]))
-
-
 def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) -> Identifiability:
     """
     Tell what the poses can determine of the 42 parameters, at ``geometry``.

@@ -157,7 +157,16 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     :returns: a :class:`TravelRanges`.
     :raises ValueError: if the start pose breaks a limit (its violations are listed).
 
-    >>> print(travel_ranges(geometry).table())  # doctest: +SKIP
+    >>> from stewart_kinematics import load_geometry, travel_ranges
+    >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
+    >>> print(travel_ranges(geometry).table())  # doctest: +NORMALIZE_WHITESPACE
+    axis      negative    positive  stopped at negative end by         stopped at positive end by
+    X      -383.825 mm  387.664 mm   base_joint_max_angle, leg 5        base_joint_max_angle, leg 1
+    Y      -372.253 mm  382.272 mm   base_joint_max_angle, leg 3        base_joint_max_angle, leg 2
+    Z       -52.080 mm  183.457 mm   leg_length_min, leg 3              leg_length_max, leg 5
+    alpha   -20.123 deg  20.123 deg  leg_length_min, leg 1              leg_length_min, leg 4
+    beta    -22.985 deg  16.830 deg  leg_length_min, leg 5              leg_length_min, leg 3
+    gamma   -82.416 deg  83.183 deg  max_jacobian_condition             max_jacobian_condition
     """
     start = _start_pose(geometry, pose)
     per_axis = np.repeat(np.asarray(step, dtype=float), 3)
@@ -641,11 +650,10 @@ class _Grid:
 
         :param dimensions: the grid dimensions to look along; default all.
         :returns: ``(poses (M, 6), limit (M,), leg (M,))``, the reachable side of each
-            crossing located to ``tolerance``; sets ``crossing_axis`` (the grid dimension
-            of each crossing) and ``crossing_entering`` (True where the line enters the
-            workspace as the coordinate grows).
+            crossing located to ``tolerance``; sets ``crossing_entering`` (True where the
+            line enters the workspace as the coordinate grows).
         """
-        inside, outside, axis_of, entering = [], [], [], []
+        inside, outside, entering = [], [], []
         for dimension in range(len(self.axes)) if dimensions is None else dimensions:
             count = self.allowed.shape[dimension]
             lower = np.take(self.allowed, np.arange(count - 1), axis=dimension)
@@ -659,10 +667,8 @@ class _Grid:
                                                else (low_index, high_index))
                 inside.append(self.poses(inside_index))
                 outside.append(self.poses(outside_index))
-                axis_of.append(np.full(len(found[0]), dimension))
                 entering.append(np.full(len(found[0]), enters))
         inside, outside = np.concatenate(inside), np.concatenate(outside)
-        self.crossing_axis = np.concatenate(axis_of)
         self.crossing_entering = np.concatenate(entering)
         tolerances = np.repeat(np.asarray(tolerance, dtype=float), 3)
         points, _, limit, leg = _bisect(self.geometry, inside, outside, tolerances)

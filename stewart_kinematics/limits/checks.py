@@ -293,8 +293,17 @@ def check_poses_array(geometry, poses, *, condition_of_refused=True) -> LimitChe
     :returns: a :class:`LimitChecks`; ``.violations(k)`` gives pose k's :class:`Violation` list.
     :raises ValueError: if a pose has the wrong shape or a non-finite value.
 
-    >>> checks = check_poses_array(geometry, poses)  # doctest: +SKIP
-    >>> poses[~checks.allowed], checks.excess('leg_length_max').max(axis=-1)  # doctest: +SKIP
+    >>> import numpy as np
+    >>> from stewart_kinematics import load_geometry
+    >>> from stewart_kinematics.limits import check_poses_array
+    >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
+    >>> poses = geometry.home_pose + [[0.0, 0, 0, 0, 0, 0], [0, 0, 0.2, 0, 0, 0],
+    ...                               [0.1, 0, 0, 0, 0, 0]]
+    >>> checks = check_poses_array(geometry, poses)
+    >>> checks.allowed, checks.excess('leg_length_max').max(axis=-1).round(6)
+    (array([ True, False,  True]), array([-0.181145,  0.01638 , -0.15812 ]))
+    >>> print(checks.violations(1)[0])
+    leg 1: leg_length_max 0.9 m broken by 0.01638 m (value 0.91638 m)
     """
     poses = np.atleast_2d(as_poses(poses))
     count = poses.shape[0]

@@ -56,9 +56,10 @@ class Geometry:
 
     The limits are checked by :mod:`stewart_kinematics.limits`.
 
-    >>> from stewart_kinematics import Geometry
     >>> from stewart_kinematics import load_geometry
-    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
+    >>> geometry = load_geometry('config/paper_platform.yaml')
+    >>> geometry.home_leg_lengths.round(6)
+    array([0.718855, 0.718855, 0.701146, 0.718855, 0.718855, 0.718855])
     """
 
     base_joints: np.ndarray

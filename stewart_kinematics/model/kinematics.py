@@ -424,9 +424,9 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
     :raises ValueError: if a pose has the wrong shape or a non-finite value.
 
-    >>> from stewart_kinematics import Geometry, inverse_kinematics
-    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
-    >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])  # doctest: +SKIP
+    >>> from stewart_kinematics import inverse_kinematics, load_geometry
+    >>> geometry = load_geometry('config/paper_platform.yaml')
+    >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
     array([0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488])
     """
     poses = np.asarray(poses, dtype=float)

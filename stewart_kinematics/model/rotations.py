@@ -59,6 +59,8 @@ def euler_zyx_to_matrix(angles):
     :param angles: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
     :returns: ``Rz(gamma) @ Ry(beta) @ Rx(alpha)``, shape (3, 3) or (..., 3, 3).
 
+    >>> import numpy as np
+    >>> from stewart_kinematics import euler_zyx_to_matrix
     >>> euler_zyx_to_matrix([0.0, 0.0, np.pi / 2]).round(12) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
     """

@@ -61,10 +61,13 @@ class CommandFilter:
     :param lengths: the legs' starting lengths, at rest, metres, shape (6,).
     :raises ValueError: if a limit that must be finite is not, or the period is not positive.
 
+    >>> from stewart_kinematics import ActuatorLimits, CommandFilter, load_geometry
+    >>> home_lengths = load_geometry('config/paper_platform.yaml').home_leg_lengths
     >>> command_filter = CommandFilter(ActuatorLimits(0.05, 0.25, 2.5), 0.01, home_lengths)
-    ... # doctest: +SKIP
-    >>> command_filter.set_target(lengths)  # doctest: +SKIP
-    >>> command = command_filter.step()     # every 10 ms  # doctest: +SKIP
+    >>> command_filter.set_target(home_lengths + 0.01)   # every leg 10 mm longer
+    >>> command = command_filter.step()                  # every 10 ms
+    >>> command.velocities, command.settled              # m/s, after 10 ms
+    (array([0.000125, 0.000125, 0.000125, 0.000125, 0.000125, 0.000125]), False)
     """
 
     def __init__(self, actuator_limits: ActuatorLimits, period: float, lengths):

@@ -13,76 +13,104 @@
 # limitations under the License.
 
 """
-Core objects built from parameter values, as the nodes declare them: the geometry, the frames.
+The core objects that parameter settings describe: the geometry, frames and actuators.
 
-Nothing here imports ROS.
+Each builder takes the typed settings of :mod:`stewart_kinematics.parameters.settings` (a node
+has them as ``settings.geometry``, ``settings.frames``, ...). The ``*_from_parameters``
+functions take a mapping of parameter values instead, as a parameter file gives them. Nothing
+here imports ROS.
 """
 
 import math
+from typing import Any, Mapping
 
 import numpy as np
 
+from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.parameters.declarations import (
-    check_values,
-    defaults,
-    FRAME_PARAMETERS,
-    GEOMETRY_PARAMETERS,
+from stewart_kinematics.parameters.settings import (
+    ActuatorSettings,
+    FrameSettings,
+    GeometrySettings,
 )
 
 
-def geometry_from_parameters(values: dict) -> Geometry:
+def geometry_from_settings(settings: GeometrySettings) -> Geometry:
     """
-    Build a geometry from ROS parameter values, as the nodes declare them.
+    Build the geometry that parameter settings describe.
+
+    :param settings: joints (flat lists, metres), home pose (metres, degrees) and limits.
+    :raises ValueError: if the geometry is not allowed (joints too close or collinear, a home
+        pose that breaks its own limits).
+    """
+    home_pose = np.concatenate([np.asarray(settings.home_position, dtype=float),
+                                np.radians(np.asarray(settings.home_orientation_deg))])
+    return Geometry(
+        base_joints=np.reshape(np.asarray(settings.base_joints, dtype=float), (6, 3)),
+        platform_joints=np.reshape(np.asarray(settings.platform_joints, dtype=float), (6, 3)),
+        home_pose=home_pose,
+        leg_length_min=settings.leg_length_min,
+        leg_length_max=settings.leg_length_max,
+        base_joint_max_angle=math.radians(settings.base_joint_max_angle_deg),
+        platform_joint_max_angle=math.radians(settings.platform_joint_max_angle_deg),
+        max_jacobian_condition=settings.max_jacobian_condition)
+
+
+def actuator_limits_from_settings(settings: GeometrySettings) -> ActuatorLimits:
+    """Return the legs' speed limits (``leg_velocity_max``, ...) of the geometry settings."""
+    return ActuatorLimits(velocity_max=settings.leg_velocity_max,
+                          acceleration_max=settings.leg_acceleration_max,
+                          jerk_max=settings.leg_jerk_max)
+
+
+def actuator_interface_from_settings(settings: ActuatorSettings) -> ActuatorInterface:
+    """Return the actuators' joint names and zeros."""
+    return ActuatorInterface(joint_names=settings.joint_names, offsets=settings.actuator_offsets)
+
+
+def frames_from_settings(settings: FrameSettings) -> FrameTree:
+    """
+    Build the frame tree that frame settings describe (positions in metres, angles in degrees).
+
+    :raises ValueError: for frame names that repeat.
+    """
+    return FrameTree(
+        base_frame=settings.base_frame, platform_frame=settings.platform_frame,
+        user_frame=settings.user_frame,
+        user_pose=_frame_pose(settings.user_frame_position, settings.user_frame_orientation_deg),
+        tool_frame=settings.tool_frame,
+        tool_pose=_frame_pose(settings.tool_frame_position, settings.tool_frame_orientation_deg))
+
+
+def geometry_from_parameters(values: Mapping[str, Any]) -> Geometry:
+    """
+    Build a geometry from ROS parameter values, as a parameter file gives them.
 
     :param values: parameter name -> value, with the names and units of
-        :data:`GEOMETRY_PARAMETERS` (flat joint lists in metres, home orientation in degrees);
-        a missing optional one takes its default. A pivot point is the tool frame's origin
+        :data:`~stewart_kinematics.parameters.GEOMETRY_PARAMETERS` (flat joint lists in
+        metres, home orientation in degrees); others are ignored, and a missing optional one
+        takes its default. A pivot point is the tool frame's origin
         (:func:`frames_from_parameters`), not part of the geometry.
     :raises ValueError: naming the parameter, if a value is missing or not allowed.
     """
-    merged = defaults(GEOMETRY_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
-    check_values(GEOMETRY_PARAMETERS, merged)
-    home_pose = np.concatenate([
-        np.asarray(merged['home_position'], dtype=float),
-        np.radians(np.asarray(merged['home_orientation_deg'], dtype=float))])
-    return Geometry(
-        base_joints=np.reshape(np.asarray(merged['base_joints'], dtype=float), (6, 3)),
-        platform_joints=np.reshape(np.asarray(merged['platform_joints'], dtype=float), (6, 3)),
-        home_pose=home_pose,
-        leg_length_min=float(merged['leg_length_min']),
-        leg_length_max=float(merged['leg_length_max']),
-        base_joint_max_angle=math.radians(merged['base_joint_max_angle_deg']),
-        platform_joint_max_angle=math.radians(merged['platform_joint_max_angle_deg']),
-        max_jacobian_condition=float(merged['max_jacobian_condition']))
+    return geometry_from_settings(GeometrySettings.from_values(values))
 
 
-def frames_from_parameters(values: dict) -> FrameTree:
+def frames_from_parameters(values: Mapping[str, Any]) -> FrameTree:
     """
-    Build the frame tree from ROS parameter values, as the nodes declare them.
+    Build the frame tree from ROS parameter values, as a parameter file gives them.
 
     :param values: parameter name -> value, with the names and units of
-        :data:`FRAME_PARAMETERS` (positions in metres, orientations in degrees); a missing one
-        takes its default.
+        :data:`~stewart_kinematics.parameters.FRAME_PARAMETERS`; a missing one takes its
+        default.
     :raises ValueError: naming the parameter, if a value is not allowed, or for frame names
         that repeat.
     """
-    merged = defaults(FRAME_PARAMETERS)
-    merged.update({key: value for key, value in values.items() if key in merged})
-    check_values(FRAME_PARAMETERS, merged)
-    return FrameTree(
-        base_frame=merged['base_frame'], platform_frame=merged['platform_frame'],
-        user_frame=merged['user_frame'],
-        user_pose=_frame_pose(merged['user_frame_position'],
-                              merged['user_frame_orientation_deg']),
-        tool_frame=merged['tool_frame'],
-        tool_pose=_frame_pose(merged['tool_frame_position'],
-                              merged['tool_frame_orientation_deg']))
+    return frames_from_settings(FrameSettings.from_values(values))
 
 
-def frame_parameters_reason(values: dict) -> str:
+def frame_parameters_reason(values: Mapping[str, Any]) -> str:
     """
     Say why frame parameter values cannot make a frame tree, or return ``''``.
 

@@ -78,7 +78,10 @@ def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
     :raises ValueError: naming the file, if a file cannot be read or its geometry is not
         allowed.
 
-    >>> geometry = load_geometry('config/paper_platform.yaml')  # doctest: +SKIP
+    >>> from stewart_kinematics import load_geometry
+    >>> geometry = load_geometry(['config/paper_platform.yaml', 'config/example_limits.yaml'])
+    >>> geometry.leg_length_min, geometry.leg_length_max
+    (0.65, 0.9)
     """
     if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
         paths = [paths]

@@ -59,7 +59,7 @@ class ParameterSpec:
     :param default: value used when no parameter file sets it; ``None`` makes it required.
     :param read_only: True where a change at run time makes no sense (the geometry).
     :param validators: checks run on every value, at start-up and on every run-time change.
-    :param constraints: the allowed values in words, for the README table.
+    :param constraints: the allowed values in words, for the documentation table.
     """
 
     name: str

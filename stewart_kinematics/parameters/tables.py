@@ -15,7 +15,7 @@
 """
 The documentation's parameter tables, rendered from the parameter specs.
 
-A test compares the documentation with these, so it cannot drift from the code.
+doc/nodes.md shows them, rendered when the site is built, so they cannot drift from the code.
 """
 
 import math
@@ -23,9 +23,10 @@ import math
 
 def markdown_table(specs) -> str:
     """
-    Render the README's table of ``specs``: name, type, default, meaning, allowed values.
+    Render the documentation's table of ``specs``: name, type, default, meaning, allowed values.
 
-    A test compares the README with this, so the documentation cannot drift from the code.
+    The documentation renders its tables with this when it is built (``{parameter-table}`` in
+    doc/nodes.md), so they cannot drift from the code.
     """
     def shown(value):
         if value is None:

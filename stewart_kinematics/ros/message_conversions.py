@@ -41,8 +41,6 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJ
 
 #: Label of the one layout dimension of a leg array message.
 LEG_DIMENSION_LABEL = 'leg'
-#: Names of the six legs as prismatic joints in sensor_msgs/msg/JointState, leg 1..6.
-LEG_JOINT_NAMES = tuple(f'leg_{leg}' for leg in range(1, 7))
 #: A quaternion whose norm is this far from 1 is normalised with a warning.
 QUATERNION_NORM_TOLERANCE = 1e-6
 #: The default actuator interface: joints leg_1 .. leg_6, zero offsets (position = length).

@@ -22,13 +22,12 @@ installation; where it is missing (ROS from PyPI wheels), nothing is broadcast a
 says so once in its log, the rest works as before.
 """
 
-from geometry_msgs.msg import Pose, Transform as TransformMessage, TransformStamped
+from geometry_msgs.msg import Transform as TransformMessage, TransformStamped
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from std_msgs.msg import Header
 
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.rotations import matrix_to_quaternion, quaternion_to_matrix
-from stewart_kinematics.ros.message_conversions import position_quaternion_from_message
+from stewart_kinematics.model.rotations import matrix_to_quaternion
 from stewart_kinematics.ros.node_main import create_output_publisher
 
 try:
@@ -44,28 +43,6 @@ TF2_MSGS_MISSING = (
     'tf2_msgs is not installed, so nothing is broadcast on /tf and /tf_static; every other '
     'topic works. It comes with every ROS 2 installation (source /opt/ros/jazzy/setup.bash); '
     'without one, scripts/build_tf2_msgs.sh builds it into a venv')
-
-
-def transform_from_pose_message(message: Pose) -> Transform:
-    """
-    Return the transform a geometry_msgs/msg/Pose places (the frame's pose in its parent).
-
-    :returns: the transform and the norm of the message's quaternion (it is normalised).
-    :raises ValueError: for a coordinate that is not finite, or a zero or non-finite
-        quaternion.
-    """
-    position, quaternion, norm = position_quaternion_from_message(message)
-    return Transform(position, quaternion_to_matrix(quaternion)), norm
-
-
-def pose_message_from_transform(transform: Transform) -> Pose:
-    """Return the geometry_msgs/msg/Pose of a transform (unit quaternion, ``w >= 0``)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = transform.position.tolist()
-    orientation = message.orientation
-    orientation.x, orientation.y, orientation.z, orientation.w = (
-        matrix_to_quaternion(transform.rotation).tolist())
-    return message
 
 
 def transform_stamped(parent: str, child: str, transform: Transform, stamp) -> TransformStamped:

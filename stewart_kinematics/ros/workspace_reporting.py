@@ -134,7 +134,7 @@ class WorkspaceReporter:
         """Start the workspace computation if it is due and someone subscribes."""
         if self.markers_due and self.marker_publisher.get_subscription_count():
             self.markers_due = False
-            self._submit('markers', self.marker_generation, 'workspace_shell',
+            self._submit('markers', self.marker_generation, workspace.workspace_shell,
                          resolution=self.resolution)
 
     def request_travel_ranges(self):
@@ -148,7 +148,7 @@ class WorkspaceReporter:
         if self.travel is not None and np.array_equal(self.travel[0], pose):
             self.travel_publisher.publish(self.travel[1])
             return
-        self._submit('travel', pose, 'travel_ranges', pose)
+        self._submit('travel', pose, workspace.travel_ranges, pose)
 
     def _submit(self, kind, tag, function, *args, **kwargs):
         if self.worker is None:
@@ -221,7 +221,12 @@ class WorkspaceWorker:
         self.reader.start()
 
     def submit(self, tag, function, *args, **kwargs):
-        """Queue ``workspace.<function>(geometry, *args, **kwargs)``; ``tag`` names the job."""
+        """
+        Queue ``function(geometry, *args, **kwargs)``; ``tag`` names the job.
+
+        :param function: a function of :mod:`stewart_kinematics.analysis.workspace` (module-level:
+            it reaches the worker process pickled by its qualified name).
+        """
         self.jobs.put((tag, function, args, kwargs))
 
     def _read(self):
@@ -250,7 +255,7 @@ def _serve(geometry, jobs, results):
     while True:
         tag, function, args, kwargs = jobs.get()
         try:
-            value = getattr(workspace, function)(geometry, *args, **kwargs)
+            value = function(geometry, *args, **kwargs)
         except Exception as error:   # sent back as text: any exception pickles as this one
             value = RuntimeError(f'{type(error).__name__}: {error}')
         results.put((tag, value))

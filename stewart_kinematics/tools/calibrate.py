@@ -52,8 +52,8 @@ columns are ignored and lines starting with # are comments. SI units:
   X, Y, Z              measured position of the platform frame's origin in the base frame, m
   alpha, beta, gamma   measured orientation, rad (R = Rz(gamma) Ry(beta) Rx(alpha))
   actuator_1..6        actuator positions read at that pose, m (leg length minus the offset)
-The base and platform frames are the frames the poses are measured in (see README,
-Calibration). actuator_offsets in the parameter files are the nominal offsets; without them
+The base and platform frames are the frames the poses are measured in (see doc/calibration.md,
+the gauge). actuator_offsets in the parameter files are the nominal offsets; without them
 each leg's offset is first estimated from the readings.
 
 exit codes: 0 calibrated; 1 refused (too few or too similar poses, data that do not fit:
