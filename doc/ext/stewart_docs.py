@@ -150,6 +150,31 @@ MEANINGS = {
         'trajectory_node (`pose_trajectory`, `pose_path`)',
         'A trajectory or path received while the tool frame is offset from the platform frame '
         '(trajectories are planned for the platform frame).'),
+    'invalid_vehicle_motion': (
+        '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+        'A specific force or angular velocity that is not three finite numbers, or beyond '
+        '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
+        'vehicle were at rest, so that bad input eases it back to neutral.'),
+    'time_not_increasing': (
+        '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+        'A sample whose time (header.stamp) is not after the previous one: repeated, backward '
+        'or not finite; nothing moves.'),
+    'input_gap': (
+        '`MotionCueing` (motion_cueing_node), a warning',
+        'More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the '
+        "washout's clock pauses)."),
+    'cue_scaled': (
+        '`MotionCueing` (motion_cueing_node), a warning',
+        'The cue was scaled toward neutral to keep inside the limits model (with its margins); '
+        'the details give the workspace and tilt scales.'),
+    'actuator_limited': (
+        '`MotionCueing` (motion_cueing_node), a warning',
+        'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
+        'followed as closely as they allow (or braked, or headed home).'),
+    'limits_held': (
+        '`MotionCueing` (motion_cueing_node), a warning',
+        'Every next pose would have left the limits: the pose was held (not expected; the '
+        'margins prevent it).'),
 }
 
 

@@ -156,6 +156,15 @@ class MotionCueing:
         """Return the last pose commanded (the home pose before the first sample)."""
         return self.limiter.pose.copy()
 
+    def settled(self, tolerance: float = 1e-7) -> bool:
+        """
+        Whether the platform rests at home: every pose coordinate and leg velocity within
+        ``tolerance`` (metres, radians, m/s) of home and of rest.
+        """
+        limiter = self.limiter
+        return bool(np.all(np.abs(limiter.pose - self.geometry.home_pose) <= tolerance)
+                    and np.all(np.abs(limiter.leg_velocities) <= tolerance))
+
     def reset(self) -> None:
         """
         Wash out to neutral: forget the input's history; the platform glides home.
