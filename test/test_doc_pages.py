@@ -54,13 +54,16 @@ def topic_rows(section, kind):
     return dict(re.findall(r'^\| `([^`]+)` \| ([\w/]+) \|', table.group(1), re.MULTILINE))
 
 
-@pytest.mark.parametrize('node_name', ['ik_node', 'fk_node', 'trajectory_node'])
+@pytest.mark.parametrize('node_name', ['ik_node', 'fk_node', 'trajectory_node',
+                                       'motion_cueing_node'])
 def test_topic_tables_match_the_nodes(ros, config_directory, node_name):
     """The nodes page's subscribed and published topics are exactly the node's own."""
     from stewart_kinematics.ros.fk_node import FkNode
     from stewart_kinematics.ros.ik_node import IkNode
+    from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
     from stewart_kinematics.ros.trajectory_node import TrajectoryNode
-    node_class = {'ik_node': IkNode, 'fk_node': FkNode, 'trajectory_node': TrajectoryNode}
+    node_class = {'ik_node': IkNode, 'fk_node': FkNode, 'trajectory_node': TrajectoryNode,
+                  'motion_cueing_node': MotionCueingNode}
     arguments = ['--ros-args']
     for name in ('paper_platform.yaml', 'solver.yaml', 'table3_ramp.yaml'):
         arguments += ['--params-file', str(config_directory / name)]

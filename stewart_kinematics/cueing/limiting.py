@@ -184,7 +184,7 @@ class CueLimiter:
 
         if self.scale == 1.0 and self.tilt_scale == 1.0:
             # Off the boundary last time: one check usually settles it.
-            pose = poses(ceiling, tilt_ceiling)[0]
+            pose = self.cue_poses(displacement, rotation + tilt)
             if not pose_violations(self.cue_geometry, pose[:3], euler_zyx_to_matrix(pose[3:])):
                 return ceiling, tilt_ceiling, pose
         found = _largest_allowed(self.cue_geometry, lambda shares: poses(shares, tilt_ceiling),
@@ -320,11 +320,16 @@ class CueLimiter:
         """
         Whether ``pose`` and the pose where the platform would stop from it keep the limits.
 
-        Braking at the legs' acceleration limit takes ``T = max |v_leg| / a`` and stops about
-        ``velocity T / 2`` further on; a follower that can always still stop inside the limits
-        never has to leave them.
+        A pose inside the narrowed limits passes at once: the margins cover the braking
+        distance. Otherwise braking at the legs' acceleration limit takes
+        ``T = max |v_leg| / a`` and stops about ``velocity T / 2`` further on; a follower that
+        can always still stop inside the limits never has to leave them.
         """
-        if pose_violations(self.geometry, pose[:3], euler_zyx_to_matrix(pose[3:])):
+        rotation = euler_zyx_to_matrix(pose[3:])
+        if not pose_violations(self.cue_geometry, pose[:3], rotation):
+            # Inside the narrowed limits: the margins cover the braking distance.
+            return True
+        if pose_violations(self.geometry, pose[:3], rotation):
             return False
         acceleration = self._acceleration_plan
         speed = float(np.max(np.abs(lengths - self.lengths))) / dt

@@ -274,7 +274,7 @@ class MotionCueing:
         return self._move(time, dt, specific_force, angular_velocity, refusal, warnings)
 
     def _move(self, time, dt, specific_force, angular_velocity, refusal, warnings) -> CueStep:
-        washout = self.washout.step(specific_force, angular_velocity, dt)
+        washout = self.washout.step_checked(specific_force, angular_velocity, dt)
         if dt > 0.0:
             limited = self.limiter.step(washout.displacement, washout.rotation, washout.tilt, dt)
             warnings.extend(limited.findings)

@@ -183,6 +183,10 @@ class ClassicalWashout:
         angular_velocity = _vector('angular_velocity', angular_velocity)
         if not (math.isfinite(dt) and dt >= 0.0):
             raise ValueError(f'dt must be finite and >= 0 seconds, got {dt!r}')
+        return self.step_checked(specific_force, angular_velocity, dt)
+
+    def step_checked(self, specific_force, angular_velocity, dt: float) -> WashoutStep:
+        """:meth:`step` for inputs already checked (3 finite floats each, ``dt >= 0``)."""
         s = self.settings
         u = self.filter_input(specific_force, angular_velocity, s.gravity)
         if self._input_limit != math.inf:
