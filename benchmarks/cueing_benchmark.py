@@ -35,7 +35,6 @@ node part starts processes on an isolated ROS domain; ``--no-node`` skips it). P
 """
 
 import argparse
-import math
 from pathlib import Path
 import platform
 import statistics
@@ -46,7 +45,7 @@ import numpy as np
 
 from stewart_kinematics import inverse_kinematics
 from stewart_kinematics.cueing import limiting, MotionCueing
-from stewart_kinematics.cueing.scenarios import SCENARIO_NAMES, scenario
+from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
 from stewart_kinematics.limits import check_pose
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import read_parameter_file
@@ -235,27 +234,29 @@ def node_benchmark(rounds, seconds):
             best = {'motion_cueing_node': [], 'echo node': []}
             at_target = []
             for index in range(rounds):
-                highest = {name: 0.0 for name in best}
+                # Each node climbs the ladder until its first loss; the rungs interleave.
+                highest = dict.fromkeys(best, 0.0)
+                stopped = set()
                 for rate in LADDER:
                     count = int(rate * seconds)
                     for name, probe, messages in (
                             ('motion_cueing_node', cueing_probe, stream.messages(rate, count)),
                             ('echo node', echo_probe, [pose] * count)):
-                        if highest[name] < rate and highest[name] != -1.0:
-                            ok = probe.rung(messages, rate)
-                            if ok:
-                                highest[name] = rate
-                            else:
-                                highest[name] = -highest[name] - 1.0 if highest[name] else -1.0
-                            if name == 'motion_cueing_node' and rate == NODE_TARGET_RATE:
-                                at_target.append(ok)
+                        if name in stopped:
+                            continue
+                        ok = probe.rung(messages, rate)
+                        if ok:
+                            highest[name] = rate
+                        else:
+                            stopped.add(name)
                         time.sleep(0.2)
                 for name in best:
-                    value = highest[name]
-                    best[name].append(value if value >= 0.0 else max(0.0, -value - 1.0))
+                    best[name].append(highest[name])
+                at_target.append(highest['motion_cueing_node'] >= NODE_TARGET_RATE)
                 print(f'  round {index + 1}: motion_cueing_node loss-free up to '
                       f'{best["motion_cueing_node"][-1]:,.0f} Hz, echo node '
-                      f'{best["echo node"][-1]:,.0f} Hz (ladder {", ".join(map(str, LADDER))})')
+                      f'{best["echo node"][-1]:,.0f} Hz (ladder '
+                      f'{", ".join(f"{rate:g}" for rate in LADDER)} Hz)')
         finally:
             rclpy.try_shutdown()
             for process in processes:

@@ -44,7 +44,7 @@ LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 
 @pytest.fixture
 def cueing():
-    """The node's core as motion_cueing_node builds it from the shipped files."""
+    """Build the node's core as motion_cueing_node builds it from the shipped files."""
     values = {}
     for path in FILES:
         values.update(read_parameter_file(path, 'motion_cueing_node'))

@@ -150,7 +150,7 @@ def test_unknown_scenarios_and_bad_rates_are_refused(name, rate):
 
 @pytest.fixture(scope='module')
 def results():
-    """The four scenarios through the shipped configuration, measured."""
+    """Replay the four scenarios through the shipped configuration and measure them."""
     values = {}
     for path in FILES:
         values.update(read_parameter_file(path, 'motion_cueing_node'))

@@ -42,7 +42,7 @@ LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 
 @pytest.fixture(scope='module')
 def geometry():
-    """The paper's platform with the example limits."""
+    """Load the paper's platform with the example limits."""
     return load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
 
 

@@ -107,7 +107,7 @@ class Rig:
 
 @pytest.fixture
 def rig(ros, spin_until):
-    """A node with the shipped files, and its client."""
+    """Make a node with the shipped files, and its client."""
     made = Rig(ros, spin_until, ARGUMENTS)
     yield made
     made.close()
@@ -151,7 +151,7 @@ def test_each_sample_gives_a_pose_a_stamped_cue_and_the_felt_force(rig):
 
 
 def test_bad_values_are_refused_counted_and_ease_home(rig):
-    """NaN and absurd samples: refused with the reason, yet a pose is published (at rest)."""
+    """Refuse NaN and absurd samples with the reason, yet publish a pose (at rest)."""
     start = 10_000_000_000
     rig.send([imu(start + k * 10_000_000, force=(0.0, 4.0, G)) for k in range(300)])
     leaning = rig.inbox['target_pose'][-1]

@@ -46,12 +46,12 @@ FREQUENCIES = np.array([0.7, 1.1, 1.9, 0.5, 0.9, 0.3]) * 2.0 * math.pi
 
 
 def pose(t):
-    """The analytic motion: home plus a sine per coordinate."""
+    """Return the analytic motion: home plus a sine per coordinate."""
     return HOME + AMPLITUDES * np.sin(FREQUENCIES * t + np.arange(6))
 
 
 def head(t):
-    """The head's position in the base frame."""
+    """Return the head's position in the base frame."""
     p = pose(t)
     return p[:3] + rotation_zyx(*p[3:]) @ HEAD
 
@@ -88,7 +88,7 @@ def test_uneven_steps_keep_second_order_accuracy():
 
 
 def test_streaming_estimate_equals_the_batch():
-    """PerceptionEstimator returns the batch value of the previous sample, with its label."""
+    """Stream: the estimator returns the batch value of the previous sample, with its label."""
     times = np.arange(0.0, 0.5, 0.002)
     poses = np.array([pose(t) for t in times])
     batch = perceived_motion(times, poses, HEAD, G)

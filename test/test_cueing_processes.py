@@ -54,7 +54,7 @@ def imu(stamp_ns, force, rate=(0.0, 0.0, 0.0)):
 
 
 def drive(seconds=8.0):
-    """A push forward, a left turn with yaw rate, then a 1 Hz and 2 Hz sine; then rest."""
+    """Return a push forward, a left turn with yaw rate, a 1 Hz and 2 Hz sine, then rest."""
     messages = []
     for k in range(int(seconds * RATE)):
         t = k / RATE

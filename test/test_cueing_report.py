@@ -25,11 +25,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
-
 from stewart_kinematics.cueing.scenarios import scenario
 from stewart_kinematics.tools import cueing_report
 from stewart_kinematics.tools.cueing_report import CSV_COLUMNS, main
+import yaml
 
 pytestmark = pytest.mark.core
 
@@ -47,7 +46,7 @@ def write_csv(path, rows, header=','.join(CSV_COLUMNS)):
 
 
 def scenario_rows(name, rate=50.0):
-    """The rows of a generated scenario, as a CSV would hold them."""
+    """Return the rows of a generated scenario, as a CSV would hold them."""
     generated = scenario(name, rate)
     return np.column_stack([generated.times + 100.0, generated.specific_force,
                             generated.angular_velocity]).tolist()
@@ -62,7 +61,7 @@ def scenario_rows(name, rate=50.0):
     (['--csv', __file__, '--scenario', 'lap'], '--scenario'),
 ])
 def test_bad_options_exit_2_naming_the_option(capsys, tmp_path, arguments, option):
-    """argparse refuses the value and names the option; nothing is written."""
+    """Refuse the value naming the option (argparse); nothing is written."""
     with pytest.raises(SystemExit) as raised:
         main(TUNED + ['--output', str(tmp_path / 'out')] + arguments)
     assert raised.value.code == 2
@@ -146,7 +145,7 @@ def test_every_scenario_meets_its_targets_with_the_shipped_tuning(capsys, tmp_pa
 
 
 def test_markdown_table_shows_unknowns_as_dashes():
-    """NaN correlations (a constant axis) and delays beyond the window read as such."""
+    """Show NaN correlations (a constant axis) and delays beyond the window as such."""
     assert cueing_report._number(math.nan) == '-'
     assert cueing_report._number(math.inf, '.0f') == '> 500'
     assert cueing_report._number(-math.inf, '.0f') == '< -500'

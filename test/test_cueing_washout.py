@@ -40,7 +40,7 @@ STILL = [0.0, 0.0, 0.0]
 
 def settings(**changes):
     """Literature defaults with the tilt and rotation off unless changed."""
-    values = dict(tilt_scale=(0.0, 0.0), rotation_scale=(0.0, 0.0, 0.0))
+    values = {'tilt_scale': (0.0, 0.0), 'rotation_scale': (0.0, 0.0, 0.0)}
     values.update(changes)
     return CueingSettings(**values)
 
@@ -108,8 +108,8 @@ def test_underdamped_washout_does_reverse():
     """The check above can fail: damping 0.3 overshoots through neutral."""
     washout = ClassicalWashout(settings(translation_damping=(0.3, 0.3, 0.3),
                                         translation_break_frequency=(1.0, 1.0, 1.0)))
-    x = np.array([s.displacement[0] for s in run(washout, np.arange(1, 3001) * 0.01,
-                                                  [2.0, 0.0, G])])
+    steps = run(washout, np.arange(1, 3001) * 0.01, [2.0, 0.0, G])
+    x = np.array([s.displacement[0] for s in steps])
     assert x.min() < -1e-3
 
 
@@ -194,13 +194,13 @@ def test_bad_steps_raise(dt):
 
 
 @pytest.mark.parametrize('changes, name', [
-    (dict(translation_order=1), 'translation_order'), (dict(tilt_order=3), 'tilt_order'),
-    (dict(translation_frequency=(1.0, -1.0, 1.0)), 'translation_frequency'),
-    (dict(translation_scale=(0.5, 0.5)), 'translation_scale'),
-    (dict(tilt_rate_max=0.0), 'tilt_rate_max'), (dict(gravity=math.nan), 'gravity'),
-    (dict(head_position=(0.0, 0.0, math.inf)), 'head_position'),
-    (dict(tilt_complementary='yes'), 'tilt_complementary'),
-    (dict(condition_margin=0.0), 'condition_margin'),
+    ({'translation_order': 1}, 'translation_order'), ({'tilt_order': 3}, 'tilt_order'),
+    ({'translation_frequency': (1.0, -1.0, 1.0)}, 'translation_frequency'),
+    ({'translation_scale': (0.5, 0.5)}, 'translation_scale'),
+    ({'tilt_rate_max': 0.0}, 'tilt_rate_max'), ({'gravity': math.nan}, 'gravity'),
+    ({'head_position': (0.0, 0.0, math.inf)}, 'head_position'),
+    ({'tilt_complementary': 'yes'}, 'tilt_complementary'),
+    ({'condition_margin': 0.0}, 'condition_margin'),
 ])
 def test_settings_refuse_values_out_of_range(changes, name):
     """Each setting is checked when built; the message names it."""

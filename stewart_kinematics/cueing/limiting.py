@@ -240,8 +240,10 @@ class CueLimiter:
 
     def _leg_bounds(self, dt, stroke=True):
         """
-        Per-leg bounds on the next leg velocity: speed, acceleration, and (``stroke``) the
-        braking curve that keeps each leg able to stop inside its stroke.
+        Return the per-leg bounds ``(lower, upper)`` on the next leg velocity.
+
+        Speed, acceleration, and (``stroke``) the braking curve that keeps each leg able to
+        stop inside its stroke.
         """
         span = dt if self._last_dt is None else min(dt, 0.5 * (dt + self._last_dt))
         acceleration = self._acceleration_plan
@@ -274,10 +276,11 @@ class CueLimiter:
         When the leg velocities that reach ``wanted_pose`` break a leg's bounds
         (:meth:`_leg_bounds`), the next leg velocities are those within every bound whose
         pose differs least from the wanted one: a least-squares problem in the pose metric
-        (metres and radians alike: a degree of tilt costs as much as 17 mm) through the legs' Jacobian, with box
-        constraints on each leg (:func:`box_least_squares`). The pose is then the forward
-        kinematics of those lengths, started at the wanted pose. ``share`` is 1 minus the
-        part of the wanted change of motion that the legs could not follow (in that metric).
+        (metres and radians alike: a degree of tilt costs as much as 17 mm) through the legs'
+        Jacobian, with box constraints on each leg (:func:`box_least_squares`). The pose is
+        then the forward kinematics of those lengths, started at the wanted pose. ``share`` is
+        1 minus the part of the wanted change of motion that the legs could not follow (in
+        that metric).
         """
         lengths = inverse_kinematics(self.geometry, wanted_pose)
         if not self.limits_speed:
@@ -299,8 +302,10 @@ class CueLimiter:
 
     def _brake(self, dt, guess):
         """
-        Slow the legs down as fast as their bounds allow: the feasible leg velocities nearest
-        to rest in the pose metric (stroke braking curves included).
+        Slow the legs down as fast as their bounds allow; return ``(0, pose, lengths)``.
+
+        The feasible leg velocities nearest to rest in the pose metric (stroke braking curves
+        included).
         """
         lower, upper = self._leg_bounds(dt)
         inverse = np.linalg.inv(jacobian(self.geometry, self.pose))
@@ -342,7 +347,7 @@ class CueLimiter:
 
     def _retreat(self, dt, findings):
         """
-        The next pose when following the cue would leave the limits: brake, else head home.
+        Return the next pose when following the cue would leave the limits: brake, or go home.
 
         A moving platform brakes each leg as hard as it may; one at rest moves toward the
         home pose (always inside the limits) with the follower's dynamics; if neither keeps
@@ -368,7 +373,6 @@ class CueLimiter:
         findings.append(Finding(LIMITS_HELD, 'every next pose would have left the limits; pose '
                                 'held'))
         return 0.0, self.pose.copy(), self.lengths.copy()
-
 
 
 def box_least_squares(metric, target, lower, upper, max_iterations=30):
@@ -410,11 +414,12 @@ def box_least_squares(metric, target, lower, upper, max_iterations=30):
     return np.clip(x, lower, upper)
 
 
-
-
 def _largest_allowed(geometry, make_poses, high, previous=0.0, home_allowed=False):
     """
-    The largest share in [0, ``high``) whose pose keeps the limits, to :data:`SCALE_TOLERANCE`.
+    Return the largest share in [0, ``high``) whose pose keeps the limits.
+
+    To :data:`SCALE_TOLERANCE`, or to a pose within :data:`SCALE_MARGIN_TOLERANCE` of the
+    boundary.
 
     Regula falsi with the Illinois modification (Dahlquist and Bjorck, *Numerical Methods*,
     section 6.2) on the continuous :func:`~.limit_check.limit_margins`. The first evaluation

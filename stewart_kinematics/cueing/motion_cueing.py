@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Motion cueing as one decision object: a vehicle's motion in, a platform pose within every limit out.
+Motion cueing as one decision object: a vehicle's motion in, a pose within every limit out.
 
 :class:`MotionCueing` takes samples of the vehicle's specific force and angular velocity at the
 driver's head, each with its time, and returns the platform pose to command: the classical
@@ -34,10 +34,15 @@ platform takes the step as if the vehicle were at rest, so that a stream of bad 
 eases it back to neutral. :meth:`MotionCueing.step` is the same for a Python loop that wants an
 exception instead: it raises ``ValueError`` naming the argument. Nothing here imports ROS.
 
+>>> from stewart_kinematics.parameters import load_geometry
 >>> cueing = MotionCueing(load_geometry(['config/paper_platform.yaml',
-...                                      'config/example_limits.yaml']))  # doctest: +SKIP
->>> step = cueing.step(0.01, [2.0, 0.0, 9.81], [0.0, 0.0, 0.0])  # doctest: +SKIP
->>> step.pose, step.workspace_scale, step.perceived  # doctest: +SKIP
+...                                      'config/example_limits.yaml']))
+>>> first = cueing.step(0.0, [0.0, 0.0, 9.81], [0.0, 0.0, 0.0])
+>>> step = cueing.step(0.01, [2.0, 0.0, 9.81], [0.0, 0.0, 0.0])
+>>> step.accepted, step.workspace_scale, bool(step.pose[0] > first.pose[0])
+(True, 1.0, True)
+>>> cueing.cue(0.02, [float('nan'), 0.0, 9.81], [0.0, 0.0, 0.0]).refusal.code
+'invalid_vehicle_motion'
 """
 
 from dataclasses import dataclass
@@ -158,8 +163,10 @@ class MotionCueing:
 
     def settled(self, tolerance: float = 1e-7) -> bool:
         """
-        Whether the platform rests at home: every pose coordinate and leg velocity within
-        ``tolerance`` (metres, radians, m/s) of home and of rest.
+        Return whether the platform rests at home.
+
+        Every pose coordinate and leg velocity within ``tolerance`` (metres, radians, m/s) of
+        home and of rest.
         """
         limiter = self.limiter
         return bool(np.all(np.abs(limiter.pose - self.geometry.home_pose) <= tolerance)
@@ -284,7 +291,8 @@ class MotionCueing:
         else:
             limiter = self.limiter
             pose, lengths, target = limiter.pose.copy(), limiter.lengths.copy(), None
-            workspace_scale, tilt_scale, acceleration_scale = limiter.scale, limiter.tilt_scale, 1.0
+            workspace_scale, tilt_scale = limiter.scale, limiter.tilt_scale
+            acceleration_scale = 1.0
         perceived = None
         if self._clock is None or dt > 0.0:
             self._clock = 0.0 if self._clock is None else self._clock + dt

@@ -89,7 +89,7 @@ def specific_force(rotation, acceleration, gravity: float = STANDARD_GRAVITY) ->
 def perceived_motion(times, poses, head_position, gravity: float = STANDARD_GRAVITY
                      ) -> PerceivedMotion:
     """
-    The specific force and angular velocity felt at the head along a sampled motion.
+    Return the specific force and angular velocity felt at the head along a sampled motion.
 
     :param times: seconds, shape (N,), increasing, N >= 3.
     :param poses: the platform's poses, shape (N, 6).

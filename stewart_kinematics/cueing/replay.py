@@ -26,7 +26,7 @@ from typing import Callable, Dict, Optional
 import numpy as np
 
 from stewart_kinematics.cueing.motion_cueing import MotionCueing
-from stewart_kinematics.cueing.perception import PerceivedMotion, perceived_motion
+from stewart_kinematics.cueing.perception import perceived_motion, PerceivedMotion
 
 #: Samples between two calls of the progress callback.
 PROGRESS_EVERY = 200

@@ -167,8 +167,8 @@ class CueingSettings:
                     'max_angular_velocity', 'gravity')
         for name in positive:
             values = getattr(self, name)
-            if not all(value > 0.0 for value in (values if isinstance(values, tuple)
-                                                   else (values,))):
+            items = values if isinstance(values, tuple) else (values,)
+            if not all(value > 0.0 for value in items):
                 raise ValueError(f'{name} must be positive, got {values!r}')
         for name in ('translation_scale', 'tilt_scale', 'rotation_scale'):
             if not all(0.0 <= value <= 10.0 for value in getattr(self, name)):

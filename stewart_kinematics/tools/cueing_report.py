@@ -248,7 +248,8 @@ def load_mcap(path: Path, topic: str):
             a, w = imu.linear_acceleration, imu.angular_velocity
             rows.append((stamp, message.log_time_ns * 1e-9, a.x, a.y, a.z, w.x, w.y, w.z))
     except (McapError, OSError, ValueError, KeyError, AttributeError) as error:
-        raise ValueError(f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
+        raise ValueError(
+            f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
     if not rows:
         raise ValueError(f'{source}: no message on {topic}')
     data = np.array(rows)
@@ -330,8 +331,12 @@ def _number(value, spec='.3f'):
     return format(value, spec)
 
 
-def write_figure(path: Path, name, replay, evaluation, geometry):
-    """Draw input against felt specific force (x, y) and the platform's motion over time."""
+def write_figure(path: Path, name, replay, evaluation, geometry, scales=(1.0, 1.0)):
+    """
+    Draw input against felt specific force (x, y) and the platform's motion over time.
+
+    :param scales: the translational scale per axis (x, y): the input times it is drawn too.
+    """
     import matplotlib
     matplotlib.use('Agg')
     from matplotlib import pyplot
@@ -341,6 +346,9 @@ def write_figure(path: Path, name, replay, evaluation, geometry):
         index = 'xy'.index(axis)
         measures = evaluation.axes[index]
         axes[row].plot(times, replay.specific_force[:, index], color='0.55', label='input')
+        if scales[index] != 1.0:
+            axes[row].plot(times, scales[index] * replay.specific_force[:, index], color='0.55',
+                           linestyle=':', label=f'input x {scales[index]:g}')
         axes[row].plot(times, replay.perceived.specific_force[:, index], color='C0',
                        label='felt at the head')
         axes[row].set_ylabel(f'f_{axis} (m/s^2)')
@@ -416,7 +424,7 @@ def run(options, stream=None):
         numbers[name] = _numbers(evaluation, met)
         if not options.no_figures:
             write_figure(options.output / f'{Path(name).stem}.png', name, played, evaluation,
-                         geometry)
+                         geometry, settings.translation_scale[:2])
     table = markdown_table(results)
     (options.output / 'cueing_results.md').write_text(table + '\n', encoding='utf-8')
     with open(options.output / 'cueing_results.yaml', 'w', encoding='utf-8') as out:
