@@ -216,7 +216,7 @@ def node_benchmark(rounds, seconds, input_name='multi_sine'):
         arguments += ['--params-file', str(path)]
     arguments += ['-p', f'queue_depth:={QUEUE_DEPTH}', '-p', 'input_timeout:=0.0']
     with isolated_ros_environment() as domain:
-        print(f'\nNode: loss-free rate, {input_name} at the rung\'s rate, {rounds} rounds, '
+        print(f'\nNode: loss-free rate, {input_name} sampled at each rung, {rounds} rounds, '
               f'{seconds:g} s a rung, ROS_DOMAIN_ID {domain}')
         processes = [
             NodeProcess('motion_cueing_node', arguments),

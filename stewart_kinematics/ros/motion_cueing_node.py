@@ -29,7 +29,8 @@ Everything is decided by :class:`stewart_kinematics.cueing.MotionCueing`: the ti
 difference of the stamps; a message with a non-finite or absurd value is refused with its
 reason and the platform takes the step at rest (bad input eases it back to neutral); a stamp
 that does not move forward is refused and nothing is published. When no message came for
-``input_timeout`` seconds, the node eases the platform home on its own clock until it rests.
+``input_timeout`` seconds, the node eases the platform home on its own clock until it rests
+(``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
 Refusals and warnings are counted on ``/diagnostics``.
 """
 
@@ -112,14 +113,15 @@ class MotionCueingNode(Node):
             self.target_publisher.publish(target)
         self.publish_extras(result, stamp)
 
-    def publish_extras(self, result, stamp):
-        """Publish cue_pose and perceived_accel, each only to a subscriber."""
+    def publish_extras(self, result, stamp, perceived=True):
+        """Publish cue_pose and (``perceived``) perceived_accel, each only to a subscriber."""
         base_frame = self.settings.frames.base_frame
         if self.cue_publisher.get_subscription_count():
             self.cue_publisher.publish(PoseStamped(
                 header=Header(stamp=stamp, frame_id=base_frame),
                 pose=pose_to_message(result.pose)))
-        if result.perceived is not None and self.perceived_publisher.get_subscription_count():
+        if (perceived and result.perceived is not None
+                and self.perceived_publisher.get_subscription_count()):
             time, force = result.perceived
             message = AccelStamped()
             message.header.frame_id = self.settings.frames.platform_frame
@@ -156,7 +158,8 @@ class MotionCueingNode(Node):
             return
         result = self.cueing.rest(dt)
         self.target_publisher.publish(pose_to_message(self.frames.tool_pose_vector(result.pose)))
-        self.publish_extras(result, now.to_msg())
+        # No sample to stamp the felt force with: only the pose, stamped now.
+        self.publish_extras(result, now.to_msg(), perceived=False)
 
 
 def main(args=None) -> int:
