@@ -49,7 +49,11 @@ import numpy as np
 from stewart_kinematics.cueing.limit_check import limit_margins, pose_violations, with_margins
 from stewart_kinematics.findings import ACTUATOR_LIMITED, CUE_SCALED, Finding, LIMITS_HELD
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.kinematics import forward_kinematics, inverse_kinematics, jacobian
+from stewart_kinematics.model.kinematics import (
+    forward_kinematics,
+    inverse_kinematics,
+    twist_jacobian,
+)
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 #: Share of the actuator limits the follower plans with; the rest absorbs the legs'
@@ -275,9 +279,9 @@ class CueLimiter:
 
         When the leg velocities that reach ``wanted_pose`` break a leg's bounds
         (:meth:`_leg_bounds`), the next leg velocities are those within every bound whose
-        pose differs least from the wanted one: a least-squares problem in the pose metric
-        (metres and radians alike: a degree of tilt costs as much as 17 mm) through the legs'
-        Jacobian, with box constraints on each leg (:func:`box_least_squares`). The pose is
+        motion differs least from the wanted one: a least-squares problem in the platform's
+        twist (metres and radians alike: a degree of rotation costs as much as 17 mm) through
+        the legs' twist Jacobian, with box constraints on each leg (:func:`box_least_squares`). The pose is
         then the forward kinematics of those lengths, started at the wanted pose. ``share`` is
         1 minus the part of the wanted change of motion that the legs could not follow (in
         that metric).
@@ -289,9 +293,7 @@ class CueLimiter:
         lower, upper = self._leg_bounds(dt)
         if all(low <= value <= high for value, low, high in zip(wanted.tolist(), lower, upper)):
             return 1.0, wanted_pose, lengths
-        # Pose change per leg velocity change: J^-1; metres and radians weigh alike.
-        inverse = np.linalg.inv(jacobian(self.geometry, self.pose))
-        metric = inverse.T @ inverse
+        metric = self._twist_metric()
         velocities = box_least_squares(metric, wanted, np.array(lower), np.array(upper))
         asked = wanted - self.leg_velocities
         missed = velocities - wanted
@@ -300,16 +302,26 @@ class CueLimiter:
                  if asked_size > 0.0 else 0.0)
         return self._pose_of(self.lengths + dt * velocities, wanted_pose, min(share, 1.0 - 1e-12))
 
+    def _twist_metric(self) -> np.ndarray:
+        """
+        Return ``J^-T J^-1`` at the current pose, ``J`` the twist Jacobian.
+
+        A change of the leg velocities ``dv`` moves the platform by the twist ``J^-1 dv``; its
+        squared size, metres and radians alike, is ``dv^T J^-T J^-1 dv``.
+        """
+        inverse = np.linalg.inv(twist_jacobian(self.geometry, self.pose[:3],
+                                               euler_zyx_to_matrix(self.pose[3:])))
+        return inverse.T @ inverse
+
     def _brake(self, dt, guess):
         """
         Slow the legs down as fast as their bounds allow; return ``(0, pose, lengths)``.
 
-        The feasible leg velocities nearest to rest in the pose metric (stroke braking curves
+        The feasible leg velocities nearest to rest in the twist metric (stroke braking curves
         included).
         """
         lower, upper = self._leg_bounds(dt)
-        inverse = np.linalg.inv(jacobian(self.geometry, self.pose))
-        velocities = box_least_squares(inverse.T @ inverse, np.zeros(6), np.array(lower),
+        velocities = box_least_squares(self._twist_metric(), np.zeros(6), np.array(lower),
                                        np.array(upper))
         return self._pose_of(self.lengths + dt * velocities, guess, 0.0)
 
