@@ -281,10 +281,10 @@ class CueLimiter:
         (:meth:`_leg_bounds`), the next leg velocities are those within every bound whose
         motion differs least from the wanted one: a least-squares problem in the platform's
         twist (metres and radians alike: a degree of rotation costs as much as 17 mm) through
-        the legs' twist Jacobian, with box constraints on each leg (:func:`box_least_squares`). The pose is
-        then the forward kinematics of those lengths, started at the wanted pose. ``share`` is
-        1 minus the part of the wanted change of motion that the legs could not follow (in
-        that metric).
+        the legs' twist Jacobian, with box constraints on each leg
+        (:func:`box_least_squares`). The pose is then the forward kinematics of those lengths,
+        started at the wanted pose. ``share`` is 1 minus the part of the wanted change of
+        motion that the legs could not follow (in that metric).
         """
         lengths = inverse_kinematics(self.geometry, wanted_pose)
         if not self.limits_speed:
