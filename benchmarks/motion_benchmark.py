@@ -38,7 +38,6 @@ import time
 import numpy as np
 
 from stewart_kinematics import (
-    ActuatorLimits,
     check_trajectory,
     CommandFilter,
     inverse_kinematics,
@@ -50,7 +49,11 @@ from stewart_kinematics import (
     retime,
     TimedTrajectory,
 )
-from stewart_kinematics.parameters import read_parameter_file
+from stewart_kinematics.parameters import (
+    actuator_limits_from_settings,
+    GeometrySettings,
+    load_settings,
+)
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = [ROOT / 'config' / 'paper_platform.yaml', ROOT / 'config' / 'example_limits.yaml']
@@ -91,7 +94,7 @@ def table_3_path():
 def main() -> int:
     """Print the table; return 0."""
     geometry = load_geometry(CONFIG)
-    actuator_limits = ActuatorLimits.from_parameters(read_parameter_file(CONFIG[1]))
+    actuator_limits = actuator_limits_from_settings(load_settings(GeometrySettings, CONFIG))
     path = ten_second_trajectory(geometry)
     given = TimedTrajectory.as_given(path)
     retime(path, geometry, actuator_limits)  # import toppra and scipy before timing

@@ -24,7 +24,8 @@ or ``--no-nodes`` for the core rows only). Prints one table; each figure is the 
 runs (wall time; CPU time of this process beside it, since the machine may be shared), and
 each rate is compared with a baseline measured in the same run.
 
-Targets (issue 11): >= 1,000,000 poses/s checked for stroke and joint cones (the rate with the
+Targets (issues 11 and 18): >= 1,000,000 poses/s checked for stroke and joint cones, and for
+stroke, joint cones and leg collisions (the 15 pairs of legs of every pose; the rate with the
 singularity margin is reported too); travel ranges of the paper platform under the example
 limits < 1 s; the full ``stewart_workspace`` report < 30 s.
 """
@@ -66,10 +67,25 @@ def timed(call, repeat=3):
     return best
 
 
+def rate_target(wall_rate, cpu_rate, target=1e6):
+    """
+    Say whether a rate meets its target: in wall time, or else in processor time.
+
+    On a shared machine other jobs take the processor away: processor time is then the figure
+    an idle machine's wall time would be near.
+    """
+    if wall_rate >= target:
+        return 'met'
+    if cpu_rate >= target:
+        return 'met in processor time (wall time below it on this loaded machine)'
+    return f'NOT met (>= {target:,.0f} poses/s)'
+
+
 def core_rows(rows):
     """Limit checks per second, with their baselines, and the travel ranges."""
     geometry = load_geometry(FILES)
     no_margin = dataclasses.replace(geometry, max_jacobian_condition=math.inf)
+    no_collision = dataclasses.replace(no_margin, leg_radius=0.0)
     rng = np.random.default_rng(1)
     poses = geometry.home_pose + rng.uniform(-1.0, 1.0, (1_000_000, 6)) * SPREAD
 
@@ -78,29 +94,41 @@ def core_rows(rows):
     loop_wall, loop_cpu = timed(lambda: [limits.check_pose(no_margin, pose[:3], rotation)
                                          for pose, rotation in zip(sample, rotations)])
     loop_rate = len(sample) / loop_wall
-    rows.append(('check_pose loop, stroke + cones (baseline)', f'{loop_rate:,.0f} poses/s',
-                 f'{loop_wall / len(sample) * 1e6:.1f} us a pose', ''))
-    wall, cpu = timed(lambda: limits.check_poses_array(no_margin, poses))
+    rows.append(('check_pose loop, stroke + cones + collisions (baseline)',
+                 f'{loop_rate:,.0f} poses/s', f'{loop_wall / len(sample) * 1e6:.1f} us a pose',
+                 ''))
+    wall, cpu = timed(lambda: limits.check_poses_array(no_collision, poses))
     rate = len(poses) / wall
     rows.append(('check_poses_array, stroke + cones', f'{rate:,.0f} poses/s',
                  f'{rate / loop_rate:.0f}x loop; CPU {len(poses) / cpu:,.0f} poses/s',
-                 'met' if rate >= 1e6 else 'NOT met (>= 1,000,000 poses/s)'))
+                 rate_target(rate, len(poses) / cpu)))
+    wall, cpu = timed(lambda: limits.check_poses_array(no_margin, poses))
+    rate = len(poses) / wall
+    rows.append(('check_poses_array, stroke + cones + leg collisions (15 pairs, every pose)',
+                 f'{rate:,.0f} poses/s',
+                 f'{rate / loop_rate:.0f}x loop; CPU {len(poses) / cpu:,.0f} poses/s',
+                 rate_target(rate, len(poses) / cpu)))
+    wall, cpu = timed(lambda: limits.check_poses_array(no_margin, poses,
+                                                       condition_of_refused=False))
+    rate = len(poses) / wall
+    rows.append(('  the same, collisions only where stroke and cones pass',
+                 f'{rate:,.0f} poses/s', f'{rate / loop_rate:.0f}x loop', ''))
 
     part = poses[:100_000]
     loop_wall, _ = timed(lambda: [limits.check_pose(geometry, pose[:3], rotation)
                                   for pose, rotation in zip(sample, rotations)])
     loop_rate = len(sample) / loop_wall
-    rows.append(('check_pose loop, all limits (baseline)', f'{loop_rate:,.0f} poses/s',
+    rows.append(('check_pose loop, every limit (baseline)', f'{loop_rate:,.0f} poses/s',
                  f'{loop_wall / len(sample) * 1e6:.1f} us a pose', ''))
     wall, cpu = timed(lambda: limits.check_poses_array(geometry, part))
     rate = len(part) / wall
-    rows.append(('check_poses_array, all limits (condition number of every pose)',
-                 f'{rate:,.0f} poses/s', f'{rate / loop_rate:.0f}x loop; CPU '
+    rows.append(('check_poses_array, every limit (condition number and collisions of every '
+                 'pose)', f'{rate:,.0f} poses/s', f'{rate / loop_rate:.0f}x loop; CPU '
                  f'{len(part) / cpu:,.0f} poses/s', 'reported (no target)'))
     wall, cpu = timed(lambda: limits.check_poses_array(geometry, part,
                                                        condition_of_refused=False))
     rate = len(part) / wall
-    rows.append(('  the same, condition number only where stroke and cones pass',
+    rows.append(('  the same, condition number and collisions only where stroke and cones pass',
                  f'{rate:,.0f} poses/s', f'{rate / loop_rate:.0f}x loop', ''))
 
     wall, cpu = timed(lambda: travel_ranges(geometry), repeat=5)

@@ -50,6 +50,7 @@ from stewart_kinematics.analysis.workspace import (
 from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.decisions.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
 from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
@@ -82,6 +83,8 @@ from stewart_kinematics.parameters import (
     frames_from_parameters,
     geometry_from_parameters,
     load_geometry,
+    load_settings,
+    SolverSettings,
 )
 
 __all__ = [
@@ -117,7 +120,9 @@ __all__ = [
     'LegCommand',
     'LegTrajectory',
     'LegVelocityCommand',
+    'LimitModel',
     'load_geometry',
+    'load_settings',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'measurement_poses',
@@ -133,6 +138,7 @@ __all__ = [
     'Ramp',
     'retime',
     'SingularPoseError',
+    'SolverSettings',
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',

@@ -16,45 +16,224 @@
 Findings: why the core refused an input, or what it warns about, in words and in numbers.
 
 The decision objects (:class:`stewart_kinematics.PoseTracker`,
-:class:`stewart_kinematics.CommandCheck`) never raise for input they cannot use: they return a
-result that carries a :class:`Finding`. Its ``code`` is short and stable, to count by (the nodes
-count their refusals by it on ``/diagnostics``); its ``message`` is a sentence a user can act
-on; its ``details`` are ``(key, value)`` pairs such as iterations, residual or the violated
-limits. Nothing here imports ROS.
+:class:`stewart_kinematics.CommandCheck`, ...) never raise for input they cannot use: they
+return a result that carries a :class:`Finding`. Its ``code`` is short and stable, to count by
+(the nodes count their refusals by it on ``/diagnostics``); its ``message`` is a sentence a
+user can act on; its ``details`` are ``(key, value)`` pairs such as iterations, residual or the
+violated limits.
+
+Every code the package can emit is registered here, once, with what it means and who emits
+it (:data:`CODES`); the documentation's table of codes is rendered from the registry
+(:func:`codes_table`), and a test finds every code the package emits in it. Nothing here
+imports ROS.
 """
 
 from dataclasses import dataclass
-from typing import Tuple
+from typing import Dict, Tuple
 
-#: Codes of the findings, one per kind of refusal or warning.
-INVALID_POSE = 'invalid_pose'
-INVALID_TWIST = 'invalid_twist'
-INVALID_LENGTHS = 'invalid_lengths'
-INVALID_VELOCITIES = 'invalid_velocities'
-OUT_OF_LIMITS = 'out_of_limits'
-UNREACHABLE = 'unreachable'
-NO_POSE_YET = 'no_pose_yet'
-NO_SOLUTION = 'no_solution'
-INACCURATE_POSE = 'inaccurate_pose'
-ASSEMBLY_MODE_JUMP = 'assembly_mode_jump'
-AMBIGUOUS_ASSEMBLY_MODE = 'ambiguous_assembly_mode'
-ASSEMBLY_MODE_MARGIN = 'assembly_mode_margin'
-NEAR_SINGULARITY = 'near_singularity'
-#: Refusals of a trajectory: only leg velocity or acceleration broken, no timing found, and a
-#: trajectory that is malformed (for a caller that converts messages).
-TOO_FAST = 'too_fast'
-RETIMING_FAILED = 'retiming_failed'
-INVALID_TRAJECTORY = 'invalid_trajectory'
-#: Motion cueing (stewart_kinematics.cueing): a vehicle motion sample refused (malformed, not
-#: finite or absurd), a sample whose time does not come after the previous one's, and warnings:
-#: a gap in the input, the cue scaled toward neutral to keep the limits, the actuators' speed
-#: limits holding the platform back, and a pose held because it would have left the limits.
-INVALID_VEHICLE_MOTION = 'invalid_vehicle_motion'
-TIME_NOT_INCREASING = 'time_not_increasing'
-INPUT_GAP = 'input_gap'
-CUE_SCALED = 'cue_scaled'
-ACTUATOR_LIMITED = 'actuator_limited'
-LIMITS_HELD = 'limits_held'
+
+@dataclass(frozen=True)
+class Code:
+    """
+    One code of the registry.
+
+    :param code: the code, short and stable, such as ``out_of_limits``.
+    :param kind: ``refusal`` (the input is not used), ``warning`` (it is, with a warning), or
+        ``refusal or warning`` (a code used both ways, said where).
+    :param emitted_by: the core objects (and nodes, topics) that emit it, in Markdown.
+    :param meaning: what it means, in Markdown.
+    """
+
+    code: str
+    kind: str
+    emitted_by: str
+    meaning: str
+
+
+#: Every code the package can emit, by code, in the order of the documentation's table.
+CODES: Dict[str, Code] = {}
+
+
+def _register(code: str, kind: str, emitted_by: str, meaning: str) -> str:
+    """Register a code with its meaning; return the code (for its module constant)."""
+    if code in CODES or kind not in ('refusal', 'warning', 'refusal or warning'):
+        raise ValueError(f'code {code!r} registered twice, or kind {kind!r} unknown')
+    CODES[code] = Code(code, kind, emitted_by, meaning)
+    return code
+
+
+# Commanded poses and twists (ik_node) ------------------------------------------------------
+
+INVALID_POSE = _register(
+    'invalid_pose', 'refusal',
+    '`CommandCheck` (ik_node: `target_pose`, `target_pose_stamped`)',
+    'A pose with a NaN or infinite coordinate, a zero or NaN quaternion, a matrix that is no '
+    'rotation, or the wrong shape.')
+WRONG_FRAME = _register(
+    'wrong_frame', 'refusal',
+    '`CommandCheck.tool_pose` (ik_node: `target_pose_stamped`)',
+    "A stamped pose in a frame other than `base_frame`, `user_frame` or `''`.")
+QUATERNION_NOT_UNIT = _register(
+    'quaternion_not_unit', 'warning',
+    '`CommandCheck.tool_pose` (ik_node: `target_pose`, `target_pose_stamped`)',
+    'A quaternion whose norm is not 1 (within 1e-6): it is normalised and the pose is used.')
+UNREACHABLE = _register(
+    'unreachable', 'refusal',
+    '`CommandCheck` (ik_node)',
+    'A pose whose leg lengths are not finite and positive: a platform joint on its base '
+    'joint, or a pose so far away that the lengths overflow.')
+OUT_OF_LIMITS = _register(
+    'out_of_limits', 'refusal',
+    '`CommandCheck`, `PoseTracker`, `plan_motion`, `limits.check_samples`, `CommandFilter` '
+    '(every node)',
+    'A pose, a set of leg lengths, a trajectory sample, a ramp sample or a streamed target '
+    'that breaks a limit (stroke, joint cone, singularity margin, leg collision); every '
+    'violation is listed with the leg (or the two legs), the value, the limit and the excess.')
+INVALID_TWIST = _register(
+    'invalid_twist', 'refusal',
+    '`CommandCheck.twist` (ik_node: `target_twist`)',
+    'A twist that is not six finite numbers, or whose speeds (above 1000 m/s or rad/s) are no '
+    'motion of a platform, or whose leg velocities overflow.')
+NO_POSE_YET = _register(
+    'no_pose_yet', 'refusal',
+    '`CommandCheck.twist` (ik_node: `target_twist`)',
+    'A twist before any pose was accepted: there is no pose to apply it at.')
+TOO_FAST = _register(
+    'too_fast', 'refusal',
+    '`CommandCheck.twist` (ik_node: `target_twist`), `plan_motion`, `check_trajectory` '
+    '(trajectory_node)',
+    'A twist whose leg velocities exceed `leg_velocity_max` (with `twist_over_limit: '
+    "'refuse'`), or a timed trajectory, not retimed, that breaks a leg velocity or "
+    'acceleration limit, naming the time, the segment, the legs and the limits.')
+TWIST_SCALED = _register(
+    'twist_scaled', 'warning',
+    '`CommandCheck.twist` (ik_node: `target_twist`, with `twist_over_limit: '
+    "'scale'`)",
+    'A twist whose leg velocities exceeded `leg_velocity_max`, scaled down uniformly until '
+    'the fastest leg is at the limit; the factor is in the details.')
+
+# Streamed commands (ik_node with command_rate) ----------------------------------------------
+
+STREAM_BRAKING = _register(
+    'stream_braking', 'warning',
+    '`CommandFilter.step` (ik_node with `command_rate`)',
+    'The jerk-limited generator (ruckig) could not plan a motion toward the target from the '
+    'current command: the command brakes to rest within the limits instead, and aims again '
+    'at the next step.')
+STREAM_HELD = _register(
+    'stream_held', 'refusal',
+    '`CommandFilter.step` (ik_node with `command_rate`)',
+    'No step within every limit could be computed: no command is published this period, and '
+    'the last one, within the limits, stands.')
+
+# Measured leg lengths (fk_node) -------------------------------------------------------------
+
+INVALID_LENGTHS = _register(
+    'invalid_lengths', 'refusal',
+    '`PoseTracker` (fk_node: `leg_lengths`, `joint_states`), `CommandFilter.set_target`',
+    'Leg lengths that are not six finite, positive numbers (or a malformed message).')
+INVALID_VELOCITIES = _register(
+    'invalid_velocities', 'refusal or warning',
+    '`PoseTracker.twist` (fk_node: a refusal on `leg_velocities`, a warning on '
+    '`joint_states`)',
+    'Leg velocities that are not six finite numbers.')
+NO_SOLUTION = _register(
+    'no_solution', 'refusal',
+    '`PoseTracker` (fk_node)',
+    'Forward kinematics found no solution (iteration limit, singular Jacobian, divergence), '
+    'with the iterations and the residual.')
+INACCURATE_POSE = _register(
+    'inaccurate_pose', 'refusal',
+    '`PoseTracker` (fk_node)',
+    'A converged solution whose `pose_error_bound` exceeds `pose_tolerance`: near a '
+    'singularity the lengths fix the pose only loosely.')
+ASSEMBLY_MODE_JUMP = _register(
+    'assembly_mode_jump', 'refusal',
+    '`PoseTracker` (fk_node)',
+    'A solution more than `assembly_guard_position_change` or '
+    '`assembly_guard_angle_change_deg` from the last one while no leg changed by more than '
+    '`assembly_guard_length_change`.')
+AMBIGUOUS_ASSEMBLY_MODE = _register(
+    'ambiguous_assembly_mode', 'refusal',
+    '`PoseTracker` (fk_node, with `refuse_ambiguous_start`)',
+    'After a start or `reset_tracker`, more than one assembly mode lies within the limits and '
+    "none near the last known pose; with the number of modes and the nearest one's distance.")
+ASSEMBLY_MODE_MARGIN = _register(
+    'assembly_mode_margin', 'warning',
+    '`margin_status` (fk_node, on `/diagnostics`)',
+    'Another real assembly mode within the limits lies closer than '
+    '`assembly_mode_margin_warning` to the estimated pose, or the search for one was '
+    'incomplete.')
+NEAR_SINGULARITY = _register(
+    'near_singularity', 'refusal or warning',
+    '`PoseTracker` (fk_node: a warning on a pose, a refusal of a twist)',
+    "The Jacobian's condition number exceeds `near_singularity_condition`: the pose is "
+    'published with a warning, and leg velocities are not turned into a twist there.')
+
+# Trajectories (trajectory_node) -------------------------------------------------------------
+
+RETIMING_FAILED = _register(
+    'retiming_failed', 'refusal',
+    '`plan_motion` (trajectory_node)',
+    'toppra found no timing of the path within the leg limits.')
+INVALID_TRAJECTORY = _register(
+    'invalid_trajectory', 'refusal',
+    'trajectory_node (`pose_trajectory`, `pose_path`)',
+    'A malformed trajectory or path: another frame, more than one joint, times not '
+    'increasing, velocities on only some points, a turn of half a revolution or more between '
+    'two waypoints, two equal consecutive waypoints of a path.')
+TOOL_FRAME_NOT_SUPPORTED = _register(
+    'tool_frame_not_supported', 'refusal',
+    '`trajectory_frame_refusal` (trajectory_node: `pose_trajectory`, `pose_path`)',
+    'A trajectory or path received while the tool frame is offset from the platform frame '
+    '(trajectories are planned for the platform frame).')
+
+
+# Motion cueing (motion_cueing_node) ---------------------------------------------------------
+
+INVALID_VEHICLE_MOTION = _register(
+    'invalid_vehicle_motion', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A specific force or angular velocity that is not three finite numbers, or beyond '
+    '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
+    'vehicle were at rest, so that bad input eases it back to neutral.')
+TIME_NOT_INCREASING = _register(
+    'time_not_increasing', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A sample whose time (`header.stamp`) is not after the previous one: repeated, backward '
+    'or not finite; nothing moves.')
+INPUT_GAP = _register(
+    'input_gap', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    "More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the "
+    "washout's clock pauses).")
+CUE_SCALED = _register(
+    'cue_scaled', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue was scaled toward neutral to keep inside the limits model (with its margins); '
+    'the details give the workspace and tilt scales.')
+ACTUATOR_LIMITED = _register(
+    'actuator_limited', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
+    'followed as closely as they allow (or braked, or headed home).')
+LIMITS_HELD = _register(
+    'limits_held', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'Every next pose would have left the limits: the pose was held (not expected; the '
+    'margins prevent it).')
+
+def codes_table() -> str:
+    """
+    Return the documentation's table of every code: code, kind, who emits it, what it means.
+
+    Markdown, one row per code of :data:`CODES`, in their order; doc/safety.md shows it (the
+    ``{refusal-codes}`` directive of doc/ext/stewart_docs.py renders it when the site is built).
+    """
+    lines = ['| Code | Kind | Emitted by | Meaning |', '| --- | --- | --- | --- |']
+    lines += [f'| `{code.code}` | {code.kind} | {code.emitted_by} | {code.meaning} |'
+              for code in CODES.values()]
+    return '\n'.join(lines)
 
 
 @dataclass(frozen=True)
@@ -62,7 +241,7 @@ class Finding:
     """
     One reason to refuse an input, or to warn about an accepted one.
 
-    :param code: short and stable, such as ``out_of_limits``: what the refusals are counted by.
+    :param code: short and stable, such as ``out_of_limits``: one of :data:`CODES`.
     :param message: a sentence a user can act on, with the values concerned.
     :param details: ``(key, value)`` pairs of text, such as ``('iterations', '50')``.
     """
@@ -98,14 +277,16 @@ def violation_details(violations) -> Tuple[Tuple[str, str], ...]:
     """
     ``(key, value)`` pairs of :class:`~stewart_kinematics.limits.Violation`, for a Finding.
 
-    The key names the limit and the leg (``leg_length_max leg 3``), the value gives the value
-    reached and the limit, with their unit.
+    The key names the limit and the leg or legs (``leg_length_max leg 3``, ``leg_collision
+    legs 2 and 3``), the value gives the value reached, the limit and the excess, with their
+    unit.
     """
     pairs = []
     for violation in violations:
         unit = f' {violation.unit}' if violation.unit else ''
-        key = violation.limit + (f' leg {violation.leg}' if violation.leg else '')
-        pairs.append((key, f'{violation.value:.6g}{unit} (limit {violation.allowed:.6g}{unit})'))
+        key = violation.limit + (f' {violation.subject}' if violation.leg else '')
+        pairs.append((key, f'{violation.value:.6g}{unit} (limit {violation.allowed:.6g}{unit}, '
+                           f'excess {violation.excess:.3g}{unit})'))
     return tuple(pairs)
 
 

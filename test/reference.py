@@ -222,3 +222,70 @@ def singular_yaw():
         else:
             low = middle
     return 0.5 * (low + high)
+
+
+def point_segment_distance(points, starts, ends):
+    """
+    Distance from points to segments, by the projection clamped to the segment.
+
+    :param points: shape (..., 3); ``starts`` and ``ends`` of the segments likewise.
+    :returns: shape (...); a segment of zero length is its start point.
+    """
+    direction = ends - starts
+    squared = np.sum(direction * direction, axis=-1)
+    with np.errstate(divide='ignore', invalid='ignore'):
+        along = np.sum((points - starts) * direction, axis=-1) / squared
+    along = np.where(squared > 0.0, np.clip(along, 0.0, 1.0), 0.0)
+    return np.linalg.norm(points - (starts + along[..., None] * direction), axis=-1)
+
+
+def segment_distance(p0, p1, q0, q1):
+    """
+    Distance between segments ``p0 p1`` and ``q0 q1``: the textbook enumeration of candidates.
+
+    The squared distance between ``p0 + s (p1 - p0)`` and ``q0 + t (q1 - q0)`` is a convex
+    quadratic in ``(s, t)``; its minimum over the unit square is either the critical point of
+    the two lines (when they are not parallel and it lies in the square) or on one of the
+    square's four edges, each the distance from an end point to the other segment. The
+    smallest of those five candidates is the distance.
+
+    :param p0: shape (..., 3); ``p1``, ``q0``, ``q1`` likewise.
+    :returns: shape (...).
+    """
+    p0, p1, q0, q1 = (np.asarray(value, dtype=float) for value in (p0, p1, q0, q1))
+    candidates = [point_segment_distance(p0, q0, q1), point_segment_distance(p1, q0, q1),
+                  point_segment_distance(q0, p0, p1), point_segment_distance(q1, p0, p1)]
+    d1, d2, r = p1 - p0, q1 - q0, p0 - q0
+    a, b, e = (np.sum(x * y, axis=-1) for x, y in ((d1, d1), (d1, d2), (d2, d2)))
+    c, f = np.sum(d1 * r, axis=-1), np.sum(d2 * r, axis=-1)
+    determinant = a * e - b * b
+    with np.errstate(divide='ignore', invalid='ignore'):
+        # Normal equations: a s - b t = -c, -b s + e t = f (Cramer's rule).
+        s = (b * f - c * e) / determinant
+        t = (a * f - b * c) / determinant
+    inside = (determinant > 1e-12 * a * e) & (s >= 0.0) & (s <= 1.0) & (t >= 0.0) & (t <= 1.0)
+    s, t = np.where(inside, s, 0.0), np.where(inside, t, 0.0)
+    between = (p0 + s[..., None] * d1) - (q0 + t[..., None] * d2)
+    candidates.append(np.where(inside, np.linalg.norm(between, axis=-1), np.inf))
+    return np.min(candidates, axis=0)
+
+
+def segment_distance_by_search(p0, p1, q0, q1, iterations=200):
+    """
+    Distance between segments by a ternary search over ``s`` (a second, slower reference).
+
+    The distance from ``p0 + s (p1 - p0)`` to the segment ``q0 q1`` is convex in ``s``, so a
+    ternary search converges to its minimum; 200 iterations leave an interval of 1e-35.
+    """
+    p0, p1, q0, q1 = (np.asarray(value, dtype=float) for value in (p0, p1, q0, q1))
+    low, high = np.zeros(p0.shape[:-1]), np.ones(p0.shape[:-1])
+
+    def distance(s):
+        return point_segment_distance(p0 + s[..., None] * (p1 - p0), q0, q1)
+
+    for _ in range(iterations):
+        left, right = low + (high - low) / 3.0, high - (high - low) / 3.0
+        closer = distance(left) <= distance(right)
+        high = np.where(closer, right, high)
+        low = np.where(closer, low, left)
+    return np.minimum(distance(0.5 * (low + high)), np.minimum(distance(low), distance(high)))

@@ -22,7 +22,11 @@ from numpy.testing import assert_allclose, assert_array_equal
 import pytest
 
 from stewart_kinematics import ActuatorInterface, ActuatorLimits
-from stewart_kinematics.parameters import read_parameter_file
+from stewart_kinematics.parameters import (
+    actuator_limits_from_settings,
+    GeometrySettings,
+    load_settings,
+)
 
 pytestmark = pytest.mark.core
 
@@ -31,15 +35,16 @@ CONFIG = Path(__file__).resolve().parent.parent / 'config'
 
 def test_example_limits_file_sets_finite_speed_limits():
     """config/example_limits.yaml gives the paper's platform finite speed limits."""
-    limits = ActuatorLimits.from_parameters(
-        read_parameter_file(CONFIG / 'example_limits.yaml'))
+    limits = actuator_limits_from_settings(load_settings(
+        GeometrySettings, [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']))
     assert (limits.velocity_max, limits.acceleration_max, limits.jerk_max) == (0.05, 0.25, 2.5)
     assert limits.limits_speed
 
 
 def test_defaults_are_no_limit_and_scaling_follows_time_stretching():
     """No parameter: no limit. Played 1/s times as long: v * s, a * s^2, jerk * s^3."""
-    assert ActuatorLimits.from_parameters({}) == ActuatorLimits()
+    assert actuator_limits_from_settings(load_settings(
+        GeometrySettings, CONFIG / 'paper_platform.yaml')) == ActuatorLimits()
     assert not ActuatorLimits().limits_speed
     scaled = ActuatorLimits(0.05, 0.25, 2.5).scaled(0.5)
     assert_allclose([scaled.velocity_max, scaled.acceleration_max, scaled.jerk_max],

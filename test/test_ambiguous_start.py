@@ -27,6 +27,7 @@ import numpy as np
 import pytest
 from stewart_kinematics import findings, inverse_kinematics, load_geometry, PoseTracker
 from stewart_kinematics.decisions import pose_tracker
+from stewart_kinematics.parameters import SolverSettings
 
 pytestmark = pytest.mark.core
 
@@ -48,7 +49,7 @@ def test_off_by_default_the_first_solution_is_accepted(paper):
 
 
 def test_an_ambiguous_start_is_refused_with_the_reason_then_a_known_pose_resolves_it(paper):
-    tracker = PoseTracker(paper, refuse_ambiguous_start=True)
+    tracker = PoseTracker(paper, SolverSettings(refuse_ambiguous_start=True))
     lengths = inverse_kinematics(paper, TABLE_3_END)
     estimate = tracker.update(lengths)
     assert not estimate.accepted
@@ -67,7 +68,7 @@ def test_an_ambiguous_start_is_refused_with_the_reason_then_a_known_pose_resolve
 
 def test_one_reachable_mode_is_not_ambiguous(paper):
     limited = load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
-    tracker = PoseTracker(limited, refuse_ambiguous_start=True)
+    tracker = PoseTracker(limited, SolverSettings(refuse_ambiguous_start=True))
     assert tracker.update(inverse_kinematics(limited, TABLE_3_END)).accepted
 
 
@@ -80,7 +81,7 @@ def test_the_search_runs_once_while_the_lengths_stay(paper, monkeypatch):
         return original(*args, **kwargs)
 
     monkeypatch.setattr(pose_tracker, 'start_ambiguity', counting)
-    tracker = PoseTracker(paper, refuse_ambiguous_start=True)
+    tracker = PoseTracker(paper, SolverSettings(refuse_ambiguous_start=True))
     lengths = inverse_kinematics(paper, TABLE_3_END)
     for step in range(3):
         assert not tracker.update(lengths + 1e-4 * step).accepted

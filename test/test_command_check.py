@@ -26,7 +26,7 @@ from numpy.testing import assert_allclose
 import pytest
 import reference
 
-from stewart_kinematics import CommandCheck, Geometry
+from stewart_kinematics import ActuatorLimits, CommandCheck, FrameTree, Geometry, Transform
 
 pytestmark = pytest.mark.core
 
@@ -223,4 +223,136 @@ def test_a_pose_given_by_quaternion_is_the_same_pose():
         command = check.pose_quaternion(position, bad)
         assert command.refusal.code == 'invalid_pose' and words in command.reason
     refused = check.pose_quaternion((math.inf, 0.0, 0.45), quaternion)
-    assert 'position must be three finite numbers' in refused.reason
+    assert 'position must be finite' in refused.reason
+
+
+# Twists against the leg velocity limit ----------------------------------------------------
+
+#: The speed limits of config/example_limits.yaml.
+SPEEDS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
+
+
+def checked_at(pose, **options):
+    """Return a CommandCheck with the example limits and speeds, at an accepted ``pose``."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS), SPEEDS, **options)
+    assert check.pose_vector(pose).accepted
+    return check
+
+
+def test_a_twist_within_the_velocity_limit_gives_its_leg_velocities():
+    """1 cm/s along x: the rows [u_i, R p_i x u_i] of test/reference.py times the twist."""
+    check = checked_at(TILTED)
+    twist = np.array([0.01, 0.0, 0.0, 0.0, 0.0, 0.02])
+    command = check.twist(twist)
+    assert command.accepted and command.scale == 1.0 and command.warnings == ()
+    expected = reference.twist_jacobian(TILTED, BASE, PLATFORM) @ twist
+    assert_allclose(command.velocities, expected, rtol=0.0, atol=1e-15)
+    assert np.max(np.abs(command.velocities)) < 0.05
+
+
+def test_a_twist_beyond_the_velocity_limit_is_refused_naming_each_leg():
+    """1 m/s: every leg faster than 0.05 m/s is listed; nothing to command."""
+    check = checked_at(TILTED)
+    twist = np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    expected = reference.twist_jacobian(TILTED, BASE, PLATFORM) @ twist
+    command = check.twist(twist)
+    assert not command.accepted and command.velocities is None
+    assert command.refusal.code == 'too_fast'
+    fast = [leg for leg in range(1, 7) if abs(expected[leg - 1]) > 0.05]
+    assert fast and [key for key, _ in command.refusal.details] == [
+        f'leg_velocity_max leg {leg}' for leg in fast]
+    for leg in fast:
+        assert f'leg {leg}: leg_velocity_max 0.05 m/s broken by' in command.reason
+
+
+@pytest.mark.parametrize('twist', [
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 3.0, -2.0, 1.0],
+    [0.03, -0.04, 0.02, 0.1, 0.2, -0.3], [999.0, -999.0, 999.0, 999.0, -999.0, 999.0]])
+def test_a_twist_scaled_to_the_limit_never_exceeds_it_and_keeps_its_direction(twist):
+    """With twist_over_limit 'scale': the fastest leg exactly at 0.05 m/s, never above."""
+    check = checked_at(TILTED, twist_over_limit='scale')
+    twist = np.array(twist)
+    unscaled = reference.twist_jacobian(TILTED, BASE, PLATFORM) @ twist
+    command = check.twist(twist)
+    assert command.accepted
+    assert np.max(np.abs(command.velocities)) <= 0.05
+    if np.max(np.abs(unscaled)) > 0.05:
+        assert np.max(np.abs(command.velocities)) == pytest.approx(0.05, rel=1e-14)
+        assert command.scale == pytest.approx(0.05 / np.max(np.abs(unscaled)), rel=1e-12)
+        assert_allclose(command.velocities, command.scale * unscaled, rtol=1e-12, atol=1e-18)
+        [warning] = command.warnings
+        assert warning.code == 'twist_scaled' and dict(warning.details)['scale']
+    else:
+        assert command.scale == 1.0
+
+
+@pytest.mark.parametrize('policy', ['refuse', 'scale'])
+@pytest.mark.parametrize('twist, words', [
+    ([1e308, 0.0, 0.0, 0.0, 0.0, 0.0], 'no motion of a platform'),
+    ([0.0, 0.0, 0.0, 0.0, 0.0, -1e4], 'no motion of a platform'),
+    ([math.nan, 0.0, 0.0, 0.0, 0.0, 0.0], 'six finite numbers'),
+    ([0.0, math.inf, 0.0, 0.0, 0.0, 0.0], 'six finite numbers'),
+    ([0.0] * 7, 'six finite numbers')],
+    ids=['1e308', '1e4 rad/s', 'nan', 'inf', 'seven'])
+def test_a_twist_that_is_no_motion_is_refused_whatever_the_policy(policy, twist, words):
+    """NaN, inf, 1e308 or absurd speeds: invalid_twist with the reason, never scaled."""
+    command = checked_at(TILTED, twist_over_limit=policy).twist(twist)
+    assert command.refusal.code == 'invalid_twist' and words in command.reason
+    assert command.velocities is None
+
+
+def test_an_unknown_twist_policy_is_refused():
+    """Only 'refuse' and 'scale'."""
+    with pytest.raises(ValueError, match='twist_over_limit must be one of'):
+        CommandCheck(geometry(), SPEEDS, twist_over_limit='clamp')
+
+
+# ik_node's whole decision on a message: frames and quaternions ------------------------------
+
+def test_tool_pose_accepts_the_base_and_user_frames_and_refuses_others():
+    """A pose in an unknown frame is wrong_frame; the user frame moves it; '' is the base."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    user = Transform.from_pose([0.01, 0.0, 0.0, 0.0, 0.0, 0.0])
+    frames = FrameTree(user_frame='work', user_pose=user)
+    quaternion = reference.quaternion_from_euler(*TILTED[3:])
+    in_base = check.tool_pose(TILTED[:3], quaternion, frames, '')
+    assert in_base.accepted
+    assert_allclose(in_base.position, TILTED[:3], rtol=0.0, atol=0.0)
+    in_user = check.tool_pose(np.subtract(TILTED[:3], [0.01, 0.0, 0.0]), quaternion, frames,
+                              'work')
+    assert in_user.accepted
+    assert_allclose(in_user.lengths, in_base.lengths, rtol=0.0, atol=1e-15)
+    wrong = check.tool_pose(TILTED[:3], quaternion, frames, 'map')
+    assert wrong.refusal.code == 'wrong_frame' and "'map'" in wrong.reason
+
+
+def test_tool_pose_normalises_a_quaternion_with_a_warning():
+    """Norm 2: the unit quaternion's lengths, and a quaternion_not_unit warning."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    quaternion = reference.quaternion_from_euler(*TILTED[3:])
+    unit = check.tool_pose(TILTED[:3], quaternion)
+    doubled = check.tool_pose(TILTED[:3], 2.0 * quaternion)
+    assert unit.warnings == () and doubled.accepted
+    assert_allclose(doubled.lengths, unit.lengths, rtol=0.0, atol=1e-15)
+    [warning] = doubled.warnings
+    assert warning.code == 'quaternion_not_unit' and 'norm 2, not 1: normalised' in warning.message
+    refused = check.tool_pose((0.0, 0.0, 0.62), 2.0 * quaternion)   # out of the stroke too
+    assert refused.refusal.code == 'out_of_limits' and refused.warnings == doubled.warnings
+
+
+def test_a_refused_pose_reports_where_the_platform_would_have_been():
+    """Markers show a refused pose: position, rotation and the legs at fault are given."""
+    check = CommandCheck(geometry(**EXAMPLE_LIMITS))
+    command = check.pose_vector((0.0, 0.0, 0.62, 0.0, 0.0, 0.0))
+    assert_allclose(command.position, (0.0, 0.0, 0.62), rtol=0.0, atol=0.0)
+    assert_allclose(command.rotation, np.eye(3), rtol=0.0, atol=0.0)
+    assert command.legs_at_fault == (1, 2, 4, 5, 6)
+
+
+def test_the_twist_policy_parameter_takes_refuse_or_scale():
+    """twist_over_limit is checked by its spec: 'refuse' (the default) or 'scale'."""
+    from stewart_kinematics.parameters import StreamingSettings
+    assert StreamingSettings().twist_over_limit == 'refuse'
+    assert StreamingSettings(twist_over_limit='scale').twist_over_limit == 'scale'
+    with pytest.raises(ValueError, match='twist_over_limit'):
+        StreamingSettings(twist_over_limit='clamp')

@@ -97,7 +97,9 @@ def test_condition_and_bound_cost_a_solve_nothing(geometry, monkeypatch):
 def test_pose_error_bound_is_small_at_ordinary_poses_and_covers_the_error(geometry):
     poses = np.concatenate([random_poses(300, seed=5), random_poses(5, seed=6, around=HOME,
                                                                     position_range=0.0)])
-    result = forward_kinematics(geometry, inverse_kinematics(geometry, poses))
+    # From home, whose last step typically lands far below the tolerance (a cold solve from
+    # the start table stops nearer it: median bound 3e-12, test/test_start_table.py).
+    result = forward_kinematics(geometry, inverse_kinematics(geometry, poses), HOME)
     assert np.all(result.converged)
     errors = [pose_error(found, truth) for found, truth in zip(result.pose, poses)]
     assert np.all(result.pose_error_bound >= errors)

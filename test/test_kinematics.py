@@ -219,7 +219,7 @@ def test_forward_kinematics_warm_start_needs_fewer_iterations(geometry):
     """Starting from the previous Table 3 row takes fewer iterations than from home."""
     for k in range(2, 11):
         lengths = leg_lengths_of(TABLE_3[k])
-        cold = forward_kinematics(geometry, lengths)
+        cold = forward_kinematics(geometry, lengths, initial_guess=HOME)
         warm = forward_kinematics(geometry, lengths, initial_guess=TABLE_3[k - 1])
         assert warm.converged and cold.converged
         assert warm.iterations < cold.iterations, k

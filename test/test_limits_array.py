@@ -129,7 +129,7 @@ def test_condition_only_where_the_other_limits_are_kept(limited):
 def test_only_the_limits_set_are_checked(limited):
     stroke_only = dataclasses.replace(
         limited, base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
-        max_jacobian_condition=math.inf)
+        max_jacobian_condition=math.inf, leg_radius=0.0)
     checks = limits.check_poses_array(stroke_only, random_poses(stroke_only, 100, seed=15))
     assert list(checks.broken) == ['leg_length_min', 'leg_length_max']
     assert checks.base_angles is None and checks.condition is None

@@ -28,7 +28,8 @@ import pytest
 from reference import HOME, leg_lengths, paper_geometry, singular_yaw, TABLE_3
 
 from stewart_kinematics import forward_kinematics, platform_twist, PoseTracker
-from stewart_kinematics.decisions.pose_tracker import assembly_mode_jump, TrackerSettings
+from stewart_kinematics.decisions.pose_tracker import assembly_mode_jump
+from stewart_kinematics.parameters import SolverSettings
 
 pytestmark = pytest.mark.core
 
@@ -162,7 +163,7 @@ def test_the_assembly_mode_guard_compares_with_the_last_solution():
     other = forward_kinematics(geometry(), home_lengths, [0.0, 0.0, 0.35, 0.0, 0.0, math.pi])
     assert other.converged and abs(other.pose[2] - HOME[2]) > 0.05
     assert_allclose(lengths_of(other.pose), home_lengths, atol=1e-12)
-    settings = TrackerSettings()
+    settings = SolverSettings()
     jump = assembly_mode_jump(settings, HOME, home_lengths, other.pose, home_lengths + 1e-4)
     assert jump.code == 'assembly_mode_jump' and 'another assembly mode' in jump.message
     assert float(dict(jump.details)['length_change_m']) == pytest.approx(1e-4)
@@ -194,7 +195,7 @@ def test_the_tracker_refuses_a_jump_and_keeps_its_last_solution():
 
 def test_near_a_singularity_a_pose_comes_with_a_warning():
     """With near_singularity_condition 5 (home is about 9.5) home is accepted with a warning."""
-    tracker = PoseTracker(geometry(), near_singularity_condition=5.0)
+    tracker = PoseTracker(geometry(), SolverSettings(near_singularity_condition=5.0))
     estimate = tracker.update(lengths_of(HOME))
     assert estimate.accepted
     [warning] = estimate.warnings
@@ -225,7 +226,7 @@ def test_a_pose_the_lengths_fix_only_loosely_is_refused():
     assert float(details['jacobian_condition']) > 1e5
     assert_allclose(tracker.last_pose, start, atol=0.0)
 
-    tracker.configure(pose_tolerance=math.inf)
+    tracker.configure(tracker.settings.replace(pose_tolerance=math.inf))
     accepted = tracker.update(lengths_of(truth))
     assert accepted.accepted
     assert [warning.code for warning in accepted.warnings] == ['near_singularity']
@@ -244,7 +245,7 @@ def test_twist_at_the_last_pose_and_refused_beyond_the_singularity_margin():
     assert estimate.accepted
     assert_allclose(estimate.twist, platform_twist(geometry(), TABLE3[4], velocities),
                     rtol=1e-12, atol=1e-15)
-    tracker.configure(near_singularity_condition=5.0)
+    tracker.configure(tracker.settings.replace(near_singularity_condition=5.0))
     refused = tracker.twist(velocities)
     assert refused.refusal.code == 'near_singularity' and refused.twist is None
     assert 'above the limit 5 (the singularity margin' in refused.reason
@@ -260,17 +261,68 @@ def test_twist_at_the_last_pose_and_refused_beyond_the_singularity_margin():
 def test_settings_are_validated_and_used():
     """An unknown or invalid setting raises naming it; max_iterations 1 misses a far pose."""
     with pytest.raises(ValueError, match='tolerance'):
-        PoseTracker(geometry(), tolerance=-1.0)
-    with pytest.raises(ValueError, match='unknown tracker setting'):
-        PoseTracker(geometry(), tolerence=1e-10)
-    tracker = PoseTracker(geometry(), max_iterations=1)
+        SolverSettings(tolerance=-1.0)
+    with pytest.raises(TypeError, match='tolerence'):
+        SolverSettings(tolerence=1e-10)
+    with pytest.raises(TypeError, match='SolverSettings'):
+        PoseTracker(geometry()).configure({'tolerance': 1e-10})
+    tracker = PoseTracker(geometry(), SolverSettings(max_iterations=1))
     with pytest.raises(ValueError, match='pose_tolerance'):
-        tracker.configure(pose_tolerance=0.0)
+        tracker.configure(tracker.settings.replace(pose_tolerance=0.0))
     assert tracker.settings.pose_tolerance == 1e-9
     slow = tracker.update(lengths_of(TABLE3[10]))
     assert slow.refusal.code == 'no_solution'
     assert 'no convergence within 1 iterations' in slow.reason
-    tracker.configure(max_iterations=50)
+    tracker.configure(tracker.settings.replace(max_iterations=50))
     assert tracker.update(lengths_of(TABLE3[10])).accepted
-    assert PoseTracker.from_parameters(
-        geometry(), {'tolerance': 1e-10, 'queue_depth': 10}).settings.tolerance == 1e-10
+
+
+def test_a_joint_state_gives_the_pose_and_its_twist_or_a_warning():
+    """update(lengths, velocities): the twist at the new pose; a refused twist only warns."""
+    tracker = PoseTracker(geometry())
+    velocities = np.full(6, 0.001)
+    estimate = tracker.update(lengths_of(TABLE3[3]), velocities)
+    assert estimate.accepted
+    assert_allclose(estimate.twist, platform_twist(geometry(), estimate.pose, velocities),
+                    rtol=0.0, atol=1e-15)
+    malformed = tracker.update(lengths_of(TABLE3[4]), [math.nan] * 6)
+    assert malformed.accepted and malformed.twist is None
+    assert [warning.code for warning in malformed.warnings] == ['invalid_velocities']
+    without = tracker.update(lengths_of(TABLE3[5]))
+    assert without.accepted and without.twist is None and without.warnings == ()
+
+
+class FakeMonitor:
+    """Stands in for AssemblyModeMarginMonitor: its latest margin and warning."""
+
+    def __init__(self, latest, warning=''):
+        self.latest, self._warning, self.latest_seconds = latest, warning, 0.012
+
+    def warning(self):
+        """Return the warning sentence, as the monitor decides it."""
+        return self._warning
+
+
+class FakeMargin:
+    """An AssemblyModeMargin's fields."""
+
+    def __init__(self, complete=True, nearest=True):
+        self.position, self.angle, self.distance = 0.2, 0.5, 0.25
+        self.modes_within_limits, self.complete, self.reason = 2, complete, 'time out'
+        self.nearest = object() if nearest else None
+
+
+def test_margin_status_warns_when_the_margin_is_small_or_the_search_incomplete():
+    """The level fk_node reports: OK, or WARN with an assembly_mode_margin finding."""
+    from stewart_kinematics.decisions.pose_tracker import margin_status
+    assert margin_status(FakeMonitor(None)).warning is None
+    fine = margin_status(FakeMonitor(FakeMargin()))
+    assert fine.warning is None and fine.message.startswith('nearest other assembly mode')
+    assert dict(fine.values)['computed_in_ms'] == '12.0'
+    alone = margin_status(FakeMonitor(FakeMargin(nearest=False)))
+    assert alone.message == 'no other assembly mode within the limits'
+    close = margin_status(FakeMonitor(FakeMargin(), 'another assembly mode lies 0.01 m'))
+    assert close.warning.code == 'assembly_mode_margin' and close.message.startswith('another')
+    incomplete = margin_status(FakeMonitor(FakeMargin(complete=False)))
+    assert incomplete.warning is not None and 'search was incomplete: time out' in (
+        incomplete.message)

@@ -71,17 +71,15 @@ def test_console_scripts_named_in_the_readme_are_declared():
         assert re.search(pattern, setup), script
 
 
-def test_node_table_names_every_topic_of_the_node_pages():
-    """The README's one table of nodes names each topic of the node's tables in doc/nodes.md."""
-    nodes_page = (ROOT / 'doc' / 'nodes.md').read_text(encoding='utf-8')
-    for node in ('ik_node', 'fk_node', 'trajectory_node'):
+def test_node_table_names_every_topic_and_service_of_each_node():
+    """The README's one table of nodes names each endpoint its node declares."""
+    from stewart_kinematics.ros.interfaces import NODE_INTERFACES
+    for node, interface in NODE_INTERFACES.items():
         row = re.search(rf'^\| `{node}` \|(.*)$', README, re.MULTILINE)
         assert row, f'no row for {node} in the README'
-        section = re.search(rf'^## {node}\n(.*?)(?=^## )', nodes_page, re.DOTALL | re.MULTILINE)
-        topics = re.findall(r'^\| `([^`]+)` \| \w+/(?:msg|srv)/', section.group(1), re.MULTILINE)
-        assert topics, node
-        for topic in topics:
-            assert f'`{topic}`' in row.group(1), f'{node}: {topic} missing from the README row'
+        for endpoint in interface.endpoints:
+            assert f'`{endpoint.name}`' in row.group(1), (
+                f'{node}: {endpoint.name} missing from the README row')
 
 
 def test_decision_objects_example_runs(monkeypatch, capsys):

@@ -19,8 +19,11 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
 
 from stewart_kinematics import ActuatorLimits, CommandFilter
+from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits.leg_rates import RATE_SLACK
 
 pytestmark = pytest.mark.core
 
@@ -105,7 +108,117 @@ def test_reset_and_bad_input():
     command = command_filter.step()
     assert_allclose(command.lengths, HOME)
     assert command.settled
-    with pytest.raises(ValueError, match='6 finite'):
-        command_filter.set_target([math.nan] * 6)
+    refusal = command_filter.set_target([math.nan] * 6)
+    assert refusal.code == 'invalid_lengths' and '6 finite' in refusal.message
     with pytest.raises(ValueError, match='period'):
         CommandFilter(LIMITS, 0.0, HOME)
+
+
+# A filter that never raises ----------------------------------------------------------------
+
+#: The paper's platform with the stroke of config/example_limits.yaml, 0.65 m to 0.90 m.
+GEOMETRY = reference.paper_geometry(leg_length_min=0.65, leg_length_max=0.9)
+
+
+def assert_every_step_within_every_limit(commands, start, geometry=None):
+    """Each given step within the stroke and the rates: the limits model's own check."""
+    model = LimitModel(geometry, LIMITS, rate_slack=RATE_SLACK)
+    given = [command for command in commands if not command.held]
+    lengths = np.array([command.lengths for command in given])
+    velocities = np.array([command.velocities for command in given])
+    accelerations = np.array([command.accelerations for command in given])
+    jerks = np.diff(np.vstack([np.zeros(6), accelerations]), axis=0) / PERIOD
+    checks = model.check_leg_states(lengths if geometry else None, velocities, accelerations,
+                                    jerks)
+    assert checks.allowed.all(), checks.violations(checks.first_refused())
+    assert_within_limits(lengths, velocities, accelerations, start)
+
+
+@pytest.mark.parametrize('distance', [1.0, 1e5, 1e150], ids=['1 m', '100 km', '1e150 m'])
+def test_a_far_target_is_approached_at_full_speed_within_the_limits(distance):
+    """
+    The defect: a far target made ruckig fail (-101) and the node's timer raise.
+
+    Now the filter aims at a point on the straight line toward it, at most the distance of
+    10 s at full speed away, and moves at 0.05 m/s, every leg in proportion.
+    """
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME)
+    direction = np.array([1.0, 0.5, 0.2, 0.25, 0.0, 1.0])
+    assert command_filter.set_target(HOME + distance * direction) is None
+    commands = [command_filter.step() for _ in range(300)]
+    assert all(command.finding is None and not command.held for command in commands)
+    assert_every_step_within_every_limit(commands, HOME)
+    last = commands[-1]
+    assert_allclose(last.velocities, 0.05 * direction, rtol=1e-9)
+    assert not last.settled
+
+
+def test_targets_that_are_not_lengths_or_leave_the_stroke_are_refused_and_ignored():
+    """NaN, inf, zero, the wrong length, text, beyond the stroke: a finding, and no motion."""
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME, GEOMETRY)
+    for target in ([math.nan] * 6, [math.inf] * 6, [0.7] * 5, [0.0] * 6, ['a'] * 6, None):
+        refusal = command_filter.set_target(target)
+        assert refusal.code == 'invalid_lengths', target
+    beyond = HOME.copy()
+    beyond[2] = 0.95
+    refusal = command_filter.set_target(beyond)
+    assert refusal.code == 'out_of_limits' and 'leg 3: leg_length_max 0.9 m' in refusal.message
+    assert_allclose(command_filter.target, HOME)
+    command = command_filter.step()
+    assert_allclose(command.lengths, HOME) and command.settled
+
+
+def test_random_targets_at_the_ends_of_the_stroke_never_leave_it():
+    """Targets at the stroke's ends, changed every few steps mid-motion: every step within."""
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME, GEOMETRY)
+    rng = np.random.default_rng(4)
+    commands = []
+    for _ in range(150):
+        target = np.where(rng.random(6) < 0.5, 0.65, 0.9)
+        assert command_filter.set_target(target) is None
+        commands += [command_filter.step() for _ in range(int(rng.integers(1, 150)))]
+    assert_every_step_within_every_limit(commands, HOME, GEOMETRY)
+    assert min(command.lengths.min() for command in commands) < 0.67
+    assert max(command.lengths.max() for command in commands) > 0.88
+
+
+class FailingRuckig:
+    """Stands in for ruckig's generator: raises as ruckig does, for some control interfaces."""
+
+    def __init__(self, generator, failing):
+        self.generator, self.failing = generator, failing
+
+    def calculate(self, parameters, trajectory):
+        """Raise -101 (ruckig's 'trajectory duration' outcome) where asked, else calculate."""
+        if parameters.control_interface.name in self.failing:
+            raise ValueError('-101 is not a valid Result.')
+        return self.generator.calculate(parameters, trajectory)
+
+
+def test_a_plan_ruckig_refuses_brakes_to_rest_within_the_limits():
+    """No plan toward the target: stream_braking once, then braking steps, to rest."""
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME, GEOMETRY)
+    command_filter.set_target(HOME + 0.03)
+    moving = [command_filter.step() for _ in range(60)]
+    assert np.max(np.abs(moving[-1].velocities)) > 0.02
+    command_filter._generator = FailingRuckig(command_filter._generator, {'Position'})
+    command_filter.set_target(HOME - 0.03)
+    commands = [command_filter.step() for _ in range(200)]
+    assert commands[0].finding.code == 'stream_braking'
+    assert all(command.finding is None for command in commands[1:])
+    assert_every_step_within_every_limit(moving + commands, HOME, GEOMETRY)
+    assert_allclose(commands[-1].velocities, 0.0, atol=1e-12)
+
+
+def test_when_nothing_can_be_planned_the_last_command_stands():
+    """Neither a plan nor braking: stream_held, the state unchanged, and nothing raised."""
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME, GEOMETRY)
+    command_filter.set_target(HOME + 0.03)
+    last = [command_filter.step() for _ in range(20)][-1]
+    command_filter._generator = FailingRuckig(command_filter._generator,
+                                              {'Position', 'Velocity'})
+    command_filter.set_target(HOME - 0.03)
+    for _ in range(3):
+        held = command_filter.step()
+        assert held.held and held.finding.code == 'stream_held'
+        assert_allclose(held.lengths, last.lengths, rtol=0.0, atol=0.0)

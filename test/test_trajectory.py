@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.motion.ramp (pure numpy).
+Unit tests of stewart_kinematics.motion.ramp (pure numpy): the ramp, its schedule and check.
 
 The paper's Table 3 is typed here in its own units (millimetres and degrees) and converted.
 """
@@ -23,9 +23,10 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose, assert_array_equal
 import pytest
-from reference import TABLE_3, TABLE_3_END
+from reference import paper_geometry, TABLE_3, TABLE_3_END
 
-from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.ramp import Ramp, RampSchedule
+from stewart_kinematics.parameters import RampSettings
 
 pytestmark = pytest.mark.core
 
@@ -205,10 +206,53 @@ def test_step_of_the_wrong_sign_is_named_in_degrees():
                         [0.0, 0.0, 0.0], [-1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
 
 
-def test_from_parameters_names_the_parameters():
-    """Ramp.from_parameters adds the parameter names to a table error."""
+def test_from_settings_names_the_parameters():
+    """Ramp.from_settings adds the parameter names to a table error."""
     values = {'position_start': [0.0, 0.0, 0.0], 'position_step': [0.1, 0.0, 0.0],
               'position_end': [0.35, 0.0, 0.0], 'orientation_start_deg': [0.0, 0.0, 0.0],
               'orientation_step_deg': [0.0, 0.0, 0.0], 'orientation_end_deg': [0.0, 0.0, 0.0]}
     with pytest.raises(ValueError, match='not a whole number.*parameters position_start'):
-        Ramp.from_parameters(values)
+        Ramp.from_settings(RampSettings(**values))
+
+
+# The schedule trajectory_node plays, and its check ----------------------------------------
+
+def test_a_schedule_gives_the_rows_or_the_samples_of_a_pass():
+    """Table mode: the rows, row_period apart; interpolate mode: publish_rate, then the end."""
+    ramp = table_3_ramp()
+    table = RampSchedule(ramp, 'table', row_period=0.5)
+    times, poses = table.samples()
+    assert_allclose(times, 0.5 * np.arange(11)) and table.period == 0.5
+    assert_allclose(poses, ramp.rows)
+    sampled = RampSchedule(ramp, 'interpolate', publish_rate=4.0, duration=2.6)
+    times, poses = sampled.samples()
+    assert_allclose(times, [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.6])
+    assert_allclose(poses[-1], ramp.end) and sampled.period == 0.25
+    assert_allclose(sampled.pose_at(99.0), ramp.end)
+    off = RampSchedule(ramp, 'off')
+    assert not off.plays and off.samples()[0].shape == (0,) and off.check(None) is None
+    settings = RampSettings(mode='interpolate', publish_rate=4.0, duration=2.6, loop=True)
+    from_settings = RampSchedule.from_settings(settings)
+    assert (from_settings.mode, from_settings.period, from_settings.loop) == (
+        'interpolate', 0.25, True)
+
+
+@pytest.mark.parametrize('changes, words', [
+    ({'mode': 'loop'}, 'ramp mode'), ({'row_period': 0.0}, 'row_period'),
+    ({'duration': math.inf}, 'duration'), ({'publish_rate': math.nan}, 'publish_rate')])
+def test_a_schedule_that_cannot_be_played_is_refused(changes, words):
+    """Unknown modes and periods, rates or durations that are not positive and finite."""
+    with pytest.raises(ValueError, match=words):
+        RampSchedule(table_3_ramp(), **changes)
+
+
+def test_the_ramp_pre_check_refuses_a_ramp_whose_legs_collide_naming_them():
+    """Legs of 50 mm: legs 2 and 3 come within 50 mm from row 7 of Table 3 (47.3 mm at 10)."""
+    thick = paper_geometry(leg_radius=0.025)
+    refusal = RampSchedule(table_3_ramp(), 'table').check(thick)
+    assert refusal.code == 'out_of_limits'
+    assert refusal.message.startswith('ramp refused: 4 of 11 samples break the limits')
+    assert refusal.message.count('legs 2 and 3: leg_collision, clearance') == 4
+    assert dict(refusal.details)['failing_samples'] == '4 of 11'
+    assert 'leg_collision legs 2 and 3' in dict(refusal.details)
+    assert RampSchedule(table_3_ramp(), 'table').check(paper_geometry(leg_radius=0.02)) is None

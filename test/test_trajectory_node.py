@@ -111,7 +111,7 @@ def start(ros):
 def test_table_mode_plays_the_11_rows_in_order_then_stops(start, spin_until):
     """Table mode publishes Table 3's 11 rows in order, once, then nothing more."""
     node, probe, executor = start({'row_period': 0.05, 'min_subscribers': 1})
-    assert node.settings['mode'] == 'table' and node.settings['loop'] is False
+    assert node.settings.ramp.mode == 'table' and node.settings.ramp.loop is False
     assert spin_until(executor, lambda: len(probe.poses) >= 11), (
         f'{len(probe.poses)} of 11 rows received')
     for message, row in zip(probe.poses, TABLE3):

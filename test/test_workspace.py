@@ -27,6 +27,7 @@ import math
 
 import numpy as np
 import pytest
+import reference
 
 from stewart_kinematics import load_geometry
 from stewart_kinematics.analysis import workspace
@@ -58,9 +59,11 @@ def rotations_by_hand(angles):
 
 def limits_by_hand(geometry, poses):
     """
-    Return (allowed (N,), broken (N, 5) per limit in LIMIT_NAMES order) from the definitions.
+    Return (allowed (N,), broken (N, 6) per limit in LIMIT_NAMES order) from the definitions.
 
-    The condition number is computed only where stroke and cones pass (it is the slow part).
+    The condition number and the leg collisions are computed only where stroke and cones pass
+    (they are the slow part), the collisions with the textbook segment distance of
+    test/reference.py.
     """
     poses = np.atleast_2d(poses)
     rotations = rotations_by_hand(poses[:, 3:])
@@ -77,7 +80,7 @@ def limits_by_hand(geometry, poses):
     platform_home = home_units @ home_rotation                         # R_home^T u_home
     platform_angles = np.arccos(np.clip(np.einsum('nki,ki->nk', in_platform, platform_home),
                                         -1.0, 1.0))
-    broken = np.zeros((len(poses), 5), dtype=bool)
+    broken = np.zeros((len(poses), 6), dtype=bool)
     broken[:, 0] = np.any(lengths < geometry.leg_length_min, axis=-1)
     broken[:, 1] = np.any(lengths > geometry.leg_length_max, axis=-1)
     broken[:, 2] = np.any(base_angles > geometry.base_joint_max_angle, axis=-1)
@@ -89,6 +92,13 @@ def limits_by_hand(geometry, poses):
         moments = np.cross(rotated[others], units[others]) / rho
         jacobians = np.concatenate([units[others], moments], axis=-1)
         broken[others, 4] = np.linalg.cond(jacobians) > geometry.max_jacobian_condition
+    if geometry.leg_radius and np.any(others):
+        tops = poses[others, None, :3] + rotated[others]                 # platform joints
+        first, second = np.triu_indices(6, 1)
+        distances = reference.segment_distance(
+            geometry.base_joints[first], tops[:, first], geometry.base_joints[second],
+            tops[:, second])
+        broken[others, 5] = np.any(distances < 2.0 * geometry.leg_radius, axis=-1)
     return ~np.any(broken, axis=-1), broken
 
 

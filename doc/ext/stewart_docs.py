@@ -18,15 +18,16 @@ The documentation's own Sphinx extension: tables generated from the code, and co
 
 - ``{parameter-table} GROUP`` renders the parameter group ``GROUP`` (``GEOMETRY``, ``SOLVER``,
   ...) from its specs when the site is built, so a page cannot drift from the declarations.
-- ``{refusal-codes}`` renders every code the package emits, from :func:`refusal_codes`.
+- ``{refusal-codes}`` renders every code the package emits, from the registry of
+  :mod:`stewart_kinematics.findings`.
+- ``{node-interface} NODE`` renders a node's topics and services from their declaration in
+  :mod:`stewart_kinematics.ros.interfaces`.
 - Every public name of the package root must be documented as ``stewart_kinematics.<name>``
   (:func:`public_names`): the build warns, and so fails under ``-W``, when one is missing.
 
 Loaded by ``doc/conf.py``'s ``setup()``.
 """
 
-import ast
-from pathlib import Path
 import re
 
 from docutils import nodes
@@ -37,12 +38,6 @@ from sphinx.util.docutils import SphinxDirective
 logger = logging.getLogger(__name__)
 
 PACKAGE = 'stewart_kinematics'
-
-
-def package_directory() -> Path:
-    """Return the folder of the imported package (the repository's, in an editable install)."""
-    import stewart_kinematics
-    return Path(stewart_kinematics.__file__).resolve().parent
 
 
 def public_names() -> list:
@@ -70,161 +65,22 @@ def parameter_table(group: str) -> str:
     return re.sub(r'(`[^`]*`)|<', lambda match: match.group(1) or r'\<', table)
 
 
-#: Where the codes are defined today, read from the source (the ROS modules are not imported):
-#: every string constant of findings.py, and the named ones of the other modules.
-CODE_SOURCES = {
-    'findings.py': None,
-    'ros/ik_node.py': ('WRONG_FRAME',),
-    'ros/trajectory_node.py': ('TOOL_FRAME_NOT_SUPPORTED',),
-}
-
-#: What each code means and who emits it, until the registry of issue 18 carries both.
-MEANINGS = {
-    'invalid_pose': (
-        '`CommandCheck` (ik_node: `target_pose`, `target_pose_stamped`)',
-        'A pose with a NaN or infinite coordinate, a zero or NaN quaternion, or the wrong '
-        'shape.'),
-    'invalid_twist': (
-        '`CommandCheck.twist` (ik_node: `target_twist`)',
-        'A twist that is not six finite numbers.'),
-    'invalid_lengths': (
-        '`PoseTracker` (fk_node: `leg_lengths`, `joint_states`)',
-        'Leg lengths that are not six finite, positive numbers (or a malformed message).'),
-    'invalid_velocities': (
-        '`PoseTracker.twist` (fk_node: `leg_velocities`, `joint_states`)',
-        'Leg velocities that are not six finite numbers.'),
-    'out_of_limits': (
-        '`CommandCheck`, `PoseTracker`, `plan_motion` (every node)',
-        'A pose, a set of leg lengths or a trajectory sample that breaks a limit (stroke, joint '
-        'cone, singularity margin); every violation is listed with the leg, the value and the '
-        'limit.'),
-    'unreachable': (
-        '`CommandCheck` (ik_node)',
-        'A pose whose leg lengths are not finite and positive: a platform joint on its base '
-        'joint, or a pose so far away that the lengths overflow.'),
-    'no_pose_yet': (
-        '`CommandCheck.twist` (ik_node: `target_twist`)',
-        'A twist before any pose was accepted: there is no pose to apply it at.'),
-    'no_solution': (
-        '`PoseTracker` (fk_node)',
-        'Forward kinematics found no solution (iteration limit, singular Jacobian, '
-        'divergence), with the iterations and the residual.'),
-    'inaccurate_pose': (
-        '`PoseTracker` (fk_node)',
-        'A converged solution whose `pose_error_bound` exceeds `pose_tolerance`: near a '
-        'singularity the lengths fix the pose only loosely.'),
-    'assembly_mode_jump': (
-        '`PoseTracker` (fk_node)',
-        'A solution more than `assembly_guard_position_change` or '
-        '`assembly_guard_angle_change_deg` from the last one while no leg changed by more '
-        'than `assembly_guard_length_change`.'),
-    'ambiguous_assembly_mode': (
-        '`PoseTracker` (fk_node, with `refuse_ambiguous_start`)',
-        'After a start or `reset_tracker`, more than one assembly mode lies within the limits '
-        "and none near the last known pose; with the number of modes and the nearest one's "
-        'distance.'),
-    'assembly_mode_margin': (
-        'fk_node (a warning)',
-        'Another real assembly mode within the limits lies closer than '
-        '`assembly_mode_margin_warning` to the estimated pose.'),
-    'near_singularity': (
-        '`PoseTracker` (fk_node; a warning on a pose, a refusal of a twist)',
-        "The Jacobian's condition number exceeds `near_singularity_condition`: the pose is "
-        'published with a warning, and leg velocities are not turned into a twist there.'),
-    'too_fast': (
-        '`plan_motion`, `check_trajectory` (trajectory_node)',
-        'A timed trajectory, not retimed, that breaks a leg velocity or acceleration limit, '
-        'naming the time, the segment, the legs and the limits.'),
-    'retiming_failed': (
-        '`plan_motion` (trajectory_node)',
-        'toppra found no timing of the path within the leg limits.'),
-    'invalid_trajectory': (
-        'trajectory_node (`pose_trajectory`, `pose_path`)',
-        'A malformed trajectory or path: another frame, more than one joint, times not '
-        'increasing, velocities on only some points, a turn of half a revolution or more '
-        'between two waypoints, two equal consecutive waypoints of a path.'),
-    'wrong_frame': (
-        'ik_node (`target_pose_stamped`)',
-        "A stamped pose in a frame other than `base_frame`, `user_frame` or `''`."),
-    'tool_frame_not_supported': (
-        'trajectory_node (`pose_trajectory`, `pose_path`)',
-        'A trajectory or path received while the tool frame is offset from the platform frame '
-        '(trajectories are planned for the platform frame).'),
-    'invalid_vehicle_motion': (
-        '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
-        'A specific force or angular velocity that is not three finite numbers, or beyond '
-        '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
-        'vehicle were at rest, so that bad input eases it back to neutral.'),
-    'time_not_increasing': (
-        '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
-        'A sample whose time (header.stamp) is not after the previous one: repeated, backward '
-        'or not finite; nothing moves.'),
-    'input_gap': (
-        '`MotionCueing` (motion_cueing_node), a warning',
-        'More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the '
-        "washout's clock pauses)."),
-    'cue_scaled': (
-        '`MotionCueing` (motion_cueing_node), a warning',
-        'The cue was scaled toward neutral to keep inside the limits model (with its margins); '
-        'the details give the workspace and tilt scales.'),
-    'actuator_limited': (
-        '`MotionCueing` (motion_cueing_node), a warning',
-        'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
-        'followed as closely as they allow (or braked, or headed home).'),
-    'limits_held': (
-        '`MotionCueing` (motion_cueing_node), a warning',
-        'Every next pose would have left the limits: the pose was held (not expected; the '
-        'margins prevent it).'),
-}
-
-
-def _string_constants(path: Path, names) -> dict:
-    """Return ``{NAME: value}`` of the module-level string constants of one source file."""
-    found = {}
-    for statement in ast.parse(path.read_text(encoding='utf-8')).body:
-        if (isinstance(statement, ast.Assign) and len(statement.targets) == 1
-                and isinstance(statement.targets[0], ast.Name)
-                and isinstance(statement.value, ast.Constant)
-                and isinstance(statement.value.value, str)):
-            name = statement.targets[0].id
-            if (names is None and name.isupper()) or (names is not None and name in names):
-                found[name] = statement.value.value
-    missing = set(names or ()) - set(found)
-    if missing:
-        raise ValueError(f'{path}: no string constant {sorted(missing)}')
-    return found
-
-
 def refusal_codes() -> list:
     """
-    Every refusal or warning code the package can emit: ``(code, emitted by, meaning, where)``.
+    Every refusal or warning code the package can emit: ``(code, emitted by, meaning, kind)``.
 
-    The one source of the docs' table of codes. Today the codes are constants of three modules
-    (:data:`CODE_SOURCES`) and their meanings are written here (:data:`MEANINGS`); when the
-    registry of every code with its meaning exists (issue 18, in findings.py), read it here
-    instead and drop both. Raises ``ValueError`` when a code has no meaning or a meaning no
-    code, so the table cannot drift from the code.
+    Read from the registry of :mod:`stewart_kinematics.findings` (:data:`CODES`), the one
+    place where a code is defined with its meaning; test/test_findings.py checks that every
+    code the package emits is registered.
     """
-    directory = package_directory()
-    where = {}
-    for relative, names in CODE_SOURCES.items():
-        module = f'{PACKAGE}.' + relative[:-len('.py')].replace('/', '.')
-        for name, code in _string_constants(directory / relative, names).items():
-            where.setdefault(code, f'{module}.{name}')
-    undescribed = sorted(set(where) - set(MEANINGS))
-    stale = sorted(set(MEANINGS) - set(where))
-    if undescribed or stale:
-        raise ValueError(f'refusal codes without a meaning: {undescribed}; meanings of codes '
-                         f'that do not exist: {stale} (doc/ext/stewart_docs.py)')
-    return [(code, *MEANINGS[code], where[code]) for code in where]
+    from stewart_kinematics.findings import CODES
+    return [(code.code, code.emitted_by, code.meaning, code.kind) for code in CODES.values()]
 
 
 def refusal_codes_table() -> str:
-    """Return the Markdown table of :func:`refusal_codes`."""
-    lines = ['| Code | Emitted by | Meaning | Defined as |', '| --- | --- | --- | --- |']
-    for code, emitted_by, meaning, constant in refusal_codes():
-        lines.append(f'| `{code}` | {emitted_by} | {meaning} | `{constant}` |')
-    return '\n'.join(lines)
+    """Return the Markdown table of every code: :func:`stewart_kinematics.findings.codes_table`."""
+    from stewart_kinematics.findings import codes_table
+    return codes_table()
 
 
 class MarkdownDirective(SphinxDirective):
@@ -267,6 +123,22 @@ class RefusalCodes(MarkdownDirective):
         return refusal_codes_table()
 
 
+class NodeInterfaceTable(MarkdownDirective):
+    """``{node-interface} NODE``: a node's topics and services, from their declaration."""
+
+    required_arguments = 1
+
+    def markdown(self) -> str:
+        """Render the interface of the node named by the argument."""
+        from stewart_kinematics.ros.interfaces import markdown_table, NODE_INTERFACES
+        node = self.arguments[0]
+        if node not in NODE_INTERFACES:
+            raise KeyError(f'no node {node!r}; known: {sorted(NODE_INTERFACES)}')
+        # '<' outside code spans would be read as an HTML tag.
+        return re.sub(r'(`[^`]*`)|<', lambda match: match.group(1) or r'\<',
+                      markdown_table(NODE_INTERFACES[node]))
+
+
 def check_public_names(app, env):
     """Warn about every public name of the package root that no page documents."""
     objects = env.get_domain('py').objects
@@ -280,5 +152,6 @@ def setup(app):
     """Register the directives and the completeness check."""
     app.add_directive('parameter-table', ParameterTable)
     app.add_directive('refusal-codes', RefusalCodes)
+    app.add_directive('node-interface', NodeInterfaceTable)
     app.connect('env-check-consistency', check_public_names)
     return {'version': '1', 'parallel_read_safe': True, 'parallel_write_safe': True}

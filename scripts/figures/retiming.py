@@ -29,8 +29,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from stewart_kinematics import (  # noqa: E402
-    ActuatorLimits, load_geometry, plan_motion, PoseTrajectory, Ramp)
-from stewart_kinematics.parameters import read_parameter_file  # noqa: E402
+    load_geometry, plan_motion, PoseTrajectory, Ramp)
+from stewart_kinematics.parameters import (  # noqa: E402
+    actuator_limits_from_settings, load_settings, TrajectoryNodeSettings)
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 CONFIG = [ROOT / 'config' / 'paper_platform.yaml', ROOT / 'config' / 'example_limits.yaml']
@@ -80,8 +81,9 @@ def main(arguments) -> int:
     """Write the figure (default docs/retiming.png) and print the two durations."""
     output = Path(arguments[0]) if arguments else ROOT / 'docs' / 'retiming.png'
     geometry = load_geometry(CONFIG)
-    actuator_limits = ActuatorLimits.from_parameters(read_parameter_file(CONFIG[1]))
-    ramp = Ramp.from_parameters(read_parameter_file(RAMP, 'trajectory_node'))
+    settings = load_settings(TrajectoryNodeSettings, CONFIG + [RAMP], 'trajectory_node')
+    actuator_limits = actuator_limits_from_settings(settings.geometry)
+    ramp = Ramp.from_settings(settings.ramp)
     path = PoseTrajectory.from_poses(np.arange(len(ramp.rows), dtype=float), ramp.rows)
     runs = []
     for title, retime in (('rows 1 s apart, interpolated', False), ('retimed (toppra)', True)):

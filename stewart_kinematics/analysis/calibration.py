@@ -571,6 +571,7 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
             'base_joint_max_angle_deg': math.degrees(geometry.base_joint_max_angle),
             'platform_joint_max_angle_deg': math.degrees(geometry.platform_joint_max_angle),
             'max_jacobian_condition': geometry.max_jacobian_condition,
+            'leg_radius': geometry.leg_radius,
         }
     values['base_joints'] = [float(value) for value in geometry.base_joints.ravel()]
     values['platform_joints'] = [float(value) for value in geometry.platform_joints.ravel()]

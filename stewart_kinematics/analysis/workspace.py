@@ -502,7 +502,7 @@ def _classify_chunk(geometry, poses, with_condition):
     legs = np.zeros((count, len(LIMIT_NAMES)), dtype=int)
     for index, name in enumerate(LIMIT_NAMES):
         if name in checks.broken:
-            scale = getattr(geometry, name) or 1.0       # leg_length_min may be 0
+            scale = checks.model.bound(name).allowed or 1.0
             relative = np.where(checks.broken[name], checks.excess(name) / scale, -np.inf)
             if relative.ndim == 2:
                 legs[:, index] = np.argmax(relative, axis=1) + 1

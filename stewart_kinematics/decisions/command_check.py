@@ -28,6 +28,12 @@ in a Python user's own control loop alike::
         print(command.reason)                    # every violated limit, leg by leg
     rates = check.twist([0.01, 0.0, 0.0, 0.0, 0.0, 0.0])   # at the last accepted pose
 
+ik_node calls :meth:`CommandCheck.tool_pose` with the numbers of a message: the frame it is
+given in is accepted or refused there, a non-unit quaternion normalised with a warning, and
+the tool frame's pose turned into the platform's. Every limit is the limits model's
+(:class:`~stewart_kinematics.limits.LimitModel`): the pose limits for a pose, the leg velocity
+limit for a twist (refused, or scaled down uniformly to the limit, never beyond it).
+
 It never raises for input it cannot use and never returns an infinite, NaN or zero length: a
 malformed or unreachable pose, or one that breaks a limit of the geometry, comes back refused
 with a :class:`~stewart_kinematics.findings.Finding`. Nothing is clamped. Nothing here imports
@@ -40,9 +46,11 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import findings, limits
+from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.model.kinematics import leg_lengths, twist_jacobian
+from stewart_kinematics.limits import LimitModel, Violation
+from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.kinematics import twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     normalize_quaternion,
@@ -51,6 +59,13 @@ from stewart_kinematics.model.rotations import (
 
 #: Largest deviation of ``R^T R`` from the identity accepted for a rotation matrix.
 ROTATION_TOLERANCE = 1e-6
+#: A quaternion whose norm is this far from 1 is normalised with a warning.
+QUATERNION_NORM_TOLERANCE = 1e-6
+#: A twist with a component beyond this (m/s or rad/s) is no motion of a platform: refused as
+#: invalid whatever ``twist_over_limit`` says (scaling it would only hide a broken input).
+TWIST_COMPONENT_MAX = 1e3
+#: What :meth:`CommandCheck.twist` does with a twist beyond the leg velocity limit.
+TWIST_POLICIES = ('refuse', 'scale')
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,12 +79,24 @@ class LegCommand(Decision):
         also for a refused pose, so that a display can show which legs are at fault; empty
         when the pose could not be evaluated at all.
     :param refusal: why the pose was refused, or ``None`` when accepted.
+    :param warnings: findings about the input (a quaternion that was not unit).
+    :param position: the platform frame's origin in the base frame, metres, shape (3,), where
+        the pose was evaluated (after the tool and user frames); ``None`` when it was not.
+    :param rotation: the platform-to-base rotation there, shape (3, 3), or ``None``.
     """
 
     lengths: Optional[np.ndarray]
-    violations: Tuple[limits.Violation, ...] = ()
+    violations: Tuple[Violation, ...] = ()
     refusal: Optional[Finding] = None
     warnings: Tuple[Finding, ...] = ()
+    position: Optional[np.ndarray] = None
+    rotation: Optional[np.ndarray] = None
+
+    @property
+    def legs_at_fault(self) -> Tuple[Optional[int], ...]:
+        """Return the legs that break a limit (``None`` for the whole platform), each once."""
+        return tuple(dict.fromkeys(leg for violation in self.violations
+                                   for leg in violation.legs))
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,14 +104,17 @@ class LegVelocityCommand(Decision):
     """
     The answer to a commanded platform twist: leg velocities, or why not.
 
-    :param velocities: rates of change of the leg lengths, metres per second, shape (6,);
-        ``None`` when refused.
+    :param velocities: rates of change of the leg lengths, metres per second, shape (6,),
+        within ``leg_velocity_max``; ``None`` when refused.
     :param refusal: why the twist was refused, or ``None`` when accepted.
+    :param warnings: a ``twist_scaled`` finding when the twist was scaled down to the limit.
+    :param scale: the factor the twist was scaled by, in (0, 1]; 1.0 when it was not.
     """
 
     velocities: Optional[np.ndarray]
     refusal: Optional[Finding] = None
     warnings: Tuple[Finding, ...] = ()
+    scale: float = 1.0
 
 
 class CommandCheck:
@@ -94,10 +124,21 @@ class CommandCheck:
     The state is the last accepted pose, where :meth:`twist` applies a velocity command.
 
     :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
+    :param actuator_limits: the legs' speed limits; the velocity limit applies to twists.
+    :param twist_over_limit: ``'refuse'`` a twist whose leg velocities exceed
+        ``leg_velocity_max``, or ``'scale'`` it down uniformly to the limit.
+    :raises ValueError: for an unknown ``twist_over_limit``.
     """
 
-    def __init__(self, geometry):
+    def __init__(self, geometry, actuator_limits: Optional[ActuatorLimits] = None, *,
+                 twist_over_limit: str = 'refuse'):
+        if twist_over_limit not in TWIST_POLICIES:
+            raise ValueError(f'twist_over_limit must be one of {TWIST_POLICIES}, got '
+                             f'{twist_over_limit!r}')
         self.geometry = geometry
+        #: Every limit a command must keep: the geometry's and the actuators'.
+        self.limits = LimitModel(geometry, actuator_limits)
+        self.twist_over_limit = twist_over_limit
         #: ``(position (3,), rotation (3, 3))`` of the last accepted pose, or ``None``.
         self.last_pose = None
 
@@ -122,41 +163,66 @@ class CommandCheck:
         """
         :meth:`pose` of a position and a quaternion ``(x, y, z, w)``, as geometry_msgs has them.
 
-        A quaternion that is not unit is normalised; a zero or non-finite one is refused.
+        A quaternion that is not unit is normalised (with a ``quaternion_not_unit`` warning);
+        a zero or non-finite one is refused.
 
         :param position: metres, base frame, shape (3,).
         :param quaternion: shape (4,).
         """
+        return self.tool_pose(position, quaternion)
+
+    def tool_pose(self, position, quaternion, frames=None, frame_id: str = '') -> LegCommand:
+        """
+        ik_node's decision on a commanded pose of the tool frame, given in a frame.
+
+        The frame must be one a pose may be given in (``base_frame``, ``user_frame`` or
+        ``''``); the quaternion is normalised, with a warning when its norm is off by more
+        than :data:`QUATERNION_NORM_TOLERANCE`; the tool frame's pose is turned into the
+        platform frame's (``frames.platform_in_base``), whose leg lengths are then decided as
+        by :meth:`pose`.
+
+        :param position: the tool frame's origin in ``frame_id``, metres, three numbers.
+        :param quaternion: its orientation ``(x, y, z, w)``, four numbers.
+        :param frames: the :class:`stewart_kinematics.FrameTree` to apply, or ``None``: the
+            pose is the platform frame's, in the base frame.
+        :param frame_id: the frame the pose is given in (a message header's ``frame_id``).
+        :returns: a :class:`LegCommand`, its ``position`` and ``rotation`` the platform
+            frame's; refused with ``invalid_pose``, ``wrong_frame``, ``unreachable`` or
+            ``out_of_limits``.
+        """
         position = np.asarray(position, dtype=float)
-        if position.shape != (3,) or not all(map(math.isfinite, position.tolist())):
+        if position.shape != (3,):
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
-                f'position must be three finite numbers (metres), got {position.tolist()}'))
+                f'position must be three numbers (metres), got shape {position.shape}'))
+        if not all(map(math.isfinite, position.tolist())):
+            return LegCommand(None, refusal=Finding(
+                findings.INVALID_POSE, f'position must be finite (metres), got '
+                f'{position.tolist()}'))
         try:
-            rotation = quaternion_to_matrix(normalize_quaternion(quaternion))
+            unit = normalize_quaternion(quaternion)
+            if unit.shape != (4,):
+                raise ValueError(f'expected one quaternion (4,), got shape {unit.shape}')
         except ValueError as error:
             return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
-        if rotation.shape != (3, 3):
-            return LegCommand(None, refusal=Finding(
-                findings.INVALID_POSE, f'expected one quaternion (4,), got {rotation.shape}'))
-        return self._command(position, rotation)
-
-    def _command(self, position, rotation) -> LegCommand:
-        """Decide on a valid position (3,) and rotation matrix (3, 3)."""
-        # The lengths first: a leg of length zero (a platform joint on its base joint) has no
-        # direction, so the joint angles and the Jacobian of the limits do not exist there.
-        with np.errstate(over='ignore', invalid='ignore'):
-            lengths = leg_lengths(self.geometry, position, rotation)
-        if not all(0.0 < length < math.inf for length in lengths.tolist()):
-            return LegCommand(None, refusal=Finding(
-                findings.UNREACHABLE,
-                f'its leg lengths must be finite and positive (metres), got {lengths.tolist()}: '
-                'a platform joint on its base joint, or a pose beyond any reach'))
-        violations = tuple(limits.check_pose(self.geometry, position, rotation))
-        if violations:
-            return LegCommand(None, violations, findings.out_of_limits('the pose is', violations))
-        self.last_pose = position, rotation
-        return LegCommand(lengths)
+        warnings = ()
+        norm = math.sqrt(sum(value * value for value in np.asarray(quaternion, float).tolist()))
+        if not abs(norm - 1.0) <= QUATERNION_NORM_TOLERANCE:
+            warnings = (Finding(findings.QUATERNION_NOT_UNIT,
+                                f'orientation has norm {norm:.9g}, not 1: normalised',
+                                (('quaternion_norm', f'{norm:.9g}'),)),)
+        rotation = quaternion_to_matrix(unit)
+        if frames is not None:
+            try:
+                position, rotation = frames.platform_in_base(position, rotation, frame_id)
+            except ValueError as error:
+                return LegCommand(None, refusal=Finding(findings.WRONG_FRAME, str(error)),
+                                  warnings=warnings)
+        command = self._command(position, rotation)
+        if warnings:
+            command = LegCommand(command.lengths, command.violations, command.refusal,
+                                 warnings, command.position, command.rotation)
+        return command
 
     def pose_vector(self, pose) -> LegCommand:
         """
@@ -172,13 +238,38 @@ class CommandCheck:
                 f'radians), got {pose.tolist()}'))
         return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
 
+    def _command(self, position, rotation) -> LegCommand:
+        """Decide on a valid position (3,) and rotation matrix (3, 3)."""
+        # The lengths first: a leg of length zero (a platform joint on its base joint) has no
+        # direction, so the joint angles and the Jacobian of the limits do not exist there.
+        with np.errstate(over='ignore', invalid='ignore'):
+            legs = self.limits.pose_legs(position, rotation)
+        lengths = legs.lengths[:, 0]
+        if not all(0.0 < length < math.inf for length in lengths.tolist()):
+            return LegCommand(None, refusal=Finding(
+                findings.UNREACHABLE,
+                f'its leg lengths must be finite and positive (metres), got {lengths.tolist()}: '
+                'a platform joint on its base joint, or a pose beyond any reach'),
+                position=position, rotation=rotation)
+        violations = tuple(self.limits.violations_of(legs))
+        if violations:
+            return LegCommand(None, violations, findings.out_of_limits('the pose is', violations),
+                              position=position, rotation=rotation)
+        self.last_pose = position, rotation
+        return LegCommand(lengths.copy(), position=position, rotation=rotation)
+
     def twist(self, twist) -> LegVelocityCommand:
         """
-        Leg velocities of a platform twist at the last accepted pose, or the refusal.
+        Leg velocities of a platform twist at the last accepted pose, within the velocity limit.
+
+        The pose is the last accepted one, so within every pose limit. Leg velocities beyond
+        ``leg_velocity_max`` are refused (``too_fast``, with every leg over the limit), or with
+        ``twist_over_limit='scale'`` the whole twist is scaled down by the one factor that puts
+        the fastest leg at the limit (a ``twist_scaled`` warning): never beyond it.
 
         :param twist: ``[vx, vy, vz, wx, wy, wz]``, base frame, m/s and rad/s, shape (6,).
-        :returns: a :class:`LegVelocityCommand`; refused (code ``no_pose_yet`` or
-            ``invalid_twist``) rather than raised.
+        :returns: a :class:`LegVelocityCommand`; refused (code ``invalid_twist``,
+            ``no_pose_yet`` or ``too_fast``) rather than raised.
         """
         twist = np.asarray(twist, dtype=float)
         if twist.shape != (6,) or not np.all(np.isfinite(twist)):
@@ -186,11 +277,32 @@ class CommandCheck:
                 findings.INVALID_TWIST,
                 f'a twist must be six finite numbers [vx, vy, vz, wx, wy, wz] (m/s, rad/s), '
                 f'got {twist.tolist()}'))
+        if not np.all(np.abs(twist) <= TWIST_COMPONENT_MAX):
+            return LegVelocityCommand(None, Finding(
+                findings.INVALID_TWIST,
+                f'a twist component beyond {TWIST_COMPONENT_MAX:g} m/s or rad/s is no motion of '
+                f'a platform, got {twist.tolist()}'))
         if self.last_pose is None:
             return LegVelocityCommand(None, Finding(
                 findings.NO_POSE_YET,
                 'no pose accepted yet, so no Jacobian to apply the twist at'))
-        return LegVelocityCommand(twist_jacobian(self.geometry, *self.last_pose) @ twist)
+        velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
+        scale = self.limits.leg_velocity_scale(velocities)
+        if scale == 1.0:
+            return LegVelocityCommand(velocities)
+        violations = self.limits.leg_state_violations(velocities=velocities)
+        if self.twist_over_limit == 'refuse':
+            return LegVelocityCommand(None, Finding(
+                findings.TOO_FAST,
+                'the twist is too fast for the legs: ' + '; '.join(map(str, violations))
+                + f" (twist_over_limit 'refuse'; scaled by {scale:.6g} it would be within)",
+                findings.violation_details(violations)))
+        warning = Finding(
+            findings.TWIST_SCALED,
+            f'the twist was scaled by {scale:.6g} to keep leg_velocity_max: '
+            + '; '.join(map(str, violations)),
+            (('scale', f'{scale:.6g}'),) + findings.violation_details(violations))
+        return LegVelocityCommand(velocities * scale, warnings=(warning,), scale=scale)
 
 
 def _invalid_pose(position, rotation) -> str:

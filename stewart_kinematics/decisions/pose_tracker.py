@@ -27,6 +27,7 @@ Python user's own loop can::
     for warning in estimate.warnings:               # e.g. near a singularity
         print(warning)
     twist = tracker.twist(leg_velocities)           # at the last accepted pose
+    estimate = tracker.update(lengths, velocities)  # a joint state: the pose and its twist
     tracker.reset()                                 # homing: the next solve starts from home
 
 Each update checks the lengths against the actuator stroke, solves by Newton-Raphson from the
@@ -34,53 +35,32 @@ last accepted solution (its pose and its Jacobian: a platform moves continuously
 to the home pose when that fails, and then refuses a solution that did not converge, whose
 pose error bound exceeds ``pose_tolerance`` (near a singularity), that breaks a limit of the
 geometry, or that jumped to another assembly mode; an accepted solution near a singularity
-comes with a warning. Nothing raises for lengths it cannot use, and nothing here imports ROS.
+comes with a warning. With leg velocities too (a joint state), an accepted pose carries its
+twist, or a warning that says why there is none. Every limit is the limits model's
+(:class:`~stewart_kinematics.limits.LimitModel`). :func:`margin_status` decides what fk_node
+reports of the assembly-mode margin. Nothing raises for lengths it cannot use, and nothing
+here imports ROS.
 """
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass
 import math
 from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import findings, limits, parameters
+from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
+from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.kinematics import (
+    as_leg_lengths,
     as_poses,
     forward_kinematics,
     ForwardKinematicsResult,
 )
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
-
-
-@dataclass(frozen=True)
-class TrackerSettings:
-    """
-    The settings of a :class:`PoseTracker`: the solver parameters of fk_node, same names.
-
-    See :data:`stewart_kinematics.parameters.SOLVER_PARAMETERS` for each one's meaning,
-    unit and allowed values; an invalid value raises ``ValueError`` naming it.
-    """
-
-    tolerance: float = 1e-12
-    max_iterations: int = 50
-    near_singularity_condition: float = 100.0
-    pose_tolerance: float = 1e-9
-    assembly_guard_length_change: float = 0.005
-    assembly_guard_position_change: float = 0.05
-    assembly_guard_angle_change_deg: float = 10.0
-    refuse_ambiguous_start: bool = False
-
-    def __post_init__(self):
-        parameters.check_values(
-            parameters.SOLVER_PARAMETERS,
-            {field.name: getattr(self, field.name) for field in fields(self)})
-
-
-#: The names of the settings, as parameter names.
-SETTING_NAMES = tuple(field.name for field in fields(TrackerSettings))
+from stewart_kinematics.parameters.settings import SolverSettings
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,12 +74,16 @@ class PoseEstimate(Decision):
     :param warnings: findings about an accepted pose (near a singularity).
     :param solution: the forward kinematics result the decision was made on, or ``None`` when
         no solve ran (lengths malformed or out of the stroke).
+    :param twist: with leg velocities given, the platform twist at the accepted pose
+        (``[vx, vy, vz, wx, wy, wz]``, base frame); ``None`` otherwise, or when the velocities
+        gave none (the reason is then among the warnings: the pose itself was accepted).
     """
 
     pose: Optional[np.ndarray]
     refusal: Optional[Finding] = None
     warnings: Tuple[Finding, ...] = ()
     solution: Optional[ForwardKinematicsResult] = None
+    twist: Optional[np.ndarray] = None
 
     @property
     def iterations(self) -> Optional[int]:
@@ -146,14 +130,15 @@ class PoseTracker:
     compares with. :meth:`reset` forgets it.
 
     :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
-    :param settings: :class:`TrackerSettings` fields by name (``tolerance=1e-10``, ...).
-    :raises ValueError: for an unknown or invalid setting.
+    :param settings: the solver's tolerance, iterations and checks (fk_node's solver
+        parameters); default: every default, ``SolverSettings()``.
     """
 
-    def __init__(self, geometry, **settings):
+    def __init__(self, geometry, settings: Optional[SolverSettings] = None):
         self.geometry = geometry
-        self.settings = TrackerSettings()
-        self.configure(**settings)
+        self.settings = SolverSettings() if settings is None else settings
+        #: The limits a solution must keep: the geometry's (stroke, cones, margin, collisions).
+        self.limits = LimitModel.of_geometry(geometry)
         #: The pose the next solve starts from: the last accepted one, or home after a reset.
         self.last_pose = geometry.home_pose
         #: The leg lengths of the last accepted pose, metres, or ``None`` after a reset.
@@ -164,21 +149,15 @@ class PoseTracker:
         #: After a start or reset: the last start_ambiguity check, with its lengths.
         self._start_check = None
 
-    @classmethod
-    def from_parameters(cls, geometry, values: dict) -> 'PoseTracker':
-        """Build a tracker from parameter values, such as a node's; other names are ignored."""
-        return cls(geometry, **{name: values[name] for name in SETTING_NAMES if name in values})
-
-    def configure(self, **settings):
+    def configure(self, settings: SolverSettings):
         """
-        Change settings by name, such as the tolerance (``tolerance=1e-10``).
+        Take new settings from the next update on, such as ``settings.replace(tolerance=1e-10)``.
 
-        :raises ValueError: for an unknown name or an invalid value; nothing changes then.
+        The state (the last solution) is kept.
         """
-        unknown = sorted(set(settings) - set(SETTING_NAMES))
-        if unknown:
-            raise ValueError(f'unknown tracker setting(s) {unknown}; known: {SETTING_NAMES}')
-        self.settings = replace(self.settings, **settings)
+        if not isinstance(settings, SolverSettings):
+            raise TypeError(f'settings must be SolverSettings, got {type(settings).__name__}')
+        self.settings = settings
 
     def reset(self, pose=None):
         """
@@ -198,17 +177,24 @@ class PoseTracker:
         self.last_solution = None
         self._start_check = None
 
-    def update(self, lengths) -> PoseEstimate:
+    def update(self, lengths, velocities=None) -> PoseEstimate:
         """
         Estimate the pose of measured leg lengths, or refuse them with the reason.
 
         :param lengths: leg lengths l_1..l_6, metres, shape (6,).
+        :param velocities: their rates l_1'..l_6', m/s, shape (6,), or ``None``: with them an
+            accepted pose carries its twist (:meth:`twist`), or a warning saying why not; the
+            pose is published either way.
         :returns: a :class:`PoseEstimate`; an accepted one becomes the last solution.
         """
         try:
-            violations = limits.leg_length_violations(self.geometry, lengths)
+            lengths = as_leg_lengths(lengths)
+            if lengths.shape != (6,):
+                raise ValueError(f'expected the 6 lengths of one pose, got shape '
+                                 f'{lengths.shape}')
         except ValueError as error:
             return PoseEstimate(None, Finding(findings.INVALID_LENGTHS, str(error)))
+        violations = self.limits.leg_state_violations(lengths=lengths)
         if violations:
             return PoseEstimate(None, findings.out_of_limits('the leg lengths are', violations))
         lengths = np.array(lengths, dtype=float)
@@ -225,7 +211,12 @@ class PoseTracker:
                 f'{self.settings.near_singularity_condition:g}',
                 (('jacobian_condition', f'{solution.condition:.4g}'),)),)
         self.last_pose, self.last_lengths, self.last_solution = solution.pose, lengths, solution
-        return PoseEstimate(solution.pose, None, warnings, solution)
+        twist = None
+        if velocities is not None:
+            estimate = self.twist(velocities)
+            twist = estimate.twist
+            warnings += () if estimate.accepted else (estimate.refusal,)
+        return PoseEstimate(solution.pose, None, warnings, solution, twist)
 
     def twist(self, velocities) -> TwistEstimate:
         """
@@ -292,9 +283,9 @@ class PoseTracker:
                  ('residual_m', f'{solution.residual:.3g}'),
                  ('jacobian_condition', f'{solution.condition:.4g}'),
                  ('pose_error_bound', f'{solution.pose_error_bound:.3g}')))
-        violations = limits.check_pose(self.geometry, solution.pose[:3],
-                                       euler_zyx_to_matrix(solution.pose[3:]),
-                                       condition=solution.condition)
+        violations = self.limits.check_pose(solution.pose[:3],
+                                            euler_zyx_to_matrix(solution.pose[3:]),
+                                            condition=solution.condition)
         if violations:
             return findings.out_of_limits('the pose of these leg lengths is', violations)
         if self.last_lengths is None:
@@ -327,7 +318,7 @@ class PoseTracker:
              ('search_complete', str(check.complete))))
 
 
-def assembly_mode_jump(settings: TrackerSettings, last_pose, last_lengths, pose,
+def assembly_mode_jump(settings: SolverSettings, last_pose, last_lengths, pose,
                        lengths) -> Optional[Finding]:
     """
     Say why ``pose`` looks like a jump to another assembly mode, or return ``None``.
@@ -360,3 +351,52 @@ def assembly_mode_jump(settings: TrackerSettings, last_pose, last_lengths, pose,
         (('position_change_m', f'{position_change:.4g}'),
          ('angle_change_deg', f'{angle_change:.4g}'),
          ('length_change_m', f'{length_change:.4g}')))
+
+
+@dataclass(frozen=True)
+class MarginStatus:
+    """
+    What fk_node reports of the assembly-mode margin: a warning or not, a sentence, the values.
+
+    :param warning: an ``assembly_mode_margin`` finding when the margin deserves a warning
+        (another mode closer than the warning distance, or a search that was incomplete),
+        else ``None``.
+    :param message: the status sentence.
+    :param values: ``(key, value)`` pairs: the margin, its parts, the modes, the cost.
+    """
+
+    warning: Optional[Finding]
+    message: str
+    values: Tuple[Tuple[str, str], ...] = ()
+
+
+def margin_status(monitor) -> MarginStatus:
+    """
+    Decide what to report of the latest assembly-mode margin of a monitor.
+
+    :param monitor: an
+        :class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`.
+    :returns: a :class:`MarginStatus`; its warning, if any, is what the node counts and logs.
+    """
+    too_close = monitor.warning()
+    margin = monitor.latest
+    if margin is None:
+        return MarginStatus(None, 'no solution yet, or not computed yet')
+    if too_close:
+        message = too_close
+    elif margin.nearest is None:
+        message = 'no other assembly mode within the limits'
+    else:
+        message = (f'nearest other assembly mode within the limits: {margin.position:.4g} m and '
+                   f'{math.degrees(margin.angle):.4g} deg away')
+    if not margin.complete:
+        message += f'; the search was incomplete: {margin.reason}'
+    values = (('margin_position_m', f'{margin.position:.6g}'),
+              ('margin_angle_deg', f'{math.degrees(margin.angle):.6g}'),
+              ('margin_distance_m', f'{margin.distance:.6g}'),
+              ('modes_within_limits', str(margin.modes_within_limits)),
+              ('search_complete', str(margin.complete)),
+              ('computed_in_ms', f'{monitor.latest_seconds * 1e3:.1f}'))
+    warning = (Finding(findings.ASSEMBLY_MODE_MARGIN, message, values)
+               if too_close or not margin.complete else None)
+    return MarginStatus(warning, message, values)

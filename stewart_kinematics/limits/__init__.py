@@ -13,13 +13,27 @@
 # limitations under the License.
 
 """
-The limits model: every reason a pose, or a motion, is not allowed.
+The limits model: every reason a pose, or a motion, is not allowed, decided in one place.
 
-Stroke, joint cones and the singularity margin of the geometry; see :mod:`.checks`.
+One evaluator per kind of limit, each checking one pose or arrays of poses through the
+core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.kinematics`, the
+rotation entries of :mod:`stewart_kinematics.model.rotations`):
 
-May import: :mod:`stewart_kinematics.model` and numpy. Nothing here imports ROS.
+- :mod:`.stroke`: ``leg_length_min``, ``leg_length_max`` (poses and leg lengths);
+- :mod:`.joint_cones`: ``base_joint_max_angle``, ``platform_joint_max_angle``;
+- :mod:`.singularity`: ``max_jacobian_condition``, the singularity margin;
+- :mod:`.leg_collision`: ``leg_collision``, legs as capsules of ``leg_radius``;
+- :mod:`.leg_rates`: ``leg_velocity_max``, ``leg_acceleration_max``, ``leg_jerk_max``.
+
+:class:`~.model.LimitModel` composes those that are set and gives every check: one pose, a
+batch, leg states (trajectories, streams, twists). :mod:`.checks` has the same as functions of
+a geometry. :mod:`.base` holds what the evaluators share, :mod:`.violation` what they report.
+
+May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
+Nothing here imports ROS.
 """
 
+from stewart_kinematics.limits.base import Bound, LEG_PAIRS, LegSamples, Limit, PoseLegs
 from stewart_kinematics.limits.checks import (
     check_pose,
     check_poses,
@@ -27,19 +41,41 @@ from stewart_kinematics.limits.checks import (
     check_samples,
     joint_angles,
     leg_length_violations,
+)
+from stewart_kinematics.limits.joint_cones import JointCones
+from stewart_kinematics.limits.leg_collision import LegCollision, segment_distances
+from stewart_kinematics.limits.leg_rates import LegRate
+from stewart_kinematics.limits.model import (
+    LEG_STATE_LIMIT_NAMES,
     LIMIT_NAMES,
     LimitChecks,
-    Violation,
+    LimitModel,
 )
+from stewart_kinematics.limits.singularity import SingularityMargin
+from stewart_kinematics.limits.stroke import Stroke
+from stewart_kinematics.limits.violation import Violation
 
 __all__ = [
+    'Bound',
     'check_pose',
     'check_poses',
     'check_poses_array',
     'check_samples',
     'joint_angles',
+    'JointCones',
+    'LEG_PAIRS',
+    'LEG_STATE_LIMIT_NAMES',
+    'LegCollision',
+    'LegRate',
+    'LegSamples',
     'leg_length_violations',
+    'Limit',
     'LIMIT_NAMES',
     'LimitChecks',
+    'LimitModel',
+    'PoseLegs',
+    'segment_distances',
+    'SingularityMargin',
+    'Stroke',
     'Violation',
 ]

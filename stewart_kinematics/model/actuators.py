@@ -60,17 +60,6 @@ class ActuatorLimits:
                 raise ValueError(f'leg_{name} must be positive (.inf for no limit), got {value!r}')
             object.__setattr__(self, name, value)
 
-    @classmethod
-    def from_parameters(cls, values: dict) -> 'ActuatorLimits':
-        """
-        Build the limits from parameter values (``leg_velocity_max``, ...; missing: no limit).
-
-        :param values: parameter name -> value, as the nodes declare them.
-        """
-        return cls(velocity_max=values.get('leg_velocity_max', math.inf),
-                   acceleration_max=values.get('leg_acceleration_max', math.inf),
-                   jerk_max=values.get('leg_jerk_max', math.inf))
-
     @property
     def limits_speed(self) -> bool:
         """Return whether a velocity or an acceleration limit is set."""
@@ -119,12 +108,6 @@ class ActuatorInterface:
         offsets.flags.writeable = False
         object.__setattr__(self, 'joint_names', names)
         object.__setattr__(self, 'offsets', offsets)
-
-    @classmethod
-    def from_parameters(cls, values: dict) -> 'ActuatorInterface':
-        """Build it from ``joint_names`` and ``actuator_offsets`` (missing: the defaults)."""
-        return cls(joint_names=tuple(values.get('joint_names', DEFAULT_JOINT_NAMES)),
-                   offsets=values.get('actuator_offsets', np.zeros(6)))
 
     def positions(self, lengths) -> np.ndarray:
         """

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The platform's geometry: joint positions, home pose and leg length limits.
+The platform's geometry: joint positions, home pose, and where the platform may be (limits).
 
 Frames: the base frame is fixed, with its origin on the base and z up; the platform frame moves
 with the platform. A pose ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) places the platform
@@ -50,9 +50,13 @@ class Geometry:
     :param max_jacobian_condition: largest allowed condition number of the dimensionless
         Jacobian (:func:`stewart_kinematics.model.kinematics.jacobian_condition`), >= 1
         (``inf`` for no limit): the singularity margin.
+    :param leg_radius: radius of each leg, metres, >= 0 (0 for no collision check): a leg is a
+        capsule of this radius around the segment from its base joint to its platform joint,
+        and two legs collide where their segments come closer than ``2 * leg_radius``.
     :raises ValueError: if an array has the wrong shape or a non-finite value, two joints
         coincide, the joints of the base or of the platform are collinear, a limit is out of
-        its range, or the home pose breaks a limit.
+        its range, or the home pose breaks a limit (two legs that collide there included,
+        named).
 
     The limits are checked by :mod:`stewart_kinematics.limits`.
 
@@ -70,6 +74,7 @@ class Geometry:
     base_joint_max_angle: float = math.pi
     platform_joint_max_angle: float = math.pi
     max_jacobian_condition: float = math.inf
+    leg_radius: float = 0.0
 
     def __post_init__(self):
         for name, shape in (('base_joints', (6, 3)), ('platform_joints', (6, 3)),
@@ -95,6 +100,10 @@ class Geometry:
         if not condition >= 1.0:
             raise ValueError(f'max_jacobian_condition must be >= 1, got {condition!r}')
         object.__setattr__(self, 'max_jacobian_condition', condition)
+        radius = float(self.leg_radius)
+        if not 0.0 <= radius < math.inf:
+            raise ValueError(f'leg_radius must be finite and >= 0 (metres), got {radius!r}')
+        object.__setattr__(self, 'leg_radius', radius)
 
         # Derived once: every IK request and limit check uses them.
         from stewart_kinematics import limits

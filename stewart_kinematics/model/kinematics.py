@@ -222,6 +222,16 @@ class _GeometryConstants:
         self.home_pose = tuple(geometry.home_pose.tolist())
         self.home_jacobian_inverse = _float_inverse(_float_twist_rows(
             _single_euler_legs(self, self.home_pose)))
+        self._geometry = weakref.ref(geometry)  # a strong one would keep the geometry alive
+
+    @cached_property
+    def start_table(self):
+        """Return the geometry's :class:`StartTable`, built on first use (None: home singular)."""
+        if self.home_jacobian_inverse is None:
+            return None
+        # Imported here: the table is built with this module's solver.
+        from stewart_kinematics.model.start_table import StartTable
+        return StartTable(self._geometry())
 
 
 #: Constants of each geometry still alive; a Geometry is immutable, so they never go stale.
@@ -519,12 +529,69 @@ def _condition_number(singular_values):
 
 def _dimensionless_singular_values(geometry, position, rotation):
     """Singular values, largest first, of the Jacobian of :func:`jacobian_condition`."""
-    jac = twist_jacobian(geometry, position, rotation)
-    jac[..., 3:] /= geometry.platform_radius
-    singular_values = np.linalg.svd(jac, compute_uv=False)
+    return _singular_values(_dimensionless(geometry, twist_jacobian(geometry, position, rotation)))
+
+
+def _dimensionless(geometry, twist_jacobians):
+    """Divide the rotation columns of twist Jacobians by ``rho``, in place; return them."""
+    twist_jacobians[..., 3:] /= geometry.platform_radius
+    return twist_jacobians
+
+
+def _singular_values(jacobians):
+    """Singular values, largest first, of Jacobians (..., 6, 6); 0 last for a zero row."""
+    singular_values = np.linalg.svd(jacobians, compute_uv=False)
     # A zero row (a leg of zero length) is an exact singularity, whatever rounding says.
-    singular_values[..., -1] *= ~np.any(np.all(jac == 0.0, axis=-1), axis=-1)
+    singular_values[..., -1] *= ~np.any(np.all(jacobians == 0.0, axis=-1), axis=-1)
     return singular_values
+
+
+# The leg arrays of a batch, for the limits model (stewart_kinematics.limits), which evaluates
+# every limit on them: the formulas above, exposed in their batch layout (legs by poses).
+
+def leg_arrays(geometry, positions, rotation_entries):
+    """
+    Legs of a batch of poses, leg by pose: :func:`_legs`, the one leg formula, on arrays.
+
+    :param positions: platform origins in the base frame, metres, shape (n, 3).
+    :param rotation_entries: ``(r11, r12, ..., r33)`` of the platform-to-base rotations, nine
+        arrays (n,): :func:`stewart_kinematics.model.rotations.zyx_entries` of Euler angles,
+        or the entries of rotation matrices.
+    :returns: ``(lengths, (lx, ly, lz, ax, ay, az))``: the leg lengths, shape (6, n), and the
+        components of the leg vectors ``t + R p_i - b_i`` and of the rotated platform joints
+        ``R p_i``, each (6, n), metres, base frame. One pose (n = 1) is computed in floats,
+        as :func:`leg_lengths` computes one pose: the same values to the bit, three times
+        faster than the arrays.
+    """
+    positions = np.asarray(positions, dtype=float)
+    if positions.shape == (1, 3):
+        legs = np.array(_single_legs(_constants(geometry), positions[0].tolist(),
+                                     [float(entry[0]) for entry in rotation_entries]))
+        return legs[:, 0:1], tuple(legs[:, column:column + 1] for column in range(1, 7))
+    return _batch_legs(_constants(geometry), positions, rotation_entries)
+
+
+def dimensionless_jacobians(geometry, lengths, vectors) -> np.ndarray:
+    """
+    Dimensionless Jacobians of :func:`jacobian_condition` from :func:`leg_arrays`' output.
+
+    Rows ``[u_i, (R p_i x u_i) / rho]`` (the twist rows of :func:`twist_jacobian`, rotation
+    columns divided by ``rho``); a leg of zero length gives a zero row.
+
+    :param lengths: shape (6, n); ``vectors``: the six arrays (6, n) of :func:`leg_arrays`.
+    :returns: shape (n, 6, 6).
+    """
+    return _dimensionless(geometry, _batch_twist_jacobian(lengths, vectors))
+
+
+def conditions_of_jacobians(jacobians) -> np.ndarray:
+    """
+    Condition numbers of :func:`dimensionless_jacobians`, as :func:`jacobian_condition` gives.
+
+    :param jacobians: shape (n, 6, 6).
+    :returns: shape (n,); ``inf`` where a Jacobian is singular or has a zero row.
+    """
+    return _condition_number(_singular_values(jacobians))
 
 
 @dataclass(frozen=True, eq=False)
@@ -657,11 +724,22 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
     with the Jacobian of that result. A batch takes, pose by pose, the steps of single solves,
     vectorised, with the same arithmetic: same iterates, iterations and reasons.
 
+    Without an initial guess (a cold solve), the solve starts from the geometry's start table
+    (:mod:`stewart_kinematics.model.start_table`, built on the first cold solve, 0.1 to 0.3 s):
+    one Newton step from the working-mode sample nearest the lengths, with that sample's
+    Jacobian, so that it takes about three steps instead of four from home (home is the
+    middle cell's sample: its own lengths take no step). Where the table has no sample
+    (lengths far from the workspace around home, or in another assembly mode), or where the
+    solve from the table does not converge, it starts from the home pose as a solve given
+    ``geometry.home_pose`` does, and returns that solve's result. ``iterations`` counts the
+    steps after the start.
+
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param lengths: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
-    :param initial_guess: starting pose(s), shape (6,) or (N, 6); default
-        ``geometry.home_pose``. When tracking a moving platform, start from the last solution:
-        pass the last :class:`ForwardKinematicsResult` itself, and its Jacobian is reused too.
+    :param initial_guess: starting pose(s), shape (6,) or (N, 6); default: the start table's
+        sample, else ``geometry.home_pose`` (see above). When tracking a moving platform, start
+        from the last solution: pass the last :class:`ForwardKinematicsResult` itself, and its
+        Jacobian is reused too.
     :param tolerance: largest accepted leg length error, metres (default 1e-12).
     :param max_iterations: Newton-Raphson steps before giving up (default 50).
     :returns: a :class:`ForwardKinematicsResult`; non-convergence is reported there, not
@@ -693,6 +771,9 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         else:
             target = None
     if target is not None:
+        if initial_guess is None:
+            return _forward_kinematics_cold(geometry, constants, target, tolerance,
+                                            int(max_iterations))
         return _forward_kinematics_single(
             geometry, constants, target, list(guess), tolerance, int(max_iterations),
             jacobian_inverse)
@@ -703,9 +784,13 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         raise ValueError(
             f'lengths {lengths.shape} and initial_guess {guess.shape} must hold the same '
             'number of poses, or one of them a single one')
+    targets = np.broadcast_to(targets, (count, 6))
+    if initial_guess is None:
+        return _forward_kinematics_cold_batch(geometry, constants, targets, tolerance,
+                                              int(max_iterations))
     return _forward_kinematics_batch(
-        geometry, constants, np.broadcast_to(targets, (count, 6)),
-        np.array(np.broadcast_to(guesses, (count, 6))), tolerance, int(max_iterations))
+        geometry, constants, targets, np.array(np.broadcast_to(guesses, (count, 6))),
+        tolerance, int(max_iterations))
 
 
 def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max_iterations,
@@ -724,10 +809,15 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
     if jacobian_inverse is None and tuple(pose) == constants.home_pose:
         jacobian_inverse = constants.home_jacobian_inverse
     iterations = 0
-    reason = f'no convergence within {max_iterations} iterations'
+    reason = None  # no convergence within max_iterations, unless another reason is found
     last_residual = math.inf
+    cos, sin = math.cos, math.sin
     for step in range(max_iterations + 1):
-        legs = _single_euler_legs(constants, pose)
+        # _single_euler_legs, keeping the cosines and sines that the Euler step needs.
+        x, y, z, alpha, beta, gamma = pose
+        cos_beta, sin_beta, cos_gamma, sin_gamma = cos(beta), sin(beta), cos(gamma), sin(gamma)
+        legs = _legs(zyx_entries(cos(alpha), sin(alpha), cos_beta, sin_beta, cos_gamma,
+                                 sin_gamma), x, y, z, constants.joint_pairs, math.sqrt)
         errors = [leg[0] - length for leg, length in zip(legs, target)]
         residual = max(map(abs, errors))
         if residual <= tolerance:
@@ -741,18 +831,19 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
                 reason = SINGULAR_JACOBIAN
                 break
         last_residual = residual
-        cos_beta = math.cos(pose[4])
         if cos_beta == 0.0:  # the Euler rate matrix is singular
             reason = SINGULAR_JACOBIAN
             break
-        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta,
-                              math.sin(pose[4]), math.cos(pose[5]), math.sin(pose[5]))
+        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta, sin_beta,
+                              cos_gamma, sin_gamma)
         # A diverging solve stops at its last plausible iterate, whose residual is known.
         if not all(abs(value) < DIVERGENCE_BOUND for value in stepped):
             reason = DIVERGED
             break
         pose = stepped
         iterations += 1
+    if reason is None:
+        reason = f'no convergence within {max_iterations} iterations'
     # Same rotation, canonical angles, as in the batch solver.
     pose = np.array(list(pose[:3]) + _single_canonical_angles(*pose[3:]))
     pose.flags.writeable = False
@@ -761,7 +852,93 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         reason=reason, _solve=(geometry, target, jacobian_inverse))
 
 
-def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, max_iterations):
+def _cold_start(constants, target):
+    """
+    Start of a solve without a guess, from the start table: ``(pose, jacobian_inverse)``.
+
+    One Newton step from the sample of the lengths' cell, with the sample's Jacobian (see
+    :mod:`stewart_kinematics.model.start_table`); None, to start from home instead, where the
+    table has no sample for the lengths.
+
+    :param target: the six leg lengths, metres, as floats.
+    :returns: six floats and the sample's inverse twist Jacobian (nested lists), or None.
+    """
+    table = constants.start_table
+    cell = -1 if table is None else table.cell(target)
+    if cell < 0:
+        return None
+    sample = table.entries[cell].tolist()
+    inverse = table.inverses[cell].tolist()
+    errors = [length - wanted for length, wanted in zip(sample[6:12], target)]
+    return _euler_step(sample[:6], _apply(inverse, errors), *sample[12:]), inverse
+
+
+def _forward_kinematics_cold(geometry, constants, target, tolerance, max_iterations):
+    """One solve without a guess: from the start table, else (or if that fails) from home."""
+    start = _cold_start(constants, target)
+    if start is not None:
+        result = _forward_kinematics_single(geometry, constants, target, start[0], tolerance,
+                                            max_iterations, start[1])
+        if result.converged:
+            return result
+    return _forward_kinematics_single(geometry, constants, target, list(constants.home_pose),
+                                      tolerance, max_iterations, None)
+
+
+def _batch_cold_starts(constants, targets):
+    """
+    :func:`_cold_start` of each row of ``targets`` (N, 6), with the same arithmetic.
+
+    :returns: ``(started (N,), poses (N, 6), inverses (N, 6, 6))``: the rows started from the
+        table, and every row's start (home for the others) and inverse twist Jacobian.
+    """
+    count = len(targets)
+    poses = np.array(np.broadcast_to(constants.home_pose, (count, 6)))
+    inverses = np.zeros((count, 6, 6))
+    started = np.zeros(count, dtype=bool)
+    table = constants.start_table
+    rows = np.flatnonzero(_valid_lengths(targets))
+    if table is None or rows.size == 0:
+        return started, poses, inverses
+    cells = table.cells_of(targets[rows])
+    rows, cells = rows[cells >= 0], cells[cells >= 0]
+    sample = table.entries[cells]
+    inverses[rows] = table.inverses[cells]
+    errors = sample[:, 6:12] - targets[rows]
+    # _apply with the six rows of every sample as one row: see _forward_kinematics_batch.
+    twists = _apply([np.ascontiguousarray(inverses[rows].transpose(2, 1, 0))], list(errors.T))[0]
+    poses[rows] = np.stack(_euler_step(sample[:, :6].T, twists, *sample[:, 12:].T), axis=-1)
+    started[rows] = True
+    return started, poses, inverses
+
+
+def _forward_kinematics_cold_batch(geometry, constants, targets, tolerance, max_iterations):
+    """Solve a batch without guesses: :func:`_forward_kinematics_cold` of each row, vectorised."""
+    started, poses, inverses = _batch_cold_starts(constants, targets)
+    result = _forward_kinematics_batch(geometry, constants, targets, poses, tolerance,
+                                       max_iterations, (started, inverses))
+    failed = np.flatnonzero(started & ~result.converged)
+    if failed.size == 0:
+        return result
+    again = _forward_kinematics_batch(
+        geometry, constants, targets[failed],
+        np.array(np.broadcast_to(constants.home_pose, (failed.size, 6))), tolerance,
+        max_iterations)
+    pose, converged = np.array(result.pose), np.array(result.converged)
+    iterations, residual = np.array(result.iterations), np.array(result.residual)
+    reason = list(result.reason)
+    pose[failed], converged[failed] = again.pose, again.converged
+    iterations[failed], residual[failed] = again.iterations, again.residual
+    for row, text in zip(failed.tolist(), again.reason):
+        reason[row] = text
+    pose.flags.writeable = False
+    return ForwardKinematicsResult(
+        pose=pose, converged=converged, iterations=iterations, residual=residual,
+        reason=tuple(reason), _solve=(geometry, targets, None))
+
+
+def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, max_iterations,
+                              start_inverses=None):
     """
     Solve a batch of poses at once: the algorithm of :func:`_forward_kinematics_single`.
 
@@ -771,6 +948,8 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
 
     :param targets: leg lengths, metres, shape (N, 6).
     :param poses: initial guesses, shape (N, 6); overwritten by the iterates.
+    :param start_inverses: ``(rows (N,), inverses (N, 6, 6))``: inverse twist Jacobians for
+        the first step of the rows where ``rows`` is True, or None.
     """
     count = len(poses)
     iterations = np.zeros(count, dtype=int)
@@ -786,6 +965,10 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
     if constants.home_jacobian_inverse is not None:
         has_inverse = np.all(poses == constants.home_pose, axis=-1)
         inverses[has_inverse] = constants.home_jacobian_inverse
+    if start_inverses is not None:
+        rows, start = start_inverses
+        has_inverse = has_inverse | rows
+        inverses[rows] = start[rows]
     active = np.flatnonzero(valid_lengths & valid_guess)
     for step in range(max_iterations + 1):
         # Leg by pose, (6, n): see _batch_legs.
@@ -835,6 +1018,9 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         reason=tuple(reason.tolist()), _solve=(geometry, targets, None))
 
 
+_FLOAT = np.dtype(float)
+
+
 def _single_values(values, positive=False):
     """
     Six floats of one pose or one set of leg lengths, or None to leave it to the full checks.
@@ -847,6 +1033,12 @@ def _single_values(values, positive=False):
     """
     if isinstance(values, np.ndarray):
         if values.shape != (6,):
+            return None
+        if values.dtype == _FLOAT:  # the common case: six Python floats at once
+            values = values.tolist()
+            # A sum of floats is finite only when each one is (else: the full checks).
+            if math.isfinite(sum(values)) and (not positive or min(values) > 0.0):
+                return values
             return None
         values = values.tolist()
     elif not isinstance(values, (list, tuple)) or len(values) != 6:

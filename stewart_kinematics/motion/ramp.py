@@ -13,19 +13,30 @@
 # limitations under the License.
 
 """
-Ramps described as the paper's Table 3: start, step and end per axis.
+Ramps described as the paper's Table 3: start, step and end per axis, and how one is played.
 
 A ramp is a lookup table of poses ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians): its rows
 go from ``start`` to ``end`` in equal steps. It can be played row by row, or sampled in
 time like the paper's clock-driven lookup tables, which interpolate linearly between rows.
+
+A :class:`RampSchedule` is trajectory_node's decision of what to publish when: the mode (rows
+or samples, or no ramp), the times and poses of a pass, and the check of every one of those
+poses against the limits before anything is played (:meth:`RampSchedule.check`).
 """
 
 from dataclasses import dataclass, field
 import math
+from typing import Optional
 
 import numpy as np
 
+from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import check_samples
 from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.parameters.settings import RampSettings
+
+#: How trajectory_node plays a ramp: rows on a timer, samples in time, or no ramp.
+RAMP_MODES = ('table', 'interpolate', 'off')
 
 #: Relative slack when checking that (end - start) / step is a whole number of steps.
 STEP_COUNT_TOLERANCE = 1e-9
@@ -88,18 +99,16 @@ class Ramp:
         object.__setattr__(self, 'step_count', next(iter(counts.values()), 0))
 
     @classmethod
-    def from_parameters(cls, values: dict) -> 'Ramp':
+    def from_settings(cls, settings: RampSettings) -> 'Ramp':
         """
-        Build a ramp from the trajectory node's parameter values (metres and degrees).
+        Build a ramp from the trajectory node's ramp settings (metres and degrees).
 
-        :param values: parameter name -> value, with the names of
-            :data:`stewart_kinematics.parameters.RAMP_PARAMETERS`.
         :raises ValueError: naming the axis and its parameters, if the table is inconsistent.
         """
         names = ('position_start', 'position_step', 'position_end',
                  'orientation_start_deg', 'orientation_step_deg', 'orientation_end_deg')
         try:
-            return cls.from_table(*(values[name] for name in names))
+            return cls.from_table(*(getattr(settings, name) for name in names))
         except ValueError as error:
             raise ValueError(f'{error} (parameters {", ".join(names)})') from error
 
@@ -150,3 +159,95 @@ class Ramp:
         row_times = np.linspace(0.0, duration, self.step_count + 1)
         return np.stack([np.interp(times, row_times, rows[:, axis]) for axis in range(6)],
                         axis=-1)
+
+
+@dataclass(frozen=True, eq=False)
+class RampSchedule:
+    """
+    What trajectory_node publishes of a ramp, and when: a pass of poses at fixed times.
+
+    :param ramp: the table of poses.
+    :param mode: ``'table'``: one row every ``row_period``; ``'interpolate'``: the ramp
+        sampled at ``publish_rate`` over ``duration`` (its last sample at ``duration``);
+        ``'off'``: no ramp.
+    :param row_period: seconds between two rows (table mode).
+    :param publish_rate: samples per second (interpolate mode), hertz.
+    :param duration: seconds from the first row to the last (interpolate mode).
+    :param loop: whether a pass starts again after the last pose.
+    :raises ValueError: for an unknown mode or a period, rate or duration that is not positive.
+    """
+
+    ramp: Ramp
+    mode: str = 'table'
+    row_period: float = 1.0
+    publish_rate: float = 100.0
+    duration: float = 10.0
+    loop: bool = False
+
+    def __post_init__(self):
+        if self.mode not in RAMP_MODES:
+            raise ValueError(f'ramp mode must be one of {RAMP_MODES}, got {self.mode!r}')
+        for name in ('row_period', 'publish_rate', 'duration'):
+            value = getattr(self, name)
+            if not (value > 0.0 and math.isfinite(value)):
+                raise ValueError(f'{name} must be positive and finite, got {value!r}')
+
+    @classmethod
+    def from_settings(cls, settings: RampSettings) -> 'RampSchedule':
+        """
+        Build the schedule from trajectory_node's ramp settings (the ramp parameters).
+
+        :raises ValueError: naming the parameters, if the table or the timing is not allowed.
+        """
+        return cls(Ramp.from_settings(settings), settings.mode, settings.row_period,
+                   settings.publish_rate, settings.duration, settings.loop)
+
+    @property
+    def plays(self) -> bool:
+        """Return whether there is a ramp to play (the mode is not ``'off'``)."""
+        return self.mode != 'off'
+
+    @property
+    def period(self) -> float:
+        """Return the seconds between two published poses."""
+        return self.row_period if self.mode == 'table' else 1.0 / self.publish_rate
+
+    def samples(self):
+        """
+        Return the times (seconds from the start of a pass) and the poses of a pass.
+
+        In interpolate mode the timer's jitter moves the real sample times a little; the ramp
+        is linear between rows, so those poses lie between samples returned here.
+
+        :returns: ``(times (N,), poses (N, 6))``; empty when the mode is ``'off'``.
+        """
+        if self.mode == 'off':
+            return np.zeros(0), np.zeros((0, 6))
+        if self.mode == 'table':
+            rows = self.ramp.rows
+            return np.arange(len(rows)) * self.row_period, rows
+        times = np.append(np.arange(0.0, self.duration, 1.0 / self.publish_rate), self.duration)
+        return times, self.ramp.sample(times, self.duration)
+
+    def pose_at(self, elapsed: float) -> np.ndarray:
+        """Return the pose of interpolate mode ``elapsed`` seconds into a pass (the last after)."""
+        return self.ramp.sample(min(elapsed, self.duration), self.duration)
+
+    def check(self, geometry, frames=None) -> Optional[Finding]:
+        """
+        Check every pose of a pass against the limits of ``geometry``, before playing.
+
+        The poses are the tool frame's, as ik_node reads them: with ``frames`` (a
+        :class:`stewart_kinematics.FrameTree`), the platform poses they put the platform at are
+        checked.
+
+        :returns: ``None`` when every pose is allowed (or there is no ramp); else the
+            ``out_of_limits`` finding of :func:`stewart_kinematics.limits.check_samples`, which
+            lists the failing samples.
+        """
+        times, poses = self.samples()
+        if not len(times):
+            return None
+        if frames is not None:
+            poses = frames.platform_pose_vectors(poses)
+        return check_samples(geometry, times, poses, 'ramp')

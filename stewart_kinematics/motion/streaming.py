@@ -23,15 +23,41 @@ in leg space, whenever the motion allows it), and comes to rest on the target wh
 stays still. The trajectory is recomputed from the current state at every step (online
 trajectory generation: the ruckig library), so a new target may arrive at any time.
 
+The filter is total: it never raises for a target or a step.
+
+- A target that is not six finite, positive lengths, or that breaks the stroke, is refused
+  with a finding; the filter keeps moving toward the last accepted target.
+- A target farther than the legs cover in :data:`WINDOW_SECONDS` at full speed is approached
+  through an aim point at that distance on the straight line toward it (ruckig cannot plan a
+  motion of days, and need not: the aim moves on at every step).
+- A plan ruckig refuses, or whose motion would leave the stroke, is replaced by braking to
+  rest within the limits (``stream_braking``); if even that fails, no command is given that
+  period (``stream_held``): the last one, within every limit, stands.
+- Every step is checked by the limits model
+  (:meth:`~stewart_kinematics.limits.LimitModel.check_leg_states`: stroke, velocity,
+  acceleration, and jerk as the change of acceleration over the period) before it is given.
+
 Units: metres, seconds. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
 import math
+from typing import Optional
 
 import numpy as np
 
+from stewart_kinematics import findings
+from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
+
+#: A target farther than the legs cover in this many seconds at full speed is approached
+#: through an aim point at that distance (and never nearer than twice the braking distance).
+WINDOW_SECONDS = 10.0
+#: A planned motion may pass the stroke by this much, metres, for rounding; a step is clipped
+#: back into the stroke when it does (by at most this).
+STROKE_ROUNDING = 1e-12
 
 
 @dataclass(frozen=True)
@@ -43,12 +69,18 @@ class FilteredCommand:
     :param velocities: m/s, shape (6,).
     :param accelerations: m/s^2, shape (6,).
     :param settled: True when the command rests on the target.
+    :param held: True when no new command could be computed: these are the last command's
+        values, not to be given again (the actuators hold the last one).
+    :param finding: why the step did not move as planned (``stream_braking``,
+        ``stream_held``), or ``None``.
     """
 
     lengths: np.ndarray
     velocities: np.ndarray
     accelerations: np.ndarray
     settled: bool
+    held: bool = False
+    finding: Optional[Finding] = None
 
 
 class CommandFilter:
@@ -59,18 +91,23 @@ class CommandFilter:
         ``jerk_max`` may be ``inf`` (acceleration-limited motion).
     :param period: seconds between two commands, positive.
     :param lengths: the legs' starting lengths, at rest, metres, shape (6,).
-    :raises ValueError: if a limit that must be finite is not, or the period is not positive.
+    :param geometry: the platform, whose stroke every target and every step must keep
+        (``None``: no stroke).
+    :raises ValueError: if a limit that must be finite is not, the period is not positive, or
+        the starting lengths are not six finite numbers within the stroke.
 
     >>> from stewart_kinematics import ActuatorLimits, CommandFilter, load_geometry
     >>> home_lengths = load_geometry('config/paper_platform.yaml').home_leg_lengths
     >>> command_filter = CommandFilter(ActuatorLimits(0.05, 0.25, 2.5), 0.01, home_lengths)
-    >>> command_filter.set_target(home_lengths + 0.01)   # every leg 10 mm longer
+    >>> command_filter.set_target(home_lengths + 0.01)   # every leg 10 mm longer: None, accepted
     >>> command = command_filter.step()                  # every 10 ms
     >>> command.velocities, command.settled              # m/s, after 10 ms
     (array([0.000125, 0.000125, 0.000125, 0.000125, 0.000125, 0.000125]), False)
+    >>> command_filter.set_target([float('nan')] * 6).code
+    'invalid_lengths'
     """
 
-    def __init__(self, actuator_limits: ActuatorLimits, period: float, lengths):
+    def __init__(self, actuator_limits: ActuatorLimits, period: float, lengths, geometry=None):
         import ruckig  # the field's online trajectory generator; only streaming needs it
 
         if not (math.isfinite(actuator_limits.velocity_max)
@@ -82,9 +119,8 @@ class CommandFilter:
         if not (period > 0.0 and math.isfinite(period)):
             raise ValueError(f'the command period must be positive (seconds), got {period!r}')
         self._ruckig = ruckig
-        self._generator = ruckig.Ruckig(6, period)
+        self._generator = ruckig.Ruckig(6)
         self._input = ruckig.InputParameter(6)
-        self._output = ruckig.OutputParameter(6)
         self._input.max_velocity = [actuator_limits.velocity_max] * 6
         self._input.max_acceleration = [actuator_limits.acceleration_max] * 6
         self._input.max_jerk = [actuator_limits.jerk_max] * 6
@@ -94,56 +130,203 @@ class CommandFilter:
         self._input.synchronization = ruckig.Synchronization.Phase
         self.period = period
         self.limits = actuator_limits
-        self.reset(lengths)
+        #: Every limit a step must keep: the stroke and the three rates (with rounding slack).
+        self.model = LimitModel(geometry, actuator_limits, rate_slack=RATE_SLACK)
+        velocity, acceleration, jerk = (actuator_limits.velocity_max,
+                                        actuator_limits.acceleration_max, actuator_limits.jerk_max)
+        stopping = velocity * (velocity / acceleration + acceleration / jerk)
+        #: Farthest aim from the current command, metres (see :data:`WINDOW_SECONDS`).
+        self.window = max(velocity * WINDOW_SECONDS, 2.0 * stopping)
+        self._stroke = ((geometry.leg_length_min, geometry.leg_length_max) if geometry
+                        else (-math.inf, math.inf))
+        refusal = self.reset(lengths)
+        if refusal is not None:
+            raise ValueError(refusal.message)
 
-    def reset(self, lengths) -> None:
+    def reset(self, lengths) -> Optional[Finding]:
         """
         Put the command at rest at ``lengths`` (metres, shape (6,)), which is also the target.
 
-        :raises ValueError: if the lengths are not six finite numbers.
+        :returns: ``None``, or the finding that refuses the lengths (nothing changes then).
         """
-        lengths = _six('lengths', lengths)
-        self._input.current_position = lengths.tolist()
-        self._input.current_velocity = [0.0] * 6
-        self._input.current_acceleration = [0.0] * 6
-        self.set_target(lengths)
+        refusal = self._refusal(lengths)
+        if refusal is not None:
+            return refusal
+        #: The command's state (lengths, velocities, accelerations), six floats each.
+        self._position = [float(length) for length in lengths]
+        self._velocity = [0.0] * 6
+        self._acceleration = [0.0] * 6
+        self._target = np.array(self._position)
+        self._following = None
+        return None
 
-    def set_target(self, lengths) -> None:
+    def set_target(self, lengths) -> Optional[Finding]:
         """
         Aim at new leg lengths (metres, shape (6,)), to be reached at rest.
 
-        :raises ValueError: if the lengths are not six finite numbers.
+        :returns: ``None`` when accepted; else the finding that refuses them
+            (``invalid_lengths``, or ``out_of_limits`` beyond the stroke), and the filter keeps
+            moving toward its last target.
         """
-        self._input.target_position = _six('target lengths', lengths).tolist()
-        self._input.target_velocity = [0.0] * 6
-        self._input.target_acceleration = [0.0] * 6
+        refusal = self._refusal(lengths)
+        if refusal is None:
+            self._target = np.array(lengths, dtype=float)
+        return refusal
 
     @property
     def target(self) -> np.ndarray:
         """Return the leg lengths aimed at, metres, shape (6,)."""
-        return np.array(self._input.target_position)
+        return self._target.copy()
 
     def step(self) -> FilteredCommand:
         """
-        Advance the command by one period toward the target.
+        Advance the command by one period toward the target; never raises.
 
-        :returns: the new command, within every limit.
+        The plan toward the target (ruckig's, from the command's state) is followed as long
+        as the target and the aim stay; a new one is made when they change.
+
+        :returns: the new command, within every limit; or, when no step within them could be
+            computed, the last command with ``held`` set and the reason.
         """
-        result = self._generator.update(self._input, self._output)
-        if result not in (self._ruckig.Result.Working, self._ruckig.Result.Finished):
-            # Not expected with finite inputs and limits: hold still rather than move wrongly.
-            return self._state(False)
-        self._output.pass_to_input(self._input)
-        return self._state(result == self._ruckig.Result.Finished)
+        following = self._following
+        if following is not None and following.aim is not None and not self._new_aim(following):
+            state = self._next_state(following)
+            if state is not None:
+                return self._advance(state, following)
+        plan = self._new_plan(self._aim())
+        if plan is not None:
+            state = self._next_state(plan)
+            if state is not None:
+                self._following = plan
+                return self._advance(state, plan)
+        finding = None
+        if following is None or following.aim is not None:
+            # Brake: a new plan to rest, made once; a braking plan in progress is followed.
+            following = self._new_plan(None)
+            finding = Finding(
+                findings.STREAM_BRAKING,
+                f'no motion toward the target {np.round(self._target, 6).tolist()} m within the '
+                'limits could be planned from the current command: braking to rest')
+        state = None if following is None else self._next_state(following)
+        if state is not None:
+            self._following = following
+            return self._advance(state, following, finding)
+        self._following = None
+        return FilteredCommand(np.array(self._position), np.array(self._velocity),
+                               np.array(self._acceleration), False, True, Finding(
+                                   findings.STREAM_HELD,
+                                   'no step within the limits could be computed: the last '
+                                   'command stands'))
 
-    def _state(self, settled):
-        return FilteredCommand(np.array(self._input.current_position),
-                               np.array(self._input.current_velocity),
-                               np.array(self._input.current_acceleration), settled)
+    def _new_aim(self, plan) -> bool:
+        """Whether the plan followed no longer aims right: a new target, or a near aim point."""
+        if plan.target is not self._target:
+            return True
+        if plan.final:
+            return False
+        # An aim point on the way to a far target: aim farther before the plan starts braking.
+        return max(abs(aim - position) for aim, position in zip(
+            plan.aim.tolist(), self._position)) < 0.5 * self.window
+
+    def _aim(self):
+        """Return the target, or the point :attr:`window` away on the straight line toward it."""
+        delta = self._target - self._position
+        distance = float(np.max(np.abs(delta)))
+        if distance <= self.window:
+            return self._target
+        return self._position + delta * (self.window / distance)
+
+    def _new_plan(self, aim) -> Optional['_Plan']:
+        """
+        Plan from the command's state to rest at ``aim`` (``None``: to rest, braking).
+
+        :returns: the plan, or ``None`` when ruckig refuses or the motion would leave the
+            stroke.
+        """
+        ruckig = self._ruckig
+        self._input.current_position = list(self._position)
+        self._input.current_velocity = list(self._velocity)
+        self._input.current_acceleration = list(self._acceleration)
+        # Braking: each leg stops as soon as it can (no synchronisation, which would slow some
+        # legs and let them run farther), so no farther than any plan it was following.
+        self._input.control_interface = (ruckig.ControlInterface.Velocity if aim is None
+                                         else ruckig.ControlInterface.Position)
+        self._input.synchronization = (ruckig.Synchronization.No if aim is None
+                                       else ruckig.Synchronization.Phase)
+        if aim is not None:
+            self._input.target_position = aim.tolist()
+        self._input.target_velocity = [0.0] * 6
+        self._input.target_acceleration = [0.0] * 6
+        trajectory = ruckig.Trajectory(6)
+        try:
+            result = self._generator.calculate(self._input, trajectory)
+            if result not in (ruckig.Result.Working, ruckig.Result.Finished):
+                return None
+            low, high = self._stroke
+            # A plan to a position must stay within the stroke all along. (ruckig's position
+            # extrema of a velocity-control plan are not reliable; each braking step is checked
+            # as every step is, below.)
+            if not math.isfinite(trajectory.duration) or aim is not None and not all(
+                    extremum.min >= low - STROKE_ROUNDING
+                    and extremum.max <= high + STROKE_ROUNDING
+                    for extremum in trajectory.position_extrema):
+                return None
+        except (ValueError, RuntimeError, ArithmeticError):
+            # ruckig raises for inputs it refuses (RuckigError is a RuntimeError; an outcome
+            # its Python enum lacks, such as -101, a ValueError): no plan.
+            return None
+        return _Plan(trajectory, aim, self._target)
+
+    def _next_state(self, plan):
+        """Return the state one period further along ``plan`` if every limit allows it, or None."""
+        time = min(plan.time + self.period, plan.trajectory.duration)
+        try:
+            position, velocity, acceleration = plan.trajectory.at_time(time)
+        except (ValueError, RuntimeError, ArithmeticError):
+            return None
+        low, high = self._stroke
+        position = [min(max(length, low), high) for length in position]
+        jerks = [(new - old) / self.period for new, old in zip(acceleration, self._acceleration)]
+        if not all(map(math.isfinite, position + velocity + acceleration)) or (
+                not self.model.leg_state_allowed(lengths=position, velocities=velocity,
+                                                 accelerations=acceleration, jerks=jerks)):
+            return None
+        return position, velocity, acceleration, time
+
+    def _advance(self, state, plan, finding=None) -> FilteredCommand:
+        """Make ``state`` the command, at its time along ``plan``."""
+        self._position, self._velocity, self._acceleration, plan.time = state
+        settled = (plan.final and plan.target is self._target
+                   and plan.time >= plan.trajectory.duration)
+        return FilteredCommand(np.array(self._position), np.array(self._velocity),
+                               np.array(self._acceleration), settled, False, finding)
+
+    def _refusal(self, lengths) -> Optional[Finding]:
+        """Say why leg lengths cannot be a target, or return ``None``."""
+        try:
+            values = np.array(lengths, dtype=float)
+        except (TypeError, ValueError) as error:
+            return Finding(findings.INVALID_LENGTHS, f'target lengths must be 6 numbers: {error}')
+        if values.shape != (6,) or not np.all(np.isfinite(values)) or not np.all(values > 0.0):
+            return Finding(findings.INVALID_LENGTHS,
+                           f'target lengths must be 6 finite, positive values (metres), got '
+                           f'{values.tolist()}')
+        violations = self.model.leg_state_violations(lengths=values)
+        if violations:
+            return findings.out_of_limits('the target lengths are', violations)
+        return None
 
 
-def _six(name, values):
-    values = np.array(values, dtype=float)
-    if values.shape != (6,) or not np.all(np.isfinite(values)):
-        raise ValueError(f'{name} must be 6 finite values (metres), got {values.tolist()}')
-    return values
+class _Plan:
+    """
+    A ruckig trajectory being followed: to rest at ``aim`` (``None``: braking), for a target.
+
+    ``target`` is the filter's target array it was made for (a new target is a new array);
+    ``final`` says that the aim is that target itself, not a point on the way.
+    """
+
+    __slots__ = ('trajectory', 'aim', 'target', 'final', 'time')
+
+    def __init__(self, trajectory, aim, target):
+        self.trajectory, self.aim, self.target, self.time = trajectory, aim, target, 0.0
+        self.final = aim is target

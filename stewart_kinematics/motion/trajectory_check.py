@@ -17,22 +17,29 @@ Whole-trajectory check: every sample of a timed trajectory against every limit.
 
 :func:`check_trajectory` samples a :class:`~stewart_kinematics.motion.pose_trajectory.
 TimedTrajectory` densely in time and reports the first sample that breaks a limit of the
-geometry (stroke, joint cones, singularity margin) or of the actuators (leg velocity, leg
-acceleration), naming the time, the waypoint segment, the leg and the limit.
+geometry (stroke, joint cones, singularity margin, leg collisions) or of the actuators (leg
+velocity, leg acceleration), naming the time, the waypoint segment, the leg and the limit. The
+limits are the limits model's (:class:`~stewart_kinematics.limits.LimitModel`): the pose limits
+on the samples' poses, the leg rates on their leg states
+(:func:`~stewart_kinematics.model.velocities.leg_states`).
+
+:func:`trajectory_frame_refusal` refuses a trajectory given for a tool frame that is offset
+from the platform frame (trajectories are interpolated and checked as platform-frame poses).
 
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
-import math
 from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.limits.checks import joint_angles, Violation
+from stewart_kinematics import findings
+from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import LimitModel, Violation
+from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.kinematics import jacobian_condition, twist_jacobian
-from stewart_kinematics.model.velocities import leg_states, PoseSamples
+from stewart_kinematics.model.velocities import leg_states
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
 
 #: The leg speed limits, as :class:`~stewart_kinematics.limits.Violation` names them.
@@ -41,8 +48,6 @@ SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 DEFAULT_VALIDATION_RATE = 1000.0
 #: Samples checked at once: bounds the memory of a long trajectory's check.
 CHECK_CHUNK = 20000
-#: Relative slack on the leg velocity and acceleration limits, for rounding only.
-SPEED_LIMIT_SLACK = 1e-9
 
 
 @dataclass(frozen=True)
@@ -79,110 +84,66 @@ def check_trajectory(trajectory: TimedTrajectory, geometry,
     Check every sample of a timed trajectory against every limit; stop at the first failure.
 
     Samples every ``1 / validation_rate`` seconds, at every waypoint and at the end, against
-    the stroke, joint cones and singularity margin of ``geometry`` and the leg velocity and
-    acceleration limits of ``actuator_limits`` (``None``: none). Vectorised over samples, in
-    chunks of :data:`CHECK_CHUNK`.
+    the pose limits of ``geometry`` and the leg velocity and acceleration limits of
+    ``actuator_limits`` (``None``: none; the jerk limit is for streamed commands, and not
+    checked here), with :data:`~stewart_kinematics.limits.leg_rates.RATE_SLACK` for rounding.
+    Vectorised over samples, in chunks of :data:`CHECK_CHUNK`.
 
     :returns: a :class:`TrajectoryCheck`; its ``reason`` names the first failing time, the
         waypoint segment (points k and k + 1), and each leg and limit broken there.
     """
     actuator_limits = actuator_limits or ActuatorLimits()
+    model = LimitModel(geometry, ActuatorLimits(actuator_limits.velocity_max,
+                                                actuator_limits.acceleration_max),
+                       rate_slack=RATE_SLACK)
     times = trajectory.sample_times(validation_rate)
-    peak_velocity = peak_acceleration = 0.0
+    peaks = dict.fromkeys(SPEED_LIMITS, 0.0)
     for start in range(0, times.shape[0], CHECK_CHUNK):
         chunk = times[start:start + CHECK_CHUNK]
         poses = trajectory.sample(chunk)
-        legs = leg_states(geometry, poses)
-        broken, ratios = _broken_limits(geometry, actuator_limits, poses, legs)
-        peak_velocity = max(peak_velocity, ratios[0])
-        peak_acceleration = max(peak_acceleration, ratios[1])
-        failing = np.flatnonzero(np.any([mask.any(axis=-1) for _, mask, _, _ in broken], axis=0))
+        pose_checks = model.check_pose_matrices(poses.positions, poses.rotations, exact=False)
+        allowed = pose_checks.allowed
+        rates = None
+        if actuator_limits.limits_speed:
+            legs = leg_states(geometry, poses)
+            rates = model.check_leg_states(velocities=legs.velocities,
+                                           accelerations=legs.accelerations)
+            allowed = allowed & rates.allowed
+            for name in peaks:
+                if name in rates.broken and len(chunk):
+                    peaks[name] = max(peaks[name], float(np.max(rates.values(name)))
+                                      / model.bound(name).allowed)
+        failing = np.flatnonzero(~allowed)
         if failing.size:
             first = int(failing[0])
             time = float(chunk[first])
             segment = int(trajectory.segments(np.array([time]))[0])
-            violations = tuple(
-                Violation(name, leg + 1 if values.ndim == 2 else None,
-                          float(values[first, leg] if values.ndim == 2 else values[first]),
-                          allowed, unit)
-                for name, mask, values, (allowed, unit) in broken
-                for leg in np.flatnonzero(np.atleast_1d(mask[first])))
+            violations = tuple(pose_checks.violations(first)) + (
+                () if rates is None else tuple(rates.violations(first)))
             reason = (f't = {time:.4f} s, between points {segment} and {segment + 1}: '
                       + '; '.join(str(violation) for violation in violations))
             return TrajectoryCheck(False, reason, time, (segment, segment + 1), violations,
-                                   start + first + 1, peak_velocity, peak_acceleration)
-    return TrajectoryCheck(True, samples=times.shape[0], peak_velocity_ratio=peak_velocity,
-                           peak_acceleration_ratio=peak_acceleration)
+                                   start + first + 1, *peaks.values())
+    return TrajectoryCheck(True, samples=times.shape[0],
+                           peak_velocity_ratio=peaks['leg_velocity_max'],
+                           peak_acceleration_ratio=peaks['leg_acceleration_max'])
 
 
-def _broken_limits(geometry, actuator_limits, poses, legs):
+def trajectory_frame_refusal(frames, topic: str) -> Optional[Finding]:
     """
-    Masks of broken limits: ``[(name, mask (M, 6) or (M, 1), values, (allowed, unit))]``.
+    Refuse a trajectory while the tool frame is offset from the platform frame, or say nothing.
 
-    Also returns the peak velocity and acceleration ratios to their limits.
+    Trajectories are interpolated and checked as platform-frame poses; with another tool frame
+    their velocities would have to be moved to it too.
+
+    :param frames: the node's :class:`stewart_kinematics.FrameTree`.
+    :param topic: the topic the trajectory came on, for the message.
+    :returns: a ``tool_frame_not_supported`` finding, or ``None`` when the tool frame is the
+        platform frame.
     """
-    broken = []
-    lengths = legs.lengths
-    broken.append(('leg_length_min', lengths < geometry.leg_length_min, lengths,
-                   (geometry.leg_length_min, 'm')))
-    broken.append(('leg_length_max', lengths > geometry.leg_length_max, lengths,
-                   (geometry.leg_length_max, 'm')))
-    if min(geometry.base_joint_max_angle, geometry.platform_joint_max_angle) < math.pi:
-        base_angles, platform_angles = joint_angles(geometry, poses.positions, poses.rotations)
-        for name, angles, allowed in (
-                ('base_joint_max_angle', base_angles, geometry.base_joint_max_angle),
-                ('platform_joint_max_angle', platform_angles, geometry.platform_joint_max_angle)):
-            broken.append((name, angles > allowed, np.degrees(angles),
-                           (math.degrees(allowed), 'deg')))
-    if math.isfinite(geometry.max_jacobian_condition):
-        condition = _conditions_to_check(geometry, poses, geometry.max_jacobian_condition)
-        broken.append(('max_jacobian_condition',
-                       (condition > geometry.max_jacobian_condition)[:, None],
-                       condition, (geometry.max_jacobian_condition, '')))
-    speeds = np.abs(legs.velocities)
-    rates = np.abs(legs.accelerations)
-    ratios = [0.0, 0.0]
-    for index, (name, values, allowed, unit) in enumerate((
-            ('leg_velocity_max', speeds, actuator_limits.velocity_max, 'm/s'),
-            ('leg_acceleration_max', rates, actuator_limits.acceleration_max, 'm/s^2'))):
-        if math.isfinite(allowed):
-            ratios[index] = float(values.max() / allowed) if values.size else 0.0
-            broken.append((name, values > allowed * (1.0 + SPEED_LIMIT_SLACK), values,
-                           (allowed, unit)))
-    return broken, ratios
-
-
-def _conditions_to_check(geometry, poses: PoseSamples, bound: float) -> np.ndarray:
-    """
-    Condition numbers of the dimensionless Jacobian where they might exceed ``bound``.
-
-    A singular value decomposition per sample costs about 20 us; most samples are far from
-    the bound, and a cheaper test proves it. With ``G = J^T J`` (J the dimensionless Jacobian
-    of :func:`stewart_kinematics.model.kinematics.jacobian_condition`) and
-    ``U >= lambda_max(G)`` (the smaller of its Frobenius and row-sum norms),
-    ``G - (U / bound^2) I`` positive definite (its LDL^T pivots, computed for every sample at
-    once, all positive) gives
-    ``lambda_min > U / bound^2``, so the condition number ``sqrt(lambda_max / lambda_min)``
-    is below ``bound``. The other samples get the exact condition number.
-
-    :returns: shape (M,): the condition number, or NaN where it is proved below ``bound``.
-    """
-    jac = twist_jacobian(geometry, poses.positions, poses.rotations)
-    jac[..., 3:] /= geometry.platform_radius
-    gram = np.swapaxes(jac, -1, -2) @ jac
-    upper = np.minimum(np.sqrt(np.sum(gram * gram, axis=(-2, -1))),
-                       np.abs(gram).sum(axis=-1).max(axis=-1))
-    # The second term covers the rounding of the pivots (about 1e-15 U).
-    shifted = gram - (upper / bound ** 2 + 1e-13 * upper)[:, None, None] * np.eye(6)
-    proved = np.ones(shifted.shape[0], dtype=bool)
-    for j in range(6):
-        pivot = shifted[:, j, j]
-        proved &= pivot > 0.0
-        column = shifted[:, j + 1:, j] / np.where(pivot > 0.0, pivot, 1.0)[:, None]
-        shifted[:, j + 1:, j + 1:] -= column[:, :, None] * shifted[:, None, j, j + 1:]
-    conditions = np.full(shifted.shape[0], np.nan)
-    doubtful = ~proved
-    if doubtful.any():
-        conditions[doubtful] = jacobian_condition(
-            geometry, poses.positions[doubtful], poses.rotations[doubtful])
-    return conditions
+    if frames.tool_pose.is_identity():
+        return None
+    return Finding(findings.TOOL_FRAME_NOT_SUPPORTED, (
+        f'{topic} is planned for the platform frame, but tool_frame '
+        f"'{frames.tool_frame}' is offset from it: set tool_frame_position and "
+        'tool_frame_orientation_deg to zero to send trajectories'))

@@ -53,7 +53,11 @@ from stewart_kinematics.parameters.declarations import (
     STREAMING_PARAMETERS,
     WORKSPACE_PARAMETERS,
 )
-from stewart_kinematics.parameters.files import load_geometry, read_parameter_file
+from stewart_kinematics.parameters.files import (
+    load_geometry,
+    load_settings,
+    read_parameter_file,
+)
 from stewart_kinematics.parameters.settings import (
     ActuatorSettings,
     AssemblyModeSettings,
@@ -119,6 +123,7 @@ __all__ = [
     'IkNodeSettings',
     'INTEGER',
     'load_geometry',
+    'load_settings',
     'markdown_table',
     'MARKER_PARAMETERS',
     'MarkerSettings',

@@ -54,7 +54,8 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
         leg_length_max=settings.leg_length_max,
         base_joint_max_angle=math.radians(settings.base_joint_max_angle_deg),
         platform_joint_max_angle=math.radians(settings.platform_joint_max_angle_deg),
-        max_jacobian_condition=settings.max_jacobian_condition)
+        max_jacobian_condition=settings.max_jacobian_condition,
+        leg_radius=settings.leg_radius)
 
 
 def actuator_limits_from_settings(settings: GeometrySettings) -> ActuatorLimits:

@@ -98,6 +98,13 @@ GEOMETRY_PARAMETERS = (
         default=math.inf, read_only=True, validators=(in_range(1.0, math.inf),),
         constraints='>= 1; .inf allowed'),
     ParameterSpec(
+        'leg_radius', DOUBLE,
+        'Radius of each leg, metres: a leg is a capsule of this radius around the segment from '
+        'its base joint to its platform joint, and a pose where two legs come closer than '
+        '2 * leg_radius is refused (leg_collision); 0.0 for no collision check',
+        default=0.0, read_only=True, validators=(finite, in_range(0.0, 1.0)),
+        constraints='in [0, 1]'),
+    ParameterSpec(
         'leg_velocity_max', DOUBLE,
         'Largest speed of a leg (actuator), metres per second: timed trajectories are refused '
         'or retimed to keep within it, streamed commands are limited to it; .inf for no limit',
@@ -411,7 +418,7 @@ MOTION_PARAMETERS = (
         default=False),
 )
 
-#: ik_node: commands streamed through the jerk-limited filter.
+#: ik_node: commanded rates: commands streamed through the jerk-limited filter, and twists.
 STREAMING_PARAMETERS = (
     ParameterSpec(
         'command_rate', DOUBLE,
@@ -420,6 +427,14 @@ STREAMING_PARAMETERS = (
         '(ruckig; the first two must be set); 0.0: one command per accepted pose, unfiltered',
         default=0.0, read_only=True, validators=(finite, in_range(0.0, 10000.0)),
         constraints='in [0, 10000]'),
+    ParameterSpec(
+        'twist_over_limit', STRING,
+        'What ik_node does with a target_twist whose leg velocities exceed leg_velocity_max: '
+        "'refuse' it (nothing published, code too_fast), or 'scale' the whole twist down "
+        'uniformly until the fastest leg is at the limit (published, with a twist_scaled '
+        'warning); never published beyond the limit',
+        default='refuse', read_only=True, validators=(one_of('refuse', 'scale'),),
+        constraints="'refuse' or 'scale'"),
 )
 
 

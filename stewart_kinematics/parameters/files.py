@@ -93,3 +93,34 @@ def load_geometry(paths, node_name: Optional[str] = None) -> Geometry:
         return geometry_from_parameters(values)
     except ValueError as error:
         raise ValueError(f'{", ".join(map(str, paths))}: {error}') from error
+
+
+def load_settings(settings_class, paths, node_name: Optional[str] = None):
+    """
+    Read typed settings from ROS 2 parameter files, the same ones the nodes are given.
+
+    :param settings_class: a settings class of :mod:`stewart_kinematics.parameters.settings`,
+        such as ``TrajectoryNodeSettings`` or ``GeometrySettings``.
+    :param paths: a YAML file, or a list of them applied in order, as repeated
+        ``--params-file`` options are.
+    :param node_name: also apply this node's sections, as that node would see them.
+    :raises ValueError: naming the files, if a file cannot be read, names an unknown parameter,
+        or gives a value that is not allowed.
+
+    >>> from stewart_kinematics.parameters import load_settings, TrajectoryNodeSettings
+    >>> settings = load_settings(TrajectoryNodeSettings, [
+    ...     'config/paper_platform.yaml', 'config/example_limits.yaml',
+    ...     'config/table3_ramp.yaml'], 'trajectory_node')
+    >>> settings.geometry.leg_velocity_max, settings.ramp.mode
+    (0.05, 'table')
+    """
+    if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
+        paths = [paths]
+    values = {}
+    for path in paths:
+        values.update(read_parameter_file(path, node_name))
+    try:
+        check_known_names(values, 'the file')
+        return settings_class.from_values(values)
+    except ValueError as error:
+        raise ValueError(f'{", ".join(map(str, paths))}: {error}') from error

@@ -40,27 +40,28 @@ solution (after a start or reset_tracker) when the lengths allow several modes w
 limits and none near the last known pose.
 """
 
-import math
-
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
-from geometry_msgs.msg import Pose, PoseStamped, Twist
+from geometry_msgs.msg import PoseStamped
 import numpy as np
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
-from stewart_kinematics import findings, parameters
+from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import PoseTracker, SETTING_NAMES
+from stewart_kinematics.decisions.pose_tracker import margin_status, PoseTracker
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    FkNodeSettings,
     frame_parameters_reason,
-    frames_from_parameters,
-    geometry_from_parameters,
+    frames_from_settings,
+    geometry_from_settings,
+    SolverSettings,
 )
+from stewart_kinematics.ros.interfaces import FK_NODE
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
     MessageAccounting,
@@ -74,11 +75,12 @@ from stewart_kinematics.ros.message_conversions import (
     twist_to_message,
 )
 from stewart_kinematics.ros.node_main import (
+    create_declared_service,
     create_input_subscription,
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 
 
@@ -87,63 +89,60 @@ class FkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        values = declare_parameters(
-            self,
-            parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.SOLVER_PARAMETERS + parameters.ASSEMBLY_MODE_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.FK_FRAME_PARAMETERS
-            + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
-        self.geometry = geometry_from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
-        self.tracker = PoseTracker.from_parameters(self.geometry, values)
+        self.settings = declare_settings(self, FkNodeSettings, on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
+        self.tracker = PoseTracker(self.geometry, settings.solver)
         # Replaced whole when a tool frame parameter changes: one tree per message.
-        self.frames = frames_from_parameters(values)
-        self.estimated_pose_frame = values['estimated_pose_frame'] or self.frames.base_frame
+        self.frames = frames_from_settings(settings.frames)
+        self.estimated_pose_frame = (settings.fk_frames.estimated_pose_frame
+                                     or self.frames.base_frame)
         self.frames.reference(self.estimated_pose_frame)   # a ValueError stops the start
-        depth = values['queue_depth']
-        self.pose_publisher = create_output_publisher(self, Pose, 'estimated_pose', depth)
+        depth = settings.queue.queue_depth
+        self.pose_publisher = create_output_publisher(self, FK_NODE['estimated_pose'], depth)
         self.stamped_publisher = create_output_publisher(
-            self, PoseStamped, 'estimated_pose_stamped', depth)
-        self.twist_publisher = create_output_publisher(self, Twist, 'estimated_twist', depth)
-        self.tf = TransformBroadcaster(self) if values['publish_tf'] else None
+            self, FK_NODE['estimated_pose_stamped'], depth)
+        self.twist_publisher = create_output_publisher(self, FK_NODE['estimated_twist'], depth)
+        self.tf = TransformBroadcaster(self, dynamic=FK_NODE['/tf'], static=FK_NODE[
+            '/tf_static']) if settings.fk_frames.publish_tf else None
         if self.tf is not None:
             self.tf.send_static(self.frames.static_transforms(), self.get_clock().now().to_msg())
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
         self.velocity_accounting = diagnostics.accounting('leg_velocities')
+        create_input_subscription(self, FK_NODE['leg_lengths'], self.on_leg_lengths, depth)
+        create_input_subscription(self, FK_NODE['joint_states'], self.on_joint_states, depth)
         create_input_subscription(
-            self, Float64MultiArray, 'leg_lengths', self.on_leg_lengths, depth)
-        create_input_subscription(self, JointState, 'joint_states', self.on_joint_states, depth)
-        create_input_subscription(
-            self, Float64MultiArray, 'leg_velocities', self.on_leg_velocities, depth)
-        self.create_service(Trigger, 'reset_tracker', self.on_reset_tracker)
+            self, FK_NODE['leg_velocities'], self.on_leg_velocities, depth)
+        create_declared_service(self, FK_NODE['reset_tracker'], self.on_reset_tracker)
         self.margin = None
-        if values['assembly_mode_margin_period'] > 0.0:
+        margin = settings.assembly_modes
+        if margin.assembly_mode_margin_period > 0.0:
             self.margin = AssemblyModeMarginReport(
                 self, diagnostics, AssemblyModeMarginMonitor(
-                    self.geometry, values['assembly_mode_margin_warning']))
+                    self.geometry, margin.assembly_mode_margin_warning))
             diagnostics.reporters.append(self.margin)   # with the inputs, once a second
-            self.create_timer(values['assembly_mode_margin_period'], self.on_margin_timer)
+            self.create_timer(margin.assembly_mode_margin_period, self.on_margin_timer)
         self.get_logger().info(
-            f'ready: tolerance {values["tolerance"]:g} m, '
-            f'at most {values["max_iterations"]} iterations')
+            f'ready: tolerance {settings.solver.tolerance:g} m, '
+            f'at most {settings.solver.max_iterations} iterations')
 
     def on_parameter_change(self, name, value):
         """Pass a solver parameter (already validated) to the tracker; take a new tool frame."""
+        self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             old = self.frames
-            self.frames = frames_from_parameters(
-                {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameters.FRAME_PARAMETERS})
+            self.frames = frames_from_settings(self.settings.frames)
             if self.tf is not None:
                 if old.tool_frame != self.frames.tool_frame:
                     self.tf.forget_static(old.tool_frame)
                 self.tf.send_static(self.frames.static_transforms(),
                                     self.get_clock().now().to_msg())
-        if name in SETTING_NAMES:
-            self.tracker.configure(**{name: value})
+        if name in SolverSettings.names():
+            self.tracker.configure(self.settings.solver)
         if name == 'assembly_mode_margin_warning' and self.margin is not None:
             self.margin.monitor.warning_distance = value
 
@@ -183,13 +182,10 @@ class FkNode(Node):
         except ValueError as error:
             self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
-        if self.estimate(lengths, message.header, self.joint_state_accounting) and (
-                velocities is not None):
-            twist = self.tracker.twist(velocities)
-            if twist.accepted:
-                self.twist_publisher.publish(twist_to_message(twist.twist))
-            else:  # the pose went out: the message counts as published, its twist as a warning
-                self.joint_state_accounting.warn(twist.refusal)
+        estimate = self.estimate(lengths, message.header, self.joint_state_accounting,
+                                 velocities)
+        if estimate.twist is not None:
+            self.twist_publisher.publish(twist_to_message(estimate.twist))
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""
@@ -209,19 +205,22 @@ class FkNode(Node):
         self.get_logger().info(response.message)
         return response
 
-    def estimate(self, lengths, header: Header, accounting: MessageAccounting) -> bool:
+    def estimate(self, lengths, header: Header, accounting: MessageAccounting,
+                 velocities=None):
         """
         Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
         :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``.
-        :returns: whether a pose was published.
+        :param velocities: the leg velocities of a joint state, or ``None``.
+        :returns: the tracker's :class:`~stewart_kinematics.PoseEstimate` (with the twist of
+            the velocities, if any, for the caller to publish).
         """
-        estimate = self.tracker.update(lengths)
+        estimate = self.tracker.update(lengths, velocities)
         for warning in estimate.warnings:
             accounting.warn(warning)
         if not estimate.accepted:
             accounting.reject(estimate.refusal)
-            return False
+            return estimate
         frames = self.frames
         accounting.publish(self.pose_publisher,
                            pose_to_message(frames.tool_pose_vector(estimate.pose)))
@@ -234,7 +233,7 @@ class FkNode(Node):
         if self.tf is not None and self.tf.has_listeners():
             self.tf.send(frames.base_frame, frames.platform_frame,
                          Transform.from_pose(estimate.pose), header.stamp)
-        return True
+        return estimate
 
 
 class AssemblyModeMarginReport:
@@ -253,36 +252,14 @@ class AssemblyModeMarginReport:
         self._log_throttle = LogThrottle(node.get_logger(), WARNING_PERIOD)
 
     def report(self) -> DiagnosticStatus:
-        """Return the latest margin: WARN with the core's reason when it is too small."""
-        warning = self.monitor.warning()
-        margin = self.monitor.latest
-        if warning:
-            self._log_throttle.log(findings.ASSEMBLY_MODE_MARGIN, warning)
-        values = []
-        if margin is None:
-            level, message = DiagnosticStatus.OK, 'no solution yet, or not computed yet'
-        else:
-            level = DiagnosticStatus.WARN if warning else DiagnosticStatus.OK
-            if warning:
-                message = warning
-            elif margin.nearest is None:
-                message = 'no other assembly mode within the limits'
-            else:
-                message = (f'nearest other assembly mode within the limits: {margin.position:.4g} '
-                           f'm and {math.degrees(margin.angle):.4g} deg away')
-            if not margin.complete:
-                level = DiagnosticStatus.WARN
-                message += f'; the search was incomplete: {margin.reason}'
-            values = [('margin_position_m', f'{margin.position:.6g}'),
-                      ('margin_angle_deg', f'{math.degrees(margin.angle):.6g}'),
-                      ('margin_distance_m', f'{margin.distance:.6g}'),
-                      ('modes_within_limits', str(margin.modes_within_limits)),
-                      ('search_complete', str(margin.complete)),
-                      ('computed_in_ms', f'{self.monitor.latest_seconds * 1e3:.1f}')]
+        """Return the latest margin: WARN with the core's reason when it deserves a warning."""
+        status = margin_status(self.monitor)
+        if status.warning is not None:
+            self._log_throttle.log(status.warning.code, status.warning.message)
         return DiagnosticStatus(
-            level=level, name=self.status_name, message=message,
-            hardware_id=self.hardware_id,
-            values=[KeyValue(key=key, value=value) for key, value in values])
+            level=DiagnosticStatus.WARN if status.warning else DiagnosticStatus.OK,
+            name=self.status_name, message=status.message, hardware_id=self.hardware_id,
+            values=[KeyValue(key=key, value=value) for key, value in status.values])
 
 
 def main(args=None) -> int:

@@ -36,50 +36,44 @@ computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command pa
 ``<platform_frame>_commanded``.
 
 A change of the tool frame at run time applies from the next message on. What to command and
-what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (a pose that breaks a
-limit of the geometry is refused, never clamped); the node converts the messages, publishes,
-and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
+what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (the frame a pose is given
+in, a non-unit quaternion, a pose that breaks a limit: refused, never clamped; a twist beyond
+the leg velocity limit: refused, or scaled to it with ``twist_over_limit: 'scale'``) and, for
+streamed commands, by :class:`stewart_kinematics.CommandFilter` (every step within the stroke
+and the leg velocity, acceleration and jerk limits; reported on ``/diagnostics`` as the
+``command_stream`` input). The node converts the messages, publishes, and counts each refusal
+with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
 from rclpy.node import Node
-from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64MultiArray, Header
+from std_msgs.msg import Header
 
-from stewart_kinematics import findings, parameters
 from stewart_kinematics.decisions.command_check import CommandCheck
-from stewart_kinematics.findings import Finding
-from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
     frame_parameters_reason,
-    frames_from_parameters,
-    geometry_from_parameters,
+    frames_from_settings,
+    geometry_from_settings,
+    IkNodeSettings,
 )
+from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import platform_markers
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
-from stewart_kinematics.ros.message_conversions import (
-    joint_state_message,
-    legs_to_message,
-    position_quaternion_from_message,
-    QUATERNION_NORM_TOLERANCE,
-    twist_from_message,
-)
+from stewart_kinematics.ros.message_conversions import joint_state_message, legs_to_message
 from stewart_kinematics.ros.node_main import (
     create_input_subscription,
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
+from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
-from visualization_msgs.msg import MarkerArray
 
-#: Code of the refusal of a stamped pose in a frame other than base_frame or user_frame.
-WRONG_FRAME = 'wrong_frame'
 #: Suffix of the commanded platform frame's name on /tf.
 COMMANDED_SUFFIX = '_commanded'
 
@@ -89,66 +83,65 @@ class IkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
-        values = declare_parameters(
-            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.IK_FRAME_PARAMETERS
-            + parameters.MARKER_PARAMETERS + parameters.WORKSPACE_PARAMETERS
-            + parameters.STREAMING_PARAMETERS
-            + parameters.QUEUE_PARAMETERS,
-            on_change=self.on_parameter_change, check=frame_parameters_reason)
-        self.geometry = geometry_from_parameters(values)
-        self.check = CommandCheck(self.geometry)
+        self.settings = declare_settings(self, IkNodeSettings, on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        actuator_limits = actuator_limits_from_settings(settings.geometry)
+        self.check = CommandCheck(self.geometry, actuator_limits,
+                                  twist_over_limit=settings.streaming.twist_over_limit)
         # Replaced whole when a tool frame parameter changes: one tree per message.
-        self.frames = frames_from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
+        self.frames = frames_from_settings(settings.frames)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
         # Streaming: commands at command_rate toward the latest accepted pose, from the home
         # pose (where the platform is assumed to start), once a first pose is accepted.
         self.command_filter = None
         self.streaming = False
-        if values['command_rate'] > 0.0:
-            self.command_filter = CommandFilter(ActuatorLimits.from_parameters(values),
-                                                1.0 / values['command_rate'],
-                                                self.geometry.home_leg_lengths)
-        self.base_frame = values['base_frame']
-        self.marker_period_ns = 1e9 / values['marker_rate'] if values['marker_rate'] else None
+        command_rate = settings.streaming.command_rate
+        if command_rate > 0.0:
+            self.command_filter = CommandFilter(actuator_limits, 1.0 / command_rate,
+                                                self.geometry.home_leg_lengths, self.geometry)
+        self.base_frame = settings.frames.base_frame
+        marker_rate = settings.markers.marker_rate
+        self.marker_period_ns = 1e9 / marker_rate if marker_rate else None
         self.last_marker_ns = None
-        depth = values['queue_depth']
-        self.lengths_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_lengths', depth)
+        depth = settings.queue.queue_depth
+        self.lengths_publisher = create_output_publisher(self, IK_NODE['leg_lengths'], depth)
         self.extensions_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_extensions', depth)
+            self, IK_NODE['leg_extensions'], depth)
         # Commands, not measurements: joint_states is left to the actuators' driver.
         self.joint_command_publisher = create_output_publisher(
-            self, JointState, 'joint_commands', depth)
+            self, IK_NODE['joint_commands'], depth)
         self.velocities_publisher = create_output_publisher(
-            self, Float64MultiArray, 'leg_velocities', depth)
-        self.marker_publisher = create_output_publisher(
-            self, MarkerArray, 'platform_markers', depth)
-        self.tf = TransformBroadcaster(self, static=False) if (
-            values['publish_commanded_tf']) else None
+            self, IK_NODE['leg_velocities'], depth)
+        self.marker_publisher = create_output_publisher(self, IK_NODE['platform_markers'], depth)
+        self.tf = TransformBroadcaster(self, dynamic=IK_NODE['/tf']) if (
+            settings.ik_frames.publish_commanded_tf) else None
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('target_pose')
         self.stamped_accounting = diagnostics.accounting('target_pose_stamped')
         self.twist_accounting = diagnostics.accounting('target_twist')
-        create_input_subscription(self, Pose, 'target_pose', self.on_target_pose, depth)
+        # The steps of the stream, as an input of their own: each counted, given or held.
+        self.stream_accounting = (diagnostics.accounting('command_stream')
+                                  if self.command_filter is not None else None)
+        create_input_subscription(self, IK_NODE['target_pose'], self.on_target_pose, depth)
         create_input_subscription(
-            self, PoseStamped, 'target_pose_stamped', self.on_target_pose_stamped, depth)
-        create_input_subscription(self, Twist, 'target_twist', self.on_target_twist, depth)
+            self, IK_NODE['target_pose_stamped'], self.on_target_pose_stamped, depth)
+        create_input_subscription(self, IK_NODE['target_twist'], self.on_target_twist, depth)
         if self.command_filter is not None:
             self.create_timer(self.command_filter.period, self.publish_streamed_command)
         self.workspace = WorkspaceReporter(
-            self, self.geometry, self.base_frame, values['workspace_resolution'],
-            values['travel_range_rate'], lambda: self.check.last_pose, depth)
+            self, self.geometry, self.base_frame, settings.workspace.workspace_resolution,
+            settings.workspace.travel_range_rate, lambda: self.check.last_pose, depth)
         self.get_logger().info(
             'ready: home leg lengths '
             f'{np.array2string(self.geometry.home_leg_lengths, precision=6, separator=", ")} m')
 
     def on_parameter_change(self, name, value):
         """Apply a validated run-time change: a new tool frame, or a new workspace resolution."""
+        self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
-            self.frames = frames_from_parameters(
-                {spec.name: self.get_parameter(spec.name).value
-                 for spec in parameters.FRAME_PARAMETERS})
+            self.frames = frames_from_settings(self.settings.frames)
         elif name == 'workspace_resolution':
             self.workspace.set_resolution(value)
 
@@ -166,13 +159,7 @@ class IkNode(Node):
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
         self.stamped_accounting.receive()
-        frames = self.frames
-        try:
-            frames.reference(message.header.frame_id)
-        except ValueError as error:
-            self.stamped_accounting.reject(Finding(WRONG_FRAME, str(error)))
-            return
-        self.command(message.pose, message.header, self.stamped_accounting, frames)
+        self.command(message.pose, message.header, self.stamped_accounting, self.frames)
 
     def command(self, pose: Pose, header: Header, accounting: MessageAccounting, frames):
         """
@@ -181,20 +168,15 @@ class IkNode(Node):
         :param pose: the tool frame's pose, in ``header.frame_id`` (base or user frame).
         :param frames: the frame tree to apply, the same for the whole message.
         """
-        try:
-            position, quaternion, norm = position_quaternion_from_message(pose)
-        except ValueError as error:
-            accounting.reject(Finding(findings.INVALID_POSE, str(error)))
-            return
-        if abs(norm - 1.0) > QUATERNION_NORM_TOLERANCE:
-            self.get_logger().warning(
-                f'{accounting.topic} orientation has norm {norm:.9g}, not 1: normalised '
-                '(said once)', once=True)
-        position, rotation = frames.platform_in_base(
-            position, quaternion_to_matrix(quaternion), header.frame_id)
-        command = self.check.pose(position, rotation)
+        point, orientation = pose.position, pose.orientation
+        command = self.check.tool_pose(
+            (point.x, point.y, point.z), (orientation.x, orientation.y, orientation.z,
+                                          orientation.w), frames, header.frame_id)
+        for warning in command.warnings:
+            accounting.warn(warning)
         if command.violations or command.accepted:
-            self.publish_markers(header, position, rotation, command.violations)
+            self.publish_markers(header, command.position, command.rotation,
+                                 command.legs_at_fault)
         if not command.accepted:
             accounting.reject(command.refusal)
             return
@@ -206,31 +188,44 @@ class IkNode(Node):
             self.extensions_publisher.publish(
                 legs_to_message(lengths - self.geometry.home_leg_lengths))
         if self.command_filter is not None:
-            self.command_filter.set_target(lengths)
+            refusal = self.command_filter.set_target(lengths)
+            if refusal is not None:
+                self.stream_accounting.warn(refusal)
             self.streaming = True
         elif self.joint_command_publisher.get_subscription_count():
             self.joint_command_publisher.publish(
                 joint_state_message(header, lengths, actuators=self.actuators))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
-                         Transform(position, rotation), header.stamp)
+                         Transform(command.position, command.rotation), header.stamp)
 
     def publish_streamed_command(self):
-        """Publish the next filtered command (position, velocity), once a pose was accepted."""
+        """
+        Publish the next filtered command (position, velocity), once a pose was accepted.
+
+        A step the filter could not compute within the limits (held) publishes nothing: the
+        last command stands. Its reason, and that of a step that brakes, is counted.
+        """
         if not self.streaming:
             return
+        accounting = self.stream_accounting
+        accounting.receive()
         command = self.command_filter.step()
-        if self.joint_command_publisher.get_subscription_count():
-            header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-            self.joint_command_publisher.publish(joint_state_message(
-                header, command.lengths, command.velocities, actuators=self.actuators))
+        if command.held:
+            accounting.reject(command.finding)
+            return
+        if command.finding is not None:
+            accounting.warn(command.finding)
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
+        accounting.publish(self.joint_command_publisher, joint_state_message(
+            header, command.lengths, command.velocities, actuators=self.actuators))
 
-    def publish_markers(self, header, position, rotation, violations):
+    def publish_markers(self, header, position, rotation, legs_at_fault):
         """
         Publish the platform's markers, at most at marker_rate and only to a subscriber.
 
-        Refused poses are shown too, with the offending legs in red: what was asked, and why
-        it was refused.
+        Refused poses are shown too, with the offending legs in red (``None`` among
+        ``legs_at_fault``: all six): what was asked, and why it was refused.
         """
         if self.marker_period_ns is None or self.marker_publisher.get_subscription_count() == 0:
             return
@@ -241,18 +236,17 @@ class IkNode(Node):
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(
             Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
-            rotation, [violation.leg for violation in violations],
+            rotation, legs_at_fault,
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):
         """Publish the leg velocities of a platform twist at the last accepted pose."""
         self.twist_accounting.receive()
-        try:
-            twist = twist_from_message(message)
-        except ValueError as error:
-            self.twist_accounting.reject(Finding(findings.INVALID_TWIST, str(error)))
-            return
-        command = self.check.twist(twist)
+        linear, angular = message.linear, message.angular
+        command = self.check.twist((linear.x, linear.y, linear.z, angular.x, angular.y,
+                                    angular.z))
+        for warning in command.warnings:
+            self.twist_accounting.warn(warning)
         if not command.accepted:
             self.twist_accounting.reject(command.refusal)
             return

@@ -101,76 +101,116 @@ class NodeInterface:
 DIAGNOSTICS_TOPIC = Endpoint(
     '/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
     'One report a second: per input topic, messages received, published and refused, refusals '
-    'by reason, the latest reason with its details')
+    'counted by code, the latest reason with its details')
 
 IK_NODE = NodeInterface('ik_node', (
     Endpoint('target_pose', SUBSCRIPTION, 'geometry_msgs/msg/Pose', QUEUE,
-             'Commanded pose of the tool frame in the base frame, metres and a quaternion; '
-             'the outputs carry the time of arrival'),
+             'Commanded pose of the tool frame (by default the platform frame) in the base '
+             'frame: metres and a unit quaternion (a non-unit quaternion is normalised with a '
+             'warning). The outputs carry the time of arrival.'),
     Endpoint('target_pose_stamped', SUBSCRIPTION, 'geometry_msgs/msg/PoseStamped', QUEUE,
-             'The same, in base_frame or user_frame; joint_commands carries its stamp'),
+             "The same with a header: in `base_frame` (or `''`) or `user_frame`, another "
+             'frame is refused with the reason; its stamp is carried to `joint_commands`.'),
     Endpoint('target_twist', SUBSCRIPTION, 'geometry_msgs/msg/Twist', QUEUE,
-             'Commanded platform twist, base frame, m/s and rad/s, at the last accepted pose'),
+             'Platform velocity (m/s) and angular velocity (rad/s), base frame, applied at '
+             'the last accepted pose.'),
     Endpoint('leg_lengths', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             'Leg lengths l_1..l_6 of each accepted pose, metres'),
+             'Six leg lengths of each accepted pose, metres, leg 1..6; layout: one dimension '
+             'labelled `leg`, size 6.'),
     Endpoint('leg_extensions', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             "Each length minus its length at the home pose (the paper's q_i), metres"),
+             "Each length minus its length at the home pose (the paper's q_i), metres, same "
+             'layout; built only while someone subscribes.'),
     Endpoint('joint_commands', PUBLISHER, 'sensor_msgs/msg/JointState', QUEUE,
-             'The legs as prismatic joints (joint_names), positions length - actuator_offsets, '
-             'metres; streamed at command_rate with velocities when command_rate is set'),
+             'The legs as prismatic joints named `joint_names`, position = commanded length '
+             'minus `actuator_offsets` (m), with the stamp of the stamped pose (or the time of '
+             'arrival), for a ros2_control or actuator driver; built only while someone '
+             'subscribes. With `command_rate` > 0: streamed at that rate through the '
+             'jerk-limited filter instead, with velocities.'),
     Endpoint('leg_velocities', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             'Rates of change of the leg lengths for each accepted twist, m/s'),
+             'Rates of change of the leg lengths for each accepted `target_twist`, m/s, '
+             'through the analytic Jacobian.'),
     Endpoint('platform_markers', PUBLISHER, 'visualization_msgs/msg/MarkerArray', QUEUE,
-             'The platform and its legs for RViz, legs that break a limit in red, at most '
-             'marker_rate'),
+             'For RViz (fixed frame `base_frame`): base outline, platform outline and the six '
+             'legs at the poses received, at most `marker_rate` times a second; a leg that '
+             'breaks a limit is red, even in a refused pose, so you see what was asked and why '
+             'it was refused.'),
     Endpoint('workspace_markers', PUBLISHER, 'visualization_msgs/msg/MarkerArray', LATCHED,
-             'Boundary of the constant-orientation workspace at the home orientation'),
+             'The boundary of the constant-orientation workspace at the home orientation, as '
+             'points coloured by the limit met there, namespace `<ns>/workspace`, after a '
+             'DELETEALL. Computed once the topic has a subscriber and again when '
+             '`workspace_resolution` changes, in a worker process, so the command path never '
+             'waits for it.'),
     Endpoint('travel_ranges', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             'Range left along each axis from the last accepted pose, at travel_range_rate: '
-             '12 values, negative then positive, X Y Z in metres, alpha beta gamma in radians'),
+             'About `travel_range_rate` times a second: from the last accepted pose (home '
+             'before the first), the largest move along each axis alone before a limit, 12 '
+             'values `[X-, X+, Y-, Y+, Z-, Z+, alpha-, alpha+, beta-, beta+, gamma-, gamma+]` '
+             'as offsets from the pose (m, rad; the negative ends <= 0); layout: dimensions '
+             '`axis` (size 6, stride 12) and `end` (size 2, stride 2). Computed in the same '
+             'worker process, only while the topic has a subscriber and the pose has moved.'),
     Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
-             'The commanded platform frame, base_frame -> <platform_frame>_commanded',
-             condition='publish_commanded_tf'),
+             'Each accepted command as `base_frame` -> `<platform_frame>_commanded`, with the '
+             "command's stamp.", condition='publish_commanded_tf'),
     DIAGNOSTICS_TOPIC,
 ))
 
 FK_NODE = NodeInterface('fk_node', (
     Endpoint('leg_lengths', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             'Measured leg lengths l_1..l_6, metres'),
+             'Six measured leg lengths, metres, leg 1..6 (`layout.data_offset` honoured; a bare '
+             '`data: [...]` is fine).'),
     Endpoint('joint_states', SUBSCRIPTION, 'sensor_msgs/msg/JointState', QUEUE,
-             'Measured actuator positions (and velocities) by joint name; a state naming none '
-             'of joint_names belongs to another platform and is skipped'),
+             'Measured legs as joints named `joint_names` (any order; other joints ignored; a '
+             'message naming none of them belongs to another platform and is skipped, so two '
+             'hexapods can share one `/joint_states`), positions plus `actuator_offsets` as '
+             'leg lengths; with velocities for every leg, the twist is published too.'),
     Endpoint('leg_velocities', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
-             'Measured leg velocities, m/s: turned into a twist at the last estimated pose'),
+             'Rates of change of the leg lengths, m/s, turned into the twist at the last '
+             'estimated pose.'),
     Endpoint('estimated_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
-             'Estimated pose of the tool frame in the base frame, metres and a quaternion'),
+             'The pose of the tool frame (by default the platform frame) in the base frame '
+             'whose leg lengths match; metres, unit quaternion with `w >= 0`.'),
     Endpoint('estimated_pose_stamped', PUBLISHER, 'geometry_msgs/msg/PoseStamped', QUEUE,
-             'The same in estimated_pose_frame, with the stamp of the measurement'),
+             'The same in `estimated_pose_frame` (base or user frame), with the stamp of the '
+             'joint state it comes from (or the time of arrival); built only while someone '
+             'subscribes.'),
     Endpoint('estimated_twist', PUBLISHER, 'geometry_msgs/msg/Twist', QUEUE,
-             'Platform twist from leg velocities at the last pose, base frame, m/s and rad/s'),
+             'Platform velocity and angular velocity (m/s, rad/s, base frame) from leg '
+             'velocities.'),
     Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
-             'The estimated platform frame, base_frame -> platform_frame, with the stamp of '
-             'the measurement', condition='publish_tf'),
+             '`base_frame` -> `platform_frame`: the estimated platform pose, with the stamp of '
+             'the lengths it comes from; sent only while someone listens (needs tf2_msgs).',
+             condition='publish_tf'),
     Endpoint('/tf_static', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF_STATIC,
-             'The user and tool frames', condition='publish_tf'),
+             'The named user and tool frames, again when the tool frame changes.',
+             condition='publish_tf'),
     Endpoint('reset_tracker', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
-             'The next solve starts from the home pose (homing, restarts)'),
-    DIAGNOSTICS_TOPIC,
+             'Forget the last solution: the next solve starts from the home pose (homing, a '
+             'restart, lengths from another session). Answers `success: true`.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + ' (iterations, residual, condition number, pose error '
+             'bound), near-singularity warnings; and the status `fk_node: assembly mode '
+             'margin`: the distance from the last solution to the nearest other real assembly '
+             'mode within the limits, WARN below `assembly_mode_margin_warning`.'),
 ))
 
 TRAJECTORY_NODE = NodeInterface('trajectory_node', (
     Endpoint('pose_trajectory', SUBSCRIPTION, 'trajectory_msgs/msg/MultiDOFJointTrajectory',
-             QUEUE, 'A timed platform trajectory (one joint: the tool frame), checked whole, '
-             'timed or retimed, then handed on'),
+             QUEUE, 'Waypoints of one joint, the platform: per point one transform (the '
+             'platform frame in `base_frame`), `time_from_start` (strictly increasing; the '
+             'first point is time 0 of the output), optionally one twist (base frame) on every '
+             'point. Checked whole, timed or retimed, then handed on.'),
     Endpoint('pose_path', SUBSCRIPTION, 'nav_msgs/msg/Path', QUEUE,
-             'Waypoint poses without timing, always retimed'),
+             'Waypoints without timing, in `base_frame`: always retimed.'),
     Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
-             'The ramp, and accepted trajectories when play is set: tool frame poses, base '
-             'frame'),
+             "The ramp's poses (tool frame, base frame, metres, unit quaternion); with `play`, "
+             'the poses of an accepted trajectory at `publish_rate`.'),
     Endpoint('leg_trajectory', PUBLISHER, 'trajectory_msgs/msg/JointTrajectory', QUEUE,
-             'An accepted trajectory for the actuators: positions, velocities, accelerations '
-             'at publish_rate and every waypoint, for joint_trajectory_controller'),
-    DIAGNOSTICS_TOPIC,
+             'An accepted trajectory for the actuators: `joint_names`, and per point (every '
+             '`1 / publish_rate` s and at every waypoint) the actuator positions (leg length '
+             'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2) and '
+             '`time_from_start`, as joint_trajectory_controller takes it.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + ', with the time, segment and violated limits of a '
+             'refused trajectory.'),
 ))
 
 MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (

@@ -31,10 +31,11 @@ PLATFORM_COLOUR = ColorRGBA(r=0.3, g=0.5, b=0.9, a=0.8)
 LEG_WIDTH = 0.01
 OUTLINE_WIDTH = 0.006
 #: Workspace boundary points: one colour per limit, in LIMIT_NAMES order (stroke min, stroke
-#: max, base cone, platform cone, singularity margin), as in the workspace figures.
+#: max, base cone, platform cone, singularity margin, leg collision), as in the workspace
+#: figures.
 LIMIT_COLOURS = tuple(ColorRGBA(r=r, g=g, b=b, a=0.8) for r, g, b in (
     (0.12, 0.47, 0.71), (0.84, 0.15, 0.16), (0.17, 0.63, 0.17), (1.0, 0.5, 0.05),
-    (0.58, 0.4, 0.74)))
+    (0.58, 0.4, 0.74), (0.55, 0.34, 0.29)))
 #: Size of a workspace boundary point, metres.
 WORKSPACE_POINT_SIZE = 0.004
 

@@ -29,6 +29,7 @@ import time
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
 from stewart_kinematics.findings import Finding
+from stewart_kinematics.ros.interfaces import DIAGNOSTICS_TOPIC
 from stewart_kinematics.ros.node_main import create_output_publisher
 
 #: Seconds between two log lines of the same kind of rejection or warning, per input.
@@ -59,8 +60,7 @@ class NodeDiagnostics:
         self.reporters = []
         namespace = node.get_namespace()
         self.hardware_id = HARDWARE_ID + ('' if namespace == '/' else namespace)
-        self.publisher = create_output_publisher(
-            node, DiagnosticArray, '/diagnostics', DIAGNOSTICS_DEPTH)
+        self.publisher = create_output_publisher(node, DIAGNOSTICS_TOPIC, DIAGNOSTICS_DEPTH)
         node.create_timer(REPORT_PERIOD, self.publish_report)
 
     def accounting(self, input_topic: str) -> 'MessageAccounting':

@@ -15,9 +15,10 @@
 """
 What the nodes share: ``main()`` (start-up, spinning, a clean stop), publishers, subscriptions.
 
-Every publisher and subscription of the package is created here, with
+Every publisher, subscription and service of the package is created here, from its declaration
+in :mod:`stewart_kinematics.ros.interfaces`; publishers and subscriptions with
 ``QoSOverridingOptions.with_default_policies()``: the standard ``qos_overrides.<topic>.
-<publisher|subscription>.<reliability|history|depth>`` parameters then apply to it.
+<publisher|subscription>.<reliability|history|depth>`` parameters then apply to them.
 """
 
 import signal
@@ -102,9 +103,9 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             signal.signal(number, handler)
 
 
-def create_output_publisher(node, message_type, topic: str, qos):
+def create_output_publisher(node, endpoint, qos):
     """
-    Create a publisher (by default reliable, keep-last) without rclpy's default event handlers.
+    Create a declared publisher (by default reliable, keep-last) without rclpy's event handlers.
 
     rclpy's executor visits every event handler of a node at each wait, two per publisher by
     default (incompatible QoS, incompatible type), and on a 1 kHz input that work costs the
@@ -112,24 +113,35 @@ def create_output_publisher(node, message_type, topic: str, qos):
     own side; the nodes' subscriptions keep their handlers, so a mismatched input is reported
     here. The ``qos_overrides`` parameters of the topic's publisher apply.
 
+    :param endpoint: the publisher's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     :param qos: queue depth (messages), or a QoSProfile.
     """
     return node.create_publisher(
-        message_type, topic, qos,
+        endpoint.message_type, endpoint.name, qos,
         event_callbacks=PublisherEventCallbacks(use_default_callbacks=False),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
 
 
-def create_input_subscription(node, message_type, topic: str, callback, qos):
+def create_input_subscription(node, endpoint, callback, qos):
     """
-    Create a subscription (by default reliable, keep-last) whose QoS the user may override.
+    Create a declared subscription (by default reliable, keep-last) whose QoS may be overridden.
 
     The ``qos_overrides`` parameters of the topic's subscription apply: for example
     ``qos_overrides./joint_states.subscription.reliability: best_effort`` for a driver that
     publishes best effort. rclpy's default event handlers stay: a mismatch is logged.
 
+    :param endpoint: the subscription's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     :param qos: queue depth (messages), or a QoSProfile.
     """
     return node.create_subscription(
-        message_type, topic, callback, qos,
+        endpoint.message_type, endpoint.name, callback, qos,
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
+
+
+def create_declared_service(node, endpoint, callback):
+    """
+    Create a declared service.
+
+    :param endpoint: the service's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
+    """
+    return node.create_service(endpoint.message_type, endpoint.name, callback)

@@ -103,3 +103,15 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     # A required parameter that no file set was never validated: report it here.
     parameters.check_values(specs, values)
     return values
+
+
+def declare_settings(node, settings_class, on_change=None, check=None):
+    """
+    Declare a node's parameters (:func:`declare_parameters`) and return them as its settings.
+
+    :param settings_class: the node's :class:`~stewart_kinematics.parameters.NodeSettings`
+        subclass, such as ``IkNodeSettings``: its specs are declared.
+    :returns: an object of ``settings_class`` holding the values the node starts with.
+    """
+    values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check)
+    return settings_class.from_values(values)

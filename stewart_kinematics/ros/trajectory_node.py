@@ -20,7 +20,8 @@ mode it publishes the table's rows, one every ``row_period``; in ``interpolate``
 the ramp in time at ``publish_rate`` over ``duration``, as the paper's clock-driven lookup
 tables do. Once, or looping. Before playing, it checks every pose it would publish against the
 limits of the geometry (the same parameters as ik_node) and refuses to start, listing the
-failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp.
+failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ramp. What is
+played when, and the check, are :class:`stewart_kinematics.motion.ramp.RampSchedule`'s.
 
 Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
 the platform) and ``pose_path`` (nav_msgs/msg/Path, waypoints without timing) are checked whole
@@ -28,27 +29,35 @@ and timed by :func:`stewart_kinematics.plan_motion` (retimed with ``retime`` or 
 an accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
 actuators' positions, velocities and accelerations, for joint_trajectory_controller) and, with
 ``play``, as poses on ``target_pose`` at ``publish_rate``. A refused one publishes nothing; the
-reason (time, segment, leg, limit) goes to the log and ``/diagnostics``.
+reason (time, segment, leg, limit) goes to the log and ``/diagnostics``. So does a trajectory
+received while the tool frame is offset from the platform frame
+(:func:`~stewart_kinematics.motion.trajectory_check.trajectory_frame_refusal`).
 """
 
 import threading
 
-from geometry_msgs.msg import Pose
+
 from nav_msgs.msg import Path
-import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics import limits, parameters
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
-from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import plan_motion
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
-from stewart_kinematics.motion.ramp import Ramp
+from stewart_kinematics.motion.ramp import RampSchedule
 from stewart_kinematics.motion.retiming import load_retiming
-from stewart_kinematics.parameters import frames_from_parameters, geometry_from_parameters
+from stewart_kinematics.motion.trajectory_check import trajectory_frame_refusal
+from stewart_kinematics.parameters import (
+    actuator_interface_from_settings,
+    actuator_limits_from_settings,
+    frame_parameters_reason,
+    frames_from_settings,
+    geometry_from_settings,
+    TrajectoryNodeSettings,
+)
+from stewart_kinematics.ros.interfaces import TRAJECTORY_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     joint_trajectory_message,
@@ -62,11 +71,9 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
-from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
+from stewart_kinematics.ros.ros_parameters import declare_settings
+from trajectory_msgs.msg import MultiDOFJointTrajectory
 
-#: Refusal code of a trajectory sent while the tool frame is offset from the platform frame.
-TOOL_FRAME_NOT_SUPPORTED = 'tool_frame_not_supported'
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
 
@@ -76,36 +83,33 @@ class TrajectoryNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        values = declare_parameters(
-            self, parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
-            + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
-            + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS)
-        self.settings = values
-        self.geometry = geometry_from_parameters(values)
-        self.actuator_limits = ActuatorLimits.from_parameters(values)
-        self.actuators = ActuatorInterface.from_parameters(values)
-        self.ramp = Ramp.from_parameters(values)
-        self.rows = self.ramp.rows
-        self.frames = frames_from_parameters(values)
-        if values['mode'] != 'off':
-            # The ramp's poses are the tool frame's, as ik_node reads them: check where they
-            # put the platform.
-            times, poses = self.planned_samples()
-            limits.check_samples(self.geometry, times, self.frames.platform_pose_vectors(poses))
+        self.settings = declare_settings(self, TrajectoryNodeSettings,
+                                         on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason)
+        settings = self.settings
+        self.geometry = geometry_from_settings(settings.geometry)
+        self.actuator_limits = actuator_limits_from_settings(settings.geometry)
+        self.actuators = actuator_interface_from_settings(settings.actuators)
+        self.schedule = RampSchedule.from_settings(settings.ramp)
+        self.rows = self.schedule.ramp.rows
+        self.frames = frames_from_settings(settings.frames)
+        refusal = self.schedule.check(self.geometry, self.frames)
+        if refusal is not None:
+            raise ValueError(refusal.message)     # the node cannot start: main() says why
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
         # and the ramp, not in the first callback; a callback that needs them meanwhile waits
         # for the import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
-        depth = values['queue_depth']
-        self.publisher = create_output_publisher(self, Pose, 'target_pose', depth)
+        depth = settings.queue.queue_depth
+        self.publisher = create_output_publisher(self, TRAJECTORY_NODE['target_pose'], depth)
         self.leg_trajectory_publisher = create_output_publisher(
-            self, JointTrajectory, 'leg_trajectory', depth)
+            self, TRAJECTORY_NODE['leg_trajectory'], depth)
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
         create_input_subscription(
-            self, MultiDOFJointTrajectory, 'pose_trajectory', self.on_pose_trajectory, depth)
-        create_input_subscription(self, Path, 'pose_path', self.on_pose_path, depth)
+            self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
+        create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
         self.published = 0
         self.row_index = 0
         self.start_time = None
@@ -114,47 +118,37 @@ class TrajectoryNode(Node):
         self.playing = None
         self.play_start = None
         self.play_timer = None
-        if values['mode'] != 'off':
+        if self.schedule.plays:
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
             self.get_logger().info(
-                f'{values["mode"]} ramp of {len(self.rows)} rows, '
-                + ('looping' if values['loop'] else 'once'))
+                f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
+                + ('looping' if settings.ramp.loop else 'once'))
 
-    def planned_samples(self):
-        """
-        Return the times (seconds from the start of a pass) and poses the node will publish.
-
-        In interpolate mode the timer's jitter moves the real sample times a little; the ramp
-        is linear between rows, so those poses lie between samples checked here.
-        """
-        if self.settings['mode'] == 'table':
-            times = np.arange(len(self.rows)) * self.settings['row_period']
-            return times, self.rows
-        duration = self.settings['duration']
-        times = np.append(np.arange(0.0, duration, 1.0 / self.settings['publish_rate']),
-                          duration)
-        return times, self.ramp.sample(times, duration)
+    def on_parameter_change(self, name, value):
+        """Take a validated run-time change (the motion settings, the tool frame) from now on."""
+        self.settings = self.settings.replace(**{name: value})
+        if name.startswith('tool_frame'):
+            self.frames = frames_from_settings(self.settings.frames)
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
-        wanted = self.settings['min_subscribers']
+        wanted = self.settings.ramp.min_subscribers
         if self.publisher.get_subscription_count() < wanted:
             self.get_logger().info(
                 f'waiting for {wanted} subscriber(s) on {self.publisher.topic_name}', once=True)
             return
         self.wait_timer.cancel()
-        self.wait_timer = self.create_timer(self.settings['start_delay'], self.start)
+        self.wait_timer = self.create_timer(self.settings.ramp.start_delay, self.start)
 
     def start(self):
         """Play the ramp: rows on a timer in table mode, samples in interpolate mode."""
         self.wait_timer.cancel()
-        if self.settings['mode'] == 'table':
-            self.timer = self.create_timer(self.settings['row_period'], self.publish_row)
+        if self.schedule.mode == 'table':
+            self.timer = self.create_timer(self.schedule.period, self.publish_row)
             self.publish_row()
         else:
             self.start_time = self.get_clock().now()
-            self.timer = self.create_timer(
-                1.0 / self.settings['publish_rate'], self.publish_sample)
+            self.timer = self.create_timer(self.schedule.period, self.publish_sample)
             self.publish_sample()
 
     def publish_row(self):
@@ -167,10 +161,9 @@ class TrajectoryNode(Node):
 
     def publish_sample(self):
         """Publish the ramp's pose at the current time."""
-        duration = self.settings['duration']
         elapsed = (self.get_clock().now() - self.start_time).nanoseconds * 1e-9
-        self.publish(self.ramp.sample(min(elapsed, duration), duration))
-        if elapsed >= duration:
+        self.publish(self.schedule.pose_at(elapsed))
+        if elapsed >= self.schedule.duration:
             self.start_time = self.get_clock().now()
             self.finish_pass()
 
@@ -181,7 +174,7 @@ class TrajectoryNode(Node):
 
     def finish_pass(self):
         """Start again when looping; otherwise stop the timer and say so."""
-        if not self.settings['loop']:
+        if not self.schedule.loop:
             self.timer.cancel()
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 
@@ -190,17 +183,17 @@ class TrajectoryNode(Node):
         self.trajectory_accounting.receive()
         try:
             path = PoseTrajectory.from_quaternions(
-                **pose_trajectory_from_message(message, self.settings['base_frame']))
+                **pose_trajectory_from_message(message, self.settings.frames.base_frame))
         except ValueError as error:
             self.trajectory_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
             return
-        self.plan(path, self.settings['retime'], self.trajectory_accounting)
+        self.plan(path, self.settings.motion.retime, self.trajectory_accounting)
 
     def on_pose_path(self, message: Path):
         """Check, retime and publish a path of waypoints without timing, or refuse it."""
         self.path_accounting.receive()
         try:
-            positions, quaternions = path_from_message(message, self.settings['base_frame'])
+            positions, quaternions = path_from_message(message, self.settings.frames.base_frame)
             path = PoseTrajectory.path(self.geometry, positions,
                                        quaternion_to_matrix(quaternions))
         except ValueError as error:
@@ -210,31 +203,27 @@ class TrajectoryNode(Node):
 
     def plan(self, path, retime, accounting):
         """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
-        if not self.frames.tool_pose.is_identity():
-            # Trajectories are interpolated and checked as platform-frame poses; with another
-            # tool frame their velocities would have to be moved to it too.
-            accounting.reject(Finding(TOOL_FRAME_NOT_SUPPORTED, (
-                f'{accounting.topic} is planned for the platform frame, but tool_frame '
-                f"'{self.frames.tool_frame}' is offset from it: set tool_frame_position and "
-                'tool_frame_orientation_deg to zero to send trajectories')))
+        refusal = trajectory_frame_refusal(self.frames, accounting.topic)
+        if refusal is not None:
+            accounting.reject(refusal)
             return
         plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
-                           speed_scale=self.settings['speed_scale'],
-                           validation_rate=self.settings['validation_rate'])
+                           speed_scale=self.settings.motion.speed_scale,
+                           validation_rate=self.settings.motion.validation_rate)
         if not plan.accepted:
             accounting.reject(plan.refusal)
             return
         points = leg_trajectory(plan.trajectory, self.geometry, self.actuators,
-                                self.settings['publish_rate'])
+                                self.settings.ramp.publish_rate)
         header = Header(stamp=self.get_clock().now().to_msg(),
-                        frame_id=self.settings['base_frame'])
+                        frame_id=self.settings.frames.base_frame)
         accounting.publish(self.leg_trajectory_publisher,
                            joint_trajectory_message(header, points))
         self.get_logger().info(
             f'{accounting.topic}: {path.waypoint_count} waypoints accepted, '
             + ('retimed to ' if plan.retimed else 'timed ')
             + f'{plan.trajectory.duration:.3f} s; {len(points.times)} points on leg_trajectory')
-        if self.settings['play']:
+        if self.settings.motion.play:
             self.play(plan.trajectory)
 
     def play(self, trajectory):
@@ -244,7 +233,7 @@ class TrajectoryNode(Node):
             self.destroy_timer(self.play_timer)
         self.playing = trajectory
         self.play_start = self.get_clock().now()
-        self.play_timer = self.create_timer(1.0 / self.settings['publish_rate'],
+        self.play_timer = self.create_timer(1.0 / self.settings.ramp.publish_rate,
                                             self.publish_playing)
         self.publish_playing()
 

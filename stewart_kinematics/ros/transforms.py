@@ -62,23 +62,23 @@ class TransformBroadcaster:
     A node's publishers of ``/tf`` and ``/tf_static``; inert, with one log line, without tf2_msgs.
 
     :param node: the broadcasting node.
-    :param dynamic: create the ``/tf`` publisher.
-    :param static: create the ``/tf_static`` publisher.
+    :param dynamic: the node's declared ``/tf`` endpoint
+        (:mod:`stewart_kinematics.ros.interfaces`), or ``None`` for no ``/tf`` publisher.
+    :param static: likewise for ``/tf_static``.
     """
 
-    def __init__(self, node, *, dynamic=True, static=True):
+    def __init__(self, node, *, dynamic=None, static=None):
         self.available = TFMessage is not None
         self._tf = self._tf_static = None
         self._static_transforms = {}
         if not self.available:
-            if dynamic or static:
+            if dynamic is not None or static is not None:
                 node.get_logger().warning(TF2_MSGS_MISSING)
             return
-        if dynamic:
-            self._tf = create_output_publisher(node, TFMessage, '/tf', TF_QOS)
-        if static:
-            self._tf_static = create_output_publisher(
-                node, TFMessage, '/tf_static', TF_STATIC_QOS)
+        if dynamic is not None:
+            self._tf = create_output_publisher(node, dynamic, TF_QOS)
+        if static is not None:
+            self._tf_static = create_output_publisher(node, static, TF_STATIC_QOS)
 
     def has_listeners(self) -> bool:
         """Whether anyone subscribes ``/tf``: a 1 kHz stream then skips building transforms."""

@@ -30,15 +30,14 @@ import os
 import threading
 
 import numpy as np
-from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
+from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
 from stewart_kinematics.ros.node_main import create_output_publisher
-from visualization_msgs.msg import MarkerArray
 
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
@@ -102,11 +101,9 @@ class WorkspaceReporter:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # Without rclpy's default QoS event handlers, and one timer for both outputs: every
         # entity of a node adds to its executor's work at each message of the command stream.
-        self.marker_publisher = node.create_publisher(
-            MarkerArray, 'workspace_markers', latched,
-            event_callbacks=PublisherEventCallbacks(use_default_callbacks=False))
-        self.travel_publisher = create_output_publisher(
-            node, Float64MultiArray, 'travel_ranges', depth)
+        self.marker_publisher = create_output_publisher(
+            node, IK_NODE['workspace_markers'], latched)
+        self.travel_publisher = create_output_publisher(node, IK_NODE['travel_ranges'], depth)
         self.travel_rate = travel_range_rate
         self.timer = node.create_timer(
             1.0 / travel_range_rate if travel_range_rate > 0.0 else MARKER_CHECK_PERIOD,

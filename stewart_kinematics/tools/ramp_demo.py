@@ -189,11 +189,10 @@ def _prepare_bag(bag_path):
 
 
 def _ramp_rows(ramp_file):
-    from stewart_kinematics import parameters
     from stewart_kinematics.motion.ramp import Ramp
-    values = parameters.defaults(parameters.RAMP_PARAMETERS)
-    values.update(parameters.read_parameter_file(ramp_file, 'trajectory_node'))
-    return Ramp.from_parameters(values).rows
+    from stewart_kinematics.parameters import RampSettings, read_parameter_file
+    return Ramp.from_settings(RampSettings.from_values(
+        read_parameter_file(ramp_file, 'trajectory_node'))).rows
 
 
 def _fail(reason, nodes) -> int:

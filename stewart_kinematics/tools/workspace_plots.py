@@ -31,9 +31,9 @@ import numpy as np  # noqa: E402
 from stewart_kinematics.limits import LIMIT_NAMES  # noqa: E402
 
 #: One colour per limit, in LIMIT_NAMES order, for boundaries and legends.
-LIMIT_COLOURS = ('tab:blue', 'tab:red', 'tab:green', 'tab:orange', 'tab:purple')
+LIMIT_COLOURS = ('tab:blue', 'tab:red', 'tab:green', 'tab:orange', 'tab:purple', 'tab:brown')
 LIMIT_LABELS = ('leg_length_min (stroke)', 'leg_length_max (stroke)', 'base joint cone',
-                'platform joint cone', 'singularity margin')
+                'platform joint cone', 'singularity margin', 'leg collision')
 
 
 def write_workspace_figures(directory, slices, orientation_slices):

@@ -1,0 +1,127 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Leg collisions: two legs may not come closer than their thickness.
+
+Each leg is a capsule of radius ``leg_radius`` around the segment from its base joint ``b_i``
+to its platform joint ``b_i + L_i`` (base frame); two legs collide when the distance between
+their segments is below ``2 * leg_radius``. All 15 pairs of every pose are checked at once.
+
+The distance between two segments is the minimum of a convex quadratic over the unit square
+(Ericson, Real-Time Collision Detection, section 5.1.9): the parameters of the closest points
+of the two lines, clamped, with the second one recomputed for the clamped first and the first
+for that second. A segment of zero length (a platform joint on its base joint) is a point, and
+parallel segments (no unique closest points) are handled without dividing by zero. Nothing here
+imports ROS.
+"""
+
+import numpy as np
+
+from stewart_kinematics.limits.base import Bound, Limit, PAIR
+
+#: The rows of the 15 pairs, legs 0..5: first and second leg of each (see LEG_PAIRS).
+FIRST, SECOND = np.triu_indices(6, 1)
+
+
+class LegCollision(Limit):
+    """
+    Evaluator of ``leg_collision``: the distance between the axes of each pair, shape (15, n).
+
+    :param geometry: a :class:`stewart_kinematics.Geometry`; a ``leg_radius`` of 0 is not set.
+    """
+
+    dear = True
+
+    def __init__(self, geometry):
+        radius = geometry.leg_radius
+        self.bounds = (Bound('leg_collision', 2.0 * radius, False, PAIR, 'm'),) if radius else ()
+        offsets = geometry.base_joints[FIRST] - geometry.base_joints[SECOND]
+        self._offsets = tuple(offsets[:, axis:axis + 1].copy() for axis in range(3))
+
+    def values(self, arrays):
+        """Return the distances between the legs' axes, metres, shape (15, n)."""
+        return (segment_distances(*arrays.vectors[:3], arrays.lengths, self._offsets),)
+
+
+def segment_distances(lx, ly, lz, lengths, offsets):
+    """
+    Distances between the segments ``b_i + s L_i`` and ``b_j + t L_j``, ``s, t`` in [0, 1].
+
+    :param lx: x of the leg vectors ``L``, shape (6, n); ``ly`` and ``lz`` likewise.
+    :param lengths: ``|L|``, shape (6, n).
+    :param offsets: ``b_i - b_j`` of the 15 pairs, x, y and z each shape (15, 1).
+    :returns: shape (15, n), metres.
+    """
+    rx, ry, rz = offsets
+    xi, yi, zi = lx.take(FIRST, axis=0), ly.take(FIRST, axis=0), lz.take(FIRST, axis=0)
+    xj, yj, zj = lx.take(SECOND, axis=0), ly.take(SECOND, axis=0), lz.take(SECOND, axis=0)
+    squares = lengths * lengths
+    a, e = squares.take(FIRST, axis=0), squares.take(SECOND, axis=0)
+    work = np.empty_like(a)
+    # b = L_i . L_j, c = L_i . r, f = L_j . r.
+    b = xi * xj
+    b += np.multiply(yi, yj, out=work)
+    b += np.multiply(zi, zj, out=work)
+    c = xi * rx
+    c += np.multiply(yi, ry, out=work)
+    c += np.multiply(zi, rz, out=work)
+    f = xj * rx
+    f += np.multiply(yj, ry, out=work)
+    f += np.multiply(zj, rz, out=work)
+    # s of the closest points of the two lines, clamped; where they are parallel (or a leg is
+    # a point) the division gives inf or NaN, which the clamp turns into 0 or 1: any s then
+    # does, as t and s are recomputed below.
+    denominator = a * e
+    denominator -= np.multiply(b, b, out=work)
+    s = b * f
+    s -= np.multiply(c, e, out=work)
+    with np.errstate(divide='ignore', invalid='ignore'):
+        s /= denominator
+        _clamp(s)
+        # t of the closest point of segment j to the point at s, clamped (0 for a point:
+        # 0 / 0); then s for that t.
+        t = np.multiply(b, s, out=work)
+        t += f
+        t /= e
+        _clamp(t)
+        np.multiply(b, t, out=s)
+        s -= c
+        s /= a
+        _clamp(s)
+    # The vector between the two closest points, r + s L_i - t L_j, and its length.
+    xi *= s
+    xi += rx
+    xj *= t
+    xi -= xj
+    yi *= s
+    yi += ry
+    yj *= t
+    yi -= yj
+    zi *= s
+    zi += rz
+    zj *= t
+    zi -= zj
+    xi *= xi
+    yi *= yi
+    zi *= zi
+    xi += yi
+    xi += zi
+    return np.sqrt(xi, out=xi)
+
+
+def _clamp(values):
+    """Clamp to [0, 1] in place: NaN becomes 0 (fmax ignores it), inf 1 and -inf 0."""
+    np.fmax(values, 0.0, out=values)
+    np.fmin(values, 1.0, out=values)

@@ -1,0 +1,98 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The singularity margin: the condition number of the dimensionless Jacobian, at most a bound.
+
+The Jacobian and its condition number are those of
+:func:`stewart_kinematics.model.kinematics.jacobian_condition` (rows ``[u_i, (R p_i x u_i) /
+rho]``), computed from the legs of the poses by
+:func:`~stewart_kinematics.model.kinematics.dimensionless_jacobians`. About 10 at the paper
+platform's home pose, ``inf`` at a singularity and for a leg of zero length. Nothing here
+imports ROS.
+"""
+
+import numpy as np
+
+from stewart_kinematics.limits.base import Bound, Limit, PLATFORM
+from stewart_kinematics.model.kinematics import (
+    conditions_of_jacobians,
+    dimensionless_jacobians,
+)
+
+#: Relative rounding allowance of the pivots of the proof (see :func:`proved_within`).
+PIVOT_ROUNDING = 1e-13
+
+
+class SingularityMargin(Limit):
+    """
+    Evaluator of ``max_jacobian_condition``: one value per pose, shape (1, n).
+
+    A singular value decomposition a pose (about 20 us), so it is :attr:`dear`; with ``exact``
+    False, the poses that a cheaper test proves within the margin get NaN instead.
+
+    :param geometry: a :class:`stewart_kinematics.Geometry`; a margin of ``inf`` is not set.
+    """
+
+    dear = True
+
+    def __init__(self, geometry):
+        self._geometry = geometry
+        allowed = geometry.max_jacobian_condition
+        self.bounds = (() if allowed == np.inf else
+                       (Bound('max_jacobian_condition', allowed, True, PLATFORM, ''),))
+
+    def values(self, arrays):
+        """Condition numbers, shape (1, n)."""
+        jacobians = dimensionless_jacobians(self._geometry, arrays.lengths, arrays.vectors)
+        return (conditions_of_jacobians(jacobians)[None, :],)
+
+    def evaluate(self, arrays, exact=True):
+        """See :meth:`Limit.evaluate`; inexact: NaN (not broken) where proved within."""
+        if exact:
+            return super().evaluate(arrays)
+        (bound,) = self.bounds
+        jacobians = dimensionless_jacobians(self._geometry, arrays.lengths, arrays.vectors)
+        conditions = np.full(arrays.count, np.nan)
+        doubtful = ~proved_within(jacobians, bound.allowed)
+        conditions[doubtful] = conditions_of_jacobians(jacobians[doubtful])
+        conditions = conditions[None, :]
+        return ((conditions, doubtful[None, :] & bound.broken(conditions)),)
+
+
+def proved_within(jacobians, bound: float) -> np.ndarray:
+    """
+    Where the condition number of each Jacobian is proved below ``bound``, without an SVD.
+
+    With ``G = J^T J`` and ``U >= lambda_max(G)`` (the smaller of its Frobenius and row-sum
+    norms), ``G - (U / bound^2) I`` positive definite (its LDL^T pivots, computed for every
+    Jacobian at once, all positive) gives ``lambda_min > U / bound^2``, so the condition
+    number ``sqrt(lambda_max / lambda_min)`` is below ``bound``. Most poses are far from the
+    bound: this costs a fraction of a singular value decomposition.
+
+    :param jacobians: shape (n, 6, 6).
+    :returns: shape (n,), True where proved; False proves nothing.
+    """
+    gram = np.swapaxes(jacobians, -1, -2) @ jacobians
+    upper = np.minimum(np.sqrt(np.sum(gram * gram, axis=(-2, -1))),
+                       np.abs(gram).sum(axis=-1).max(axis=-1))
+    # The second term covers the rounding of the pivots (about 1e-15 U).
+    shifted = gram - (upper / bound ** 2 + PIVOT_ROUNDING * upper)[:, None, None] * np.eye(6)
+    proved = np.ones(shifted.shape[0], dtype=bool)
+    for j in range(6):
+        pivot = shifted[:, j, j]
+        proved &= pivot > 0.0
+        column = shifted[:, j + 1:, j] / np.where(pivot > 0.0, pivot, 1.0)[:, None]
+        shifted[:, j + 1:, j + 1:] -= column[:, :, None] * shifted[:, None, j, j + 1:]
+    return proved
