@@ -205,7 +205,7 @@ TIME_NOT_INCREASING = _register(
 INPUT_GAP = _register(
     'input_gap', 'warning',
     '`MotionCueing` (motion_cueing_node)',
-    "More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the "
+    'More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the '
     "washout's clock pauses).")
 CUE_SCALED = _register(
     'cue_scaled', 'warning',
@@ -222,6 +222,7 @@ LIMITS_HELD = _register(
     '`MotionCueing` (motion_cueing_node)',
     'Every next pose would have left the limits: the pose was held (not expected; the '
     'margins prevent it).')
+
 
 def codes_table() -> str:
     """

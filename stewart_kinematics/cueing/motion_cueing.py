@@ -64,9 +64,11 @@ from stewart_kinematics.findings import (
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.parameters import (
+    actuator_limits_from_settings,
     check_values,
     defaults,
-    geometry_from_parameters,
+    geometry_from_settings,
+    GeometrySettings,
     MOTION_CUEING_PARAMETERS,
 )
 
@@ -153,8 +155,9 @@ class MotionCueing:
         merged = defaults(MOTION_CUEING_PARAMETERS)
         merged.update(cueing_values)
         check_values(MOTION_CUEING_PARAMETERS, merged)
-        return cls(geometry_from_parameters(values), CueingSettings.from_parameters(merged),
-                   ActuatorLimits.from_parameters(values))
+        geometry = GeometrySettings.from_values(values)
+        return cls(geometry_from_settings(geometry), CueingSettings.from_parameters(merged),
+                   actuator_limits_from_settings(geometry))
 
     @property
     def pose(self) -> np.ndarray:

@@ -34,11 +34,10 @@ that does not move forward is refused and nothing is published. When no message 
 Refusals and warnings are counted on ``/diagnostics``.
 """
 
-from geometry_msgs.msg import AccelStamped, Pose, PoseStamped
+from geometry_msgs.msg import AccelStamped, PoseStamped
 from rclpy.node import Node
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
-from std_srvs.srv import Trigger
 
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.parameters import (
@@ -46,9 +45,11 @@ from stewart_kinematics.parameters import (
     frames_from_parameters,
     MotionCueingNodeSettings,
 )
+from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import pose_to_message
 from stewart_kinematics.ros.node_main import (
+    create_declared_service,
     create_input_subscription,
     create_output_publisher,
     run_node,
@@ -70,13 +71,14 @@ class MotionCueingNode(Node):
         self.cueing = MotionCueing.from_parameters(self.settings.as_values())
         self.frames = frames_from_parameters(values)
         depth = self.settings.queue.queue_depth
-        self.target_publisher = create_output_publisher(self, Pose, 'target_pose', depth)
-        self.cue_publisher = create_output_publisher(self, PoseStamped, 'cue_pose', depth)
+        interface = MOTION_CUEING_NODE
+        self.target_publisher = create_output_publisher(self, interface['target_pose'], depth)
+        self.cue_publisher = create_output_publisher(self, interface['cue_pose'], depth)
         self.perceived_publisher = create_output_publisher(
-            self, AccelStamped, 'perceived_accel', depth)
+            self, interface['perceived_accel'], depth)
         self.accounting = NodeDiagnostics(self).accounting('vehicle_imu')
-        create_input_subscription(self, Imu, 'vehicle_imu', self.on_imu, depth)
-        self.create_service(Trigger, 'reset', self.on_reset)
+        create_input_subscription(self, interface['vehicle_imu'], self.on_imu, depth)
+        create_declared_service(self, interface['reset'], self.on_reset)
         #: The first stamp, nanoseconds: times are kept relative to it (float precision).
         self.origin_ns = None
         self.last_input = None
