@@ -39,7 +39,7 @@ setup(
     # matplotlib draws the figures of ramp_demo and stewart_cueing only (tools/); mcap reads
     # stewart_cueing's recorded input.
     extras_require={'demo': ['matplotlib', 'rosbags', 'mcap', 'mcap-ros2-support'],
-                    'test': ['pytest']},
+                    'test': ['pytest', 'hypothesis']},
     entry_points={
         'console_scripts': [
             'ik_node = stewart_kinematics.ros.ik_node:main',

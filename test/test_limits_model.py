@@ -179,7 +179,7 @@ def test_check_pose_refuses_what_is_no_pose_with_a_value_error(limited, position
 
 @pytest.mark.parametrize('poses, words', [
     (np.zeros((3, 5)), 'shape'), ([[0.0, 0.0, math.nan, 0.0, 0.0, 0.0]], 'finite'),
-    ([['a'] * 6], 'could not convert'), (np.full((2, 6), np.inf), 'finite')])
+    ([['a'] * 6], 'must be numbers'), (np.full((2, 6), np.inf), 'finite')])
 def test_check_poses_refuses_malformed_batches(limited, poses, words):
     """Wrong shapes, NaN or inf and text: ValueError naming what is wrong."""
     with pytest.raises(ValueError, match=words):

@@ -44,6 +44,7 @@ from stewart_kinematics.limits.singularity import SingularityMargin
 from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import as_poses
 
 #: The limits of a pose, in the order every check reports them.
@@ -140,7 +141,8 @@ class LimitModel:
             a platform joint on its base joint included (a leg of zero length breaks the
             singularity margin and the joint cones, having no direction).
         """
-        position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+        position = as_float_array(position, 'position')
+        rotation = as_float_array(rotation, 'rotation')
         if position.shape != (3,) or rotation.shape != (3, 3):
             raise ValueError(f'expected a position (3,) and a rotation (3, 3), got shapes '
                              f'{position.shape} and {rotation.shape}')
@@ -212,8 +214,8 @@ class LimitModel:
 
         :raises ValueError: if the shapes disagree or a value is not finite.
         """
-        positions = np.asarray(positions, dtype=float)
-        rotations = np.asarray(rotations, dtype=float)
+        positions = as_float_array(positions, 'positions')
+        rotations = as_float_array(rotations, 'rotations')
         if (positions.ndim != 2 or positions.shape[1:] != (3,)
                 or rotations.shape != (len(positions), 3, 3)):
             raise ValueError(f'expected positions (N, 3) and rotations (N, 3, 3), got shapes '
@@ -239,7 +241,7 @@ class LimitModel:
         :returns: a :class:`LimitChecks` of the limits of the quantities given.
         :raises ValueError: if the shapes differ or are not (N, 6).
         """
-        given = {name: np.atleast_2d(np.asarray(values, dtype=float))
+        given = {name: np.atleast_2d(as_float_array(values, name))
                  for name, values in (('lengths', lengths), ('velocities', velocities),
                                       ('accelerations', accelerations), ('jerks', jerks))
                  if values is not None}
@@ -267,7 +269,7 @@ class LimitModel:
         for name, values in (('lengths', lengths), ('velocities', velocities),
                              ('accelerations', accelerations), ('jerks', jerks)):
             if values is not None:
-                values = np.asarray(values, dtype=float)
+                values = as_float_array(values, name)
                 if values.shape != (6,):
                     raise ValueError(f'{name} of one leg state must have shape (6,), got '
                                      f'{values.shape}')
@@ -300,7 +302,11 @@ class LimitModel:
         1.0 without a velocity limit. For a twist scaled uniformly to the limit.
 
         :param velocities: m/s, finite, any shape.
+        :raises ValueError: if a velocity is not a finite number (no factor brings it within).
         """
+        velocities = as_float_array(velocities, 'velocities')
+        if not np.all(np.isfinite(velocities)):
+            raise ValueError(f'velocities must be finite (m/s), got {velocities.tolist()}')
         rates = [limit for limit in self.leg_state_limits
                  if isinstance(limit, LegRate) and limit.quantity == 'velocities']
         return rates[0].scale(velocities) if rates else 1.0

@@ -39,6 +39,7 @@ import weakref
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, check_finite_output, preview
 from stewart_kinematics.model.rotations import (
     _ArrayOperations,
     euler_zyx_matrix_entries,
@@ -63,9 +64,12 @@ SINGULAR_JACOBIAN = 'singular Jacobian: the pose is at a singularity'
 DIVERGED = 'diverged: the next iterate left every plausible pose'
 INVALID_LENGTHS = 'not solved: leg lengths must be finite and positive (metres)'
 INVALID_GUESS = 'not solved: the initial guess must be finite'
-#: Rounding floor of a computed leg length, in units of the length's last place: the residual
-#: of a solve is known no better than this (see ForwardKinematicsResult.pose_error_bound).
-LENGTH_ROUNDING_ULPS = 4.0
+#: Rounding floor of a computed leg length, in units of the last place of ``|t| + |p_i| +
+#: |b_i|`` (the sizes of the terms summed in the leg vector): the residual of a solve is known
+#: no better than this (see ForwardKinematicsResult.pose_error_bound).
+LENGTH_ROUNDING_ULPS = 16.0
+#: Rounding of a computed smallest singular value, in units of the largest one's last place.
+SINGULAR_VALUE_ROUNDING_ULPS = 64.0
 #: Poses per block of a batched inverse kinematics: the temporaries of one block stay in the
 #: processor's cache, which doubles the throughput of batches of millions.
 IK_BLOCK_SIZE = 4096
@@ -73,7 +77,7 @@ IK_BLOCK_SIZE = 4096
 
 def _as_rows(values, name) -> np.ndarray:
     """Return ``values`` as a float array of shape (6,) or (N, 6), or raise ValueError."""
-    values = np.asarray(values, dtype=float)
+    values = as_float_array(values, name)
     if values.ndim not in (1, 2) or values.shape[-1] != 6:
         raise ValueError(f'{name} must have shape (6,) or (N, 6), got {values.shape}')
     return values
@@ -325,8 +329,9 @@ def _batch_rotation_legs(constants, position, rotation):
     shape = position.shape[:-1]
     position = position.reshape(-1, 3)
     rotation = rotation.reshape(-1, 3, 3)
-    legs = _batch_legs(constants, position,
-                       [rotation[:, row, column] for row in range(3) for column in range(3)])
+    with np.errstate(over='ignore', invalid='ignore'):   # the callers refuse an overflow
+        legs = _batch_legs(constants, position,
+                           [rotation[:, row, column] for row in range(3) for column in range(3)])
     return shape, legs
 
 
@@ -384,15 +389,18 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     :param position: platform origin in the base frame, metres, shape (3,) or (N, 3).
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3).
     :returns: in the base frame, metres, shape (6, 3) or (N, 6, 3).
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[1:4] for leg in legs])
-    shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+        vectors = np.array([leg[1:4] for leg in legs])
+    else:
+        shape, (_, vectors) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        vectors = np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+    return _finite_result(vectors, 'the leg vectors', position, rotation)
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -414,15 +422,22 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3); build it
         from a quaternion with :func:`stewart_kinematics.model.rotations.quaternion_to_matrix`.
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
+    :raises ValueError: if a shape is wrong, the numbers of poses differ, a value is not
+        finite or the lengths overflow. The rotation is not checked to be one.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[0] for leg in legs])
-    shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return lengths.T.reshape(shape + (6,))
+        lengths = [leg[0] for leg in legs]
+        if all(map(math.isfinite, lengths)):
+            return np.array(lengths)
+        lengths = np.array(lengths)
+    else:
+        shape, (lengths, _) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        lengths = lengths.T.reshape(shape + (6,))
+    return _finite_result(lengths, 'the leg lengths', position, rotation)
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -432,25 +447,30 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, shape (6,) or (N, 6).
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
-    :raises ValueError: if a pose has the wrong shape or a non-finite value.
+    :raises ValueError: if a pose has the wrong shape or a non-finite value, or its lengths
+        overflow (a coordinate beyond about 1e154 m).
 
     >>> from stewart_kinematics import inverse_kinematics, load_geometry
     >>> geometry = load_geometry('config/paper_platform.yaml')
     >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
     array([0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488])
     """
-    poses = np.asarray(poses, dtype=float)
+    poses = as_float_array(poses, 'poses')
     constants = _constants(geometry)
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array(_single_euler_legs(constants, values, with_vectors=False))
+            lengths = _single_euler_legs(constants, values, with_vectors=False)
+            if all(map(math.isfinite, lengths)):
+                return np.array(lengths)
     poses = as_poses(poses)
-    lengths = np.empty((poses.shape[0], 6))
-    for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
-        stop = start + IK_BLOCK_SIZE
-        lengths[start:stop] = _batch_euler_legs(constants, poses[start:stop], False).T
-    return lengths
+    batch = np.atleast_2d(poses)
+    lengths = np.empty((batch.shape[0], 6))
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        for start in range(0, batch.shape[0], IK_BLOCK_SIZE):
+            stop = start + IK_BLOCK_SIZE
+            lengths[start:stop] = _batch_euler_legs(constants, batch[start:stop], False).T
+    return check_finite_output(lengths.reshape(poses.shape), 'the leg lengths', 'the poses')
 
 
 def twist_jacobian(geometry, position, rotation) -> np.ndarray:
@@ -467,15 +487,45 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
     :returns: shape (6, 6) or (N, 6, 6); translation columns dimensionless, rotation columns
         in metres per radian.
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_float_twist_rows(_single_legs(
+        jac = np.array(_float_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    else:
+        shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+        jac = _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    return _finite_result(jac, 'the twist Jacobian', position, rotation)
+
+
+def _as_position_rotation(position, rotation):
+    """Positions (..., 3) and rotation matrices (..., 3, 3) as float arrays, shapes checked."""
+    position = as_float_array(position, 'position')
+    rotation = as_float_array(rotation, 'rotation')
+    if position.shape == (3,) and rotation.shape == (3, 3):   # one pose: the common case
+        return position, rotation
+    if position.shape[-1:] != (3,) or rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'position must have shape (3,) or (N, 3) and rotation (3, 3) or '
+                         f'(N, 3, 3), got {position.shape} and {rotation.shape}')
+    try:
+        np.broadcast_shapes(position.shape[:-1], rotation.shape[:-2])
+    except ValueError:
+        raise ValueError(f'position {position.shape} and rotation {rotation.shape} must hold '
+                         'the same number of poses, or one of them a single one') from None
+    return position, rotation
+
+
+def _finite_result(result, what, position, rotation):
+    """Return ``result``, or say why it is not finite: a non-finite input, or an overflow."""
+    if isinstance(result, np.ndarray) and result.size <= 36 and all(
+            map(math.isfinite, result.ravel().tolist())) or np.all(np.isfinite(result)):
+        return result
+    for name, values in (('position', position), ('rotation', rotation)):
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f'{name} must be finite, got {preview(values)}')
+    return check_finite_output(result, what, 'the position and rotation')
 
 
 def jacobian(geometry, poses) -> np.ndarray:
@@ -492,7 +542,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     """
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
-    jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
     beta, gamma = batch[:, 4], batch[:, 5]
     cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros((len(batch), 3, 3))
@@ -502,7 +553,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     euler_rate_axes[:, 1, 1] = cos_gamma
     euler_rate_axes[:, 2, 2] = 1.0
     jac[..., 3:] = jac[..., 3:] @ euler_rate_axes
-    return jac.reshape(poses.shape[:-1] + (6, 6))
+    return check_finite_output(jac.reshape(poses.shape[:-1] + (6, 6)), 'the Jacobian',
+                               'the poses')
 
 
 def jacobian_condition(geometry, position, rotation):
@@ -666,34 +718,64 @@ class ForwardKinematicsResult:
     @cached_property
     def pose_error_bound(self) -> Union[float, np.ndarray]:
         """
-        Bound on how far :attr:`pose` can be from the exact pose of the given leg lengths.
+        Proven bound on the distance from :attr:`pose` to the nearest exact pose of the lengths.
 
-        One number in metres and radians: the larger of the bounds on the position error (m)
-        and on the rotation angle error (rad). From the leg length error ``e`` (the residual
-        plus the rounding floor of a computed length, ``LENGTH_ROUNDING_ULPS`` units in the last
-        place of the longest leg), a pose error ``dx`` meets ``J dx = dl`` with
-        ``|dl| <= sqrt(6) e``; with ``sigma`` the smallest singular value of the dimensionless
-        Jacobian (:func:`jacobian_condition`), the position error is at most
-        ``sqrt(6) e / sigma`` and the angle error that divided by ``rho``. The first-order
-        figure is doubled: near a fold singularity, where the leg lengths are quadratic in the
-        pose, the tangent meets the exact solution only halfway, and twice the first-order
-        estimate is Kantorovich's radius around a Newton iterate.
+        One number in metres and radians: the larger of the position error (m) and the
+        rotation angle error (rad) to the pose whose leg lengths are exactly the given ones,
+        the one nearest to :attr:`pose`. Near a fold singularity the same lengths have a second
+        pose close by (another assembly mode, across the fold): that one is not bounded, and
+        the bound is ``inf`` when the two cannot be told apart (below).
+
+        The proof, in the coordinates ``z = (dt, rho phi)`` of a move from :attr:`pose` (``dt``
+        the position change, ``phi`` the rotation vector, ``rho`` the platform radius): the
+        leg lengths are ``l(z) = l(0) + J z + q(z)`` with ``J`` the dimensionless Jacobian
+        (:func:`jacobian_condition`), smallest singular value ``sigma``, and each
+        ``|q_i(z)| <= M_i |z|^2 / 2``, where ``M_i = c_i^2 / l_i' + |p_i| / rho^2`` bounds the
+        second derivative of leg ``i`` along any line in the ball (``c_i = sqrt(1 + |p_i|^2 /
+        rho^2)``, ``l_i'`` the leg's shortest length in the ball). With the leg length error
+        ``e`` (the residual plus the rounding floor, ``LENGTH_ROUNDING_ULPS`` units in the last
+        place of ``|t| + |p_i| + |b_i|``), ``eta = sqrt(6) e / sigma`` and ``h = eta M /
+        sigma`` (``M`` the 2-norm of the ``M_i``), the map ``z -> -J^-1 (l(0) - lengths +
+        q(z))`` sends the ball of radius ``r = 2 eta / (1 + sqrt(1 - 2 h))`` into itself when
+        ``h <= 1/2`` (Kantorovich's condition), so it holds an exact solution (Brouwer), and
+        ``|dt| <= r``, ``|phi| <= r / rho``. The bound is ``r max(1, 1 / rho)``, at most twice
+        the first-order figure ``eta max(1, 1 / rho)``. Where ``h > 1/2`` no ball is proven
+        to hold a solution (the residual is too large for the curvature near a singularity):
+        ``inf``. ``sigma`` is lowered by its rounding, ``SINGULAR_VALUE_ROUNDING_ULPS`` units
+        in the last place of the largest singular value.
 
         On the paper's platform, within +-0.1 m and +-15 degrees of home: 5e-13 for the median
-        pose, up to 1.5e-10 where the residual is just under the default tolerance; 1e-5 within
-        1e-6 rad of the singularity at a yaw of 90.4 degrees, where the residual is still
-        1e-13 m. ``inf`` at a singularity and where the solve did not converge. A float for
-        one solve, an array (N,) for a batch.
+        pose, up to 1e-10 where the residual is just under the default tolerance; 4e-9 at 1e-3
+        rad from the singularity at a yaw of 90.38 degrees, and ``inf`` within about 1e-5 rad
+        of it, where a residual of 1e-13 m can leave converged solves microns off. ``inf`` at a
+        singularity and where the solve did not converge. A float for one solve, an array
+        (N,) for a batch.
         """
         geometry, lengths, _ = self._solve
         lengths = np.asarray(lengths, dtype=float)
-        error = self.residual + LENGTH_ROUNDING_ULPS * np.finfo(float).eps * np.max(
-            lengths, axis=-1)
-        radius = geometry.platform_radius
-        with np.errstate(divide='ignore', invalid='ignore'):
-            bound = (2.0 * math.sqrt(6.0) * max(1.0, 1.0 / radius) * error
-                     / self._singular_values[..., -1])
-        bound = np.where(np.asarray(self.converged) & (bound >= 0.0), bound, np.inf)
+        pose = np.asarray(self.pose, dtype=float)
+        rho = geometry.platform_radius
+        arms = np.linalg.norm(geometry.platform_joints, axis=-1)            # |p_i|, (6,)
+        sizes = (np.linalg.norm(pose[..., None, :3], axis=-1) + arms
+                 + np.linalg.norm(geometry.base_joints, axis=-1))         # (..., 6)
+        eps = np.finfo(float).eps
+        error = self.residual + LENGTH_ROUNDING_ULPS * eps * np.max(sizes, axis=-1)
+        singular_values = self._singular_values
+        sigma = singular_values[..., -1] - SINGULAR_VALUE_ROUNDING_ULPS * eps * (
+            singular_values[..., 0])
+        reach = np.sqrt(1.0 + (arms / rho) ** 2)                          # c_i, (6,)
+        with np.errstate(divide='ignore', invalid='ignore', over='ignore'):
+            eta = math.sqrt(6.0) * error / sigma
+            # The legs' shortest lengths within the largest ball considered, 2 eta.
+            shortest = (lengths - np.asarray(self.residual)[..., None]
+                        - 2.0 * np.asarray(eta)[..., None] * reach)
+            curvature = np.sqrt(np.sum(np.square(
+                reach ** 2 / shortest + arms / rho ** 2), axis=-1))
+            h = eta * curvature / sigma
+            radius = 2.0 * eta / (1.0 + np.sqrt(np.maximum(1.0 - 2.0 * h, 0.0)))
+            proven = (np.asarray(self.converged) & (sigma > 0.0) & (h <= 0.5)
+                      & np.all(shortest > 0.0, axis=-1) & (radius >= 0.0))
+            bound = np.where(proven, radius * max(1.0, 1.0 / rho), np.inf)
         return float(bound) if bound.ndim == 0 else bound
 
 
@@ -753,9 +835,10 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         if initial_guess.converged is True:
             jacobian_inverse = initial_guess._solve[2]
         initial_guess = initial_guess.pose
-    if not 0.0 < tolerance < np.inf:
+    if not (_is_real(tolerance) and 0.0 < tolerance < np.inf):
         raise ValueError(f'tolerance must be positive and finite (metres), got {tolerance!r}')
-    if int(max_iterations) != max_iterations or max_iterations < 1:
+    if not (_is_real(max_iterations) and math.isfinite(max_iterations)
+            and int(max_iterations) == max_iterations and max_iterations >= 1):
         raise ValueError(f'max_iterations must be a positive integer, got {max_iterations!r}')
     constants = _constants(geometry)
     # One solve: six valid floats each (the common case, checked without numpy's overhead).
@@ -779,8 +862,10 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
             jacobian_inverse)
     targets = np.atleast_2d(lengths)
     guesses = np.atleast_2d(guess)
-    count = max(targets.shape[0], guesses.shape[0])
-    if guesses.shape[0] not in (1, count) or targets.shape[0] not in (1, count):
+    # One guess for every row of lengths, or one row of lengths for every guess; an empty
+    # batch (N = 0) gives an empty result, as inverse_kinematics does.
+    count = targets.shape[0] if guesses.shape[0] == 1 else guesses.shape[0]
+    if targets.shape[0] not in (1, count):
         raise ValueError(
             f'lengths {lengths.shape} and initial_guess {guess.shape} must hold the same '
             'number of poses, or one of them a single one')
@@ -1021,6 +1106,12 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
 _FLOAT = np.dtype(float)
 
 
+def _is_real(value) -> bool:
+    """Whether ``value`` is a real number (a bool is not)."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, (bool, np.bool_))
+
+
 def _single_values(values, positive=False):
     """
     Six floats of one pose or one set of leg lengths, or None to leave it to the full checks.
@@ -1032,7 +1123,7 @@ def _single_values(values, positive=False):
     :returns: a list of six floats, or None.
     """
     if isinstance(values, np.ndarray):
-        if values.shape != (6,):
+        if values.shape != (6,) or values.dtype.kind not in 'iuf':
             return None
         if values.dtype == _FLOAT:  # the common case: six Python floats at once
             values = values.tolist()
@@ -1043,9 +1134,12 @@ def _single_values(values, positive=False):
         values = values.tolist()
     elif not isinstance(values, (list, tuple)) or len(values) != 6:
         return None
+    # Numbers only: a string or a bool is left to the full checks, which refuse it.
+    if not all(type(value) in (float, int) for value in values):
+        return None
     try:
         values = [float(value) for value in values]
-    except (TypeError, ValueError):
+    except OverflowError:   # an integer beyond the float range
         return None
     low = 0.0 if positive else -math.inf
     return values if all(low < value < math.inf for value in values) else None

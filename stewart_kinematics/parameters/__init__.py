@@ -57,6 +57,7 @@ from stewart_kinematics.parameters.files import (
     load_geometry,
     load_settings,
     read_parameter_file,
+    read_parameter_files,
 )
 from stewart_kinematics.parameters.settings import (
     ActuatorSettings,
@@ -139,6 +140,7 @@ __all__ = [
     'RAMP_PARAMETERS',
     'RampSettings',
     'read_parameter_file',
+    'read_parameter_files',
     'REPLACED_PARAMETERS',
     'Settings',
     'SOLVER_PARAMETERS',

@@ -90,7 +90,7 @@ class FkNode(Node):
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
         self.settings = declare_settings(self, FkNodeSettings, on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason)
+                                         check=frame_parameters_reason, node_options=kwargs)
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
