@@ -42,12 +42,13 @@ bad option (argparse names it); 3 with ``--strict``, a target missed.
 import argparse
 import csv
 import math
-import os
 from pathlib import Path
 import sys
 import time
 
 import numpy as np
+
+from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
 import yaml
 
 #: The CSV columns, in order.
@@ -96,19 +97,6 @@ class ProgressBar:
         self.stream.flush()
 
 
-def _positive(name, high=math.inf):
-    """Return an argparse type: a float in (0, high]."""
-    def convert(text):
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f'{text!r} is not a number') from None
-        if not 0.0 < value <= high:
-            raise argparse.ArgumentTypeError(f'{name} must be in (0, {high:g}], got {text}')
-        return value
-    return convert
-
-
 def _existing_file(text):
     path = Path(text)
     if not path.exists():
@@ -136,17 +124,19 @@ def build_parser() -> argparse.ArgumentParser:
                         type=_existing_file,
                         help='ROS 2 parameter file (geometry, limits, motion_cueing_node); '
                              'repeat to layer files, as the node takes them')
-    parser.add_argument('--rate', type=_positive('--rate', 10000.0), default=DEFAULT_RATE,
+    parser.add_argument('--rate', type=number_in(0.0, 10000.0, low_inclusive=False),
+                        default=DEFAULT_RATE,
                         help=f'sampling rate of the scenarios, Hz (default {DEFAULT_RATE:g})')
     parser.add_argument('--output', type=Path, default=Path('cueing_output'),
                         help='folder for the table, the numbers and the figures '
                              '(default cueing_output/)')
     parser.add_argument('--no-figures', action='store_true', help='write no figures')
-    parser.add_argument('--false-cue-threshold', type=_positive('--false-cue-threshold', 100.0),
+    parser.add_argument('--false-cue-threshold',
+                        type=number_in(0.0, 100.0, low_inclusive=False),
                         default=FALSE_CUE_THRESHOLD,
                         help='felt specific force of the opposite sign beyond this is a false '
                              f'cue, m/s^2 (default {FALSE_CUE_THRESHOLD:g})')
-    parser.add_argument('--settle-time', type=_positive('--settle-time', 3600.0),
+    parser.add_argument('--settle-time', type=number_in(0.0, 3600.0, low_inclusive=False),
                         default=SETTLE_TIME,
                         help='judge the return to neutral this long after the input rests, s '
                              f'(default {SETTLE_TIME:g})')
@@ -156,18 +146,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def check_output(parser, folder: Path) -> None:
-    """Make sure the output folder can be written before any work; else a usage error."""
-    if folder.exists() and not folder.is_dir():
-        parser.error(f'argument --output: {folder} exists and is not a folder')
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as error:
-        parser.error(f'argument --output: cannot create {folder}: {error.strerror}')
-    if not os.access(folder, os.W_OK | os.X_OK):
-        parser.error(f'argument --output: {folder} is not writable')
-    for name in ('cueing_results.md', 'cueing_results.yaml'):
-        if (folder / name).is_dir():
-            parser.error(f'argument --output: {folder / name} is a folder')
+    """Make sure the output folder and its files can be written, before any work (exit 2)."""
+    check_output_paths(parser, [('--output', folder, True)] + [
+        ('--output', folder / name, False)
+        for name in ('cueing_results.md', 'cueing_results.yaml')])
+    folder.mkdir(parents=True, exist_ok=True)
 
 
 def load_csv(path: Path):
