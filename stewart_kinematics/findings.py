@@ -202,6 +202,41 @@ PLANNING_ERROR = _register(
     'on.')
 
 
+# Motion cueing (motion_cueing_node) ---------------------------------------------------------
+
+INVALID_VEHICLE_MOTION = _register(
+    'invalid_vehicle_motion', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A specific force or angular velocity that is not three finite numbers, or beyond '
+    '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
+    'vehicle were at rest, so that bad input eases it back to neutral.')
+TIME_NOT_INCREASING = _register(
+    'time_not_increasing', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A sample whose time (`header.stamp`) is not after the previous one: repeated, backward '
+    'or not finite; nothing moves.')
+INPUT_GAP = _register(
+    'input_gap', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the '
+    "washout's clock pauses).")
+CUE_SCALED = _register(
+    'cue_scaled', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue was scaled toward neutral to keep inside the limits model (with its margins); '
+    'the details give the workspace and tilt scales.')
+ACTUATOR_LIMITED = _register(
+    'actuator_limited', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
+    'followed as closely as they allow (or braked, or headed home).')
+LIMITS_HELD = _register(
+    'limits_held', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'Every next pose would have left the limits: the pose was held (not expected; the '
+    'margins prevent it).')
+
+
 def codes_table() -> str:
     """
     Return the documentation's table of every code: code, kind, who emits it, what it means.

@@ -218,9 +218,31 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
              'refused trajectory.'),
 ))
 
+MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
+    Endpoint('vehicle_imu', SUBSCRIPTION, 'sensor_msgs/msg/Imu', QUEUE,
+             "The vehicle's specific force (linear_acceleration, m/s^2: 9.81 on z at rest) and "
+             "angular velocity (rad/s) at the driver's head, vehicle frame (x forward, y left, "
+             'z up); header.stamp sets the time step; the orientation is not used'),
+    Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
+             'The cue as the pose of the tool frame in the base frame, one per sample (and while '
+             'easing home after input_timeout), for ik_node'),
+    Endpoint('cue_pose', PUBLISHER, 'geometry_msgs/msg/PoseStamped', QUEUE,
+             'The platform frame in base_frame, with the stamp of the sample: for VR motion '
+             'compensation and RViz'),
+    Endpoint('perceived_accel', PUBLISHER, 'geometry_msgs/msg/AccelStamped', QUEUE,
+             'The specific force felt at head_position (platform frame, m/s^2) in accel.linear, '
+             'with the stamp of the sample it belongs to (one sample behind); accel.angular is '
+             'zero'),
+    Endpoint('reset', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Wash out to neutral: the washout forgets its history, the platform glides home '
+             'within the actuator limits'),
+    DIAGNOSTICS_TOPIC,
+))
+
 #: Every node's interface, by node name.
 NODE_INTERFACES = {
-    interface.node: interface for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE)}
+    interface.node: interface
+    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE)}
 
 
 def markdown_table(interface: NodeInterface) -> str:
