@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.limits import check_pose, check_poses_array
+from stewart_kinematics.limits import check_pose, check_poses_array, LimitModel
 
 
 def pose_violations(geometry, position, rotation) -> list:
@@ -88,7 +88,8 @@ def leg_speed_violations(times, lengths, actuator_limits, tolerance=1e-9) -> dic
     :param actuator_limits: an :class:`~stewart_kinematics.ActuatorLimits`.
     :param tolerance: relative slack for rounding.
     :returns: ``{'velocity': count, 'acceleration': count, 'velocity_peak': m/s,
-        'acceleration_peak': m/s^2}`` over every leg and sample.
+        'acceleration_peak': m/s^2}`` over every leg and sample; the counts are the limits
+        model's (its leg-rate evaluators), the peaks the largest magnitudes seen.
     """
     times = np.asarray(times, dtype=float)
     lengths = np.asarray(lengths, dtype=float)
@@ -96,11 +97,15 @@ def leg_speed_violations(times, lengths, actuator_limits, tolerance=1e-9) -> dic
     velocities = np.diff(lengths, axis=0) / steps[:, None]
     spans = np.minimum(steps[1:], 0.5 * (steps[1:] + steps[:-1]))
     accelerations = np.diff(velocities, axis=0) / spans[:, None]
-    speed_max = actuator_limits.velocity_max * (1.0 + tolerance)
-    acceleration_max = actuator_limits.acceleration_max * (1.0 + tolerance)
+    model = LimitModel(actuator_limits=actuator_limits, rate_slack=tolerance)
+
+    def broken(limit, **states):
+        if not next(iter(states.values())).size:
+            return 0
+        return int(np.count_nonzero(model.check_leg_states(**states).broken.get(limit, 0)))
     return {
-        'velocity': int(np.count_nonzero(np.abs(velocities) > speed_max)),
-        'acceleration': int(np.count_nonzero(np.abs(accelerations) > acceleration_max)),
+        'velocity': broken('leg_velocity_max', velocities=velocities),
+        'acceleration': broken('leg_acceleration_max', accelerations=accelerations),
         'velocity_peak': float(np.max(np.abs(velocities), initial=0.0)),
         'acceleration_peak': float(np.max(np.abs(accelerations), initial=0.0)),
     }
