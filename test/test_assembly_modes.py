@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import reference
 from stewart_kinematics import assembly_mode_margin, assembly_modes, Geometry, load_geometry
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 import yaml
@@ -47,16 +48,6 @@ def lengths_of(base, platform, position, rotation):
     """Leg lengths |t + R p_i - b_i|, typed out here."""
     return np.linalg.norm(np.asarray(position) + platform @ np.asarray(rotation).T - base,
                           axis=-1)
-
-
-def rotation_from_rotation_vector(vectors):
-    """Rodrigues' formula for rotation vectors (n, 3)."""
-    angle = np.linalg.norm(vectors, axis=-1)[:, None, None]
-    k = vectors / np.maximum(np.linalg.norm(vectors, axis=-1), 1e-300)[:, None]
-    cross = np.zeros((len(vectors), 3, 3))
-    cross[:, 0, 1], cross[:, 0, 2], cross[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
-    cross -= np.swapaxes(cross, 1, 2)
-    return np.eye(3) + np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
 
 
 def multi_start_modes(base, platform, lengths, starts=4000, seed=0):
@@ -117,7 +108,7 @@ def newton(base, platform, lengths, positions, rotations, iterations, reach=np.i
         step[:, 3:] *= np.minimum(1.0, 0.5 / np.maximum(
             np.linalg.norm(step[:, 3:], axis=-1), 1e-300))[:, None]
         positions = positions - step[:, :3]
-        rotations = rotation_from_rotation_vector(-step[:, 3:]) @ rotations
+        rotations = reference.rotation_vector_matrices(-step[:, 3:]) @ rotations
     return positions, rotations
 
 

@@ -186,12 +186,7 @@ def test_twist_gives_the_rates_of_the_lengths_at_the_last_accepted_pose():
 
     def lengths_at(time):
         # Rotation by the angle vector w * time (Rodrigues), applied in the base frame.
-        angle_vector = twist[3:] * time
-        angle = np.linalg.norm(angle_vector)
-        k = np.array([[0.0, -angle_vector[2], angle_vector[1]],
-                      [angle_vector[2], 0.0, -angle_vector[0]],
-                      [-angle_vector[1], angle_vector[0], 0.0]]) / angle
-        turn = np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
+        turn = reference.rotation_vector_matrix(twist[3:] * time)
         return lengths_by_hand(np.array(TILTED[:3]) + twist[:3] * time, turn @ rotation)
     step = 1e-6
     expected = (lengths_at(step) - lengths_at(-step)) / (2.0 * step)
