@@ -215,6 +215,24 @@ def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
             for b, p in zip(np.asarray(base), np.asarray(platform))]
 
 
+def leg_lengths_of_matrix(position, rotation, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """
+    Return the six leg lengths ``|t + R p_i - b_i|`` of a position and a rotation matrix.
+
+    Leg by leg, shape (6,); ``base`` and ``platform`` are the joints, metres, (6, 3).
+    """
+    position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+    return np.array([np.linalg.norm(position + rotation @ p - b)
+                     for b, p in zip(np.asarray(base), np.asarray(platform))])
+
+
+def leg_lengths_batch(positions, rotations, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """Return ``|t + R p_i - b_i|`` for positions (N, 3) and rotations (N, 3, 3): (N, 6)."""
+    legs = (np.asarray(positions, dtype=float)[:, None, :]
+            + np.einsum('nij,kj->nki', rotations, platform) - base)
+    return np.linalg.norm(legs, axis=-1)
+
+
 def leg_lengths_long(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
     """
     Return :func:`leg_lengths` computed in numpy's long double, shape (6,).

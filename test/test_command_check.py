@@ -58,9 +58,8 @@ rotation_zyx = reference.rotation_zyx
 
 
 def lengths_by_hand(position, rotation):
-    """|t + R p_i - b_i| leg by leg."""
-    return np.array([np.linalg.norm(np.asarray(position) + rotation @ p - b)
-                     for b, p in zip(BASE, PLATFORM)])
+    """|t + R p_i - b_i| leg by leg, for this module's joint tables."""
+    return reference.leg_lengths_of_matrix(position, rotation, BASE, PLATFORM)
 
 
 def test_an_allowed_pose_gives_its_leg_lengths():

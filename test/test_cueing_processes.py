@@ -29,7 +29,7 @@ from geometry_msgs.msg import Pose
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from reference import BASE_JOINTS, PLATFORM_JOINTS, quaternion_matrix
+from reference import leg_lengths_of_matrix, quaternion_matrix
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float64MultiArray
 from std_srvs.srv import Trigger
@@ -74,9 +74,7 @@ def expected_leg_lengths(message):
     """|t + R p_i - b_i| of a Pose message, leg by leg, from the paper's tables."""
     o = message.orientation
     position = np.array([message.position.x, message.position.y, message.position.z])
-    rotation = quaternion_matrix(o.x, o.y, o.z, o.w)
-    return [float(np.linalg.norm(position + rotation @ p - b))
-            for b, p in zip(BASE_JOINTS, PLATFORM_JOINTS)]
+    return leg_lengths_of_matrix(position, quaternion_matrix(o.x, o.y, o.z, o.w)).tolist()
 
 
 def test_cue_drives_ik_node_within_the_stroke(client, start_node, config_directory):
