@@ -242,3 +242,35 @@ def test_bad_parameters_stop_the_start(ros, override, name):
     # Without motion_cueing.yaml: its node section would win over a -p override (rcl's rule).
     with pytest.raises((ParameterException, ValueError), match=name):
         MotionCueingNode(cli_args=ARGUMENTS[:5] + ['-p', override])
+
+
+def test_one_stamp_far_in_the_future_does_not_freeze_the_node(rig):
+    """
+    A message stamped 2**31 - 1 s, then the stream as before: cued again after input_timeout.
+
+    Found by the node fuzzer: the absurd stamp was taken as the latest time, every later
+    message was refused as ``time_not_increasing`` until 2038, and, each refused message counting
+    as input, the watchdog never eased the platform home: one message froze the platform. Now a
+    stream refused for its time counts as no input: after input_timeout the platform eases home
+    and the next message starts a new time line.
+    """
+    start_ns = 1_000 * 1_000_000_000
+    rig.send([imu(start_ns + index * 10_000_000) for index in range(5)])
+    accounting = rig.node.accounting
+    published = accounting.published
+    rig.publisher.publish(imu((2 ** 31 - 1) * 1_000_000_000 + 999_999_999))
+    assert rig.spin_until(rig.executor, lambda: accounting.received == 6)
+
+    def stream_cued_again():
+        stamp = start_ns + int(stream_cued_again.index * 10_000_000)
+        stream_cued_again.index += 1
+        rig.publisher.publish(imu(stamp))
+        rig.executor.spin_once(timeout_sec=0.01)
+        return accounting.published > published + 1
+
+    stream_cued_again.index = 5
+    timeout = rig.node.input_timeout
+    assert rig.spin_until(rig.executor, stream_cued_again, 5.0 + 4 * timeout), (
+        f'still refused after {stream_cued_again.index} messages: '
+        f'{accounting.rejections_by_code}')
+    assert accounting.rejections_by_code.get('time_not_increasing', 0) >= 1

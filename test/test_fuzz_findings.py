@@ -25,7 +25,7 @@ import pytest
 
 from stewart_kinematics.findings import TRAJECTORY_TOO_LONG
 from stewart_kinematics.motion.planning import plan_motion
-from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
 from stewart_kinematics.motion.trajectory_check import check_trajectory, MAX_CHECK_SAMPLES
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
@@ -51,34 +51,31 @@ def platform():
 
 def test_a_path_to_a_far_waypoint_is_refused_without_sampling_it(platform):
     """
-    A pose_path with one waypoint 10^9 m away: refused as too long to check, not a crash.
+    A pose_path with one waypoint 10^9 m away: refused with a reason, never a MemoryError.
 
-    The fuzzer's path had a waypoint at 1e9 m: its nominal time by leg travel is 2e9 s, toppra
-    failed, and the check of the path as given asked numpy for 14.6 TiB of sample times
-    (MemoryError: trajectory_node exited).
+    The fuzzer's path had a waypoint at 1e9 m: its nominal time by leg travel was 2e9 s, toppra
+    failed, and the check of the path as given asked numpy for 7 to 15 TiB of sample times
+    (MemoryError: trajectory_node exited). Issue 20's inputs now refuse such a waypoint by
+    name, before any timing.
     """
-    geometry, limits = platform
-    path = PoseTrajectory.path(geometry, [HOME, HOME + [1e9, 0.0, 0.0]],
-                               np.stack([np.eye(3)] * 2))
-    plan = plan_motion(path, geometry, limits, retime_path=True)
-    assert not plan.accepted
-    assert plan.refusal.code == TRAJECTORY_TOO_LONG, plan.refusal
-    assert f'{MAX_CHECK_SAMPLES:,}' in plan.reason, plan.reason
+    geometry, _ = platform
+    with pytest.raises(ValueError, match='beyond 1000 m'):
+        PoseTrajectory.path(geometry, [HOME, HOME + [1e9, 0.0, 0.0]], np.stack([np.eye(3)] * 2))
 
 
 def test_a_check_that_needs_too_many_samples_is_refused_before_sampling(platform):
-    """check_trajectory of a 10^7 s trajectory at 1 kHz says so instead of allocating 10^10."""
+    """A 10^6 s trajectory of 5000 waypoints at 1 kHz: refused by count, not sampled."""
     geometry, limits = platform
-    path = PoseTrajectory.path(geometry, [HOME, HOME + [0.001, 0.0, 0.0]],
-                               np.stack([np.eye(3)] * 2))
-    long = PoseTrajectory(np.array([0.0, 1e7]), path.positions, path.rotations)
-    from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
-    check = check_trajectory(TimedTrajectory.as_given(long), geometry, limits,
+    count = 5000
+    steps = np.linspace(0.0, 0.001, count)[:, None] * [1.0, 0.0, 0.0]
+    path = PoseTrajectory(np.linspace(0.0, 1e6, count), HOME + steps,
+                          np.stack([np.eye(3)] * count))
+    check = check_trajectory(TimedTrajectory.as_given(path), geometry, limits,
                              validation_rate=1000.0)
     assert not check.accepted and not check.complete
-    assert 'samples' in check.reason and check.samples == 0
-    plan = plan_motion(long, geometry, limits)
-    assert plan.refusal.code == TRAJECTORY_TOO_LONG
+    assert f'{MAX_CHECK_SAMPLES:,}' in check.reason, check.reason
+    plan = plan_motion(path, geometry, limits)
+    assert plan.refusal.code == TRAJECTORY_TOO_LONG, plan.refusal
 
 
 def test_a_frame_offset_too_far_for_the_arithmetic_is_refused():

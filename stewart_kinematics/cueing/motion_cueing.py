@@ -185,6 +185,16 @@ class MotionCueing:
         """
         self.washout.reset()
 
+    def restart_time(self) -> None:
+        """
+        Start a new time line: the next sample's time may be anything, even before the last.
+
+        For an input lost and found again (a restarted simulator, a recording played again, or a
+        stream whose one absurd stamp put the last time years ahead): its first sample is taken
+        as the first one ever (no step), the motion goes on from where it is.
+        """
+        self.time = None
+
     def refusal(self, time, specific_force, angular_velocity) -> Optional[Finding]:
         """
         Say why a sample cannot be used, or return ``None``.

@@ -92,9 +92,13 @@ class MotionCueingNode(Node):
             f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
 
     def on_imu(self, message: Imu):
-        """Cue one sample; publish the pose (also for a refused value: it eases home)."""
+        """
+        Cue one sample; publish the pose (also for a refused value: it eases home).
+
+        A sample refused for its time is no input: refused for ``input_timeout``, the
+        platform eases home (:meth:`on_watchdog`), and the next sample starts a new time line.
+        """
         self.accounting.receive()
-        self.last_input = self.get_clock().now()
         stamp = message.header.stamp
         stamp_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
         if self.origin_ns is None:
@@ -108,6 +112,7 @@ class MotionCueingNode(Node):
             self.accounting.warn(warning)
         if result.pose is None:
             return
+        self.last_input = self.get_clock().now()
         target = pose_to_message(self.frames.tool_pose_vector(result.pose))
         if result.refusal is None:
             self.accounting.publish(self.target_publisher, target)
@@ -148,10 +153,12 @@ class MotionCueingNode(Node):
     def on_watchdog(self):
         """Without input for input_timeout, ease the platform home until it rests."""
         now = self.get_clock().now()
-        if self.last_input is None or self.cueing.settled():
-            self.last_rest = now
-            return
-        if (now - self.last_input).nanoseconds * 1e-9 < self.input_timeout:
+        lost = self.last_input is not None and (
+            (now - self.last_input).nanoseconds * 1e-9 >= self.input_timeout)
+        if lost:
+            # Whatever comes next starts a new time line.
+            self.cueing.restart_time()
+        if not lost or self.cueing.settled():
             self.last_rest = now
             return
         dt = (now - self.last_rest).nanoseconds * 1e-9
