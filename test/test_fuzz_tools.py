@@ -1,0 +1,193 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The fuzzer's own parts, without a node: message generation, the output oracle, parameters.
+
+Property tests (hypothesis, the profiles of test/properties.py): for any seed and every message
+type a declared node subscribes to (and a few more), every kind of message builds and
+serializes, a plausible one has only finite numbers and unit quaternions, and one seed gives the
+same messages twice. The oracle (:class:`OutputInvariants`) is checked against messages made by
+hand on each side of each limit, and the parameter fuzzer's expectations against the specs.
+"""
+
+import math
+from pathlib import Path
+import random
+
+from geometry_msgs.msg import Pose, PoseStamped
+from hypothesis import given, strategies as st
+import numpy as np
+from properties import budget
+import pytest
+from rcl_interfaces.msg import ParameterDescriptor, ParameterType
+from rclpy.serialization import serialize_message
+from sensor_msgs.msg import Imu, JointState
+from std_msgs.msg import Float64MultiArray
+
+from stewart_kinematics.parameters import all_specs
+from stewart_kinematics.ros.interfaces import NODE_INTERFACES, SUBSCRIPTION
+from stewart_kinematics.tools.fuzz_messages import MessageFuzzer, Plausible
+from stewart_kinematics.tools.fuzz_parameters import (
+    argument,
+    ParameterFuzzer,
+    REFUSED,
+    start_variant,
+)
+from stewart_kinematics.tools.node_fuzzer import parameter_files
+from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+pytestmark = pytest.mark.node
+
+CONFIG = Path(__file__).resolve().parent.parent / 'config'
+#: Every message type a declared node subscribes to, and a few more for the generic walk.
+TYPES = sorted({endpoint.message_type for interface in NODE_INTERFACES.values()
+                for endpoint in interface.of_kind(SUBSCRIPTION)} | {Imu, JointTrajectory},
+               key=lambda kind: kind.__name__)
+HINTS = Plausible(stamp=lambda: (1000, 0))
+
+
+@pytest.fixture(scope='module')
+def invariants():
+    """Return the oracle of ik_node's files (paper platform, example limits)."""
+    return OutputInvariants.from_parameter_files(parameter_files('ik_node', CONFIG), 'ik_node')
+
+
+@budget(10)
+@given(seed=st.integers(0, 2 ** 32 - 1),
+       kind=st.sampled_from(['plausible', 'mutated', 'hostile']))
+def test_every_kind_of_message_of_every_type_builds_and_serializes(seed, kind):
+    """Any seed, any kind, any declared input type: a message that goes on the wire."""
+    rng = random.Random(seed)
+    for message_type in TYPES:
+        message, done = MessageFuzzer(message_type, rng, HINTS, 'topic').message(kind)
+        assert isinstance(message, message_type)
+        assert serialize_message(message)
+        assert (kind == 'plausible') == (not done)
+
+
+@budget(10)
+@given(seed=st.integers(0, 2 ** 32 - 1))
+def test_a_plausible_message_is_finite_with_unit_quaternions(seed):
+    """Plausible messages are what a platform could be sent: the oracle finds nothing."""
+    rng = random.Random(seed)
+    for message_type in TYPES:
+        message, _ = MessageFuzzer(message_type, rng, HINTS).message('plausible')
+        assert numbers_problems(message) == [], message
+
+
+@budget(5)
+@given(seed=st.integers(0, 2 ** 32 - 1))
+def test_one_seed_gives_the_same_messages(seed):
+    """Replaying a seed sends the same messages, kind by kind, type by type."""
+    def draw():
+        # repr, not the serialized bytes: CDR's alignment padding is not initialised.
+        rng = random.Random(seed)
+        return [repr(MessageFuzzer(message_type, rng, HINTS).message(kind)[0])
+                for kind in ('plausible', 'mutated', 'hostile') for message_type in TYPES]
+    assert draw() == draw()
+
+
+def test_a_huge_message_has_a_sequence_of_100000():
+    """The huge kind gives a trajectory 10^5 points."""
+    from trajectory_msgs.msg import MultiDOFJointTrajectory
+    message, done = MessageFuzzer(MultiDOFJointTrajectory, random.Random(1), HINTS).message(
+        'huge')
+    assert any('100000 elements' in what for what in done), done
+    assert max(len(message.points), len(message.joint_names)) == 100_000
+
+
+def test_the_oracle_finds_non_finite_numbers_and_non_unit_quaternions(invariants):
+    """A NaN anywhere and a quaternion of norm 2 are problems on any topic."""
+    pose = Pose()
+    pose.orientation.w = 2.0
+    assert 'norm' in invariants.problems('anything', pose)[0]
+    message = JointTrajectory(points=[JointTrajectoryPoint(positions=[0.0, math.nan])])
+    assert 'nan' in invariants.problems('other', message)[0]
+
+
+def test_the_oracle_checks_leg_lengths_and_velocities_against_the_limits(invariants):
+    """Stroke 0.65 to 0.90 m, leg_velocity_max 0.05 m/s: one side passes, the other fails."""
+    inside = Float64MultiArray(data=[0.7] * 6)
+    assert invariants.problems('leg_lengths', inside) == []
+    outside = Float64MultiArray(data=[0.7] * 5 + [0.9000001])
+    assert 'leg 6' in invariants.problems('leg_lengths', outside)[0]
+    assert invariants.problems('leg_velocities', Float64MultiArray(data=[0.05] * 6)) == []
+    assert invariants.problems('leg_velocities', Float64MultiArray(data=[0.0501] + [0.0] * 5))
+    names = [f'leg_{index}' for index in range(1, 7)]
+    good = JointState(name=names, position=[0.7] * 6, velocity=[0.01] * 6)
+    assert invariants.problems('joint_commands', good) == []
+    fast = JointState(name=names, position=[0.7] * 6, velocity=[0.06] + [0.0] * 5)
+    assert 'velocity' in invariants.problems('joint_commands', fast)[0]
+
+
+def test_the_oracle_checks_poses_under_the_frames_in_force(invariants):
+    """Home passes; 0.3 m up breaks the stroke; a pose in an unknown frame is a problem."""
+    home = Pose()
+    home.position.z = 0.4325
+    assert invariants.problems('estimated_pose', home) == []
+    high = Pose()
+    high.position.z = 0.7325
+    assert 'leg_length_max' in invariants.problems('target_pose', high)[0]
+    stamped = PoseStamped(pose=home)
+    stamped.header.frame_id = 'elsewhere'
+    assert invariants.problems('cue_pose', stamped)
+    stamped.header.frame_id = 'stewart_base'
+    assert invariants.problems('cue_pose', stamped) == []
+
+
+def test_parameter_changes_the_spec_refuses_must_be_refused():
+    """Every drawn change of a value its spec refuses expects a refusal that names it."""
+    specs = {spec.name: spec for spec in all_specs()}
+    descriptors = {name: ParameterDescriptor(type=_type_code(spec.value_type),
+                                             read_only=spec.read_only)
+                   for name, spec in specs.items()}
+    values = {name: spec.default for name, spec in specs.items()}
+    fuzzer = ParameterFuzzer(random.Random(7), descriptors, values)
+    seen = set()
+    for change in fuzzer.changes(len(descriptors)) + [fuzzer.change() for _ in range(400)]:
+        seen.add(change.why.split("'")[0])
+        if change.message.value.type in (10, 42, 255) or change.why in (
+                'read-only', 'wrong type', 'no such parameter'):
+            assert change.expect == REFUSED
+        elif change.names_parameter:
+            assert change.expect == REFUSED and f"'{change.name}'" in change.why
+    assert {'read-only', 'wrong type', 'no such parameter type'} <= seen
+
+
+def test_a_start_variant_keeps_the_platform_and_is_valid():
+    """A start-up variant never touches the geometry, limits or frames; each value is allowed."""
+    specs = {spec.name: spec for spec in all_specs()}
+    for seed in range(20):
+        variant = start_variant(random.Random(seed))
+        for name, value in variant.items():
+            assert specs[name].read_only and not specs[name].check(value)
+            assert name not in ('leg_length_max', 'base_frame', 'joint_names')
+            assert argument(name, value).startswith(f'{name}:=')
+    assert argument('mode', 'off') == "mode:='off'" and argument('loop', True) == 'loop:=true'
+
+
+def _type_code(value_type):
+    return {'bool': ParameterType.PARAMETER_BOOL, 'integer': ParameterType.PARAMETER_INTEGER,
+            'double': ParameterType.PARAMETER_DOUBLE, 'string': ParameterType.PARAMETER_STRING,
+            'double_array': ParameterType.PARAMETER_DOUBLE_ARRAY,
+            'string_array': ParameterType.PARAMETER_STRING_ARRAY}[value_type]
+
+
+def test_numbers_problems_walks_arrays_of_any_depth():
+    """An inf deep in a trajectory point's accelerations is found, with its path."""
+    point = JointTrajectoryPoint(positions=[0.7] * 6, accelerations=[0.0] * 5 + [np.inf])
+    problems = numbers_problems(JointTrajectory(points=[point, point]))
+    assert problems and 'points[0].accelerations[5]' in problems[0]
