@@ -80,20 +80,19 @@ from stewart_kinematics.tools.fuzz_client import (
 )
 from stewart_kinematics.tools.fuzz_messages import message_class, MessageFuzzer
 from stewart_kinematics.tools.fuzz_parameters import EITHER
-from stewart_kinematics.tools.node_fuzzer import (
-    FRAME_NAMES,
-    parameter_clients,
-    parameter_files,
-    parameter_fuzzer_of,
-    ParameterRequests,
-    plausible_hints,
-)
+from stewart_kinematics.tools.fuzz_targets import parameter_files, plausible_hints
 from stewart_kinematics.tools.node_processes import (
     find_executable,
     isolated_ros_environment,
     NodeProcess,
 )
 from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
+from stewart_kinematics.tools.parameter_requests import (
+    FRAME_NAMES,
+    parameter_clients,
+    parameter_fuzzer_of,
+    ParameterRequests,
+)
 
 #: Extra start-up arguments of some nodes: trajectory_node loops the Table 3 ramp, a row
 #: every 0.2 s, so that the chain trajectory_node -> ik_node -> fk_node always has work.
@@ -111,6 +110,8 @@ HOSTILE_CLOCKS = ((-5, 0), (0, 4_294_967_295), (2 ** 31 - 1, 999_999_999))
 HOSTILE_CLOCK_SECONDS = 0.1
 #: Seconds a node's run is younger than when its memory is not yet counted (imports, caches).
 RSS_WARM_UP = 20.0
+#: Seconds of samples after the warm-up a memory slope needs.
+SLOPE_SPAN = 60.0
 #: Seconds a node gets to stop on SIGTERM or SIGINT.
 STOP_TIMEOUT = 10.0
 #: Seconds a new run gets to report on /diagnostics before a SIGTERM or SIGINT is sent anyway.
@@ -137,9 +138,9 @@ class Run:
     rss: List[tuple] = field(default_factory=list)
 
     def slope(self) -> Optional[float]:
-        """Resident memory growth after the warm-up, kB per minute (least squares), or None."""
+        """Return the memory growth after the warm-up, kB per minute (least squares), or None."""
         points = [(t, kb) for t, kb in self.rss if t - self.started >= RSS_WARM_UP]
-        if len(points) < 3:
+        if len(points) < 3 or points[-1][0] - points[0][0] < SLOPE_SPAN:
             return None
         times, values = np.array(points, dtype=float).T
         return float(np.polyfit(times / 60.0, values, 1)[0])
@@ -352,7 +353,9 @@ class Soak:
                 next_kill += arguments.kill_every
                 names = sorted(self.slots)
                 slot = self.slots[names[kill_index % len(names)]]
-                kill_signal = (signal.SIGKILL, signal.SIGTERM)[(kill_index // len(names)) % 2]
+                # SIGKILL and SIGTERM in turn, shifted by one each round: each node gets both.
+                kill_signal = (signal.SIGKILL, signal.SIGTERM)[
+                    (kill_index + kill_index // len(names)) % 2]
                 kill_index += 1
                 self.kill(slot, kill_signal)
             for slot in self.slots.values():
@@ -368,6 +371,7 @@ class Soak:
                 self.totals[name].update(self.diagnostics.reports('/' + name).latest)
             self.check_orphans(now)
             time.sleep(max(0.0, TICK - (time.monotonic() - now)))
+        faults = time.monotonic() - start
         self._stop.set()
         parameter_thread.join(timeout=30.0)
         client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
@@ -383,7 +387,7 @@ class Soak:
             self.parameter_problems += requests.problems
             for key, count in requests.counts.items():
                 self.parameter_counts[key] = self.parameter_counts.get(key, 0) + count
-        return self.report(time.monotonic() - start)
+        return self.report(faults, time.monotonic() - start)
 
     def publish(self, stream, kind, counts):
         """Publish one message of a stream, of a kind (plausible, mutated, hostile)."""
@@ -506,10 +510,16 @@ class Soak:
 
     # The report ---------------------------------------------------------------------------------
 
-    def report(self, duration: float) -> int:
-        """Print the report; return 0 when every target is met, else 1."""
+    def report(self, duration: float, total: float) -> int:
+        """
+        Print the report; return 0 when every target is met, else 1.
+
+        :param duration: seconds of the stream and the faults; ``total``: with the start and
+            the final stop.
+        """
         arguments = self.arguments
-        lines = [f'SOAK {duration:.0f} s, seed {arguments.seed}: nodes '
+        lines = [f'SOAK {duration:.0f} s ({total:.0f} s with the start and the stop), seed '
+                 f'{arguments.seed}: nodes '
                  f'{", ".join(self.slots)}; sim time on {", ".join(arguments.sim_time) or "none"}']
         lines.append(f'SOAK stream sent {sum(self.sent.values())} {_sorted(self.sent)}')
         lines.append(f'SOAK bad messages sent {sum(self.bad.values())} {_sorted(self.bad)}')

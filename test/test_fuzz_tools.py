@@ -45,7 +45,7 @@ from stewart_kinematics.tools.fuzz_parameters import (
     REFUSED,
     start_variant,
 )
-from stewart_kinematics.tools.node_fuzzer import parameter_files
+from stewart_kinematics.tools.fuzz_targets import parameter_files
 from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
@@ -191,3 +191,10 @@ def test_numbers_problems_walks_arrays_of_any_depth():
     point = JointTrajectoryPoint(positions=[0.7] * 6, accelerations=[0.0] * 5 + [np.inf])
     problems = numbers_problems(JointTrajectory(points=[point, point]))
     assert problems and 'points[0].accelerations[5]' in problems[0]
+
+
+def test_frames_a_node_would_refuse_add_no_frame_tree(invariants):
+    """A tool frame named as the platform frame makes no tree: nothing added, nothing raised."""
+    before = list(invariants.frames)
+    invariants.add_frames({'tool_frame': 'stewart_platform'})
+    assert invariants.frames == before

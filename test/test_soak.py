@@ -33,7 +33,7 @@ import pytest
 pytestmark = pytest.mark.process
 
 SOAK = Path(__file__).resolve().parent.parent / 'benchmarks' / 'soak.py'
-#: The 30 s soak: a kill every 7 s (SIGKILL for the first three, then SIGTERM), a flood every
+#: The 30 s soak: a kill every 7 s (SIGKILL and SIGTERM in turn), a flood every
 #: 10 s, a clock jump every 3 s (a hostile clock message at the fifth).
 ARGUMENTS = ['--seconds', '30', '--kill-every', '7', '--flood-every', '10', '--flood-seconds',
              '2', '--jump-every', '3', '--parameter-every', '1', '--rss-every', '2']

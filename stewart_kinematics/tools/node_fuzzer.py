@@ -39,32 +39,17 @@ NAME --seed S --messages N`` replays one.
 
 import argparse
 from dataclasses import dataclass, field
-import math
 from pathlib import Path
 import random
 import signal
 import sys
-import threading
 import time
 from typing import Dict, List, Optional, Sequence
 
-from rcl_interfaces.srv import (
-    DescribeParameters,
-    GetParameters,
-    ListParameters,
-    SetParameters,
-    SetParametersAtomically,
-)
+from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomically
 import rclpy
 from rosidl_parser import definition
 
-from stewart_kinematics.parameters import (
-    ActuatorSettings,
-    FRAME_PARAMETERS,
-    geometry_from_parameters,
-    read_parameter_files,
-)
-from stewart_kinematics.parameters.files import read_parameter_sections
 from stewart_kinematics.ros.interfaces import (
     NODE_INTERFACES,
     PUBLISHER,
@@ -74,26 +59,21 @@ from stewart_kinematics.ros.interfaces import (
 from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.fuzz_client import DiagnosticsLog, paced, SpinningClient
-from stewart_kinematics.tools.fuzz_messages import (
-    choose_kind,
-    MessageFuzzer,
-    Plausible,
-    summarize,
-)
-from stewart_kinematics.tools.fuzz_parameters import (
-    argument,
-    EITHER,
-    ParameterFuzzer,
-    python_value,
-    REFUSED,
-    start_variant,
-)
+from stewart_kinematics.tools.fuzz_messages import choose_kind, MessageFuzzer, summarize
+from stewart_kinematics.tools.fuzz_parameters import argument, start_variant
+from stewart_kinematics.tools.fuzz_targets import parameter_files, plausible_hints
 from stewart_kinematics.tools.node_processes import (
     find_executable,
     isolated_ros_environment,
     NodeProcess,
 )
-from stewart_kinematics.tools.output_invariants import OutputInvariants
+from stewart_kinematics.tools.output_invariants import OutputInvariants, OutputLog
+from stewart_kinematics.tools.parameter_requests import (
+    held_value_problems,
+    parameter_clients,
+    parameter_fuzzer_of,
+    ParameterRequests,
+)
 
 #: Seconds to wait for discovery, an answer, or the node's first report.
 DEADLINE = 20.0
@@ -101,37 +81,8 @@ DEADLINE = 20.0
 SETTLE_DEADLINE = 60.0
 #: Queue depth of the fuzzer's publishers and subscriptions (reliable, keep last).
 QUEUE_DEPTH = 100
-#: Names of the frame parameters: an accepted change gives the output checks a frame tree.
-FRAME_NAMES = frozenset(spec.name for spec in FRAME_PARAMETERS)
 #: Messages of each input whose mutations a failure report shows.
 KEPT_DESCRIPTIONS = 5
-#: Failing output messages kept for the final check against every frame tree.
-KEPT_FAILURES = 100
-#: The geometry and limits every node is fuzzed with, from the package's config/ folder.
-GEOMETRY_FILES = ('paper_platform.yaml', 'example_limits.yaml')
-
-
-def config_directory() -> Path:
-    """Return the package's config/ folder (installed or in the source tree)."""
-    from stewart_kinematics.tools.ramp_demo import default_config_directory
-    return default_config_directory()
-
-
-def parameter_files(node: str, directory: Optional[Path] = None) -> List[Path]:
-    """
-    Return the parameter files a node is fuzzed with: geometry and limits, then its own.
-
-    Its own: every other file of ``config/`` with a section for the node by name (such as
-    ``table3_ramp.yaml`` for trajectory_node), so a node added later with its own file is
-    started as its documentation starts it.
-    """
-    directory = directory or config_directory()
-    files = [directory / name for name in GEOMETRY_FILES]
-    for path in sorted(directory.glob('*.yaml')):
-        if path.name not in GEOMETRY_FILES and any(
-                key.strip('/') == node for key in read_parameter_sections(path)):
-            files.append(path)
-    return files
 
 
 @dataclass
@@ -226,152 +177,6 @@ class FuzzReport:
         return '\n'.join(lines)
 
 
-class _Outputs:
-    """Subscription callbacks on every output of the node: counts and checked messages."""
-
-    def __init__(self, invariants: OutputInvariants):
-        self.invariants = invariants
-        self.counts: Dict[str, int] = {}
-        self.failures = []
-        self.failure_count = 0
-        self._lock = threading.Lock()
-
-    def callback(self, topic):
-        def on_message(message):
-            problems = self.invariants.problems(topic, message)
-            with self._lock:
-                self.counts[topic] = self.counts.get(topic, 0) + 1
-                if problems:
-                    self.failure_count += 1
-                    if len(self.failures) < KEPT_FAILURES:
-                        self.failures.append((topic, message))
-        return on_message
-
-    def problems(self) -> List[str]:
-        """Check the failing messages again, against every frame tree seen: what still fails."""
-        problems = []
-        with self._lock:
-            failures = list(self.failures)
-        for topic, message in failures:
-            for problem in self.invariants.problems(topic, message):
-                problems.append(f'published on {topic}: {problem}')
-        if problems and self.failure_count > len(failures):
-            problems.append(f'... {self.failure_count} failing output messages in all')
-        return problems
-
-
-class ParameterRequests:
-    """The parameter requests sent during the flood, checked as their answers arrive."""
-
-    def __init__(self, fuzzer: ParameterFuzzer, invariants: OutputInvariants):
-        self.fuzzer = fuzzer
-        self.invariants = invariants
-        self.pending = []
-        self.sent = []
-        self.problems: List[str] = []
-        self.counts: Dict[str, int] = {}
-        self._lock = threading.Lock()
-
-    def send(self, client, changes, atomic: bool):
-        """Send a request of ``changes``; its answer is checked when it arrives."""
-        request = (SetParametersAtomically if atomic else SetParameters).Request(
-            parameters=[change.message for change in changes])
-        future = client.call_async(request)
-        self.pending.append(future)
-        self.sent.append((future, changes))
-        future.add_done_callback(lambda done: self._answer(done, changes, atomic))
-
-    def _answer(self, future, changes, atomic):
-        response = future.result()
-        with self._lock:
-            if response is None:
-                self.problems.append('a parameter request got no response')
-                return
-            if atomic:
-                result = response.result
-                must_refuse = [change for change in changes if change.expect == REFUSED]
-                if must_refuse and result.successful:
-                    self.problems.append(
-                        'an atomic request was accepted although it held '
-                        + '; '.join(change.describe() for change in must_refuse))
-                self._count('atomic ' + ('accepted' if result.successful else 'refused'))
-                if result.successful:
-                    for change in changes:
-                        self._apply(change)
-                return
-            if len(response.results) != len(changes):
-                self.problems.append(f'{len(changes)} changes got {len(response.results)} results')
-                return
-            for change, result in zip(changes, response.results):
-                self._check(change, result)
-
-    def _check(self, change, result):
-        if result.successful:
-            self._count('accepted')
-            if change.expect == REFUSED:
-                self.problems.append(f'accepted {change.describe()}')
-            else:
-                self._apply(change)
-            return
-        self._count('refused (must)' if change.expect == REFUSED else 'refused (valid value)')
-        if not result.reason:
-            self.problems.append(f'refused without a reason: {change.describe()}')
-        elif change.names_parameter and f"'{change.name}'" not in result.reason:
-            self.problems.append(f'refused with a reason that does not name the parameter: '
-                                 f'{change.describe()}: {result.reason!r}')
-
-    def _apply(self, change):
-        self.fuzzer.accepted(change)
-        if change.name in FRAME_NAMES:
-            self.invariants.add_frames(self.fuzzer.values)
-
-    def _count(self, what):
-        self.counts[what] = self.counts.get(what, 0) + 1
-
-    def done(self) -> bool:
-        """Whether every request has been answered."""
-        return all(future.done() for future in self.pending)
-
-    def forget_unanswered(self):
-        """
-        Give up on the requests not answered: their valid changes may or may not hold.
-
-        A value a lost request may have set is allowed for its parameter from now on
-        (:meth:`ParameterFuzzer.allow`), and so is its frame tree for the output checks.
-        """
-        with self._lock:
-            for future, changes in self.sent:
-                if future.done():
-                    continue
-                self._count('unanswered')
-                for change in changes:
-                    if change.expect == EITHER:
-                        self.fuzzer.allow(change)
-                        if change.name in FRAME_NAMES:
-                            self.invariants.add_frames({**self.fuzzer.values,
-                                                        change.name: change.value})
-
-
-def plausible_hints(files, node: str) -> Plausible:
-    """Return the :class:`Plausible` hints of the platform the parameter files describe."""
-    values = read_parameter_files(files, node)
-    geometry = geometry_from_parameters(values)
-    actuators = ActuatorSettings.from_values(values)
-    frames = [values.get(name) or default for name, default in (
-        ('base_frame', 'stewart_base'), ('platform_frame', 'stewart_platform'))]
-    frames += [values[name] for name in ('user_frame', 'tool_frame') if values.get(name)]
-    clock = rclpy.clock.Clock()
-
-    def stamp():
-        return clock.now().seconds_nanoseconds()
-
-    return Plausible(
-        home_position=tuple(geometry.home_pose[:3].tolist()),
-        home_leg_lengths=tuple(geometry.home_leg_lengths.tolist()),
-        actuator_offsets=tuple(actuators.actuator_offsets), joint_names=tuple(
-            actuators.joint_names), frames=tuple(frames), stamp=stamp)
-
-
 def fuzz_node(settings: FuzzSettings, context=None) -> FuzzReport:
     """
     Run one fuzz run of a node as a process and check the invariants.
@@ -443,7 +248,7 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
     node = client.node
     fqn = '/' + settings.node
     diagnostics = DiagnosticsLog()
-    outputs = _Outputs(invariants)
+    outputs = OutputLog(invariants)
     phase_start = time.monotonic()
 
     def phase(name):
@@ -543,7 +348,7 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
                                f'flood (running: {process.running()})')
     phase('settle')
     report.problems += requests.problems
-    report.problems += _held_value_problems(client, services, fuzzer)
+    report.problems += held_value_problems(client, services, fuzzer, DEADLINE)
     report.problems += outputs.problems()
     report.problems += diagnostics.problems(fqn, report.sent)
     reports = diagnostics.reports(fqn)
@@ -562,61 +367,6 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
 def has_sequence(message_type) -> bool:
     """Whether a message type has a sequence field (one that can be made huge)."""
     return any(isinstance(slot, definition.UnboundedSequence) for slot in message_type.SLOT_TYPES)
-
-
-def parameter_clients(node, target: str) -> dict:
-    """Return clients of the parameter services of the node ``target`` (its full name), by type."""
-    return {kind: node.create_client(kind, f'{target}/{name}') for kind, name in (
-        (SetParameters, 'set_parameters'), (SetParametersAtomically, 'set_parameters_atomically'),
-        (GetParameters, 'get_parameters'), (ListParameters, 'list_parameters'),
-        (DescribeParameters, 'describe_parameters'))}
-
-
-def parameter_fuzzer_of(client, services, rng, timeout: float = DEADLINE
-                        ) -> Optional[ParameterFuzzer]:
-    """
-    List, describe and read a node's parameters; return the fuzzer of their changes.
-
-    :param services: the node's :func:`parameter_clients`.
-    :returns: the fuzzer, or ``None`` when a service did not answer within ``timeout``.
-    """
-    listed = client.call(services[ListParameters], ListParameters.Request(), timeout)
-    if listed is None:
-        return None
-    names = sorted(listed.result.names)
-    described = client.call(services[DescribeParameters],
-                            DescribeParameters.Request(names=names), timeout)
-    values = client.call(services[GetParameters], GetParameters.Request(names=names), timeout)
-    if described is None or values is None:
-        return None
-    return ParameterFuzzer(rng, dict(zip(names, described.descriptors)),
-                           {name: python_value(value)
-                            for name, value in zip(names, values.values)})
-
-
-def _held_value_problems(client, services, fuzzer) -> List[str]:
-    """Return the writable parameters whose value is not the last one the node accepted."""
-    expected = fuzzer.checked_values()
-    names = sorted(expected)
-    answer = client.call(services[GetParameters], GetParameters.Request(names=names), DEADLINE)
-    if answer is None:
-        return ['no answer to the final get_parameters']
-    problems = []
-    for name, value in zip(names, answer.values):
-        held = python_value(value)
-        if not any(_same(held, allowed) for allowed in [expected[name]]
-                   + fuzzer.alternatives.get(name, [])):
-            problems.append(f'parameter {name} holds {held!r}, not {expected[name]!r}, the last '
-                            'value accepted')
-    return problems
-
-
-def _same(a, b) -> bool:
-    if isinstance(a, list) and isinstance(b, list):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
-    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
-        return True
-    return a == b
 
 
 # The command line --------------------------------------------------------------------------

@@ -37,7 +37,8 @@ later is covered by those without a change here. Limits are checked to a relativ
 
 import functools
 import math
-from typing import List, Sequence
+import threading
+from typing import Dict, List, Sequence
 
 import numpy as np
 from rosidl_parser import definition
@@ -62,6 +63,8 @@ TOLERANCE = 1e-9
 QUATERNION_TOLERANCE = 1e-6
 #: Problems reported per message, at most.
 MAX_PROBLEMS = 3
+#: Failing output messages an :class:`OutputLog` keeps for its final check.
+KEPT_FAILURES = 100
 
 
 @functools.lru_cache(maxsize=None)
@@ -144,8 +147,15 @@ class OutputInvariants:
                    frames_from_parameters(values))
 
     def add_frames(self, values) -> None:
-        """Add the frame tree of parameter values (after an accepted frame change)."""
-        frames = frames_from_parameters(values)
+        """
+        Add the frame tree of parameter values (a frame change the node may have accepted).
+
+        Values that make no frame tree (names that repeat: a node refuses those) add nothing.
+        """
+        try:
+            frames = frames_from_parameters(values)
+        except ValueError:
+            return
         if frames not in self.frames:
             self.frames.append(frames)
 
@@ -290,3 +300,46 @@ _ROLE_CHECKS = {
 def checked_roles() -> List[str]:
     """Return the topic names that get limit checks besides the numbers (for the docs)."""
     return sorted({role for role, _ in _ROLE_CHECKS} | {'*pose', '*pose_stamped'})
+
+
+class OutputLog:
+    """
+    Subscription callbacks that check every output of a node: counts, and the failures kept.
+
+    A failing message is kept (:data:`KEPT_FAILURES` at most) and checked again at the end by
+    :meth:`problems`, against every frame tree seen by then: a frame change is asynchronous,
+    and an output may arrive before the answer that says its frames changed.
+
+    :param invariants: the :class:`OutputInvariants` to check with.
+    """
+
+    def __init__(self, invariants: OutputInvariants):
+        self.invariants = invariants
+        self.counts: Dict[str, int] = {}
+        self.failures = []
+        self.failure_count = 0
+        self._lock = threading.Lock()
+
+    def callback(self, topic):
+        """Return the subscription callback of one output topic."""
+        def on_message(message):
+            problems = self.invariants.problems(topic, message)
+            with self._lock:
+                self.counts[topic] = self.counts.get(topic, 0) + 1
+                if problems:
+                    self.failure_count += 1
+                    if len(self.failures) < KEPT_FAILURES:
+                        self.failures.append((topic, message))
+        return on_message
+
+    def problems(self) -> List[str]:
+        """Check the failing messages again, against every frame tree seen: what still fails."""
+        problems = []
+        with self._lock:
+            failures = list(self.failures)
+        for topic, message in failures:
+            for problem in self.invariants.problems(topic, message):
+                problems.append(f'published on {topic}: {problem}')
+        if problems and self.failure_count > len(failures):
+            problems.append(f'... {self.failure_count} failing output messages in all')
+        return problems
