@@ -137,9 +137,18 @@ class Run:
     exit_code: Optional[int] = None
     rss: List[tuple] = field(default_factory=list)
 
-    def slope(self) -> Optional[float]:
-        """Return the memory growth after the warm-up, kB per minute (least squares), or None."""
+    def slope(self, second_half: bool = False) -> Optional[float]:
+        """
+        Return the memory growth after the warm-up, kB per minute (least squares), or None.
+
+        :param second_half: over the second half of the run only: a node's memory climbs for a
+            minute or two (imports on first use, caches, the allocator's pools), then levels
+            off; a leak goes on climbing.
+        """
         points = [(t, kb) for t, kb in self.rss if t - self.started >= RSS_WARM_UP]
+        if second_half and points:
+            middle = (points[0][0] + points[-1][0]) / 2.0
+            points = [(t, kb) for t, kb in points if t >= middle]
         if len(points) < 3 or points[-1][0] - points[0][0] < SLOPE_SPAN:
             return None
         times, values = np.array(points, dtype=float).T
@@ -560,16 +569,19 @@ class Soak:
                      f'{len(self.parameter_problems)} (target 0)')
         lines += [f'  {problem}' for problem in self.parameter_problems[:KEPT_EXAMPLES]]
         lines.append('SOAK resident memory (kB) per run of each node, after a '
-                     f'{RSS_WARM_UP:.0f} s warm-up: node run: lived s, start, end, slope kB/min')
+                     f'{RSS_WARM_UP:.0f} s warm-up: node run: lived s, start -> end, slope '
+                     'kB/min over the run and over its second half')
         for name, slot in self.slots.items():
             for run in slot.runs:
                 warm = run.warm()
                 slope = run.slope()
+                late = run.slope(second_half=True)
                 lived = (run.ended or time.monotonic()) - run.started
                 lines.append(
                     f'SOAK rss {name} run {run.number}: {lived:.0f} s, '
                     + (f'{warm[0]} -> {warm[1]}' if warm else 'too short')
                     + (f', slope {slope:+.1f}' if slope is not None else '')
+                    + (f', second half {late:+.1f}' if late is not None else '')
                     + (f' ({run.stopped_with})' if run.stopped_with else ''))
         print('\n'.join(lines), flush=True)
         if arguments.figure:
