@@ -20,7 +20,7 @@ Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), `
 (Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
 the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
 in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
-arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
+the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
 last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
 ``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good
 solution, since a platform moves continuously, and falls back to the home pose when that fails; the
@@ -164,8 +164,8 @@ class FkNode(Node):
         except ValueError as error:
             self.accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
-        header = Header(stamp=self.get_clock().now().to_msg())
-        self.estimate(lengths, header, self.accounting)
+        # Stamped with the time of the estimate, read only for an output that carries it.
+        self.estimate(lengths, None, self.accounting)
 
     def on_joint_states(self, message: JointState):
         """
@@ -210,7 +210,8 @@ class FkNode(Node):
         """
         Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
-        :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``.
+        :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``, or ``None``
+            for the time now (read only when one of them has a subscriber).
         :param velocities: the leg velocities of a joint state, or ``None``.
         :returns: the tracker's :class:`~stewart_kinematics.PoseEstimate` (with the twist of
             the velocities, if any, for the caller to publish).
@@ -225,14 +226,19 @@ class FkNode(Node):
         accounting.publish(self.pose_publisher,
                            pose_to_message(frames.tool_pose_vector(estimate.pose)))
         # The other forms only for a subscriber, as ik_node's.
-        if self.stamped_publisher.get_subscription_count():
-            stamped_header = Header(stamp=header.stamp, frame_id=self.estimated_pose_frame)
+        stamped = self.stamped_publisher.get_subscription_count() > 0
+        broadcast = self.tf is not None and self.tf.has_listeners()
+        if not (stamped or broadcast):
+            return estimate
+        stamp = header.stamp if header is not None else self.get_clock().now().to_msg()
+        if stamped:
             self.stamped_publisher.publish(PoseStamped(
-                header=stamped_header, pose=pose_to_message(
+                header=Header(stamp=stamp, frame_id=self.estimated_pose_frame),
+                pose=pose_to_message(
                     frames.tool_pose_vector(estimate.pose, self.estimated_pose_frame))))
-        if self.tf is not None and self.tf.has_listeners():
+        if broadcast:
             self.tf.send(frames.base_frame, frames.platform_frame,
-                         Transform.from_pose(estimate.pose), header.stamp)
+                         Transform.from_pose(estimate.pose), stamp)
         return estimate
 
 
