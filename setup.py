@@ -37,7 +37,7 @@ setup(
         'with ROS 2 nodes'),
     license='Apache-2.0',
     # matplotlib draws the figures of ramp_demo only (stewart_kinematics/tools/plots.py).
-    extras_require={'demo': ['matplotlib', 'rosbags'], 'test': ['pytest']},
+    extras_require={'demo': ['matplotlib', 'rosbags'], 'test': ['pytest', 'hypothesis']},
     entry_points={
         'console_scripts': [
             'ik_node = stewart_kinematics.ros.ik_node:main',

@@ -18,14 +18,21 @@ Benchmark :func:`stewart_kinematics.assembly_modes`: time for every mode, and th
 Run from the repository root: ``.venv/bin/python benchmarks/assembly_modes_benchmark.py``.
 Prints, for Dietmaier's 40-mode platform and the paper's platform (home, end of Table 3 and
 random poses within +-0.1 m and +-15 deg of home), the time for all modes of one set of lengths
-(best and median of repeated calls) and the count of real modes found against the count known
-(Dietmaier's 40; for the paper's platform the distinct modes of a multi-start search with the
-package's batch Newton, ``MULTI_START`` starts, timed as the baseline in the same run), then
-the cost of the assembly-mode margin that fk_node computes about once a second.
+and the count of real modes found against the count known (Dietmaier's 40; for the paper's
+platform the distinct modes of a multi-start search with the package's batch Newton,
+``MULTI_START`` starts, timed as the baseline in the same run), then the cost of the
+assembly-mode margin that fk_node computes about once a second.
+
+Time: each case is called ``--repeat`` times in each of ``--rounds`` rounds (the cases take
+turns within a round); the processor time of this process per call (``time.process_time``,
+which leaves out the time other jobs on a shared machine hold the processor) is the figure
+judged: the median of the rounds' medians, with its range, against the targets of issue 22
+(:data:`TARGETS`). Wall times are printed too, and the load average before and after.
 """
 
 import argparse
 import math
+import os
 from pathlib import Path
 import statistics
 import time
@@ -44,8 +51,9 @@ from stewart_kinematics.model.rotations import matrix_to_euler_zyx, quaternion_t
 import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
-#: Target of issue 15: all modes of one set of lengths, seconds.
-TARGET_SECONDS = 0.020
+#: Targets of issue 22, processor time for all modes of one set of lengths, seconds: on
+#: Dietmaier's 40-mode platform, and on the paper's platform.
+TARGETS = {'Dietmaier': 0.020, 'paper': 0.010}
 #: Starts of the multi-start baseline.
 MULTI_START = 20000
 TABLE_3_END = np.array([0.1, 0.15, 0.5325] + [math.radians(a) for a in (15.0, -15.0, 20.0)])
@@ -55,7 +63,7 @@ def timed(call, repeat):
     """
     Best and median wall time of ``repeat`` calls, seconds, and the last result.
 
-    Also returns the best processor time of this process (``time.process_time``), which
+    Also returns the median processor time of this process (``time.process_time``), which
     excludes the time other jobs on a shared machine hold the processor.
     """
     times, cpu = [], []
@@ -64,7 +72,12 @@ def timed(call, repeat):
         result = call()
         times.append(time.perf_counter() - start)
         cpu.append(time.process_time() - start_cpu)
-    return min(times), statistics.median(times), result, min(cpu)
+    return min(times), statistics.median(times), result, statistics.median(cpu)
+
+
+def target_of(name):
+    """Target processor time of a case, seconds."""
+    return TARGETS['Dietmaier'] if name.startswith('Dietmaier') else TARGETS['paper']
 
 
 def multi_start(geometry, lengths, starts, seed=0):
@@ -167,39 +180,53 @@ def cases(rng, random_poses):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[1])
-    parser.add_argument('--repeat', type=int, default=10, help='calls timed per case')
+    parser.add_argument('--repeat', type=int, default=10, help='calls timed per case and round')
+    parser.add_argument('--rounds', type=int, default=3, help='rounds (cases take turns)')
     parser.add_argument('--random-poses', type=int, default=3)
     parser.add_argument('--sweep', type=int, default=0, metavar='N',
                         help='then compare with a multi-start on N random general platforms')
     args = parser.parse_args(argv)
 
+    load_before = os.getloadavg()
     start = time.perf_counter()
     system = start_system()
     print(f'start system (once per process): {time.perf_counter() - start:.2f} s, '
           f'{len(system.solutions)} solutions after {system.loops} monodromy loops')
-    header = (f'{"case":<24} {"best ms":>8} {"median ms":>10} {"CPU ms":>7} {"found":>6} '
-              f'{"known":>6} '
-              f'{"complete":>9} {"multi-start":>12} {"its ms":>7} {"ratio":>6} {"target":>7}')
+    all_cases = list(cases(np.random.default_rng(15), args.random_poses))
+    for _, geometry, lengths, _ in all_cases:
+        assembly_modes(geometry, lengths)   # each geometry's start system: not timed
+    rounds = {name: ([], [], []) for name, _, _, _ in all_cases}
+    results = {}
+    for _ in range(args.rounds):
+        for name, geometry, lengths, _ in all_cases:
+            best, median, results[name], cpu = timed(lambda: assembly_modes(geometry, lengths),
+                                                     args.repeat)
+            for values, value in zip(rounds[name], (best, median, cpu)):
+                values.append(value)
+    header = (f'{"case":<24} {"CPU ms (range)":>16} {"target":>7} {"wall best/median ms":>20} '
+              f'{"found":>6} {"known":>6} {"complete":>9} {"multi-start":>12} {"its ms":>7}')
     print(header)
     print('-' * len(header))
     met = []
-    for name, geometry, lengths, known in cases(np.random.default_rng(15), args.random_poses):
-        best, median, result, cpu = timed(lambda: assembly_modes(geometry, lengths),
-                                          args.repeat)
+    for name, geometry, lengths, known in all_cases:
+        best, median, cpu = (statistics.median(values) for values in rounds[name])
+        result = results[name]
         baseline_start = time.perf_counter()
         baseline = multi_start(geometry, lengths, MULTI_START)
         baseline_seconds = time.perf_counter() - baseline_start
         if known is None:
             known = f'>={baseline}'
-        met.append((median <= TARGET_SECONDS, cpu <= TARGET_SECONDS))
-        print(f'{name:<24} {best * 1e3:8.1f} {median * 1e3:10.1f} {cpu * 1e3:7.1f} '
-              f'{len(result):6d} '
-              f'{known:>6} {str(result.complete):>9} {baseline:12d} '
-              f'{baseline_seconds * 1e3:7.0f} {baseline_seconds / median:6.1f} '
-              f'{"met" if met[-1][1] else "missed":>7}')
-    print('known: the 40 that Dietmaier published; for the paper platform, at least the '
-          f'distinct modes that {MULTI_START} Newton starts find (multi-start: that count, its '
-          'time in this run, and the ratio of its time to the median)')
+        target = target_of(name)
+        met.append(cpu <= target)
+        cpu_range = f'{min(rounds[name][2]) * 1e3:.1f}-{max(rounds[name][2]) * 1e3:.1f}'
+        print(f'{name:<24} {cpu * 1e3:5.1f} ({cpu_range:>9}) {target * 1e3:4.0f} '
+              f'{"met" if met[-1] else "no":>3}  {best * 1e3:8.1f} / {median * 1e3:8.1f} '
+              f'{len(result):6d} {known:>6} {str(result.complete):>9} {baseline:12d} '
+              f'{baseline_seconds * 1e3:7.0f}')
+    print("CPU ms: processor time per call, median over the rounds of each round's median "
+          f'({args.rounds} rounds of {args.repeat} calls; range over the rounds); known: the 40 '
+          'that Dietmaier published; for the paper platform, at least the distinct modes that '
+          f'{MULTI_START} Newton starts find (multi-start: that count and its time in this run)')
 
     paper = load_geometry(ROOT / 'config' / 'paper_platform.yaml')
     best, median, margin, cpu = timed(lambda: assembly_mode_margin(paper, TABLE_3_END),
@@ -211,14 +238,15 @@ def main(argv=None):
           f'{math.degrees(margin.angle):.1f} deg away')
     _, solve_median, _, _ = timed(
         lambda: forward_kinematics(paper, inverse_kinematics(paper, TABLE_3_END)), 200)
-    print(f'one Newton-Raphson solve from home, for scale: median {solve_median * 1e6:.0f} us '
-          f'({median / solve_median:.0f} solves per margin)')
+    print(f'one forward kinematics solve (no guess), for scale: median '
+          f'{solve_median * 1e6:.0f} us ({median / solve_median:.0f} solves per margin)')
     tracking_cost(paper)
     if args.sweep:
         sweep(args.sweep)
-    print(f'target (all modes under {TARGET_SECONDS * 1e3:.0f} ms): met in '
-          f'{sum(cpu for _, cpu in met)} of {len(met)} cases in processor time (the target '
-          f'column), {sum(wall for wall, _ in met)} of {len(met)} in median wall time')
+    print(f'targets ({TARGETS["Dietmaier"] * 1e3:.0f} ms on Dietmaier\'s platform, '
+          f'{TARGETS["paper"] * 1e3:.0f} ms on the paper\'s, processor time): met in {sum(met)} '
+          f'of {len(met)} cases; load average {load_before[0]:.2f} before, '
+          f'{os.getloadavg()[0]:.2f} after ({os.cpu_count()} cores)')
 
 
 if __name__ == '__main__':

@@ -18,16 +18,20 @@ Compare the kinematics speed of two checkouts of this package, call by call, in 
 The old checkout's package is copied under another name (``baseline_stewart_kinematics``) so
 that both import side by side; every measurement then alternates between them, call by call
 (which goes first swaps each round), so that both see the same load of a shared machine. On the
-paper's platform it times: IK of one pose, IK of a batch, FK of one pose from home (cold; the
-Table 3 rows and random poses within +-0.1 m and +-15 deg of home), FK tracking the Table 3
-ramp at 1 kHz from the last result (warm), and FK of the cold set as one batch. It prints the
-median per call (per pose for batches; best of the rounds for them) and new / old::
+paper's platform it times: IK of one pose, IK of a batch, FK of one pose from home (given as
+the guess; the Table 3 rows and random poses within +-0.1 m and +-15 deg of home), FK of the
+same without a guess (cold: from home in a revision without a start table), FK tracking the
+Table 3 ramp at 1 kHz from the last result (warm), FK of the cold set as one batch without
+a guess, and every assembly mode (processor time) on Dietmaier's 40-mode platform and on the
+paper's at home and at the end of Table 3. It prints the median per call (per pose for batches;
+best of the rounds for them) and new / old::
 
     git worktree add /tmp/base main
     .venv/bin/python benchmarks/compare_revisions.py /tmp/base . --rounds 5
 """
 
 import argparse
+import functools
 import importlib
 import math
 from pathlib import Path
@@ -57,6 +61,18 @@ def import_baseline(checkout, directory):
     return importlib.import_module(BASELINE)
 
 
+def load_geometry_of(package, name):
+    """``load_geometry`` of a revision: in its root, its parameters/ or its parameter_spec."""
+    if hasattr(package, 'load_geometry'):
+        return package.load_geometry
+    for module in ('parameters', 'parameter_spec'):
+        try:
+            return importlib.import_module(f'{name}.{module}').load_geometry
+        except (ImportError, AttributeError):
+            continue
+    raise ImportError(f'no load_geometry in {name}')
+
+
 def workload(package, config, random_count, batch_count):
     """Return the inputs of every measurement, from ``package`` (the new one)."""
     geometry = package.load_geometry(config)
@@ -78,7 +94,10 @@ def compare(packages, config, rounds, data):
     """Time both packages alternately; return ``{measure: (unit, old, new)}``."""
     clock = time.perf_counter
     geometries = [package.load_geometry(config) for package in packages]
-    per_call = {name: ([], []) for name in ('IK one pose', 'FK cold single', 'FK warm tracking')}
+    per_call = {name: ([], []) for name in ('IK one pose', 'FK cold single',
+                                            'FK cold no guess', 'FK warm tracking')}
+    for k in (0, 1):  # the first cold solve builds a start table: not timed
+        packages[k].forward_kinematics(geometries[k], data['lengths'][0])
     batches = {'IK batch': ([], []), 'FK batch': ([], [])}
 
     def timed(call, *arguments):
@@ -97,6 +116,10 @@ def compare(packages, config, rounds, data):
                 per_call['FK cold single'][k].append(timed(
                     packages[k].forward_kinematics, geometries[k], lengths,
                     geometries[k].home_pose)[0])
+        for lengths in data['lengths']:
+            for k in order:
+                per_call['FK cold no guess'][k].append(timed(
+                    packages[k].forward_kinematics, geometries[k], lengths)[0])
         last = [geometry.home_pose for geometry in geometries]
         for lengths in data['tracking']:
             for k in order:
@@ -111,11 +134,45 @@ def compare(packages, config, rounds, data):
             batches['FK batch'][k].append(timed(
                 packages[k].forward_kinematics, geometries[k], data['lengths'])[0]
                 / len(data['lengths']))
-    figures = {name: ('us', 1e6 * statistics.median(old), 1e6 * statistics.median(new))
+    modes = assembly_cases(packages, config)
+    for round_ in range(rounds):
+        for name, calls in modes.items():
+            for k in ((0, 1) if round_ % 2 == 0 else (1, 0)):
+                start = time.process_time()
+                calls[k]()
+                per_call.setdefault(name, ([], []))[k].append(time.process_time() - start)
+    figures = {name: ('ms' if name in modes else 'us',
+                      (1e3 if name in modes else 1e6) * statistics.median(old),
+                      (1e3 if name in modes else 1e6) * statistics.median(new))
                for name, (old, new) in per_call.items()}
     figures.update({name: ('us/pose', 1e6 * min(old), 1e6 * min(new))
                     for name, (old, new) in batches.items()})
     return figures
+
+
+def assembly_cases(packages, config):
+    """Every assembly mode of three sets of lengths, as calls of each package (warmed up)."""
+    import yaml
+    data = yaml.safe_load((Path(config).parent.parent / 'test' / 'resources'
+                           / 'dietmaier_40_modes.yaml').read_text(encoding='utf-8'))
+    end = np.array([0.1, 0.15, 0.5325] + [math.radians(a) for a in (15.0, -15.0, 20.0)])
+    cases = {}
+    for name in ('modes Dietmaier', 'modes paper home', 'modes paper end'):
+        cases[name] = []
+        for package in packages:
+            if name == 'modes Dietmaier':
+                geometry = package.Geometry(np.array(data['base_joints']),
+                                            np.array(data['platform_joints']),
+                                            home_pose=[0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+                lengths = np.array(data['leg_lengths'])
+            else:
+                geometry = package.load_geometry(config)
+                lengths = package.inverse_kinematics(
+                    geometry, geometry.home_pose if name == 'modes paper home' else end)
+            call = functools.partial(package.assembly_modes, geometry, lengths)
+            call()   # the start systems: not timed
+            cases[name].append(call)
+    return cases
 
 
 def main(argv=None) -> int:
@@ -132,15 +189,16 @@ def main(argv=None) -> int:
     config = str(Path(args.new).resolve() / 'config' / 'paper_platform.yaml')
     with tempfile.TemporaryDirectory() as directory:
         old = import_baseline(Path(args.old).resolve(), directory)
-        old.load_geometry = importlib.import_module(f'{BASELINE}.parameter_spec').load_geometry
-        new.load_geometry = importlib.import_module('stewart_kinematics.parameters') \
-            .load_geometry
+        old.load_geometry = load_geometry_of(old, BASELINE)
+        new.load_geometry = load_geometry_of(new, 'stewart_kinematics')
         data = workload(new, config, args.random, args.batch)
         figures = compare((old, new), config, args.rounds, data)
     print(f'{args.rounds} rounds, calls alternating; old: {args.old} ({Path(old.__file__).parent}'
           f' copied), new: {Path(new.__file__).parent}')
     print(f'{"measure":<18} {"unit":>8} {"old":>10} {"new":>10} {"new/old":>8}')
-    for name in ('IK one pose', 'IK batch', 'FK cold single', 'FK warm tracking', 'FK batch'):
+    for name in ('IK one pose', 'IK batch', 'FK cold single', 'FK cold no guess',
+                 'FK warm tracking', 'FK batch', 'modes Dietmaier', 'modes paper home',
+                 'modes paper end'):
         unit, old_figure, new_figure = figures[name]
         print(f'{name:<18} {unit:>8} {old_figure:>10.3f} {new_figure:>10.3f} '
               f'{new_figure / old_figure:>8.2f}')

@@ -15,12 +15,13 @@
 """
 Where a cold forward-kinematics solve spends its time, against basic-robotics' compiled kernel.
 
-The figures behind the benchmark page's note on the compiled peer: ``cProfile`` of our cold solves
-(time per solve by function with and without its callees, calls per solve), ``timeit`` of the
-numpy calls a Newton step makes on 6-element arrays, and ``timeit`` of basic-robotics'
-numba-compiled ``SPFKinSpaceR`` stopped after one iteration and run to convergence (in its
-plate frame, see benchmarks/run_benchmarks.py). Run after ``scripts/run_benchmarks.sh`` has
-installed the baselines: ``.venv/bin/python benchmarks/profile_fk.py``.
+The figures behind the benchmark pages' note on the compiled peer: ``cProfile`` of our cold
+solves without a guess (from the start table; time per solve by function with and without its
+callees, calls per solve; then the same from home), ``timeit`` of the numpy calls a Newton
+step makes on 6-element arrays, and ``timeit`` of basic-robotics' numba-compiled
+``SPFKinSpaceR`` stopped after one iteration and run to convergence (in its plate frame, see
+benchmarks/run_benchmarks.py). Run after ``scripts/run_benchmarks.sh`` has installed the
+baselines: ``.venv/bin/python benchmarks/profile_fk.py``.
 """
 
 import cProfile
@@ -50,25 +51,32 @@ def per_call_microseconds(statement, namespace):
         / NUMBER * 1e6
 
 
-def main() -> int:
-    """Print the profile and the timings."""
-    geometry = load_geometry(run_benchmarks.PLATFORM_FILE)
-    rng = np.random.default_rng(20260101)
-    poses = geometry.home_pose + rng.uniform(-1.0, 1.0, (POSES, 6)) * run_benchmarks.WORKSPACE
-    lengths = inverse_kinematics(geometry, poses)
-    results = [forward_kinematics(geometry, target) for target in lengths]
+def profile(geometry, lengths, guess, label):
+    """Print the ``cProfile`` of one cold solve of each of ``lengths`` from ``guess``."""
+    results = [forward_kinematics(geometry, target, guess) for target in lengths]
     iterations = np.mean([result.iterations for result in results])
+    inversions = []
+    inverse = np.linalg.inv
 
+    def counting_inverse(matrix):
+        inversions.append(1)
+        return inverse(matrix)
+    np.linalg.inv = counting_inverse
+    try:
+        for target in lengths:
+            forward_kinematics(geometry, target, guess)
+    finally:
+        np.linalg.inv = inverse
     profiler = cProfile.Profile()
     profiler.enable()
     for target in lengths:
-        forward_kinematics(geometry, target)
+        forward_kinematics(geometry, target, guess)
     profiler.disable()
     stats = pstats.Stats(profiler)
     total = stats.total_tt
-    print(f'cProfile of {POSES} cold solves from home ({iterations:.2f} Newton steps each; '
-          f'{total / POSES * 1e6:.1f} us per solve under the profiler, which inflates small '
-          'calls):')
+    print(f'cProfile of {POSES} cold solves {label}: {iterations:.2f} Newton steps and '
+          f'{len(inversions) / POSES:.2f} Jacobian inversions each; {total / POSES * 1e6:.1f} us '
+          'per solve under the profiler, which inflates small calls:')
     print(f'{"share":>6} {"us/solve":>9} {"own us":>7} {"calls/solve":>11}  function '
           '(share: of the time per solve, callees included; own: without them)')
     rows = sorted(stats.stats.items(), key=lambda item: -item[1][3])
@@ -76,6 +84,18 @@ def main() -> int:
         print(f'{100.0 * cumtime / total:5.0f}% {cumtime / POSES * 1e6:9.1f} '
               f'{tottime / POSES * 1e6:7.1f} {calls / POSES:11.1f}  '
               f'{Path(path).name}:{line}({name})')
+    print()
+
+
+def main() -> int:
+    """Print the profile and the timings."""
+    geometry = load_geometry(run_benchmarks.PLATFORM_FILE)
+    rng = np.random.default_rng(20260101)
+    poses = geometry.home_pose + rng.uniform(-1.0, 1.0, (POSES, 6)) * run_benchmarks.WORKSPACE
+    lengths = inverse_kinematics(geometry, poses)
+    for label, guess in (('without a guess (the start table)', None),
+                         ('from home (the home pose as the guess)', geometry.home_pose)):
+        profile(geometry, lengths, guess, label)
 
     matrix = np.eye(6) + 0.1 * rng.standard_normal((6, 6))
     vector = rng.standard_normal(6)
@@ -83,9 +103,12 @@ def main() -> int:
     namespace = {'np': np, 'matrix': matrix, 'vector': vector, 'floats': floats,
                  'math': math, 'geometry': geometry, 'target': lengths[0],
                  'forward_kinematics': forward_kinematics}
-    print('\ntimeit, microseconds per call:')
+    print('timeit, microseconds per call:')
     for label, statement in (
-            ('forward_kinematics, cold solve', 'forward_kinematics(geometry, target)'),
+            ('forward_kinematics, cold solve without a guess',
+             'forward_kinematics(geometry, target)'),
+            ('forward_kinematics, cold solve from home',
+             'forward_kinematics(geometry, target, geometry.home_pose)'),
             ('np.linalg.inv, 6x6', 'np.linalg.inv(matrix)'),
             ('np.linalg.solve, 6x6', 'np.linalg.solve(matrix, vector)'),
             ('6x6 @ list of 6 floats, .tolist()', '(matrix @ floats).tolist()'),

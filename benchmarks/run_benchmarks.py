@@ -26,9 +26,11 @@ the other, the node rounds interleaved across the nodes); the table gives the me
 its range over the rounds, and a target is met when the median meets it.
 
 Poses: the paper's Table 3 ramp (11 rows) plus random poses within +-0.1 m and +-15 degrees
-of the home pose; tracking: the same ramp played over 10 s at 1 kHz, each solve starting from
-the previous solution. A solve succeeds when it reports convergence and its pose is within
-1e-4 (m and rad, the paper's tolerance) of the true one; the worst error is over all poses.
+of the home pose; cold: each solve without a previous pose (ours without a guess, so from its
+start table, and once more from the home pose; the others from home); tracking: the same ramp
+played over 10 s at 1 kHz, each solve starting from the previous solution. A solve succeeds
+when it reports convergence and its pose is within 1e-4 (m and rad, the paper's tolerance) of
+the true one; the worst error is over all poses.
 
 basic-robotics' compiled FK (``SPFKinSpaceR``) models a plate whose joints lie in the plane
 z = 0 of its top frame (its Jacobian drops their z). The paper's platform frame has the joints
@@ -72,8 +74,8 @@ TARGETS = (
     'IK one pose >= 10x faster than basic-robotics SP.IK',
     'IK batch > 2 000 000 poses/s',
     "FK cold >= 5x faster than scipy's root",
-    "FK cold no slower than basic-robotics' compiled FK (plate frame, same accuracy)",
-    'FK warm >= 2x faster than FK cold',
+    "FK cold >= 1.25x faster than basic-robotics' compiled FK (plate frame, same accuracy)",
+    'FK warm >= 2x faster than FK cold from home',
     'FK batch > 100 000 poses/s',
     '100 % convergence, error < 1e-9 (ours, every benchmark)',
     'ik_node loss-free rate >= 1.3x the bare echo node on the single-threaded executor',
@@ -248,12 +250,19 @@ class ScipyRoot:
 
 
 class Ours:
-    """This package's forward_kinematics, default tolerance 1e-12."""
+    """
+    This package's forward_kinematics, default tolerance 1e-12.
 
-    name = 'stewart_kinematics'
+    Cold, without a guess (``cold_guess`` None): it starts from its start table, as a user's
+    first call does (the table is built before the timing, on the first call).
+    """
+
+    name = 'stewart_kinematics (no guess: its start table)'
+    cold_guess = None
 
     def __init__(self, geometry):
         self.geometry = geometry
+        forward_kinematics(geometry, inverse_kinematics(geometry, geometry.home_pose + 0.01))
 
     def solve(self, lengths, guess):
         """Return ``(pose, converged)``."""
@@ -274,6 +283,16 @@ class Ours:
     def pose_of(result):
         """Return the pose of a tracking result."""
         return result.pose
+
+
+class OursFromHome(Ours):
+    """This package's forward_kinematics given the home pose as the guess (no start table)."""
+
+    name = 'stewart_kinematics, from home (the home pose as the guess)'
+
+    def __init__(self, geometry):
+        super().__init__(geometry)
+        self.cold_guess = geometry.home_pose
 
 
 class BasicRobotics:
@@ -454,6 +473,7 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
           f'{rounds} rounds', file=sys.stderr)
 
     ours, paper, scipy_root = Ours(geometry), PaperNewtonRaphson(geometry), ScipyRoot(geometry)
+    ours_home = OursFromHome(geometry)
     try:
         plate = BasicRobotics(
             geometry, PLATE_FRAME_OFFSET, BASIC_ROBOTICS_OWN_TOLERANCE,
@@ -475,7 +495,7 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
         plate = tight = paper_frame = None
         basic_solvers = ()
         basic_error = f'not installable: {type(error).__name__}: {error}'
-    fk_solvers = (paper, scipy_root, ours, *basic_solvers)
+    fk_solvers = (paper, scipy_root, ours, ours_home, *basic_solvers)
 
     ik_ours, ik_basic, ik_ratio = Series(), Series(), Series()
     ik_batch, ik_single = Series(), Series()
@@ -496,8 +516,11 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
             solve = solver.fk if isinstance(solver, BasicRobotics) else solver.solve
             guess = solver.home_guess if isinstance(solver, BasicRobotics) else home
             pose_of = solver.pose_of if isinstance(solver, BasicRobotics) else None
-            cold[solver.name].record(*run_solver(solve, lengths, [guess] * len(poses), poses,
-                                                 pose_of))
+            cold_guess = solver.cold_guess if isinstance(solver, Ours) else guess
+            cold[solver.name].record(*run_solver(solve, lengths, [cold_guess] * len(poses),
+                                                 poses, pose_of))
+            if solver is ours_home:
+                continue  # tracking: the same as ours
             track = solver.track if solver is ours else solve
             pose_of = solver.pose_of if solver is ours else pose_of
             warm[solver.name].record(*run_tracking(track, tracking_lengths, guess, tracking,
@@ -548,29 +571,32 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
         run = cold[solver.name]
         ratio = '1.00' if solver is ours else \
             ratio_series(cold, solver.name, ours.name).text('.2f', 'x ours')
-        table.add('FK cold (from home)', solver.name, microseconds(run.seconds.median), ratio,
-                  *run.success())
+        table.add('FK cold (no previous pose)', solver.name, microseconds(run.seconds.median),
+                  ratio, *run.success())
     if not plate:
-        table.add('FK cold (from home)', 'basic-robotics SP', basic_error, '', '', '')
+        table.add('FK cold (no previous pose)', 'basic-robotics SP', basic_error, '', '', '')
     scipy_ratio = ratio_series(cold, scipy_root.name, ours.name)
     table.target(TARGETS[2], scipy_ratio.median >= 5.0, scipy_ratio.text('.2f'))
     if plate:
         tight_ratio = ratio_series(cold, tight.name, ours.name)
         own_ratio = ratio_series(cold, plate.name, ours.name)
-        table.target(TARGETS[3], tight_ratio.median >= 1.0,
+        table.target(TARGETS[3], tight_ratio.median >= 1.25,
                      f'its time / ours: {tight_ratio.text(".2f")} at 1e-14 m^2; '
                      f'{own_ratio.text(".2f")} at its own 5e-6 m^2')
     else:
         table.target(TARGETS[3], False, basic_error)
 
     ours_cold = cold[ours.name].seconds
-    warm_speedup = Series([c / w for c, w in zip(ours_cold.values,
+    warm_speedup = Series([c / w for c, w in zip(cold[ours_home.name].seconds.values,
                                                  warm[ours.name].seconds.values)])
     for solver in fk_solvers:
+        if solver is ours_home:
+            continue
         run = warm[solver.name]
-        ratio = f'{warm_speedup.text(".2f", "x faster")} than ours cold' if solver is ours \
-            else ratio_series(warm, solver.name, ours.name).text('.2f', 'x ours')
-        table.add('FK warm (tracking)', solver.name, microseconds(run.seconds.median), ratio,
+        ratio = f'{warm_speedup.text(".2f", "x faster")} than ours cold from home' \
+            if solver is ours else ratio_series(warm, solver.name, ours.name).text('.2f', 'x ours')
+        name = 'stewart_kinematics (from its last result)' if solver is ours else solver.name
+        table.add('FK warm (tracking)', name, microseconds(run.seconds.median), ratio,
                   *run.success())
     table.target(TARGETS[4], warm_speedup.median >= 2.0, warm_speedup.text('.2f'))
 
@@ -579,18 +605,18 @@ def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
     fk_errors = pose_errors(fk_batch.pose, poses)
     batch_run = SolverRun()
     batch_run.record(0.0, np.asarray(fk_batch.converged), fk_errors)
-    table.add('FK batch', 'stewart_kinematics, one pose per call',
+    table.add('FK batch', 'stewart_kinematics, one pose per call (no guess)',
               f'{1.0 / ours_cold.median:,.0f} /s', '1.00', '', '')
     table.add('FK batch', 'scipy root, one pose per call',
               f'{1.0 / cold[scipy_root.name].seconds.median:,.0f} /s',
               Series([1.0 / r for r in scipy_ratio.values]).text('.2f', ''), '', '')
-    table.add('FK batch', f'stewart_kinematics, {len(poses):,} poses in one call',
+    table.add('FK batch', f'stewart_kinematics, {len(poses):,} poses in one call (no guess)',
               f'{fk_batch_rate.median:,.0f} /s',
               Series([r * s for r, s in zip(fk_batch_rate.values, ours_cold.values)]).text(
                   '.1f'), *batch_run.success())
     table.target(TARGETS[5], fk_batch_rate.median > 1e5, fk_batch_rate.text(',.0f', ' /s'))
 
-    ours_runs = (cold[ours.name], warm[ours.name], batch_run)
+    ours_runs = (cold[ours.name], cold[ours_home.name], warm[ours.name], batch_run)
     all_converged = all(np.all(run.converged) for run in ours_runs)
     worst = max(max(float(np.max(run.errors)) for run in ours_runs), ik_error, batch_error)
     table.target(TARGETS[6], all_converged and worst < REQUIRED_ERROR,

@@ -40,16 +40,16 @@ import sys
 
 import numpy as np
 
-from stewart_kinematics.analysis.calibration import (
+from stewart_kinematics.analysis.calibration import measurement_poses, predict_actuator_positions
+from stewart_kinematics.analysis.calibration_files import (
     load_measurements,
-    measurement_poses,
-    predict_actuator_positions,
     write_measurements,
     write_parameter_file,
 )
 from stewart_kinematics.model.kinematics import forward_kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.parameters import load_geometry, read_parameter_file
+from stewart_kinematics.tools.cli_arguments import check_output_paths
 from stewart_kinematics.tools.ramp_demo import default_config_directory
 
 SEED = 2026
@@ -177,10 +177,27 @@ def main(argv=None) -> int:
                              'the nominal model and by this calibrated parameter file')
     arguments = parser.parse_args(argv)
     config_directory = arguments.config_dir or default_config_directory()
-    if arguments.check is not None:
-        print(pose_errors(arguments.output, arguments.check, config_directory))
-    else:
-        write_example(arguments.output, config_directory)
+    if not config_directory.is_dir():
+        parser.error(f'argument --config-dir: {config_directory} is not a folder')
+    if arguments.check is None:
+        check_output_paths(parser, [('output', arguments.output, True)])
+    elif not arguments.check.is_file():
+        parser.error(f'argument --check: {arguments.check} is not a file')
+    try:
+        if arguments.check is not None:
+            print(pose_errors(arguments.output, arguments.check, config_directory))
+        else:
+            write_example(arguments.output, config_directory)
+    except (ValueError, RuntimeError) as error:
+        print(f'calibration_example: {error}', file=sys.stderr)
+        return 1
+    except KeyError as error:
+        print(f'calibration_example: parameter {error} is missing from the parameter files',
+              file=sys.stderr)
+        return 1
+    except OSError as error:
+        print(f'calibration_example: {error.filename}: {error.strerror}', file=sys.stderr)
+        return 1
     return 0
 
 

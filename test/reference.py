@@ -79,22 +79,29 @@ def paper_geometry(**changes):
     return Geometry(**arguments)
 
 
+def _cos_sin(angle):
+    """Cosine and sine: math's of a float, numpy's of a long double (kept long)."""
+    if isinstance(angle, np.longdouble):
+        return np.cos(angle), np.sin(angle)
+    return math.cos(angle), math.sin(angle)
+
+
 def rx(angle):
-    """Elementary rotation about x."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    """Elementary rotation about x (in long double for a long double angle)."""
+    c, s = _cos_sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]], dtype=np.result_type(c))
 
 
 def ry(angle):
     """Elementary rotation about y."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    c, s = _cos_sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]], dtype=np.result_type(c))
 
 
 def rz(angle):
     """Elementary rotation about z."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    c, s = _cos_sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]], dtype=np.result_type(c))
 
 
 def rotation_zyx(alpha, beta, gamma):
@@ -177,6 +184,20 @@ def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
     position, rotation = np.asarray(pose[:3], dtype=float), rotation_zyx(*pose[3:])
     return [math.sqrt(sum(value * value for value in (position + rotation @ p - b).tolist()))
             for b, p in zip(np.asarray(base), np.asarray(platform))]
+
+
+def leg_lengths_long(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """
+    Return :func:`leg_lengths` computed in numpy's long double, shape (6,).
+
+    On x86 a long double has a 64-bit mantissa, 2048 times finer than a float: a reference
+    for errors near the float rounding floor.
+    """
+    pose = np.asarray(pose, dtype=np.longdouble)
+    rotation = rotation_zyx(*pose[3:])
+    legs = pose[:3] + np.asarray(platform, dtype=np.longdouble) @ rotation.T - np.asarray(
+        base, dtype=np.longdouble)
+    return np.sqrt(np.sum(legs * legs, axis=1))
 
 
 def random_poses(count, seed, around=HOME, position_range=0.1, angle_range_deg=15.0):

@@ -322,7 +322,7 @@ def test_measurement_files_round_trip_and_bad_ones_are_named(tmp_path):
     header = 'index, X, Y, Z, alpha, beta, gamma, ' + ', '.join(
         f'actuator_{leg}' for leg in range(1, 7))
     path.write_text(header + '\n1' + ', 0.0' * 12 + '\n2, 0.0, zero' + ', 0.0' * 10 + '\n')
-    with pytest.raises(ValueError, match='data row 2'):
+    with pytest.raises(ValueError, match="line 3: Y must be a number, got 'zero'"):
         load_measurements(path)
 
 

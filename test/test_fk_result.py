@@ -25,6 +25,7 @@ import math
 import numpy as np
 import pytest
 from reference import (
+    BASE_JOINTS,
     HOME,
     leg_lengths,
     PLATFORM_JOINTS,
@@ -97,7 +98,9 @@ def test_condition_and_bound_cost_a_solve_nothing(geometry, monkeypatch):
 def test_pose_error_bound_is_small_at_ordinary_poses_and_covers_the_error(geometry):
     poses = np.concatenate([random_poses(300, seed=5), random_poses(5, seed=6, around=HOME,
                                                                     position_range=0.0)])
-    result = forward_kinematics(geometry, inverse_kinematics(geometry, poses))
+    # From home, whose last step typically lands far below the tolerance (a cold solve from
+    # the start table stops nearer it: median bound 3e-12, test/test_start_table.py).
+    result = forward_kinematics(geometry, inverse_kinematics(geometry, poses), HOME)
     assert np.all(result.converged)
     errors = [pose_error(found, truth) for found, truth in zip(result.pose, poses)]
     assert np.all(result.pose_error_bound >= errors)
@@ -126,7 +129,9 @@ def test_pose_error_bound_covers_the_error_near_the_singularity(geometry):
             assert result.converged and result.residual <= 1e-12
             error = min(pose_error(result.pose, truth), pose_error(result.pose, mirror.pose))
             assert result.condition > 1e5
-            assert error <= result.pose_error_bound < 1e-4
+            # Too near the fold for a proof (test_pose_error_bound.py): inf, not a number
+            # that the error beats.
+            assert error <= result.pose_error_bound
             largest_error = max(largest_error, error)
     assert largest_error > 1e-6  # the defect: converged, yet microns off
 
@@ -164,16 +169,26 @@ def test_a_result_is_immutable(geometry):
 
 
 def test_pose_error_bound_definition(geometry):
-    # The documented formula, from the smallest singular value of the dimensionless Jacobian.
+    # The documented formula: Kantorovich's radius from the smallest singular value of the
+    # dimensionless Jacobian and the curvature of the leg lengths.
     pose = random_poses(1, seed=8)[0]
     result = forward_kinematics(geometry, inverse_kinematics(geometry, pose))
     rho = geometry.platform_radius
     jac = twist_jacobian(result.pose)
     jac[:, 3:] /= rho
-    smallest = np.linalg.svd(jac, compute_uv=False)[-1]
-    error = result.residual + kinematics.LENGTH_ROUNDING_ULPS * np.finfo(float).eps * max(
-        leg_lengths(pose))
-    expected = 2.0 * math.sqrt(6.0) * max(1.0, 1.0 / rho) * error / smallest
+    singular_values = np.linalg.svd(jac, compute_uv=False)
+    eps = np.finfo(float).eps
+    sigma = singular_values[-1] - kinematics.SINGULAR_VALUE_ROUNDING_ULPS * eps * (
+        singular_values[0])
+    arms = np.linalg.norm(PLATFORM_JOINTS, axis=1)
+    sizes = np.linalg.norm(result.pose[:3]) + arms + np.linalg.norm(BASE_JOINTS, axis=1)
+    error = result.residual + kinematics.LENGTH_ROUNDING_ULPS * eps * max(sizes)
+    eta = math.sqrt(6.0) * error / sigma
+    reach = np.sqrt(1.0 + (arms / rho) ** 2)
+    shortest = np.array(leg_lengths(pose)) - result.residual - 2.0 * eta * reach
+    curvature = math.sqrt(float(np.sum((reach ** 2 / shortest + arms / rho ** 2) ** 2)))
+    h = eta * curvature / sigma
+    expected = 2.0 * eta / (1.0 + math.sqrt(1.0 - 2.0 * h)) * max(1.0, 1.0 / rho)
     assert result.pose_error_bound == pytest.approx(expected, rel=1e-6)
 
 
@@ -204,5 +219,7 @@ def test_one_solve_figures_at_exact_singularities(geometry):
     batch = kinematics._dimensionless_singular_values(touching, pose[None, :3], np.eye(3)[None])
     assert single[-1] == 0.0 == batch[0, -1]
     np.testing.assert_allclose(single[:-1], batch[0, :-1], rtol=1e-12)
-    assert kinematics._single_pose_error_bound(geometry, [0.5] * 6, 0.0, True, 0.0) == math.inf
-    assert kinematics._single_pose_error_bound(geometry, [0.5] * 6, 0.0, False, 0.1) == math.inf
+    home = list(HOME)
+    for converged, values in ((True, single), (False, [1.0, 0.5])):
+        assert kinematics._single_pose_error_bound(
+            touching, home, [0.7] * 6, 0.0, converged, values) == math.inf

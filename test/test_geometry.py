@@ -132,7 +132,7 @@ def test_wrong_shape_raises_naming_the_array(name, value):
 
 def test_non_numeric_array_raises_naming_the_array():
     """A non-numeric joint array raises ValueError naming it."""
-    with pytest.raises(ValueError, match='base_joints must be numeric'):
+    with pytest.raises(ValueError, match='base_joints must be numbers'):
         paper_geometry(base_joints=[['a', 'b', 'c']] * 6)
 
 

@@ -34,8 +34,8 @@ PAGE_NAME = 'doc/architecture.md'
 PAGE = (ROOT / PAGE_NAME).read_text(encoding='utf-8')
 PACKAGE = 'stewart_kinematics'
 #: Top-level folders that are no part of the repository (made by tools, ignored by git).
-UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', 'build', 'install', 'log',
-             'demo_output', 'stewart_kinematics.egg-info', '__pycache__'}
+UNTRACKED = {'.git', '.venv', '.ros_log', '.pytest_cache', '.hypothesis', 'build', 'install',
+             'log', 'demo_output', 'stewart_kinematics.egg-info', '__pycache__'}
 
 
 def layout_paths():

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 from numpy.testing import assert_array_equal
 import pytest
+from reference import HOME, paper_geometry, TABLE_3
 
 from stewart_kinematics import ActuatorLimits, load_geometry
 from stewart_kinematics.limits import LIMIT_NAMES, LimitModel, PoseLegs
@@ -178,7 +179,7 @@ def test_check_pose_refuses_what_is_no_pose_with_a_value_error(limited, position
 
 @pytest.mark.parametrize('poses, words', [
     (np.zeros((3, 5)), 'shape'), ([[0.0, 0.0, math.nan, 0.0, 0.0, 0.0]], 'finite'),
-    ([['a'] * 6], 'could not convert'), (np.full((2, 6), np.inf), 'finite')])
+    ([['a'] * 6], 'must be numbers'), (np.full((2, 6), np.inf), 'finite')])
 def test_check_poses_refuses_malformed_batches(limited, poses, words):
     """Wrong shapes, NaN or inf and text: ValueError naming what is wrong."""
     with pytest.raises(ValueError, match=words):
@@ -237,3 +238,20 @@ def test_the_fast_leg_state_path_decides_as_the_general_one(limited):
         assert fast == (not model.leg_state_violations(**given)), given
         decided[fast] += 1
     assert min(decided.values()) > 100
+
+
+def test_a_geometry_is_freed_once_nothing_but_the_package_caches_holds_it():
+    """The per-geometry caches (limits model, solver constants, start table) do not leak it."""
+    import gc
+    import weakref
+    from stewart_kinematics import CommandCheck, forward_kinematics, PoseTracker
+    from stewart_kinematics.limits import check_pose
+    transient = paper_geometry(leg_length_min=0.65, leg_length_max=0.9)
+    assert not check_pose(transient, HOME[:3], np.eye(3))
+    lengths = CommandCheck(transient).pose_vector(TABLE_3[2]).lengths
+    assert forward_kinematics(transient, lengths).converged
+    assert PoseTracker(transient).update(lengths).accepted
+    alive = weakref.ref(transient)
+    del transient
+    gc.collect()
+    assert alive() is None

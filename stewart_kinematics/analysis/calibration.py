@@ -39,7 +39,6 @@ estimate are set aside as outliers (reported by index) and the inliers are fitte
 least squares, which gives the parameters' standard deviations.
 """
 
-import csv
 from dataclasses import dataclass, replace
 import math
 from typing import Optional, Tuple
@@ -49,6 +48,14 @@ from scipy.linalg import qr
 from scipy.optimize import least_squares
 
 from stewart_kinematics import limits
+# The files (measurement CSV, calibrated parameter file), re-exported: public here too.
+from stewart_kinematics.analysis.calibration_files import (  # noqa: F401
+    load_measurements,
+    MEASUREMENT_COLUMNS,
+    write_measurements,
+    write_parameter_file,
+)
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.kinematics import as_poses
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -58,7 +65,6 @@ from stewart_kinematics.parameters import (
     check_values,
     GEOMETRY_PARAMETERS,
 )
-import yaml
 
 #: Parameters of one leg: base joint (3), platform joint (3), actuator offset (1).
 PARAMETERS_PER_LEG = 7
@@ -336,8 +342,16 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
     """
     if loss not in LOSSES:
         raise ValueError(f"loss must be one of {', '.join(LOSSES)}; got {loss!r}")
+    _check_number('outlier_threshold', outlier_threshold, 1.0, math.inf,
+                  'robust standard deviations')
+    _check_number('min_outlier_residual', min_outlier_residual, 0.0, math.inf, 'metres')
+    _check_number('max_outlier_fraction', max_outlier_fraction, 0.0, 1.0, 'a fraction')
+    _check_number('max_condition', max_condition, 1.0, math.inf, 'a condition number')
+    _check_number('max_noise', max_noise, 0.0, math.inf, 'metres', low_inclusive=False)
+    if not isinstance(nominal, Geometry):
+        raise ValueError(f'nominal must be a Geometry, got {type(nominal).__name__}')
     poses = np.atleast_2d(as_poses(poses))
-    readings = np.atleast_2d(np.asarray(actuator_positions, dtype=float))
+    readings = np.atleast_2d(as_float_array(actuator_positions, 'actuator_positions'))
     if readings.shape != poses.shape:
         raise ValueError(f'actuator_positions must have shape {poses.shape} like the poses, '
                          f'got {readings.shape}')
@@ -483,11 +497,19 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
     :param seed: random seed (the same seed, the same poses).
     :raises ValueError: if ``count`` is below 8 or fewer candidates are within the limits.
     """
-    if count < MIN_POSES:
-        raise ValueError(f'count must be at least {MIN_POSES}, got {count}')
+    for name, value, low in (('count', count, MIN_POSES), ('candidates', candidates, 1),
+                             ('random_draws', random_draws, 1)):
+        if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < low:
+            raise ValueError(f'{name} must be an integer of at least {low}, got {value!r}')
     generator = np.random.default_rng(seed)
-    half_width = np.concatenate([np.broadcast_to(np.asarray(position_range, dtype=float), (3,)),
-                                 np.broadcast_to(np.asarray(angle_range, dtype=float), (3,))])
+    half_width = []
+    for name, value in (('position_range', position_range), ('angle_range', angle_range)):
+        value = as_float_array(value, name)
+        if value.shape not in ((), (3,)) or not np.all((value > 0.0) & np.isfinite(value)):
+            raise ValueError(f'{name} must be one positive finite number or three, got '
+                             f'{value.tolist()}')
+        half_width.append(np.broadcast_to(value, (3,)))
+    half_width = np.concatenate(half_width)
     pool = geometry.home_pose + generator.uniform(-1.0, 1.0, (candidates, 6)) * half_width
     allowed = np.array([not violations for violations in limits.check_poses(geometry, pool)])
     pool = pool[allowed]
@@ -582,91 +604,14 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
     return {name: values[name] for name in order if name in values}
 
 
-def write_parameter_file(path, values: dict, comment: str = '') -> None:
-    """
-    Write parameters as a ROS 2 parameter file with one ``/**`` section every node matches.
-
-    :param path: the YAML file to write.
-    :param values: parameter name -> value (lists of floats, floats, strings, ...).
-    :param comment: text written first, each line as a YAML comment.
-    """
-    lines = [f'# {line}'.rstrip() for line in comment.splitlines()]
-    lines += ['/**:', '  ros__parameters:']
-    for name, value in values.items():
-        if isinstance(value, (list, tuple)) and len(value) % 3 == 0 and len(value) > 3:
-            lines.append(f'    {name}: [')
-            for start in range(0, len(value), 3):
-                lines.append('      ' + ', '.join(_yaml_scalar(item)
-                                                  for item in value[start:start + 3]) + ',')
-            lines.append('    ]')
-        elif isinstance(value, (list, tuple)):
-            lines.append(f'    {name}: [' + ', '.join(map(_yaml_scalar, value)) + ']')
-        else:
-            lines.append(f'    {name}: {_yaml_scalar(value)}')
-    with open(path, 'w', encoding='utf-8') as stream:
-        stream.write('\n'.join(lines) + '\n')
-
-
-#: The columns of a measurement CSV file, in this order (a header row names them).
-MEASUREMENT_COLUMNS = ('X', 'Y', 'Z', 'alpha', 'beta', 'gamma') + tuple(
-    f'actuator_{leg}' for leg in range(1, 7))
-
-
-def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
-    """
-    Read measured poses and actuator positions from a CSV file.
-
-    The file has a header row naming at least the columns of :data:`MEASUREMENT_COLUMNS`
-    (``X, Y, Z`` in metres, ``alpha, beta, gamma`` in radians, ``actuator_1`` .. ``actuator_6``
-    in metres), in any order, other columns ignored; lines starting with ``#`` are comments.
-
-    :returns: ``(poses, actuator_positions)``, each shape (N, 6).
-    :raises ValueError: naming the file and line, for a missing column or a bad number.
-    """
-    try:
-        with open(path, newline='', encoding='utf-8') as stream:
-            lines = [line for line in stream if line.strip() and not line.startswith('#')]
-    except OSError as error:
-        raise ValueError(f'cannot read measurement file {path}: {error.strerror}') from error
-    reader = csv.DictReader(lines, skipinitialspace=True)
-    missing = [name for name in MEASUREMENT_COLUMNS if name not in (reader.fieldnames or [])]
-    if missing:
-        raise ValueError(f'{path}: missing column(s) {", ".join(missing)}; the header must name '
-                         f'{", ".join(MEASUREMENT_COLUMNS)}')
-    rows = []
-    for number, row in enumerate(reader, start=2):
-        try:
-            rows.append([float(row[name]) for name in MEASUREMENT_COLUMNS])
-        except (TypeError, ValueError) as error:
-            raise ValueError(f'{path}: data row {number - 1}: {error}') from error
-    if not rows:
-        raise ValueError(f'{path}: no measurements')
-    data = np.array(rows)
-    return data[:, :6], data[:, 6:]
-
-
-def write_measurements(path, poses, actuator_positions, comment: str = '') -> None:
-    """Write poses and actuator positions as :func:`load_measurements` reads them."""
-    lines = [f'# {line}'.rstrip() for line in comment.splitlines()]
-    lines.append(','.join(MEASUREMENT_COLUMNS))
-    for pose, reading in zip(np.atleast_2d(poses), np.atleast_2d(actuator_positions)):
-        lines.append(','.join(repr(float(value)) for value in np.concatenate([pose, reading])))
-    with open(path, 'w', encoding='utf-8') as stream:
-        stream.write('\n'.join(lines) + '\n')
-
-
-def _yaml_scalar(value) -> str:
-    if isinstance(value, (float, np.floating)):
-        value = float(value)
-        if math.isinf(value):
-            return '.inf' if value > 0 else '-.inf'
-        text = repr(value)
-        # YAML 1.1 (PyYAML) reads 1e-05 as a string: a float needs its dot, 1.0e-05.
-        mantissa, exponent = text.split('e') if 'e' in text else (text, None)
-        if '.' not in mantissa:
-            mantissa += '.0'
-        return mantissa if exponent is None else f'{mantissa}e{exponent}'
-    return yaml.safe_dump(value, default_flow_style=True).strip().removesuffix('...').strip()
+def _check_number(name, value, low, high, unit, low_inclusive=True):
+    """Refuse a setting that is not a number in [low, high] (``(low, high]``), naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValueError(f'{name} must be a number ({unit}), got {value!r}')
+    above = value >= low if low_inclusive else value > low
+    if not (above and value <= high):
+        interval = f'{"[" if low_inclusive else "("}{low:g}, {high:g}]'
+        raise ValueError(f'{name} must be in {interval} ({unit}), got {value!r}')
 
 
 def _parameter_vector(geometry: Geometry, actuator_offsets) -> np.ndarray:

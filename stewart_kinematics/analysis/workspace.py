@@ -44,6 +44,7 @@ from typing import Optional, Sequence, Tuple
 import numpy as np
 
 from stewart_kinematics.limits import check_poses_array, LIMIT_NAMES
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import as_poses, jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
@@ -169,8 +170,10 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     gamma   -82.416 deg  83.183 deg  max_jacobian_condition             max_jacobian_condition
     """
     start = _start_pose(geometry, pose)
-    per_axis = np.repeat(np.asarray(step, dtype=float), 3)
-    counts = np.ceil(np.repeat(np.asarray(span, dtype=float), 3) / per_axis).astype(int)
+    span, step = _pair('span', span), _pair('step', step)
+    tolerance = _pair('tolerance', tolerance)
+    per_axis = np.repeat(step, 3)
+    counts = np.ceil(np.repeat(span, 3) / per_axis).astype(int)
     # The twelve rays: axis a, sign s, samples k * step for k = 1 .. counts[a], scanned
     # outwards SCAN_CHUNK samples at a time, a ray dropping out at its first refusal.
     rays = [(axis, sign) for axis in range(6) for sign in (-1.0, 1.0)]
@@ -300,8 +303,15 @@ def workspace_slice(geometry, plane='XY', pose=None, *, resolution=None, extent=
     base = _base_pose(geometry, pose)
     if resolution is None:
         resolution = tuple(1e-3 if axis < 3 else math.radians(0.25) for axis in axes)
-    grid = _Grid(geometry, base, axes, np.broadcast_to(np.asarray(resolution, float), (2,)),
-                 extent, span, with_condition=True)
+    resolution = _positive('resolution', resolution, 2)
+    span, tolerance = _pair('span', span), _pair('tolerance', tolerance)
+    if extent is not None:
+        extent = as_float_array(extent, 'extent')
+        if extent.shape != (2, 2) or not np.all(np.isfinite(extent)) or np.any(
+                extent[:, 1] <= extent[:, 0]):
+            raise ValueError(f'extent must be ((u_min, u_max), (v_min, v_max)), finite and '
+                             f'increasing, got {preview(extent)}')
+    grid = _Grid(geometry, base, axes, resolution, extent, span, with_condition=True)
     points, boundary_limit, boundary_leg = grid.boundary(tolerance)
     return WorkspaceSlice(axes, base, grid.coordinates[0], grid.coordinates[1],
                           grid.allowed.T, grid.limit.T, grid.leg.T, grid.condition.T,
@@ -360,11 +370,12 @@ def workspace_volume(geometry, orientation=None, *, position=None, resolution=0.
     """
     base = _base_pose(geometry, None)
     if orientation is not None:
-        base[3:] = np.asarray(orientation, dtype=float)
+        base[3:] = _finite('orientation', orientation, 3)
     if position is not None:
-        base[:3] = np.asarray(position, dtype=float)
-    grid = _Grid(geometry, as_poses(base), (0, 1, 2), np.full(3, float(resolution)), None,
-                 span)
+        base[:3] = _finite('position', position, 3)
+    resolution = float(_positive('resolution', resolution, 1)[0])
+    span, tolerance = _pair('span', span), _pair('tolerance', tolerance)
+    grid = _Grid(geometry, as_poses(base), (0, 1, 2), np.full(3, resolution), None, span)
     points, limit, leg = grid.boundary(tolerance, dimensions=(2,))
     # Each column's reachable length is the sum of (exit - entry) of its intervals.
     heights = points[:, 2]
@@ -381,7 +392,13 @@ def workspace_volume(geometry, orientation=None, *, position=None, resolution=0.
         for dimension in (0, 1):
             values = grid.coordinates[dimension][columns[dimension]]
             box[:, dimension] = values.min(), values.max()
-        box[:, 2] = heights.min(), heights.max()
+        # In z: the boundary crossings, and the grid's ends where a column reaches them (an
+        # unbounded workspace, such as a platform without limits, may have no crossing).
+        ends = [heights]
+        ends += [z[:1]] if np.any(grid.allowed[:, :, 0]) else []
+        ends += [z[-1:]] if np.any(grid.allowed[:, :, -1]) else []
+        ends = np.concatenate(ends)
+        box[:, 2] = ends.min(), ends.max()
     return WorkspaceVolume(base[3:].copy(), volume, box, float(resolution), points[:, :3],
                            limit, leg, grid.bounded)
 
@@ -398,10 +415,14 @@ def orientation_workspace(geometry, position=None, gammas=(0.0,), *,
     :returns: one :class:`WorkspaceSlice` (plane alpha-beta) per gamma; ``area`` in rad^2.
     """
     slices = []
-    for gamma in gammas:
+    gammas = as_float_array(gammas, 'gammas')
+    if gammas.ndim != 1 or not np.all(np.isfinite(gammas)):
+        raise ValueError(f'gammas must be finite angles (radians), shape (N,), got '
+                         f'{preview(gammas)}')
+    for gamma in gammas.tolist():
         pose = _base_pose(geometry, None)
         if position is not None:
-            pose[:3] = np.asarray(position, dtype=float)
+            pose[:3] = _finite('position', position, 3)
         pose[5] = gamma
         slices.append(workspace_slice(geometry, ('alpha', 'beta'), pose, resolution=resolution,
                                       tolerance=tolerance, span=span))
@@ -686,6 +707,28 @@ def _start_pose(geometry, pose):
         raise ValueError('the start pose breaks the limits: '
                          + '; '.join(str(v) for v in checks.violations(0)))
     return start
+
+
+def _finite(name, value, size) -> np.ndarray:
+    """Return ``size`` finite numbers, or refuse them naming the argument."""
+    array = as_float_array(value, name)
+    if array.shape != (size,) or not np.all(np.isfinite(array)):
+        raise ValueError(f'{name} must be {size} finite numbers, got {preview(value)}')
+    return array
+
+
+def _positive(name, value, size) -> np.ndarray:
+    """Return one positive finite number, or ``size`` of them, as an array (size,)."""
+    array = as_float_array(value, name)
+    if array.shape not in ((), (size,)) or not np.all((array > 0.0) & np.isfinite(array)):
+        raise ValueError(f'{name} must be one positive finite number or {size}, got '
+                         f'{preview(value)}')
+    return np.broadcast_to(array, (size,)).copy()
+
+
+def _pair(name, value) -> Tuple[float, float]:
+    """Return a ``(metres, radians)`` pair of positive finite numbers, or refuse it."""
+    return tuple(_positive(name, value, 2).tolist())
 
 
 def _base_pose(geometry, pose):

@@ -50,6 +50,7 @@ from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel, Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
@@ -152,8 +153,11 @@ class CommandCheck:
         :returns: a :class:`LegCommand`; refused (code ``invalid_pose``, ``unreachable`` or
             ``out_of_limits``) rather than raised.
         """
-        position = np.asarray(position, dtype=float)
-        rotation = np.asarray(rotation, dtype=float)
+        try:
+            position = as_float_array(position, 'position')
+            rotation = as_float_array(rotation, 'rotation')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         invalid = _invalid_pose(position, rotation)
         if invalid:
             return LegCommand(None, refusal=Finding(findings.INVALID_POSE, invalid))
@@ -190,7 +194,10 @@ class CommandCheck:
             frame's; refused with ``invalid_pose``, ``wrong_frame``, ``unreachable`` or
             ``out_of_limits``.
         """
-        position = np.asarray(position, dtype=float)
+        try:
+            position = as_float_array(position, 'position')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         if position.shape != (3,):
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
@@ -230,7 +237,10 @@ class CommandCheck:
 
         :param pose: shape (6,).
         """
-        pose = np.asarray(pose, dtype=float)
+        try:
+            pose = as_float_array(pose, 'pose')
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.INVALID_POSE, str(error)))
         if pose.shape != (6,) or not np.all(np.isfinite(pose)):
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
@@ -271,7 +281,10 @@ class CommandCheck:
         :returns: a :class:`LegVelocityCommand`; refused (code ``invalid_twist``,
             ``no_pose_yet`` or ``too_fast``) rather than raised.
         """
-        twist = np.asarray(twist, dtype=float)
+        try:
+            twist = as_float_array(twist, 'twist')
+        except ValueError as error:
+            return LegVelocityCommand(None, Finding(findings.INVALID_TWIST, str(error)))
         if twist.shape != (6,) or not np.all(np.isfinite(twist)):
             return LegVelocityCommand(None, Finding(
                 findings.INVALID_TWIST,

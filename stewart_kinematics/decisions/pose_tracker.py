@@ -52,6 +52,7 @@ from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import (
     as_leg_lengths,
     as_poses,
@@ -102,7 +103,7 @@ class PoseEstimate(Decision):
 
     @property
     def pose_error_bound(self) -> Optional[float]:
-        """First-order bound on the pose error of the solution, metres and radians, or ``None``."""
+        """Proven bound on the pose error of the solution, metres and radians, or ``None``."""
         return None if self.solution is None else self.solution.pose_error_bound
 
 
@@ -231,7 +232,10 @@ class PoseTracker:
         :param velocities: leg velocities l_1'..l_6', metres per second, shape (6,).
         :returns: a :class:`TwistEstimate`, ``[vx, vy, vz, wx, wy, wz]`` in the base frame.
         """
-        velocities = np.asarray(velocities, dtype=float)
+        try:
+            velocities = as_float_array(velocities, 'leg velocities')
+        except ValueError as error:
+            return TwistEstimate(None, Finding(findings.INVALID_VELOCITIES, str(error)))
         if velocities.shape != (6,) or not np.all(np.isfinite(velocities)):
             return TwistEstimate(None, Finding(
                 findings.INVALID_VELOCITIES,
@@ -246,6 +250,8 @@ class PoseTracker:
                 findings.NEAR_SINGULARITY,
                 f'{error} (the singularity margin: the smaller of near_singularity_condition '
                 f'and max_jacobian_condition)'))
+        except ValueError as error:   # a twist beyond the float range
+            return TwistEstimate(None, Finding(findings.INVALID_VELOCITIES, str(error)))
 
     def _solve(self, lengths) -> ForwardKinematicsResult:
         """Solve from the last solution (with its Jacobian), then from home if that fails."""
@@ -365,7 +371,7 @@ ANGLE_BOUND_MARGIN = 1.0 - 1e-9
 
 def euler_angle_change_bound(angles_a, angles_b) -> float:
     """
-    An upper bound on the rotation angle between two Z-Y-X Euler rotations, radians.
+    Bound from above the rotation angle between two Z-Y-X Euler rotations, radians.
 
     The rotation angle between two rotations is a distance invariant under rotating both
     (bi-invariant), so for ``R = Rz(alpha) Ry(beta) Rx(gamma)`` the triangle inequality gives

@@ -33,7 +33,6 @@ Adding a limit is adding an evaluator and listing it here. Nothing here imports 
 
 import math
 from typing import Dict, List, Optional
-import weakref
 
 import numpy as np
 
@@ -45,6 +44,7 @@ from stewart_kinematics.limits.singularity import SingularityMargin
 from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import as_poses
 
 #: The limits of a pose, in the order every check reports them.
@@ -57,8 +57,8 @@ LEG_STATE_LIMIT_NAMES = ('leg_length_min', 'leg_length_max', 'leg_velocity_max',
 #: cache (measured fastest between 512 and 2048).
 CHECK_BLOCK_SIZE = 1024
 
-#: The model of the pose limits of each geometry still alive (see LimitModel.of_geometry).
-_MODELS = weakref.WeakKeyDictionary()
+#: The attribute of a geometry that keeps its pose limits' model (see LimitModel.of_geometry).
+_MODEL_ATTRIBUTE = '_limit_model'
 
 
 class LimitModel:
@@ -91,12 +91,18 @@ class LimitModel:
 
     @classmethod
     def of_geometry(cls, geometry) -> 'LimitModel':
-        """Return the model of a geometry's pose limits, built once per geometry and kept."""
-        try:
-            return _MODELS[geometry]
-        except KeyError:
-            model = _MODELS[geometry] = cls(geometry)
-            return model
+        """
+        Return the model of a geometry's pose limits, built once per geometry and kept on it.
+
+        Kept as an attribute of the geometry (a cycle the garbage collector frees with it), not
+        in a table keyed by geometry: a table's value holding its key would keep every
+        geometry alive.
+        """
+        model = geometry.__dict__.get(_MODEL_ATTRIBUTE)
+        if model is None:
+            model = cls(geometry)
+            object.__setattr__(geometry, _MODEL_ATTRIBUTE, model)
+        return model
 
     @property
     def pose_limit_names(self):
@@ -135,7 +141,8 @@ class LimitModel:
             a platform joint on its base joint included (a leg of zero length breaks the
             singularity margin and the joint cones, having no direction).
         """
-        position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+        position = as_float_array(position, 'position')
+        rotation = as_float_array(rotation, 'rotation')
         if position.shape != (3,) or rotation.shape != (3, 3):
             raise ValueError(f'expected a position (3,) and a rotation (3, 3), got shapes '
                              f'{position.shape} and {rotation.shape}')
@@ -207,8 +214,8 @@ class LimitModel:
 
         :raises ValueError: if the shapes disagree or a value is not finite.
         """
-        positions = np.asarray(positions, dtype=float)
-        rotations = np.asarray(rotations, dtype=float)
+        positions = as_float_array(positions, 'positions')
+        rotations = as_float_array(rotations, 'rotations')
         if (positions.ndim != 2 or positions.shape[1:] != (3,)
                 or rotations.shape != (len(positions), 3, 3)):
             raise ValueError(f'expected positions (N, 3) and rotations (N, 3, 3), got shapes '
@@ -234,7 +241,7 @@ class LimitModel:
         :returns: a :class:`LimitChecks` of the limits of the quantities given.
         :raises ValueError: if the shapes differ or are not (N, 6).
         """
-        given = {name: np.atleast_2d(np.asarray(values, dtype=float))
+        given = {name: np.atleast_2d(as_float_array(values, name))
                  for name, values in (('lengths', lengths), ('velocities', velocities),
                                       ('accelerations', accelerations), ('jerks', jerks))
                  if values is not None}
@@ -262,7 +269,7 @@ class LimitModel:
         for name, values in (('lengths', lengths), ('velocities', velocities),
                              ('accelerations', accelerations), ('jerks', jerks)):
             if values is not None:
-                values = np.asarray(values, dtype=float)
+                values = as_float_array(values, name)
                 if values.shape != (6,):
                     raise ValueError(f'{name} of one leg state must have shape (6,), got '
                                      f'{values.shape}')
@@ -295,7 +302,11 @@ class LimitModel:
         1.0 without a velocity limit. For a twist scaled uniformly to the limit.
 
         :param velocities: m/s, finite, any shape.
+        :raises ValueError: if a velocity is not a finite number (no factor brings it within).
         """
+        velocities = as_float_array(velocities, 'velocities')
+        if not np.all(np.isfinite(velocities)):
+            raise ValueError(f'velocities must be finite (m/s), got {velocities.tolist()}')
         rates = [limit for limit in self.leg_state_limits
                  if isinstance(limit, LegRate) and limit.quantity == 'velocities']
         return rates[0].scale(velocities) if rates else 1.0

@@ -34,6 +34,8 @@ from typing import Sequence, Tuple
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array
+
 #: Default joint names of the legs, leg 1..6.
 DEFAULT_JOINT_NAMES = ('leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6')
 
@@ -55,7 +57,10 @@ class ActuatorLimits:
 
     def __post_init__(self):
         for name in ('velocity_max', 'acceleration_max', 'jerk_max'):
-            value = float(getattr(self, name))
+            value = as_float_array(getattr(self, name), f'leg_{name}')
+            if value.shape != ():
+                raise ValueError(f'leg_{name} must be one number, got {value.tolist()}')
+            value = float(value)
             if not value > 0.0:
                 raise ValueError(f'leg_{name} must be positive (.inf for no limit), got {value!r}')
             object.__setattr__(self, name, value)
@@ -75,7 +80,8 @@ class ActuatorLimits:
         :param speed_scale: in (0, 1].
         :raises ValueError: if ``speed_scale`` is not in (0, 1].
         """
-        if not 0.0 < speed_scale <= 1.0:
+        if not (isinstance(speed_scale, (int, float, np.integer, np.floating))
+                and not isinstance(speed_scale, bool) and 0.0 < speed_scale <= 1.0):
             raise ValueError(f'speed_scale must be in (0, 1], got {speed_scale!r}')
         return ActuatorLimits(self.velocity_max * speed_scale,
                               self.acceleration_max * speed_scale ** 2,
@@ -101,7 +107,7 @@ class ActuatorInterface:
         if len(names) != 6 or len(set(names)) != 6 or not all(
                 isinstance(name, str) and name for name in names):
             raise ValueError(f'joint_names must be 6 distinct, non-empty names, got {names!r}')
-        offsets = np.array(self.offsets, dtype=float)
+        offsets = np.array(as_float_array(self.offsets, 'actuator_offsets'))
         if offsets.shape != (6,) or not np.all(np.isfinite(offsets)):
             raise ValueError(f'actuator_offsets must be 6 finite values (metres), got '
                              f'{offsets.tolist()}')

@@ -39,6 +39,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 
@@ -56,8 +57,8 @@ class Transform:
 
     def __post_init__(self):
         """Store float copies; refuse anything but a finite (3,) and a rotation (3, 3)."""
-        position = np.array(self.position, dtype=float)
-        rotation = np.array(self.rotation, dtype=float)
+        position = np.array(as_float_array(self.position, 'position'))
+        rotation = np.array(as_float_array(self.rotation, 'rotation'))
         if position.shape != (3,) or rotation.shape != (3, 3):
             raise ValueError(f'a transform needs a position of shape (3,) and a rotation of '
                              f'shape (3, 3), got {position.shape} and {rotation.shape}')
@@ -77,7 +78,7 @@ class Transform:
         The angles follow the package's convention, ``R = Rz(gamma) Ry(beta) Rx(alpha)``. An
         all-zero pose gives :data:`IDENTITY` itself, which the frame tree skips at no cost.
         """
-        pose = np.asarray(pose, dtype=float)
+        pose = as_float_array(pose, 'pose')
         if pose.shape != (6,):
             raise ValueError(f'a pose vector has 6 values, got shape {pose.shape}')
         if not pose.any():

@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Two joints closer than this (metres) count as one: a leg pair would be degenerate.
@@ -84,7 +85,8 @@ class Geometry:
             object.__setattr__(self, name, array)
         for name in ('base_joints', 'platform_joints'):
             _check_joint_layout(name, getattr(self, name))
-        low, high = float(self.leg_length_min), float(self.leg_length_max)
+        low, high = (_checked_number('leg_length_min', self.leg_length_min),
+                     _checked_number('leg_length_max', self.leg_length_max))
         if not (math.isfinite(low) and 0.0 <= low < high) or math.isnan(high):
             raise ValueError(
                 'leg length limits must satisfy 0 <= leg_length_min < leg_length_max, '
@@ -92,11 +94,11 @@ class Geometry:
         object.__setattr__(self, 'leg_length_min', low)
         object.__setattr__(self, 'leg_length_max', high)
         for name in ('base_joint_max_angle', 'platform_joint_max_angle'):
-            angle = float(getattr(self, name))
+            angle = _checked_number(name, getattr(self, name))
             if not 0.0 < angle <= math.pi:
                 raise ValueError(f'{name} must be in (0, pi] radians, got {angle!r}')
             object.__setattr__(self, name, angle)
-        condition = float(self.max_jacobian_condition)
+        condition = _checked_number('max_jacobian_condition', self.max_jacobian_condition)
         if not condition >= 1.0:
             raise ValueError(f'max_jacobian_condition must be >= 1, got {condition!r}')
         object.__setattr__(self, 'max_jacobian_condition', condition)
@@ -126,11 +128,16 @@ class Geometry:
                              + '; '.join(str(v) for v in home_violations))
 
 
+def _checked_number(name, value) -> float:
+    """Return a limit as a float, or refuse what is not one number, naming it."""
+    array = as_float_array(value, name)
+    if array.shape != ():
+        raise ValueError(f'{name} must be one number, got {preview(value)}')
+    return float(array)
+
+
 def _checked_array(name, value, shape):
-    try:
-        array = np.array(value, dtype=float)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f'{name} must be numeric with shape {shape}: {error}') from error
+    array = np.array(as_float_array(value, name))
     if array.shape != shape:
         raise ValueError(f'{name} must have shape {shape}, got {array.shape}')
     if not np.all(np.isfinite(array)):

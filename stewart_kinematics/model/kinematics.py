@@ -39,6 +39,7 @@ import weakref
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, check_finite_output, preview
 from stewart_kinematics.model.rotations import (
     _ArrayOperations,
     euler_zyx_matrix_entries,
@@ -63,9 +64,12 @@ SINGULAR_JACOBIAN = 'singular Jacobian: the pose is at a singularity'
 DIVERGED = 'diverged: the next iterate left every plausible pose'
 INVALID_LENGTHS = 'not solved: leg lengths must be finite and positive (metres)'
 INVALID_GUESS = 'not solved: the initial guess must be finite'
-#: Rounding floor of a computed leg length, in units of the length's last place: the residual
-#: of a solve is known no better than this (see ForwardKinematicsResult.pose_error_bound).
-LENGTH_ROUNDING_ULPS = 4.0
+#: Rounding floor of a computed leg length, in units of the last place of ``|t| + |p_i| +
+#: |b_i|`` (the sizes of the terms summed in the leg vector): the residual of a solve is known
+#: no better than this (see ForwardKinematicsResult.pose_error_bound).
+LENGTH_ROUNDING_ULPS = 16.0
+#: Rounding of a computed smallest singular value, in units of the largest one's last place.
+SINGULAR_VALUE_ROUNDING_ULPS = 64.0
 #: Poses per block of a batched inverse kinematics: the temporaries of one block stay in the
 #: processor's cache, which doubles the throughput of batches of millions.
 IK_BLOCK_SIZE = 4096
@@ -73,7 +77,7 @@ IK_BLOCK_SIZE = 4096
 
 def _as_rows(values, name) -> np.ndarray:
     """Return ``values`` as a float array of shape (6,) or (N, 6), or raise ValueError."""
-    values = np.asarray(values, dtype=float)
+    values = as_float_array(values, name)
     if values.ndim not in (1, 2) or values.shape[-1] != 6:
         raise ValueError(f'{name} must have shape (6,) or (N, 6), got {values.shape}')
     return values
@@ -206,6 +210,19 @@ def _euler_step(pose, twist, cos_beta, sin_beta, cos_gamma, sin_gamma):
             gamma - (wz + sin_beta * d_alpha))
 
 
+@dataclass(frozen=True)
+class _ErrorBoundTerms:
+    """
+    The per-leg figures of :attr:`ForwardKinematicsResult.pose_error_bound`, as floats.
+
+    ``arms`` |p_i|, ``base_norms`` |b_i|, ``reaches`` c_i = sqrt(1 + |p_i|^2 / rho^2).
+    """
+
+    arms: list
+    base_norms: list
+    reaches: list
+
+
 class _GeometryConstants:
     """Arrays derived once from a geometry, reused by every call (see :func:`_constants`)."""
 
@@ -222,6 +239,25 @@ class _GeometryConstants:
         self.home_pose = tuple(geometry.home_pose.tolist())
         self.home_jacobian_inverse = _float_inverse(_float_twist_rows(
             _single_euler_legs(self, self.home_pose)))
+        self._geometry = weakref.ref(geometry)  # a strong one would keep the geometry alive
+
+    @cached_property
+    def error_bound_terms(self):
+        """Per leg, as floats, for the pose error bound of one solve (see pose_error_bound)."""
+        geometry = self._geometry()
+        arms = np.linalg.norm(geometry.platform_joints, axis=-1)
+        return _ErrorBoundTerms(
+            arms.tolist(), np.linalg.norm(geometry.base_joints, axis=-1).tolist(),
+            np.sqrt(1.0 + (arms / geometry.platform_radius) ** 2).tolist())
+
+    @cached_property
+    def start_table(self):
+        """Return the geometry's :class:`StartTable`, built on first use (None: home singular)."""
+        if self.home_jacobian_inverse is None:
+            return None
+        # Imported here: the table is built with this module's solver.
+        from stewart_kinematics.model.start_table import StartTable
+        return StartTable(self._geometry())
 
 
 #: Constants of each geometry still alive; a Geometry is immutable, so they never go stale.
@@ -315,8 +351,9 @@ def _batch_rotation_legs(constants, position, rotation):
     shape = position.shape[:-1]
     position = position.reshape(-1, 3)
     rotation = rotation.reshape(-1, 3, 3)
-    legs = _batch_legs(constants, position,
-                       [rotation[:, row, column] for row in range(3) for column in range(3)])
+    with np.errstate(over='ignore', invalid='ignore'):   # the callers refuse an overflow
+        legs = _batch_legs(constants, position,
+                           [rotation[:, row, column] for row in range(3) for column in range(3)])
     return shape, legs
 
 
@@ -374,15 +411,18 @@ def leg_vectors(geometry, position, rotation) -> np.ndarray:
     :param position: platform origin in the base frame, metres, shape (3,) or (N, 3).
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3).
     :returns: in the base frame, metres, shape (6, 3) or (N, 6, 3).
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[1:4] for leg in legs])
-    shape, (_, vectors) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+        vectors = np.array([leg[1:4] for leg in legs])
+    else:
+        shape, (_, vectors) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        vectors = np.stack(vectors[:3], axis=-1).transpose(1, 0, 2).reshape(shape + (6, 3))
+    return _finite_result(vectors, 'the leg vectors', position, rotation)
 
 
 def leg_vectors_from_euler(geometry, poses) -> np.ndarray:
@@ -404,15 +444,22 @@ def leg_lengths(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation matrix, shape (3, 3) or (N, 3, 3); build it
         from a quaternion with :func:`stewart_kinematics.model.rotations.quaternion_to_matrix`.
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
+    :raises ValueError: if a shape is wrong, the numbers of poses differ, a value is not
+        finite or the lengths overflow. The rotation is not checked to be one.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
         legs = _single_legs(constants, position.tolist(), rotation.ravel().tolist())
-        return np.array([leg[0] for leg in legs])
-    shape, (lengths, _) = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return lengths.T.reshape(shape + (6,))
+        lengths = [leg[0] for leg in legs]
+        if all(map(math.isfinite, lengths)):
+            return np.array(lengths)
+        lengths = np.array(lengths)
+    else:
+        shape, (lengths, _) = _batch_rotation_legs(constants,
+                                                   *_broadcast_pose(position, rotation))
+        lengths = lengths.T.reshape(shape + (6,))
+    return _finite_result(lengths, 'the leg lengths', position, rotation)
 
 
 def inverse_kinematics(geometry, poses) -> np.ndarray:
@@ -422,25 +469,30 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, shape (6,) or (N, 6).
     :returns: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
-    :raises ValueError: if a pose has the wrong shape or a non-finite value.
+    :raises ValueError: if a pose has the wrong shape or a non-finite value, or its lengths
+        overflow (a coordinate beyond about 1e154 m).
 
     >>> from stewart_kinematics import inverse_kinematics, load_geometry
     >>> geometry = load_geometry('config/paper_platform.yaml')
     >>> inverse_kinematics(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0])
     array([0.71885487, 0.71885488, 0.70114644, 0.71885487, 0.71885488, 0.71885488])
     """
-    poses = np.asarray(poses, dtype=float)
+    poses = as_float_array(poses, 'poses')
     constants = _constants(geometry)
     if poses.shape == (6,):
         values = poses.tolist()
         if all(map(math.isfinite, values)):
-            return np.array(_single_euler_legs(constants, values, with_vectors=False))
+            lengths = _single_euler_legs(constants, values, with_vectors=False)
+            if all(map(math.isfinite, lengths)):
+                return np.array(lengths)
     poses = as_poses(poses)
-    lengths = np.empty((poses.shape[0], 6))
-    for start in range(0, poses.shape[0], IK_BLOCK_SIZE):
-        stop = start + IK_BLOCK_SIZE
-        lengths[start:stop] = _batch_euler_legs(constants, poses[start:stop], False).T
-    return lengths
+    batch = np.atleast_2d(poses)
+    lengths = np.empty((batch.shape[0], 6))
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        for start in range(0, batch.shape[0], IK_BLOCK_SIZE):
+            stop = start + IK_BLOCK_SIZE
+            lengths[start:stop] = _batch_euler_legs(constants, batch[start:stop], False).T
+    return check_finite_output(lengths.reshape(poses.shape), 'the leg lengths', 'the poses')
 
 
 def twist_jacobian(geometry, position, rotation) -> np.ndarray:
@@ -457,15 +509,45 @@ def twist_jacobian(geometry, position, rotation) -> np.ndarray:
     :param rotation: platform-to-base rotation, shape (3, 3) or (N, 3, 3).
     :returns: shape (6, 6) or (N, 6, 6); translation columns dimensionless, rotation columns
         in metres per radian.
+    :raises ValueError: as :func:`leg_lengths`.
     """
-    position = np.asarray(position, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    position, rotation = _as_position_rotation(position, rotation)
     constants = _constants(geometry)
     if position.shape == (3,) and rotation.shape == (3, 3):
-        return np.array(_float_twist_rows(_single_legs(
+        jac = np.array(_float_twist_rows(_single_legs(
             constants, position.tolist(), rotation.ravel().tolist()))).reshape(6, 6)
-    shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
-    return _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    else:
+        shape, legs = _batch_rotation_legs(constants, *_broadcast_pose(position, rotation))
+        jac = _batch_twist_jacobian(*legs).reshape(shape + (6, 6))
+    return _finite_result(jac, 'the twist Jacobian', position, rotation)
+
+
+def _as_position_rotation(position, rotation):
+    """Positions (..., 3) and rotation matrices (..., 3, 3) as float arrays, shapes checked."""
+    position = as_float_array(position, 'position')
+    rotation = as_float_array(rotation, 'rotation')
+    if position.shape == (3,) and rotation.shape == (3, 3):   # one pose: the common case
+        return position, rotation
+    if position.shape[-1:] != (3,) or rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'position must have shape (3,) or (N, 3) and rotation (3, 3) or '
+                         f'(N, 3, 3), got {position.shape} and {rotation.shape}')
+    try:
+        np.broadcast_shapes(position.shape[:-1], rotation.shape[:-2])
+    except ValueError:
+        raise ValueError(f'position {position.shape} and rotation {rotation.shape} must hold '
+                         'the same number of poses, or one of them a single one') from None
+    return position, rotation
+
+
+def _finite_result(result, what, position, rotation):
+    """Return ``result``, or say why it is not finite: a non-finite input, or an overflow."""
+    if isinstance(result, np.ndarray) and result.size <= 36 and all(
+            map(math.isfinite, result.ravel().tolist())) or np.all(np.isfinite(result)):
+        return result
+    for name, values in (('position', position), ('rotation', rotation)):
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f'{name} must be finite, got {preview(values)}')
+    return check_finite_output(result, what, 'the position and rotation')
 
 
 def jacobian(geometry, poses) -> np.ndarray:
@@ -482,7 +564,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     """
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
-    jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
+    with np.errstate(over='ignore', invalid='ignore'):   # an overflow is refused below
+        jac = _batch_twist_jacobian(*_batch_euler_legs(_constants(geometry), batch))
     beta, gamma = batch[:, 4], batch[:, 5]
     cos_beta, cos_gamma, sin_gamma = np.cos(beta), np.cos(gamma), np.sin(gamma)
     euler_rate_axes = np.zeros((len(batch), 3, 3))
@@ -492,7 +575,8 @@ def jacobian(geometry, poses) -> np.ndarray:
     euler_rate_axes[:, 1, 1] = cos_gamma
     euler_rate_axes[:, 2, 2] = 1.0
     jac[..., 3:] = jac[..., 3:] @ euler_rate_axes
-    return jac.reshape(poses.shape[:-1] + (6, 6))
+    return check_finite_output(jac.reshape(poses.shape[:-1] + (6, 6)), 'the Jacobian',
+                               'the poses')
 
 
 def jacobian_condition(geometry, position, rotation):
@@ -662,37 +746,68 @@ class ForwardKinematicsResult:
     @cached_property
     def pose_error_bound(self) -> Union[float, np.ndarray]:
         """
-        Bound on how far :attr:`pose` can be from the exact pose of the given leg lengths.
+        Proven bound on the distance from :attr:`pose` to the nearest exact pose of the lengths.
 
-        One number in metres and radians: the larger of the bounds on the position error (m)
-        and on the rotation angle error (rad). From the leg length error ``e`` (the residual
-        plus the rounding floor of a computed length, ``LENGTH_ROUNDING_ULPS`` units in the last
-        place of the longest leg), a pose error ``dx`` meets ``J dx = dl`` with
-        ``|dl| <= sqrt(6) e``; with ``sigma`` the smallest singular value of the dimensionless
-        Jacobian (:func:`jacobian_condition`), the position error is at most
-        ``sqrt(6) e / sigma`` and the angle error that divided by ``rho``. The first-order
-        figure is doubled: near a fold singularity, where the leg lengths are quadratic in the
-        pose, the tangent meets the exact solution only halfway, and twice the first-order
-        estimate is Kantorovich's radius around a Newton iterate.
+        One number in metres and radians: the larger of the position error (m) and the
+        rotation angle error (rad) to the pose whose leg lengths are exactly the given ones,
+        the one nearest to :attr:`pose`. Near a fold singularity the same lengths have a second
+        pose close by (another assembly mode, across the fold): that one is not bounded, and
+        the bound is ``inf`` when the two cannot be told apart (below).
+
+        The proof, in the coordinates ``z = (dt, rho phi)`` of a move from :attr:`pose` (``dt``
+        the position change, ``phi`` the rotation vector, ``rho`` the platform radius): the
+        leg lengths are ``l(z) = l(0) + J z + q(z)`` with ``J`` the dimensionless Jacobian
+        (:func:`jacobian_condition`), smallest singular value ``sigma``, and each
+        ``|q_i(z)| <= M_i |z|^2 / 2``, where ``M_i = c_i^2 / l_i' + |p_i| / rho^2`` bounds the
+        second derivative of leg ``i`` along any line in the ball (``c_i = sqrt(1 + |p_i|^2 /
+        rho^2)``, ``l_i'`` the leg's shortest length in the ball). With the leg length error
+        ``e`` (the residual plus the rounding floor, ``LENGTH_ROUNDING_ULPS`` units in the last
+        place of ``|t| + |p_i| + |b_i|``), ``eta = sqrt(6) e / sigma`` and ``h = eta M /
+        sigma`` (``M`` the 2-norm of the ``M_i``), the map ``z -> -J^-1 (l(0) - lengths +
+        q(z))`` sends the ball of radius ``r = 2 eta / (1 + sqrt(1 - 2 h))`` into itself when
+        ``h <= 1/2`` (Kantorovich's condition), so it holds an exact solution (Brouwer), and
+        ``|dt| <= r``, ``|phi| <= r / rho``. The bound is ``r max(1, 1 / rho)``, at most twice
+        the first-order figure ``eta max(1, 1 / rho)``. Where ``h > 1/2`` no ball is proven
+        to hold a solution (the residual is too large for the curvature near a singularity):
+        ``inf``. ``sigma`` is lowered by its rounding, ``SINGULAR_VALUE_ROUNDING_ULPS`` units
+        in the last place of the largest singular value.
 
         On the paper's platform, within +-0.1 m and +-15 degrees of home: 5e-13 for the median
-        pose, up to 1.5e-10 where the residual is just under the default tolerance; 1e-5 within
-        1e-6 rad of the singularity at a yaw of 90.4 degrees, where the residual is still
-        1e-13 m. ``inf`` at a singularity and where the solve did not converge. A float for
-        one solve, an array (N,) for a batch.
+        pose, up to 1e-10 where the residual is just under the default tolerance; 4e-9 at 1e-3
+        rad from the singularity at a yaw of 90.38 degrees, and ``inf`` within about 1e-5 rad
+        of it, where a residual of 1e-13 m can leave converged solves microns off. ``inf`` at a
+        singularity and where the solve did not converge. A float for one solve, an array
+        (N,) for a batch.
         """
         geometry, lengths, _ = self._solve
         if self.pose.ndim == 1:
-            return _single_pose_error_bound(geometry, lengths, self.residual, self.converged,
-                                            self._singular_values[-1])
+            return _single_pose_error_bound(
+                geometry, self.pose.tolist(), np.asarray(lengths, dtype=float).tolist(),
+                float(self.residual), bool(self.converged), self._singular_values)
         lengths = np.asarray(lengths, dtype=float)
-        error = self.residual + LENGTH_ROUNDING_ULPS * np.finfo(float).eps * np.max(
-            lengths, axis=-1)
-        radius = geometry.platform_radius
-        with np.errstate(divide='ignore', invalid='ignore'):
-            bound = (2.0 * math.sqrt(6.0) * max(1.0, 1.0 / radius) * error
-                     / self._singular_values[..., -1])
-        bound = np.where(np.asarray(self.converged) & (bound >= 0.0), bound, np.inf)
+        pose = np.asarray(self.pose, dtype=float)
+        rho = geometry.platform_radius
+        arms = np.linalg.norm(geometry.platform_joints, axis=-1)            # |p_i|, (6,)
+        sizes = (np.linalg.norm(pose[..., None, :3], axis=-1) + arms
+                 + np.linalg.norm(geometry.base_joints, axis=-1))         # (..., 6)
+        eps = np.finfo(float).eps
+        error = self.residual + LENGTH_ROUNDING_ULPS * eps * np.max(sizes, axis=-1)
+        singular_values = self._singular_values
+        sigma = singular_values[..., -1] - SINGULAR_VALUE_ROUNDING_ULPS * eps * (
+            singular_values[..., 0])
+        reach = np.sqrt(1.0 + (arms / rho) ** 2)                          # c_i, (6,)
+        with np.errstate(divide='ignore', invalid='ignore', over='ignore'):
+            eta = math.sqrt(6.0) * error / sigma
+            # The legs' shortest lengths within the largest ball considered, 2 eta.
+            shortest = (lengths - np.asarray(self.residual)[..., None]
+                        - 2.0 * np.asarray(eta)[..., None] * reach)
+            curvature = np.sqrt(np.sum(np.square(
+                reach ** 2 / shortest + arms / rho ** 2), axis=-1))
+            h = eta * curvature / sigma
+            radius = 2.0 * eta / (1.0 + np.sqrt(np.maximum(1.0 - 2.0 * h, 0.0)))
+            proven = (np.asarray(self.converged) & (sigma > 0.0) & (h <= 0.5)
+                      & np.all(shortest > 0.0, axis=-1) & (radius >= 0.0))
+            bound = np.where(proven, radius * max(1.0, 1.0 / rho), np.inf)
         return float(bound) if bound.ndim == 0 else bound
 
 
@@ -715,15 +830,36 @@ def _single_singular_values(geometry, pose):
     return values
 
 
-def _single_pose_error_bound(geometry, lengths, residual, converged, smallest):
-    """:attr:`ForwardKinematicsResult.pose_error_bound` of one solve, in floats."""
-    if not converged or smallest == 0.0:
+def _single_pose_error_bound(geometry, pose, lengths, residual, converged, singular_values):
+    """
+    :attr:`ForwardKinematicsResult.pose_error_bound` of one solve, the same proof in floats.
+
+    :param pose: the solution, six floats; ``lengths``: the six lengths solved for.
+    :param singular_values: :func:`_single_singular_values` at the pose.
+    """
+    if not converged:
         return math.inf
-    lengths = lengths.tolist() if isinstance(lengths, np.ndarray) else list(lengths)
-    error = residual + LENGTH_ROUNDING_ULPS * _EPSILON * max(lengths)
-    bound = (2.0 * math.sqrt(6.0) * max(1.0, 1.0 / geometry.platform_radius) * error
-             / smallest)
-    return bound if bound >= 0.0 else math.inf
+    terms = _constants(geometry).error_bound_terms
+    rho = geometry.platform_radius
+    sigma = singular_values[-1] - SINGULAR_VALUE_ROUNDING_ULPS * _EPSILON * singular_values[0]
+    if not sigma > 0.0:
+        return math.inf
+    offset = math.hypot(*pose[:3])
+    error = residual + LENGTH_ROUNDING_ULPS * _EPSILON * max(
+        offset + arm + base for arm, base in zip(terms.arms, terms.base_norms))
+    eta = math.sqrt(6.0) * error / sigma
+    # The legs' shortest lengths within the largest ball considered, 2 eta.
+    shortest = [length - residual - 2.0 * eta * reach
+                for length, reach in zip(lengths, terms.reaches)]
+    if not min(shortest) > 0.0:
+        return math.inf
+    curvature = math.sqrt(sum((reach * reach / length + arm / (rho * rho)) ** 2
+                              for reach, length, arm in zip(terms.reaches, shortest, terms.arms)))
+    h = eta * curvature / sigma
+    if not h <= 0.5:
+        return math.inf
+    radius = 2.0 * eta / (1.0 + math.sqrt(max(1.0 - 2.0 * h, 0.0)))
+    return radius * max(1.0, 1.0 / rho) if radius >= 0.0 else math.inf
 
 
 #: The machine epsilon of a float.
@@ -757,11 +893,22 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
     with the Jacobian of that result. A batch takes, pose by pose, the steps of single solves,
     vectorised, with the same arithmetic: same iterates, iterations and reasons.
 
+    Without an initial guess (a cold solve), the solve starts from the geometry's start table
+    (:mod:`stewart_kinematics.model.start_table`, built on the first cold solve, 0.1 to 0.3 s):
+    one Newton step from the working-mode sample nearest the lengths, with that sample's
+    Jacobian, so that it takes about three steps instead of four from home (home is the
+    middle cell's sample: its own lengths take no step). Where the table has no sample
+    (lengths far from the workspace around home, or in another assembly mode), or where the
+    solve from the table does not converge, it starts from the home pose as a solve given
+    ``geometry.home_pose`` does, and returns that solve's result. ``iterations`` counts the
+    steps after the start.
+
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param lengths: leg lengths l_1..l_6 in metres, shape (6,) or (N, 6).
-    :param initial_guess: starting pose(s), shape (6,) or (N, 6); default
-        ``geometry.home_pose``. When tracking a moving platform, start from the last solution:
-        pass the last :class:`ForwardKinematicsResult` itself, and its Jacobian is reused too.
+    :param initial_guess: starting pose(s), shape (6,) or (N, 6); default: the start table's
+        sample, else ``geometry.home_pose`` (see above). When tracking a moving platform, start
+        from the last solution: pass the last :class:`ForwardKinematicsResult` itself, and its
+        Jacobian is reused too.
     :param tolerance: largest accepted leg length error, metres (default 1e-12).
     :param max_iterations: Newton-Raphson steps before giving up (default 50).
     :returns: a :class:`ForwardKinematicsResult`; non-convergence is reported there, not
@@ -775,9 +922,10 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         if initial_guess.converged is True:
             jacobian_inverse = initial_guess._solve[2]
         initial_guess = initial_guess.pose
-    if not 0.0 < tolerance < np.inf:
+    if not (_is_real(tolerance) and 0.0 < tolerance < np.inf):
         raise ValueError(f'tolerance must be positive and finite (metres), got {tolerance!r}')
-    if int(max_iterations) != max_iterations or max_iterations < 1:
+    if not (_is_real(max_iterations) and math.isfinite(max_iterations)
+            and int(max_iterations) == max_iterations and max_iterations >= 1):
         raise ValueError(f'max_iterations must be a positive integer, got {max_iterations!r}')
     constants = _constants(geometry)
     # One solve: six valid floats each (the common case, checked without numpy's overhead).
@@ -793,19 +941,28 @@ def forward_kinematics(geometry, lengths, initial_guess=None, *,
         else:
             target = None
     if target is not None:
+        if initial_guess is None:
+            return _forward_kinematics_cold(geometry, constants, target, tolerance,
+                                            int(max_iterations))
         return _forward_kinematics_single(
             geometry, constants, target, list(guess), tolerance, int(max_iterations),
             jacobian_inverse)
     targets = np.atleast_2d(lengths)
     guesses = np.atleast_2d(guess)
-    count = max(targets.shape[0], guesses.shape[0])
-    if guesses.shape[0] not in (1, count) or targets.shape[0] not in (1, count):
+    # One guess for every row of lengths, or one row of lengths for every guess; an empty
+    # batch (N = 0) gives an empty result, as inverse_kinematics does.
+    count = targets.shape[0] if guesses.shape[0] == 1 else guesses.shape[0]
+    if targets.shape[0] not in (1, count):
         raise ValueError(
             f'lengths {lengths.shape} and initial_guess {guess.shape} must hold the same '
             'number of poses, or one of them a single one')
+    targets = np.broadcast_to(targets, (count, 6))
+    if initial_guess is None:
+        return _forward_kinematics_cold_batch(geometry, constants, targets, tolerance,
+                                              int(max_iterations))
     return _forward_kinematics_batch(
-        geometry, constants, np.broadcast_to(targets, (count, 6)),
-        np.array(np.broadcast_to(guesses, (count, 6))), tolerance, int(max_iterations))
+        geometry, constants, targets, np.array(np.broadcast_to(guesses, (count, 6))),
+        tolerance, int(max_iterations))
 
 
 def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max_iterations,
@@ -824,10 +981,15 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
     if jacobian_inverse is None and tuple(pose) == constants.home_pose:
         jacobian_inverse = constants.home_jacobian_inverse
     iterations = 0
-    reason = f'no convergence within {max_iterations} iterations'
+    reason = None  # no convergence within max_iterations, unless another reason is found
     last_residual = math.inf
+    cos, sin = math.cos, math.sin
     for step in range(max_iterations + 1):
-        legs = _single_euler_legs(constants, pose)
+        # _single_euler_legs, keeping the cosines and sines that the Euler step needs.
+        x, y, z, alpha, beta, gamma = pose
+        cos_beta, sin_beta, cos_gamma, sin_gamma = cos(beta), sin(beta), cos(gamma), sin(gamma)
+        legs = _legs(zyx_entries(cos(alpha), sin(alpha), cos_beta, sin_beta, cos_gamma,
+                                 sin_gamma), x, y, z, constants.joint_pairs, math.sqrt)
         errors = [leg[0] - length for leg, length in zip(legs, target)]
         residual = max(map(abs, errors))
         if residual <= tolerance:
@@ -841,18 +1003,19 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
                 reason = SINGULAR_JACOBIAN
                 break
         last_residual = residual
-        cos_beta = math.cos(pose[4])
         if cos_beta == 0.0:  # the Euler rate matrix is singular
             reason = SINGULAR_JACOBIAN
             break
-        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta,
-                              math.sin(pose[4]), math.cos(pose[5]), math.sin(pose[5]))
+        stepped = _euler_step(pose, _apply(jacobian_inverse, errors), cos_beta, sin_beta,
+                              cos_gamma, sin_gamma)
         # A diverging solve stops at its last plausible iterate, whose residual is known.
         if not all(abs(value) < DIVERGENCE_BOUND for value in stepped):
             reason = DIVERGED
             break
         pose = stepped
         iterations += 1
+    if reason is None:
+        reason = f'no convergence within {max_iterations} iterations'
     # Same rotation, canonical angles, as in the batch solver.
     pose = np.array(list(pose[:3]) + _single_canonical_angles(*pose[3:]))
     pose.flags.writeable = False
@@ -861,7 +1024,93 @@ def _forward_kinematics_single(geometry, constants, target, pose, tolerance, max
         reason=reason, _solve=(geometry, target, jacobian_inverse))
 
 
-def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, max_iterations):
+def _cold_start(constants, target):
+    """
+    Start of a solve without a guess, from the start table: ``(pose, jacobian_inverse)``.
+
+    One Newton step from the sample of the lengths' cell, with the sample's Jacobian (see
+    :mod:`stewart_kinematics.model.start_table`); None, to start from home instead, where the
+    table has no sample for the lengths.
+
+    :param target: the six leg lengths, metres, as floats.
+    :returns: six floats and the sample's inverse twist Jacobian (nested lists), or None.
+    """
+    table = constants.start_table
+    cell = -1 if table is None else table.cell(target)
+    if cell < 0:
+        return None
+    sample = table.entries[cell].tolist()
+    inverse = table.inverses[cell].tolist()
+    errors = [length - wanted for length, wanted in zip(sample[6:12], target)]
+    return _euler_step(sample[:6], _apply(inverse, errors), *sample[12:]), inverse
+
+
+def _forward_kinematics_cold(geometry, constants, target, tolerance, max_iterations):
+    """One solve without a guess: from the start table, else (or if that fails) from home."""
+    start = _cold_start(constants, target)
+    if start is not None:
+        result = _forward_kinematics_single(geometry, constants, target, start[0], tolerance,
+                                            max_iterations, start[1])
+        if result.converged:
+            return result
+    return _forward_kinematics_single(geometry, constants, target, list(constants.home_pose),
+                                      tolerance, max_iterations, None)
+
+
+def _batch_cold_starts(constants, targets):
+    """
+    :func:`_cold_start` of each row of ``targets`` (N, 6), with the same arithmetic.
+
+    :returns: ``(started (N,), poses (N, 6), inverses (N, 6, 6))``: the rows started from the
+        table, and every row's start (home for the others) and inverse twist Jacobian.
+    """
+    count = len(targets)
+    poses = np.array(np.broadcast_to(constants.home_pose, (count, 6)))
+    inverses = np.zeros((count, 6, 6))
+    started = np.zeros(count, dtype=bool)
+    table = constants.start_table
+    rows = np.flatnonzero(_valid_lengths(targets))
+    if table is None or rows.size == 0:
+        return started, poses, inverses
+    cells = table.cells_of(targets[rows])
+    rows, cells = rows[cells >= 0], cells[cells >= 0]
+    sample = table.entries[cells]
+    inverses[rows] = table.inverses[cells]
+    errors = sample[:, 6:12] - targets[rows]
+    # _apply with the six rows of every sample as one row: see _forward_kinematics_batch.
+    twists = _apply([np.ascontiguousarray(inverses[rows].transpose(2, 1, 0))], list(errors.T))[0]
+    poses[rows] = np.stack(_euler_step(sample[:, :6].T, twists, *sample[:, 12:].T), axis=-1)
+    started[rows] = True
+    return started, poses, inverses
+
+
+def _forward_kinematics_cold_batch(geometry, constants, targets, tolerance, max_iterations):
+    """Solve a batch without guesses: :func:`_forward_kinematics_cold` of each row, vectorised."""
+    started, poses, inverses = _batch_cold_starts(constants, targets)
+    result = _forward_kinematics_batch(geometry, constants, targets, poses, tolerance,
+                                       max_iterations, (started, inverses))
+    failed = np.flatnonzero(started & ~result.converged)
+    if failed.size == 0:
+        return result
+    again = _forward_kinematics_batch(
+        geometry, constants, targets[failed],
+        np.array(np.broadcast_to(constants.home_pose, (failed.size, 6))), tolerance,
+        max_iterations)
+    pose, converged = np.array(result.pose), np.array(result.converged)
+    iterations, residual = np.array(result.iterations), np.array(result.residual)
+    reason = list(result.reason)
+    pose[failed], converged[failed] = again.pose, again.converged
+    iterations[failed], residual[failed] = again.iterations, again.residual
+    for row, text in zip(failed.tolist(), again.reason):
+        reason[row] = text
+    pose.flags.writeable = False
+    return ForwardKinematicsResult(
+        pose=pose, converged=converged, iterations=iterations, residual=residual,
+        reason=tuple(reason), _solve=(geometry, targets, None))
+
+
+def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, max_iterations,
+                              start_inverses=None):
     """
     Solve a batch of poses at once: the algorithm of :func:`_forward_kinematics_single`.
 
@@ -871,6 +1120,8 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
 
     :param targets: leg lengths, metres, shape (N, 6).
     :param poses: initial guesses, shape (N, 6); overwritten by the iterates.
+    :param start_inverses: ``(rows (N,), inverses (N, 6, 6))``: inverse twist Jacobians for
+        the first step of the rows where ``rows`` is True, or None.
     """
     count = len(poses)
     iterations = np.zeros(count, dtype=int)
@@ -886,6 +1137,10 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
     if constants.home_jacobian_inverse is not None:
         has_inverse = np.all(poses == constants.home_pose, axis=-1)
         inverses[has_inverse] = constants.home_jacobian_inverse
+    if start_inverses is not None:
+        rows, start = start_inverses
+        has_inverse = has_inverse | rows
+        inverses[rows] = start[rows]
     active = np.flatnonzero(valid_lengths & valid_guess)
     for step in range(max_iterations + 1):
         # Leg by pose, (6, n): see _batch_legs.
@@ -935,6 +1190,15 @@ def _forward_kinematics_batch(geometry, constants, targets, poses, tolerance, ma
         reason=tuple(reason.tolist()), _solve=(geometry, targets, None))
 
 
+_FLOAT = np.dtype(float)
+
+
+def _is_real(value) -> bool:
+    """Whether ``value`` is a real number (a bool is not)."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, (bool, np.bool_))
+
+
 def _single_values(values, positive=False):
     """
     Six floats of one pose or one set of leg lengths, or None to leave it to the full checks.
@@ -946,14 +1210,23 @@ def _single_values(values, positive=False):
     :returns: a list of six floats, or None.
     """
     if isinstance(values, np.ndarray):
-        if values.shape != (6,):
+        if values.shape != (6,) or values.dtype.kind not in 'iuf':
+            return None
+        if values.dtype == _FLOAT:  # the common case: six Python floats at once
+            values = values.tolist()
+            # A sum of floats is finite only when each one is (else: the full checks).
+            if math.isfinite(sum(values)) and (not positive or min(values) > 0.0):
+                return values
             return None
         values = values.tolist()
     elif not isinstance(values, (list, tuple)) or len(values) != 6:
         return None
+    # Numbers only: a string or a bool is left to the full checks, which refuse it.
+    if not all(type(value) in (float, int) for value in values):
+        return None
     try:
         values = [float(value) for value in values]
-    except (TypeError, ValueError):
+    except OverflowError:   # an integer beyond the float range
         return None
     low = 0.0 if positive else -math.inf
     return values if all(low < value < math.inf for value in values) else None

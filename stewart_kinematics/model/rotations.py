@@ -29,12 +29,18 @@ import math
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, preview
+
 #: Below this norm a quaternion carries no rotation and is rejected.
 QUATERNION_NORM_MIN = 1e-9
 #: Where cos(beta) is below this (gimbal lock, or as near it as rounding cannot tell), alpha is
 #: set to 0 and gamma carries the whole rotation about the vertical; the angles rebuild the
-#: rotation just as exactly on either side (see :func:`matrix_to_euler_zyx`).
-GIMBAL_LOCK_COS_BETA = 1e-12
+#: rotation just as exactly on either side (see :func:`matrix_to_euler_zyx`). At 1e-12 the
+#: rotations snapped to alpha = 0 were rebuilt only to 1e-12 rad; at 1e-15, to 1e-15 rad.
+GIMBAL_LOCK_COS_BETA = 1e-15
+#: Largest deviation of ``R^T R`` from the identity of a matrix taken as a rotation: rounding
+#: and a product of a few rotations stay far below; a matrix that is no rotation goes beyond.
+ROTATION_MATRIX_TOLERANCE = 1e-6
 
 
 def zyx_entries(cos_alpha, sin_alpha, cos_beta, sin_beta, cos_gamma, sin_gamma):
@@ -58,15 +64,14 @@ def euler_zyx_to_matrix(angles):
 
     :param angles: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
     :returns: ``Rz(gamma) @ Ry(beta) @ Rx(alpha)``, shape (3, 3) or (..., 3, 3).
+    :raises ValueError: if the shape is wrong or an angle is not finite.
 
     >>> import numpy as np
     >>> from stewart_kinematics import euler_zyx_to_matrix
     >>> euler_zyx_to_matrix([0.0, 0.0, np.pi / 2]).round(12) @ [1.0, 0.0, 0.0]
     array([0., 1., 0.])
     """
-    angles = np.asarray(angles, dtype=float)
-    if angles.shape[-1:] != (3,):
-        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
+    angles = _euler_angles(angles)
     if angles.shape == (3,):
         # One rotation (the nodes' case): scalars cost less than numpy's per-call overhead.
         return np.array(euler_zyx_matrix_entries(*angles.tolist())).reshape(3, 3)
@@ -129,7 +134,11 @@ def zyx_angles(entries, operations=_FloatOperations):
     sin_gamma = r13 * sin_alpha - r12 * cos_alpha
     cos_gamma = r22 * cos_alpha - r23 * sin_alpha
     cos_beta = r32 * sin_alpha + r33 * cos_alpha
-    return alpha, operations.atan2(-r31, cos_beta), operations.atan2(sin_gamma + 0.0, cos_gamma)
+    gamma = operations.atan2(sin_gamma + 0.0, cos_gamma)
+    # atan2 of a tiny negative sine and a cosine of -1 rounds to -pi itself: the range is
+    # (-pi, pi], so that half turn is pi.
+    return (operations.where(alpha > -math.pi, alpha, math.pi), operations.atan2(-r31, cos_beta),
+            operations.where(gamma > -math.pi, gamma, math.pi))
 
 
 def matrix_to_euler_zyx(rotation):
@@ -143,10 +152,11 @@ def matrix_to_euler_zyx(rotation):
 
     :param rotation: rotation matrix, shape (3, 3) or (..., 3, 3).
     :returns: ``(alpha, beta, gamma)`` in radians, shape (3,) or (..., 3).
+    :raises ValueError: if the shape is wrong, an entry is not finite or a matrix is no
+        rotation (``R^T R`` off the identity by more than ``ROTATION_MATRIX_TOLERANCE``, or a
+        reflection).
     """
-    rotation = np.asarray(rotation, dtype=float)
-    if rotation.shape[-2:] != (3, 3):
-        raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    rotation = _rotation_matrices(rotation)
     if rotation.shape == (3, 3):
         return np.array(zyx_angles(rotation.ravel().tolist()))
     entries = [rotation[..., row, column] for row in range(3) for column in range(3)]
@@ -187,10 +197,9 @@ def matrix_to_quaternion(rotation):
 
     :param rotation: rotation matrix, shape (3, 3) or (..., 3, 3).
     :returns: shape (4,) or (..., 4).
+    :raises ValueError: as :func:`matrix_to_euler_zyx`.
     """
-    rotation = np.asarray(rotation, dtype=float)
-    if rotation.shape[-2:] != (3, 3):
-        raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    rotation = _rotation_matrices(rotation)
     if rotation.shape == (3, 3):
         return _matrix_to_quaternion_single(rotation.tolist())
     r = rotation
@@ -248,10 +257,9 @@ def euler_zyx_to_quaternion(angles):
 
     :param angles: ``(alpha, beta, gamma)``, shape (3,) or (..., 3).
     :returns: shape (4,) or (..., 4).
+    :raises ValueError: as :func:`euler_zyx_to_matrix`.
     """
-    angles = np.asarray(angles, dtype=float)
-    if angles.shape[-1:] != (3,):
-        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
+    angles = _euler_angles(angles)
     if angles.shape == (3,):
         # One rotation (the nodes' case): floats cost less than numpy's per-call overhead.
         alpha, beta, gamma = (0.5 * angle for angle in angles.tolist())
@@ -298,7 +306,7 @@ def normalize_quaternion(quaternion):
     :raises ValueError: if a quaternion has a non-finite component or a norm below
         :data:`QUATERNION_NORM_MIN`; such a quaternion describes no rotation.
     """
-    quaternion = np.asarray(quaternion, dtype=float)
+    quaternion = as_float_array(quaternion, 'quaternion')
     if quaternion.shape[-1:] != (4,):
         raise ValueError(f'quaternions must have shape (..., 4), got {quaternion.shape}')
     if quaternion.shape == (4,):
@@ -320,6 +328,46 @@ def normalize_quaternion(quaternion):
         quaternion = quaternion / np.max(np.abs(quaternion), axis=-1, keepdims=True)
         norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
     return quaternion / norm
+
+
+def _euler_angles(angles):
+    """Euler angles as a float array (..., 3) of finite angles, or raise ValueError."""
+    angles = as_float_array(angles, 'Euler angles')
+    if angles.shape[-1:] != (3,):
+        raise ValueError(f'Euler angles must have shape (..., 3), got {angles.shape}')
+    if not (angles.shape == (3,) and all(map(math.isfinite, angles.tolist()))
+            or np.all(np.isfinite(angles))):
+        raise ValueError(f'Euler angles must be finite (radians), got {preview(angles)}')
+    return angles
+
+
+def _rotation_matrices(rotation):
+    """Rotation matrices as a float array (..., 3, 3), checked to be rotations, or raise."""
+    rotation = as_float_array(rotation, 'rotation matrix')
+    if rotation.shape[-2:] != (3, 3):
+        raise ValueError(f'rotation matrices must have shape (..., 3, 3), got {rotation.shape}')
+    if rotation.shape == (3, 3) and _is_rotation(rotation.ravel().tolist()):
+        return rotation   # one matrix (the nodes' case), checked in floats
+    with np.errstate(over='ignore', invalid='ignore'):
+        deviation = np.max(np.abs(np.swapaxes(rotation, -1, -2) @ rotation - np.eye(3)),
+                           axis=(-2, -1), initial=0.0) if rotation.size else np.zeros(0)
+        determinant = np.linalg.det(rotation) if rotation.size else np.zeros(0)
+    if not (np.all(deviation <= ROTATION_MATRIX_TOLERANCE) and np.all(determinant > 0.0)):
+        raise ValueError(f'rotation matrix must be a rotation (R^T R = I within '
+                         f'{ROTATION_MATRIX_TOLERANCE:g}, determinant +1, finite), got '
+                         f'{preview(rotation)}')
+    return rotation
+
+
+def _is_rotation(entries) -> bool:
+    """Whether nine floats, row by row, are a rotation (``_rotation_matrices``' test)."""
+    r11, r12, r13, r21, r22, r23, r31, r32, r33 = entries
+    columns = ((r11, r21, r31), (r12, r22, r32), (r13, r23, r33))
+    deviation = max(abs(sum(a * b for a, b in zip(columns[i], columns[j])) - (i == j))
+                    for i in range(3) for j in range(i, 3))
+    determinant = (r11 * (r22 * r33 - r23 * r32) - r12 * (r21 * r33 - r23 * r31)
+                   + r13 * (r21 * r32 - r22 * r31))
+    return deviation <= ROTATION_MATRIX_TOLERANCE and determinant > 0.0
 
 
 def rotation_angle_between(rotation_a, rotation_b):

@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import check_finite_output
 from stewart_kinematics.model.kinematics import (
     as_poses,
     jacobian_condition,
@@ -54,12 +55,16 @@ def leg_velocities(geometry, poses, twists) -> np.ndarray:
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,) or (N, 6).
     :param twists: ``[vx, vy, vz, wx, wy, wz]`` in the base frame (m/s, rad/s), same shape.
     :returns: leg velocities in metres per second, shape (6,) or (N, 6).
-    :raises ValueError: if a pose or twist is malformed or not finite.
+    :raises ValueError: if a pose or twist is malformed or not finite, the numbers of poses
+        and twists differ, or the velocities overflow.
     """
     poses = as_poses(poses)
     twists = as_poses(twists, 'twists')
+    _check_counts(poses, twists, 'twists')
     jac = twist_jacobian(geometry, poses[..., :3], euler_zyx_to_matrix(poses[..., 3:]))
-    return (jac @ twists[..., None])[..., 0]
+    with np.errstate(over='ignore', invalid='ignore'):
+        velocities = (jac @ twists[..., None])[..., 0]
+    return check_finite_output(velocities, 'the leg velocities', 'the twists')
 
 
 def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.ndarray:
@@ -80,10 +85,12 @@ def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.nda
     :raises SingularPoseError: (a ValueError) if a pose's condition number exceeds
         ``max_condition``, or the pose is singular: the twist is then not determined, or not
         reliably, by the leg velocities.
-    :raises ValueError: if an input is malformed.
+    :raises ValueError: if an input is malformed, the numbers of poses and velocities differ,
+        or the twist overflows (leg velocities beyond about 1e300 m/s).
     """
     poses = as_poses(poses)
     velocities = as_poses(velocities, 'leg velocities')
+    _check_counts(poses, velocities, 'leg velocities')
     if max_condition is None:
         max_condition = (geometry.max_jacobian_condition
                          if math.isfinite(geometry.max_jacobian_condition)
@@ -98,11 +105,22 @@ def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.nda
             f'dimensionless Jacobian is {condition[refused[0]]:.4g}, above the limit '
             f'{max_condition:.4g}')
     try:
-        return np.linalg.solve(twist_jacobian(geometry, position, rotation),
-                               velocities[..., None])[..., 0]
+        with np.errstate(over='ignore', invalid='ignore'):
+            twists = np.linalg.solve(twist_jacobian(geometry, position, rotation),
+                                     velocities[..., None])[..., 0]
     except np.linalg.LinAlgError as error:
         raise SingularPoseError(
             'a pose is singular: leg velocities do not determine the twist') from error
+    return check_finite_output(twists, 'the twist', 'the leg velocities')
+
+
+def _check_counts(poses, values, name):
+    """Refuse a batch of values whose number of rows neither matches the poses' nor is one."""
+    try:
+        np.broadcast_shapes(poses.shape[:-1], values.shape[:-1])
+    except ValueError:
+        raise ValueError(f'poses {poses.shape} and {name} {values.shape} must hold the same '
+                         'number of rows, or one of them a single one') from None
 
 
 @dataclass(frozen=True)

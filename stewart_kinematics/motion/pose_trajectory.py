@@ -34,6 +34,7 @@ import math
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
@@ -225,10 +226,22 @@ class TimedTrajectory:
     """
 
     def __init__(self, path: PoseTrajectory, grid_times, grid_taus, rates):
+        if not isinstance(path, PoseTrajectory):
+            raise ValueError(f'path must be a PoseTrajectory, got {type(path).__name__}')
         self.path = path
-        self.grid_times = np.asarray(grid_times, dtype=float)
-        self.grid_taus = np.asarray(grid_taus, dtype=float)
-        self.rates = np.asarray(rates, dtype=float)
+        self.grid_times = _array('grid_times', grid_times, (None,))
+        count = self.grid_times.shape[0]
+        self.grid_taus = _array('grid_taus', grid_taus, (count,))
+        self.rates = _array('rates', rates, (count,))
+        if count < 2 or self.grid_times[0] != 0.0 or not np.all(np.diff(self.grid_times) > 0.0):
+            raise ValueError('grid_times must increase strictly from 0, at least 2 of them')
+        if not (np.all(np.diff(self.grid_taus) > 0.0) and self.grid_taus[0] == path.times[0]
+                and self.grid_taus[-1] == path.times[-1]
+                and np.all(np.isin(path.times, self.grid_taus))):
+            raise ValueError('grid_taus must increase strictly from the first waypoint time to '
+                             'the last, with every waypoint time among them')
+        if np.any(self.rates < 0.0):
+            raise ValueError('rates (d tau / dt) must not be negative')
         steps = np.diff(self.grid_taus)
         self._rate_changes = (self.rates[1:] ** 2 - self.rates[:-1] ** 2) / (2.0 * steps)
         self.waypoint_times = self.grid_times[np.searchsorted(self.grid_taus, path.times)]
@@ -236,7 +249,7 @@ class TimedTrajectory:
     @classmethod
     def as_given(cls, path: PoseTrajectory, speed_scale: float = 1.0) -> 'TimedTrajectory':
         """Play the path on its own clock, slowed by ``1 / speed_scale``, started at 0."""
-        if not 0.0 < speed_scale <= 1.0:
+        if not (_is_number(speed_scale) and 0.0 < speed_scale <= 1.0):
             raise ValueError(f'speed_scale must be in (0, 1], got {speed_scale!r}')
         return cls(path, (path.times - path.times[0]) / speed_scale, path.times,
                    np.full(path.waypoint_count, speed_scale))
@@ -248,6 +261,8 @@ class TimedTrajectory:
 
     def stretched(self, factor: float) -> 'TimedTrajectory':
         """Play the motion ``factor`` times as long (velocities / factor, accelerations / f^2)."""
+        if not (_is_number(factor) and 0.0 < factor < math.inf):
+            raise ValueError(f'factor must be positive and finite, got {factor!r}')
         return TimedTrajectory(self.path, self.grid_times * factor, self.grid_taus,
                                self.rates / factor)
 
@@ -258,7 +273,9 @@ class TimedTrajectory:
         :param times: seconds, shape (M,).
         :returns: ``(tau, d tau / dt, d2 tau / dt2)``, each shape (M,).
         """
-        times = np.atleast_1d(np.asarray(times, dtype=float))
+        times = np.atleast_1d(as_float_array(times, 'times'))
+        if times.ndim != 1 or not np.all(np.isfinite(times)):
+            raise ValueError(f'times must be finite seconds, shape (M,), got {preview(times)}')
         j = np.clip(np.searchsorted(self.grid_times, times, side='right') - 1,
                     0, self.grid_times.shape[0] - 2)
         elapsed = np.clip(times - self.grid_times[j], 0.0, None)
@@ -296,7 +313,7 @@ class TimedTrajectory:
 
         :param rate: hertz, positive.
         """
-        if not rate > 0.0 or not math.isfinite(rate):
+        if not (_is_number(rate) and 0.0 < rate < math.inf):
             raise ValueError(f'a sampling rate must be positive and finite (Hz), got {rate!r}')
         regular = np.arange(0.0, self.duration, 1.0 / rate)
         return np.unique(np.concatenate([regular, self.waypoint_times, [self.duration]]))
@@ -314,9 +331,15 @@ def _three_point_tangents(slopes, steps):
     return tangents
 
 
+def _is_number(value) -> bool:
+    """Whether ``value`` is a real number (a bool is not)."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, (bool, np.bool_))
+
+
 def _array(name, value, shape):
     """Convert to a finite float array of ``shape`` (``None`` entries: any length)."""
-    array = np.array(value, dtype=float)
+    array = np.array(as_float_array(value, name))
     wrong = any(expected is not None and size != expected
                 for size, expected in zip(array.shape, shape))
     if array.ndim != len(shape) or wrong:

@@ -32,6 +32,7 @@ import numpy as np
 
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import check_samples
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import as_poses
 from stewart_kinematics.parameters.settings import RampSettings
 
@@ -124,8 +125,8 @@ class Ramp:
             ``orientation_step_deg`` and ``orientation_end_deg``.
         """
         def pose(position, orientation_deg):
-            return np.concatenate([np.asarray(position, dtype=float),
-                                   np.radians(np.asarray(orientation_deg, dtype=float))])
+            return np.concatenate([as_float_array(position, 'position'),
+                                   np.radians(as_float_array(orientation_deg, 'orientation'))])
         return cls(start=pose(position_start, orientation_start_deg),
                    step=pose(position_step, orientation_step_deg),
                    end=pose(position_end, orientation_end_deg))
@@ -150,9 +151,12 @@ class Ramp:
         :param duration: seconds from the first row to the last, positive.
         :returns: shape (6,) or (N, 6).
         """
-        if not duration > 0.0:
-            raise ValueError(f'duration must be positive (seconds), got {duration!r}')
-        times = np.asarray(times, dtype=float)
+        if not (isinstance(duration, (int, float, np.integer, np.floating))
+                and not isinstance(duration, bool) and 0.0 < duration < math.inf):
+            raise ValueError(f'duration must be positive and finite (seconds), got {duration!r}')
+        times = as_float_array(times, 'times')
+        if not np.all(np.isfinite(times)):
+            raise ValueError(f'times must be finite (seconds), got {preview(times)}')
         rows = self.rows
         if self.step_count == 0:
             return np.broadcast_to(rows[0], times.shape + (6,)).copy()

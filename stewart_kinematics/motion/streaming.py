@@ -51,6 +51,7 @@ from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import as_float_array
 
 #: A target farther than the legs cover in this many seconds at full speed is approached
 #: through an aim point at that distance (and never nearer than twice the braking distance).
@@ -116,7 +117,8 @@ class CommandFilter:
                              'leg_acceleration_max (leg_jerk_max may be .inf), got '
                              f'{actuator_limits.velocity_max!r} and '
                              f'{actuator_limits.acceleration_max!r}')
-        if not (period > 0.0 and math.isfinite(period)):
+        if not (isinstance(period, (int, float)) and not isinstance(period, bool)
+                and 0.0 < period < math.inf):
             raise ValueError(f'the command period must be positive (seconds), got {period!r}')
         self._ruckig = ruckig
         self._generator = ruckig.Ruckig(6)
@@ -304,9 +306,9 @@ class CommandFilter:
     def _refusal(self, lengths) -> Optional[Finding]:
         """Say why leg lengths cannot be a target, or return ``None``."""
         try:
-            values = np.array(lengths, dtype=float)
-        except (TypeError, ValueError) as error:
-            return Finding(findings.INVALID_LENGTHS, f'target lengths must be 6 numbers: {error}')
+            values = np.array(as_float_array(lengths, 'target lengths'))
+        except ValueError as error:
+            return Finding(findings.INVALID_LENGTHS, str(error))
         if values.shape != (6,) or not np.all(np.isfinite(values)) or not np.all(values > 0.0):
             return Finding(findings.INVALID_LENGTHS,
                            f'target lengths must be 6 finite, positive values (metres), got '

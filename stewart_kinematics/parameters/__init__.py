@@ -56,6 +56,7 @@ from stewart_kinematics.parameters.files import (
     load_geometry,
     load_settings,
     read_parameter_file,
+    read_parameter_files,
 )
 from stewart_kinematics.parameters.settings import (
     ActuatorSettings,
@@ -133,6 +134,7 @@ __all__ = [
     'RAMP_PARAMETERS',
     'RampSettings',
     'read_parameter_file',
+    'read_parameter_files',
     'REPLACED_PARAMETERS',
     'Settings',
     'SOLVER_PARAMETERS',

@@ -90,6 +90,9 @@ class Settings:
     def __post_init__(self):
         for spec in self.SPECS:
             value = getattr(self, spec.name)
+            if value is None and spec.default is not None:
+                value = spec.default   # None is a value nobody set: the default, as in a file
+                object.__setattr__(self, spec.name, value)
             if isinstance(value, (list, array.array)):
                 value = tuple(value)
                 object.__setattr__(self, spec.name, value)

@@ -81,21 +81,39 @@ class ParameterSpec:
                 return (f"parameter '{self.name}' is required ({self.description}); set it in "
                         'a parameter file')
             return ''
-        # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
-        if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
-                self.value_type == INTEGER and isinstance(value, bool)):
-            hint = ' (write 1.0, not 1)' if self.value_type == DOUBLE else ''
-            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
-                    f'({type(value).__name__}){hint}')
-        if self.value_type == DOUBLE_ARRAY and not all(isinstance(item, float) for item in value):
-            return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
-                    f'{list(value)!r} (write 1.0, not 1)')
-        if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
-            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
+        reason = self.type_reason(value)
+        if reason:
+            return reason
         for validator in self.validators:
             reason = validator(self.name, value)
             if reason:
                 return reason
+        return ''
+
+    def type_reason(self, value) -> str:
+        """
+        Check the type of a value alone (not ``None``), strictly as rcl types parameters.
+
+        :returns: ``''`` if the type is right, else the reason, with a hint for a quoted
+            number or an integer written for a double.
+        """
+        # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
+        if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
+                self.value_type == INTEGER and isinstance(value, bool)):
+            hint = ''
+            if self.value_type == DOUBLE and isinstance(value, int) and not isinstance(
+                    value, bool):
+                hint = ' (write 1.0, not 1)'
+            elif isinstance(value, str) and self.value_type in (DOUBLE, INTEGER, BOOL):
+                hint = ' (a value in quotes is a string: write it without quotes)'
+            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
+                    f'({type(value).__name__}){hint}')
+        if self.value_type == DOUBLE_ARRAY and not all(
+                isinstance(item, float) and not isinstance(item, bool) for item in value):
+            return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
+                    f'{list(value)!r} (write 1.0, not 1, and no quotes)')
+        if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
+            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
         return ''
 
 

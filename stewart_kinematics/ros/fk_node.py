@@ -20,8 +20,8 @@ Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), `
 (Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
 the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
 in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
-the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
-last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
+the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at
+the last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
 ``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good
 solution, since a platform moves continuously, and falls back to the home pose when that fails; the
 service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for
@@ -90,7 +90,7 @@ class FkNode(Node):
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
         self.settings = declare_settings(self, FkNodeSettings, on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason)
+                                         check=frame_parameters_reason, node_options=kwargs)
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)

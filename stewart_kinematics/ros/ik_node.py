@@ -84,7 +84,7 @@ class IkNode(Node):
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
         self.settings = declare_settings(self, IkNodeSettings, on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason)
+                                         check=frame_parameters_reason, node_options=kwargs)
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         actuator_limits = actuator_limits_from_settings(settings.geometry)

@@ -154,6 +154,8 @@ def legs_from_joint_state(message: JointState,
     positions plus the actuator offsets.
 
     :returns: ``(lengths, velocities)``: metres, shape (6,); m/s, shape (6,) or ``None``.
+        The velocities are not checked: a driver that sends NaN velocities with good
+        positions still gives a pose, and the twist's own check refuses the velocities.
     :raises ValueError: if a leg is missing, or a length is not finite and positive.
     """
     names = list(message.name)
@@ -169,8 +171,6 @@ def legs_from_joint_state(message: JointState,
     velocities = None
     if len(message.velocity) == len(names):
         velocities = np.asarray(message.velocity, dtype=float)[order]
-        if not np.all(np.isfinite(velocities)):
-            raise ValueError(f'leg velocities must be finite, got {velocities.tolist()}')
     return lengths, velocities
 
 

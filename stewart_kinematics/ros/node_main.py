@@ -42,7 +42,9 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.experimental import EventsExecutor
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
-from rclpy.utilities import remove_ros_args
+from rclpy.utilities import get_default_context, remove_ros_args
+
+from stewart_kinematics.ros.ros_parameters import remember_process_arguments
 
 #: Exit code of a node that could not start (bad parameters, bad arguments).
 EXIT_START_FAILED = 1
@@ -149,6 +151,7 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     try:
         try:
             rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+            remember_process_arguments(get_default_context(), args)
         except (RCLError, UnknownROSArgsError) as error:
             rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
             return EXIT_START_FAILED

@@ -19,12 +19,36 @@ A node calls :func:`declare_parameters` once in its constructor. It registers th
 before declaring, so that a bad value from a parameter file fails the declaration with the
 spec's reason (the node then stops at start-up), and a bad value set at run time is rejected
 with that reason while the old value stays.
+
+Before declaring, the parameters the node was given are read again from its command line
+(:class:`ParameterSources`: the ``--params-file`` files and ``-p`` values of the process and of
+the node's own ``cli_args``, and its ``parameter_overrides``), because rclpy keeps them to
+itself and rcl's merge hides two mistakes: a misspelt name is ignored (the default stays), and
+a value whose type differs between two layered files is dropped for the other one (a quoted
+``leg_length_max: "0.9"`` over a file's ``.inf`` leaves ``.inf``). Both stop the node at
+start-up, the parameter and the file named.
 """
+
+import sys
+from typing import Dict, List, Optional, Sequence, Tuple
+import weakref
 
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.parameter import Parameter
 
 from stewart_kinematics import parameters
+from stewart_kinematics.parameters.files import (
+    parse_rcl_yaml,
+    read_parameter_sections,
+    section_applies,
+)
+
+#: The command-line arguments each rclpy context was initialised with, as
+#: :func:`stewart_kinematics.ros.node_main.run_nodes` passed them (rclpy keeps them private).
+_PROCESS_ARGUMENTS = weakref.WeakKeyDictionary()
+#: Options of ``--ros-args`` that take a value, besides --params-file and -p (skipped).
+_VALUE_OPTIONS = {'-r', '--remap', '-e', '--enclave', '--log-level', '--log-config-file',
+                  '--log-file-name'}
 
 _ROS_TYPES = {
     parameters.BOOL: Parameter.Type.BOOL,
@@ -46,7 +70,8 @@ def descriptor(spec: parameters.ParameterSpec) -> ParameterDescriptor:
         read_only=spec.read_only)
 
 
-def declare_parameters(node, specs, on_change=None, check=None) -> dict:
+def declare_parameters(node, specs, on_change=None, check=None,
+                       node_options: Optional[dict] = None) -> dict:
     """
     Declare ``specs`` on ``node`` with validation, and return their values.
 
@@ -57,18 +82,30 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     :param check: called at run time as ``check(values)`` with every value of ``specs`` as it
         would be after a change; returns ``''`` to accept it, else the reason to refuse it (for
         rules between parameters, such as distinct frame names).
+    :param node_options: the keyword arguments the node was built with (``cli_args``,
+        ``parameter_overrides``, ``use_global_arguments``), read for :class:`ParameterSources`.
     :returns: parameter name -> value, as set by parameter files, overrides or defaults.
     :raises rclpy.exceptions.ParameterException: if a value has the wrong type or is not
         allowed; the message gives the spec's reason.
-    :raises ValueError: if a required parameter is not set, or a parameter file or override
-        names a parameter that no node of the package declares.
+    :raises ValueError: if a required parameter is not set, a parameter file or override
+        names a parameter that no node of the package declares, or a parameter file or ``-p``
+        gives a value of the wrong type that rcl's merge of layered files would hide.
     """
     by_name = {spec.name: spec for spec in specs}
+    sources = ParameterSources.of_node(node, node_options or {})
     # rclpy ignores overrides nobody declares: a misspelt name would silently keep a default.
     parameters.check_known_names(
-        [name for name in node._parameter_overrides
+        [name for name in sources.names()
          if not (node.has_parameter(name) or name.startswith('qos_overrides.'))],
         f'the parameters given to {node.get_fully_qualified_name()}')
+    # rcl keeps one type per name across layered sources (the one given alone is checked as
+    # it is declared): check the value of each source.
+    layered = sources.layered_names()
+    for name, value, source in sources.values():
+        spec = by_name.get(name) if name in layered else None
+        reason = spec.type_reason(value) if spec is not None else ''
+        if reason:
+            raise ValueError(f'{reason}, in {source}')
 
     def validate(parameters):
         for parameter in parameters:
@@ -105,13 +142,120 @@ def declare_parameters(node, specs, on_change=None, check=None) -> dict:
     return values
 
 
-def declare_settings(node, settings_class, on_change=None, check=None):
+def declare_settings(node, settings_class, on_change=None, check=None,
+                     node_options: Optional[dict] = None):
     """
     Declare a node's parameters (:func:`declare_parameters`) and return them as its settings.
 
     :param settings_class: the node's :class:`~stewart_kinematics.parameters.NodeSettings`
         subclass, such as ``IkNodeSettings``: its specs are declared.
+    :param node_options: as for :func:`declare_parameters`.
     :returns: an object of ``settings_class`` holding the values the node starts with.
     """
-    values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check)
+    values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check,
+                                node_options=node_options)
     return settings_class.from_values(values)
+
+
+def remember_process_arguments(context, arguments: Optional[Sequence[str]]) -> None:
+    """
+    Record the arguments an rclpy context was initialised with (``None``: ``sys.argv``).
+
+    :func:`stewart_kinematics.ros.node_main.run_nodes` calls it after ``rclpy.init``, so that
+    :func:`declare_parameters` can read the process's ``--params-file`` files again.
+    """
+    _PROCESS_ARGUMENTS[context] = list(sys.argv if arguments is None else arguments)
+
+
+class ParameterSources:
+    """
+    Every parameter value a node was given, by source, read again from its arguments.
+
+    :param node_name: the node's fully qualified name, to choose the files' sections.
+    :param arguments: command-line arguments, the process's then the node's own; only those
+        between ``--ros-args`` and ``--`` (or the end) count.
+    :param overrides: ``parameter_overrides`` given to the node, name -> value.
+    """
+
+    def __init__(self, node_name: str, arguments: Sequence[str],
+                 overrides: Optional[Dict[str, object]] = None):
+        self.node_name = node_name
+        #: ``(name, value, source)`` of every value given, in the order rcl applies them.
+        self._values: List[Tuple[str, object, str]] = []
+        for option, value in _ros_options(arguments):
+            if option == '--params-file':
+                for key, section in read_parameter_sections(value).items():
+                    if section_applies(key, node_name):
+                        self._values += [(name, item, f"parameter file {value} (section '{key}')")
+                                         for name, item in section.items()]
+            else:
+                assignment = _parameter_assignment(value)
+                if assignment is not None and section_applies(assignment[0], node_name):
+                    self._values.append((assignment[1], assignment[2], f'-p {value}'))
+        self._values += [(name, item, 'parameter_overrides')
+                         for name, item in (overrides or {}).items()]
+
+    @classmethod
+    def of_node(cls, node, node_options: dict) -> 'ParameterSources':
+        """
+        Return the sources of a node built with ``node_options`` (its keyword arguments).
+
+        The process's arguments are those :func:`remember_process_arguments` recorded for the
+        node's context, else ``sys.argv`` (what ``rclpy.init()`` reads by default).
+        """
+        arguments = []
+        if node_options.get('use_global_arguments', True):
+            arguments += _PROCESS_ARGUMENTS.get(node.context, sys.argv)
+        arguments += list(node_options.get('cli_args') or [])
+        overrides = {parameter.name: parameter.value
+                     for parameter in node_options.get('parameter_overrides') or []}
+        return cls(node.get_fully_qualified_name(), arguments, overrides)
+
+    def names(self) -> List[str]:
+        """Return every parameter name given, once each."""
+        return list(dict.fromkeys(name for name, _, _ in self._values))
+
+    def layered_names(self) -> set:
+        """Return the names that more than one source gives (rcl merges their values)."""
+        counts = {}
+        for name, _, _ in self._values:
+            counts[name] = counts.get(name, 0) + 1
+        return {name for name, count in counts.items() if count > 1}
+
+    def values(self) -> List[Tuple[str, object, str]]:
+        """Return ``(name, value, source)`` for every value given."""
+        return list(self._values)
+
+
+def _ros_options(arguments):
+    """Yield ``(option, value)`` for each --params-file and -p of the ROS arguments."""
+    inside = False
+    arguments = list(arguments)
+    index = 0
+    while index < len(arguments):
+        argument = arguments[index]
+        if argument == '--ros-args':
+            inside = True
+        elif argument == '--':
+            inside = False
+        elif inside and argument in ('--params-file', '-p', '--param') and index + 1 < len(
+                arguments):
+            yield ('--params-file' if argument == '--params-file' else '-p',
+                   arguments[index + 1])
+            index += 1
+        elif inside and argument in _VALUE_OPTIONS:
+            index += 1
+        index += 1
+
+
+def _parameter_assignment(text):
+    """``(node pattern, name, value)`` of ``[node:]name:=value``, typed as rcl types it."""
+    if ':=' not in text:
+        return None
+    target, value = text.split(':=', 1)
+    node, _, name = target.rpartition(':')
+    try:
+        parsed = parse_rcl_yaml(value)
+    except ValueError:   # rcl refuses it before any node is built
+        return None
+    return (node or '/**'), name, parsed

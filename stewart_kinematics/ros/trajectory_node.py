@@ -85,7 +85,7 @@ class TrajectoryNode(Node):
         super().__init__('trajectory_node', **kwargs)
         self.settings = declare_settings(self, TrajectoryNodeSettings,
                                          on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason)
+                                         check=frame_parameters_reason, node_options=kwargs)
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuator_limits = actuator_limits_from_settings(settings.geometry)

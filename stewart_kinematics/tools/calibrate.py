@@ -31,24 +31,34 @@ from stewart_kinematics.analysis.calibration import (
     calibrate,
     calibrated_parameters,
     CalibrationError,
-    load_measurements,
     LOSSES,
-    MEASUREMENT_COLUMNS,
     measurement_poses,
+    MIN_POSES,
     predict_actuator_positions,
+)
+from stewart_kinematics.analysis.calibration_files import (
+    load_measurements,
+    MEASUREMENT_COLUMNS,
     write_parameter_file,
 )
 from stewart_kinematics.parameters import (
     ACTUATOR_PARAMETERS,
-    check_known_names,
     check_values,
     geometry_from_parameters,
-    read_parameter_file,
+    read_parameter_files,
+)
+from stewart_kinematics.tools.cli_arguments import (
+    check_output_paths,
+    integer_at_least,
+    number_at_least,
+    number_in,
+    positive_number,
 )
 
 EPILOG = """\
-measurement CSV: a header row naming the columns, then one row per measured pose; other
-columns are ignored and lines starting with # are comments. SI units:
+measurement CSV: a header row naming the columns, then one row per measured pose, each with
+as many fields as the header; other columns are ignored, lines starting with # are comments,
+and a byte-order mark and spaces around the fields are accepted. SI units:
   X, Y, Z              measured position of the platform frame's origin in the base frame, m
   alpha, beta, gamma   measured orientation, rad (R = Rz(gamma) Ry(beta) Rx(alpha))
   actuator_1..6        actuator positions read at that pose, m (leg length minus the offset)
@@ -57,7 +67,8 @@ the gauge). actuator_offsets in the parameter files are the nominal offsets; wit
 each leg's offset is first estimated from the readings.
 
 exit codes: 0 calibrated; 1 refused (too few or too similar poses, data that do not fit:
-the reason is printed); 2 bad arguments.
+the reason is printed, or a file that cannot be read, with its line); 2 bad arguments (an
+option out of its range, an output that cannot be written).
 """
 
 
@@ -83,36 +94,49 @@ def parse_arguments(argv):
     parser.add_argument('--loss', default='soft_l1', choices=LOSSES,
                         help="robust loss of the first fit; 'linear' keeps every pose "
                              '(default: %(default)s)')
-    parser.add_argument('--outlier-threshold', type=float, default=5.0,
+    parser.add_argument('--outlier-threshold', type=number_at_least(1.0), default=5.0,
                         help='a pose whose residual exceeds this many robust standard '
-                             'deviations is set aside (default: %(default)s)')
-    parser.add_argument('--max-condition', type=float, default=1e5,
-                        help='largest scaled condition number accepted (default: %(default)g)')
-    parser.add_argument('--propose', type=int, metavar='N', default=None,
+                             'deviations is set aside; at least 1 (default: %(default)s)')
+    parser.add_argument('--max-condition', type=number_at_least(1.0), default=1e5,
+                        help='largest scaled condition number accepted; at least 1 (default: '
+                             '%(default)g)')
+    parser.add_argument('--propose', type=integer_at_least(MIN_POSES), metavar='N',
+                        default=None,
                         help='instead of calibrating, write N well-conditioned measurement '
                              'poses within the limits to --poses-out')
     parser.add_argument('--poses-out', type=Path, default=Path('measurement_poses.csv'),
                         help='CSV for --propose (default: %(default)s)')
-    parser.add_argument('--position-range', type=float, default=0.05,
+    parser.add_argument('--position-range', type=positive_number, default=0.05,
                         help='--propose: half-range of X, Y, Z around home, m '
                              '(default: %(default)s)')
-    parser.add_argument('--angle-range-deg', type=float, default=10.0,
+    parser.add_argument('--angle-range-deg', type=number_in(0.0, 90.0, low_inclusive=False),
+                        default=10.0,
                         help='--propose: half-range of the angles around home, degrees '
                              '(default: %(default)s)')
     arguments = parser.parse_args(argv)
     if arguments.propose is None and arguments.measurements is None:
         parser.error('give the measurement CSV, or --propose N')
+    if arguments.propose is not None:
+        outputs = [('--poses-out', arguments.poses_out, False)]
+    else:
+        outputs = [('--output', arguments.output, False)]
+        if not arguments.no_figure:
+            outputs.append(('--figure', _figure_path(arguments), False))
+    check_output_paths(parser, outputs)
     return arguments
+
+
+def _figure_path(arguments) -> Path:
+    """Return the residual figure's path: --figure, else beside the output file."""
+    return arguments.figure or arguments.output.with_name(
+        arguments.output.stem + '_residuals.png')
 
 
 def main(argv=None) -> int:
     """Run stewart_calibrate; return the exit code."""
     arguments = parse_arguments(argv)
     try:
-        values = {}
-        for path in arguments.params_files:
-            values.update(read_parameter_file(path))
-        check_known_names(values, ', '.join(map(str, arguments.params_files)))
+        values = read_parameter_files(arguments.params_files)
         nominal = geometry_from_parameters(values)
         if arguments.propose is not None:
             return _propose(arguments, nominal)
@@ -121,19 +145,33 @@ def main(argv=None) -> int:
             check_values(ACTUATOR_PARAMETERS, values)
             offsets = np.asarray(values['actuator_offsets'], dtype=float)
         poses, readings = load_measurements(arguments.measurements)
+        validation = None   # read before the fit: a bad file fails at once
+        if arguments.validate is not None:
+            validation = load_measurements(arguments.validate)
         result = calibrate(nominal, poses, readings, offsets, loss=arguments.loss,
                            outlier_threshold=arguments.outlier_threshold,
                            max_condition=arguments.max_condition)
-        validation = None
-        if arguments.validate is not None:
-            validation = load_measurements(arguments.validate)
     except CalibrationError as error:
         print(f'stewart_calibrate: cannot calibrate: {error}', file=sys.stderr)
         return 1
     except ValueError as error:
         print(f'stewart_calibrate: {error}', file=sys.stderr)
         return 1
+    except OSError as error:
+        print(f'stewart_calibrate: cannot write {error.filename}: {error.strerror}',
+              file=sys.stderr)
+        return 1
+    try:
+        _write_results(arguments, result, validation, values)
+    except OSError as error:
+        print(f'stewart_calibrate: cannot write {error.filename}: {error.strerror}',
+              file=sys.stderr)
+        return 1
+    return 0
 
+
+def _write_results(arguments, result, validation, values) -> None:
+    """Print the report and write the calibrated parameter file and the figure."""
     print(result.report())
     if validation is not None:
         print()
@@ -150,11 +188,9 @@ def main(argv=None) -> int:
     print(f'\nwrote {arguments.output}')
     if not arguments.no_figure:
         from stewart_kinematics.tools.plots import calibration_figure
-        figure = arguments.figure or arguments.output.with_name(
-            arguments.output.stem + '_residuals.png')
+        figure = _figure_path(arguments)
         figure.parent.mkdir(parents=True, exist_ok=True)
         print(f'wrote {calibration_figure(figure, result)}')
-    return 0
 
 
 def _propose(arguments, nominal) -> int:

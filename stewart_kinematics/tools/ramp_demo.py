@@ -32,6 +32,8 @@ import time
 
 import numpy as np
 
+from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
+
 #: The demo passes when every round trip is within these (metres, radians).
 MAX_POSITION_ERROR = 1e-9
 MAX_ORIENTATION_ERROR = 1e-9
@@ -59,10 +61,11 @@ def parse_arguments(argv):
     parser.add_argument('--config-dir', type=Path, default=None,
                         help='folder with paper_platform.yaml, solver.yaml, table3_ramp.yaml '
                              '(default: the installed share/stewart_kinematics/config)')
-    parser.add_argument('--row-period', type=float, default=0.2,
-                        help='seconds between two table rows (default 0.2)')
-    parser.add_argument('--timeout', type=float, default=60.0,
-                        help='seconds to wait for the nodes and the ramp (default 60)')
+    parser.add_argument('--row-period', type=number_in(0.001, 60.0), default=0.2,
+                        help='seconds between two table rows, 0.001 to 60 (default 0.2)')
+    parser.add_argument('--timeout', type=number_in(1.0, 3600.0), default=60.0,
+                        help='seconds to wait for the nodes and the ramp, 1 to 3600 '
+                             '(default 60)')
     parser.add_argument('--figures', type=Path, default=Path('demo_output'),
                         help='folder for the PNG figures (default demo_output/)')
     parser.add_argument('--no-figures', action='store_true',
@@ -71,7 +74,13 @@ def parse_arguments(argv):
                         help='rosbag2 folder (MCAP) to record the run to, replacing an earlier '
                              'recording there (default demo_output/ramp_demo/)')
     parser.add_argument('--no-bag', action='store_true', help='record no rosbag2 folder')
-    return parser.parse_args(argv)
+    options = parser.parse_args(argv)
+    check_output_paths(parser, [
+        ('--figures', None if options.no_figures else options.figures, True),
+        ('--bag', None if options.no_bag else options.bag, True)])
+    if options.config_dir is not None and not options.config_dir.is_dir():
+        parser.error(f'argument --config-dir: {options.config_dir} is not a folder')
+    return options
 
 
 def main(argv=None) -> int:

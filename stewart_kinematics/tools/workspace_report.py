@@ -33,12 +33,22 @@ import sys
 import time
 
 import numpy as np
+
+from stewart_kinematics.tools.cli_arguments import (
+    check_output_paths,
+    number,
+    number_in,
+)
 import yaml
 
 #: Slice and volume resolutions by default: millimetres, degrees.
 DEFAULT_SLICE_RESOLUTION_MM = 2.0
 DEFAULT_VOLUME_RESOLUTION_MM = 10.0
 DEFAULT_ANGLE_RESOLUTION_DEG = 0.25
+#: The resolutions allowed, (finest, coarsest): a finer grid would hold billions of points.
+SLICE_RESOLUTION_RANGE_MM = (0.1, 100.0)
+VOLUME_RESOLUTION_RANGE_MM = (1.0, 200.0)
+ANGLE_RESOLUTION_RANGE_DEG = (0.01, 10.0)
 #: gamma of the orientation workspace figure, as fractions of the positive gamma range.
 GAMMA_FRACTIONS = (0.0, 0.5, 0.9)
 
@@ -86,26 +96,30 @@ def parse_arguments(argv):
     parser.add_argument('--output', type=Path, default=Path('workspace_output'),
                         help='folder for workspace.yaml and the figures '
                              '(default workspace_output/)')
-    parser.add_argument('--pose', type=float, nargs=6, default=None,
+    parser.add_argument('--pose', type=number, nargs=6, default=None,
                         metavar=('X', 'Y', 'Z', 'ALPHA', 'BETA', 'GAMMA'),
                         help='start pose in metres and degrees (default: the home pose)')
-    parser.add_argument('--slice-resolution-mm', type=float,
+    parser.add_argument('--slice-resolution-mm', type=number_in(*SLICE_RESOLUTION_RANGE_MM),
                         default=DEFAULT_SLICE_RESOLUTION_MM,
-                        help=f'grid step of the slices (default {DEFAULT_SLICE_RESOLUTION_MM})')
-    parser.add_argument('--volume-resolution-mm', type=float,
+                        help='grid step of the slices, %s to %s (default %s)' % (
+                            *SLICE_RESOLUTION_RANGE_MM, DEFAULT_SLICE_RESOLUTION_MM))
+    parser.add_argument('--volume-resolution-mm',
+                        type=number_in(*VOLUME_RESOLUTION_RANGE_MM),
                         default=DEFAULT_VOLUME_RESOLUTION_MM,
-                        help='grid step of the volume (default '
-                             f'{DEFAULT_VOLUME_RESOLUTION_MM})')
-    parser.add_argument('--angle-resolution-deg', type=float,
+                        help='grid step of the volume, %s to %s (default %s)' % (
+                            *VOLUME_RESOLUTION_RANGE_MM, DEFAULT_VOLUME_RESOLUTION_MM))
+    parser.add_argument('--angle-resolution-deg',
+                        type=number_in(*ANGLE_RESOLUTION_RANGE_DEG),
                         default=DEFAULT_ANGLE_RESOLUTION_DEG,
-                        help='grid step of the orientation workspace (default '
-                             f'{DEFAULT_ANGLE_RESOLUTION_DEG})')
+                        help='grid step of the orientation workspace, %s to %s (default %s)'
+                        % (*ANGLE_RESOLUTION_RANGE_DEG, DEFAULT_ANGLE_RESOLUTION_DEG))
     parser.add_argument('--no-figures', action='store_true', help='write the YAML only')
     options = parser.parse_args(argv)
-    for name in ('slice_resolution_mm', 'volume_resolution_mm', 'angle_resolution_deg'):
-        value = getattr(options, name)
-        if not 0.0 < value < math.inf:
-            parser.error(f'--{name.replace("_", "-")} must be positive, got {value}')
+    if options.pose is not None and not all(-180.0 <= angle <= 180.0
+                                            for angle in options.pose[3:]):
+        parser.error(f'argument --pose: the angles must be in [-180, 180] degrees, got '
+                     f'{options.pose[3:]}')
+    check_output_paths(parser, [('--output', options.output, True)])
     return options
 
 
@@ -115,15 +129,19 @@ def main(argv=None) -> int:
     from stewart_kinematics.parameters import load_geometry
     try:
         geometry = load_geometry(options.params_files, options.node_name)
+        options.output.mkdir(parents=True, exist_ok=True)
         report = workspace_report(geometry, options)
+        report['parameter_files'] = [str(path) for path in options.params_files]
+        path = options.output / 'workspace.yaml'
+        with open(path, 'w', encoding='utf-8') as stream:
+            yaml.safe_dump(report, stream, sort_keys=False, default_flow_style=None)
     except ValueError as error:
         print(f'stewart_workspace: {error}', file=sys.stderr)
         return 1
-    report['parameter_files'] = [str(path) for path in options.params_files]
-    options.output.mkdir(parents=True, exist_ok=True)
-    path = options.output / 'workspace.yaml'
-    with open(path, 'w', encoding='utf-8') as stream:
-        yaml.safe_dump(report, stream, sort_keys=False, default_flow_style=None)
+    except OSError as error:
+        print(f'stewart_workspace: cannot write {error.filename or options.output}: '
+              f'{error.strerror}', file=sys.stderr)
+        return 1
     print(f'numbers written to {path}')
     return 0
 
