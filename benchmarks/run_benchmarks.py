@@ -768,6 +768,7 @@ def node_benchmarks(table, geometry, ramp, rounds):
     subjects = [(name, executor) for executor in NODE_EXECUTORS
                 for name in (ECHO, 'ik_node', 'fk_node')]
     latency = {subject: (Series(), Series()) for subject in subjects + [(CHAIN, 'events')]}
+    cpu = {subject: Series() for subject in subjects}
     rates = {subject: Series() for subject in subjects}
     first_loss = {subject: Series() for subject in subjects}
     load = [os.getloadavg()[0]]
@@ -783,6 +784,7 @@ def node_benchmarks(table, geometry, ramp, rounds):
                 # Its own input topic, so that it stays idle while ik_node is measured.
                 NodeProcess('fk_node', [*options, *params, '-r', 'leg_lengths:=fk_lengths']),
             ]
+        subject_processes = dict(zip(subjects, processes))
         # The chain pose -> ik_node -> leg lengths -> fk_node -> pose, on the default executor.
         processes += [NodeProcess(name, ['--ros-args', *params, '-r', '__ns:=/chain'])
                       for name in ('ik_node', 'fk_node')]
@@ -811,7 +813,12 @@ def node_benchmarks(table, geometry, ramp, rounds):
                 print(f'node round {round_index + 1} of {rounds} (load average '
                       f'{os.getloadavg()[0]:.2f})', file=sys.stderr)
                 for subject, (probe, messages) in probes.items():
+                    process = subject_processes.get(subject)
+                    used = process and process_seconds(process)
                     delays = probe.latency(messages, LATENCY_RATE, LATENCY_SECONDS)
+                    if process:
+                        cpu[subject].add((process_seconds(process) - used)
+                                         / (LATENCY_RATE * LATENCY_SECONDS))
                     p50, p99 = (math.nan, math.nan) if delays is None else \
                         np.percentile(delays, [50, 99])
                     latency[subject][0].add(p50)
@@ -836,11 +843,23 @@ def node_benchmarks(table, geometry, ramp, rounds):
             rclpy.try_shutdown()
             for process in processes:
                 process.stop()
-    node_rows(table, latency, rates, first_loss, load)
+    node_rows(table, latency, cpu, rates, first_loss, load)
 
 
-def node_rows(table, latency, rates, first_loss, load):
-    """Add the node rows and judge the node targets; ``load``: load averages seen (1 min)."""
+def process_seconds(process):
+    """Processor time a NodeProcess has used so far (user and system, all threads), seconds."""
+    fields = Path(f'/proc/{process.process.pid}/stat').read_text().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+def node_rows(table, latency, cpu, rates, first_loss, load):
+    """
+    Add the node rows and judge the node targets.
+
+    :param cpu: per subject, the processor time its process used per message at
+        :data:`LATENCY_RATE`, seconds (its timers and worker threads included).
+    :param load: the load averages seen (1 min).
+    """
     def ratio(values, reference, scale=1.0):
         return Series([scale * a / b for a, b in zip(values.values, reference.values)])
 
@@ -856,7 +875,8 @@ def node_rows(table, latency, rates, first_loss, load):
                             for other in NODE_EXECUTORS if (name, executor) != (ECHO, other))
         table.add('Node: publish -> receive', f'{name}, {executor} executor',
                   f'at {LATENCY_RATE:,.0f} Hz: p50 {p50.median * 1e3:.2f} ms, p99 '
-                  f'{p99.median * 1e3:.2f} ms; loss-free up to {rate.median:,.0f} Hz ({limit})',
+                  f'{p99.median * 1e3:.2f} ms, {cpu[name, executor].median * 1e6:.0f} us of '
+                  f'processor per message; loss-free up to {rate.median:,.0f} Hz ({limit})',
                   f'rate {against}' if against else '1.00', '', '')
     chain_p50, chain_p99 = latency[CHAIN, 'events']
     table.add('Node: pose -> FK pose', f'{CHAIN}, events executor',
