@@ -32,7 +32,8 @@ assembly mode); the node converts the messages, publishes, and counts each refus
 warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
-nearest other real assembly mode within the limits is computed in a worker thread
+nearest other real assembly mode within the limits is computed in a worker process (a thread
+would hold up the message callbacks: it shares the interpreter lock)
 (:class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`, only when the
 lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
@@ -123,7 +124,7 @@ class FkNode(Node):
         if margin.assembly_mode_margin_period > 0.0:
             self.margin = AssemblyModeMarginReport(
                 self, diagnostics, AssemblyModeMarginMonitor(
-                    self.geometry, margin.assembly_mode_margin_warning))
+                    self.geometry, margin.assembly_mode_margin_warning, worker='process'))
             diagnostics.reporters.append(self.margin)   # with the inputs, once a second
             self.create_timer(margin.assembly_mode_margin_period, self.on_margin_timer)
         self.get_logger().info(
@@ -151,7 +152,7 @@ class FkNode(Node):
         self.margin.monitor.request(self.tracker.last_pose, self.tracker.last_lengths)
 
     def destroy_node(self):
-        """Stop the margin's worker thread, then the node."""
+        """Stop the margin's worker process, then the node."""
         if self.margin is not None:
             self.margin.monitor.close()
         return super().destroy_node()
