@@ -121,10 +121,14 @@ LADDER = (250.0, 500.0, 1000.0, 1500.0, 2000.0, 3000.0, 4000.0, 6000.0, 8000.0, 
           16000.0, 24000.0, 32000.0)
 RUNG_SECONDS = 1.0
 BISECTIONS = 3
-#: The probe's own receive queue: larger than any rung sends, so the probe never drops a
-#: message (DDS fills it from its own threads while the probe publishes), and every loss counted
-#: is the node's.
+#: The probe's own receive queue, which DDS fills from its own threads while the probe
+#: publishes: larger than any rung sends (see RUNG_MESSAGES), so that every loss counted is the
+#: node's.
 PROBE_RECEIVE_DEPTH = 40000
+#: Most messages of one rung: Fast DDS's reader holds at most 5000 samples whatever the depth
+#: (its default resource limits; measured: 5100 answers of any longer burst arrive, on either
+#: executor), so a rung above this many messages is shorter than RUNG_SECONDS.
+RUNG_MESSAGES = 4000
 #: The chain of both nodes: latency of a pose to the pose fk_node finds for its leg lengths.
 CHAIN = 'ik_node -> fk_node'
 ECHO = 'bare echo node'
@@ -674,12 +678,13 @@ class Probe:
         Publish at ``rate`` for ``seconds`` without receiving, then collect what arrived.
 
         The probe does not spin while publishing, so that it keeps the rate; its receive queue
-        (:data:`PROBE_RECEIVE_DEPTH`) holds every answer meanwhile.
+        (:data:`PROBE_RECEIVE_DEPTH`) holds every answer meanwhile, up to
+        :data:`RUNG_MESSAGES` of them: a faster rung is shorter.
 
         :returns: ``(every message answered, achieved send rate)``.
         """
         self.arrivals = []
-        count = int(rate * seconds)
+        count = min(int(rate * seconds), RUNG_MESSAGES)
         period = 1.0 / rate
         clock = time.perf_counter
         publish = self.publisher.publish

@@ -106,6 +106,12 @@ def as_leg_lengths(lengths, name='leg lengths') -> np.ndarray:
     :returns: a float array of the same shape.
     :raises ValueError: if the shape is wrong or a length is not finite and positive.
     """
+    if isinstance(lengths, np.ndarray) and lengths.shape == (6,) and lengths.dtype == _FLOAT:
+        # One set of six floats (fk_node's per message): checked in floats; a sum of finite
+        # numbers can overflow, and then the full checks below decide.
+        values = lengths.tolist()
+        if math.isfinite(sum(values)) and min(values) > 0.0:
+            return lengths
     lengths = _as_rows(lengths, name)
     allowed = _valid_lengths(lengths)
     if not np.all(allowed):
