@@ -36,8 +36,10 @@ setup(
         'Inverse and forward kinematics of a 6-6 Gough-Stewart platform (hexapod), '
         'with ROS 2 nodes'),
     license='Apache-2.0',
-    # matplotlib draws the figures of ramp_demo only (stewart_kinematics/tools/plots.py).
-    extras_require={'demo': ['matplotlib', 'rosbags'], 'test': ['pytest', 'hypothesis']},
+    # matplotlib draws the figures of ramp_demo and stewart_cueing only (tools/); mcap reads
+    # stewart_cueing's recorded input.
+    extras_require={'demo': ['matplotlib', 'rosbags', 'mcap', 'mcap-ros2-support'],
+                    'test': ['pytest', 'hypothesis']},
     entry_points={
         'console_scripts': [
             'ik_node = stewart_kinematics.ros.ik_node:main',
@@ -47,6 +49,8 @@ setup(
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
             'stewart_calibrate = stewart_kinematics.tools.calibrate:main',
             'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
+            'stewart_cueing = stewart_kinematics.tools.cueing_report:main',
+            'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
         ],
     },
 )

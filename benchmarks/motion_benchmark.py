@@ -12,25 +12,43 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
+
 """
-Benchmark the motion core: whole-trajectory checks, toppra retiming, the ruckig filter.
+Benchmark the motion layer: checking and retiming, bounded costs, invariance, responsiveness.
 
-Run with ``.venv/bin/python benchmarks/motion_benchmark.py`` (no ROS needed). Prints one
-table of medians with ratios against baselines measured in the same process, the targets of
-the motion issue (checking and retiming a 10 s trajectory of 100 waypoints at 1 kHz under
-100 ms; the streaming filter under 50 us per command), and the duration of the paper's Table 3
-ramp before and after retiming under config/example_limits.yaml.
+Run from the repository root::
 
-The 10 s trajectory: 100 waypoints on slow waves around the home pose (up to 3 cm and 14
-degrees), within every example limit as timed, so that the check runs over all 10,001
-samples. Baselines: the per-pose :func:`stewart_kinematics.limits.check_pose` over the same
-samples (what a check without vectorisation costs), and one single-pose inverse kinematics
-call (the per-message work of ik_node) for the filter.
+    .venv/bin/python benchmarks/motion_benchmark.py            # the core, no ROS needed
+    .venv/bin/python benchmarks/motion_benchmark.py --node     # and trajectory_node as a process
+
+Method. The machine is shared, so every timed case runs once per round, in a rotating order,
+for ``--rounds`` rounds (interleaved: a slow moment hits every case alike), and the tables give
+the median over the rounds with the range; the load average (1 minute) before and after is
+printed with the core count. Baselines are measured in the same run.
+
+The cases:
+
+- the 10 s trajectory: 100 waypoints on slow waves around the home pose (up to 3 cm and 14
+  degrees), within every example limit as timed. *Check as timed*: ``plan_motion`` without
+  retiming, 10,001 samples against every limit; *retime*: ``plan_motion(retime_path=True)``:
+  toppra, its local refinement, and the check of the result. The target of issue 20: both
+  together under 100 ms (before: 82 to 123 ms).
+- the 10^4 s trajectory: 1000 waypoints of slow waves over 10,000 s, as timed (256 samples per
+  segment: 255,745 samples; before: 10^7 samples, 68 s) and retimed.
+- invariance: retimed durations of one path given with other timings, densities and dwells.
+- ``--node``: trajectory_node started as a process; the latency of a ``get_parameters`` request
+  while it checks a million-sample trajectory, against the same requests to the idle node
+  (target of issue 20: < 100 ms); and the time from SIGINT to the process's exit while it
+  checks, against an idle node's (target: < 1 s).
+- the streaming filter per command, against one single-pose inverse kinematics.
 """
 
+import argparse
 import math
+import os
 from pathlib import Path
 import platform
+import signal
 import statistics
 import sys
 import time
@@ -38,7 +56,6 @@ import time
 import numpy as np
 
 from stewart_kinematics import (
-    check_trajectory,
     CommandFilter,
     inverse_kinematics,
     limits,
@@ -46,9 +63,8 @@ from stewart_kinematics import (
     plan_motion,
     PoseTrajectory,
     Ramp,
-    retime,
-    TimedTrajectory,
 )
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_vector_to_matrix
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
     GeometrySettings,
@@ -58,29 +74,26 @@ from stewart_kinematics.parameters import (
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = [ROOT / 'config' / 'paper_platform.yaml', ROOT / 'config' / 'example_limits.yaml']
 VALIDATION_RATE = 1000.0
-CHECK_TARGET = 0.100   # seconds: check and retime
-FILTER_TARGET = 50e-6  # seconds per command
+CHECK_TARGET = 0.100       # seconds: check and retime of the 10 s trajectory
+RESPONSE_TARGET = 0.100    # seconds: a parameter request while a trajectory is checked
+STOP_TARGET = 1.0          # seconds: SIGINT to exit while a trajectory is checked
+FILTER_TARGET = 50e-6      # seconds per command
 COMMAND_PERIOD = 0.002
-
-
-def median_time(function, repeats):
-    """Return the median wall time of ``function()`` over ``repeats`` calls, seconds."""
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
 
 
 def ten_second_trajectory(geometry):
     """Build 100 waypoints over 10 s, within the example limits as timed."""
-    times = np.linspace(0.0, 10.0, 100)
-    # 1 - cos(k pi t / 10): at rest at both ends, as the interpolation starts and ends.
+    return waves(geometry, 10.0, 100)
+
+
+def waves(geometry, duration, count):
+    """``count`` waypoints of slow waves over ``duration`` seconds, at rest at both ends."""
+    times = np.linspace(0.0, duration, count)
+    # 1 - cos(k pi t / T): at rest at both ends, as the interpolation starts and ends.
     amplitudes = np.array([0.015, 0.015, 0.01, math.radians(4.0), math.radians(4.0),
                            math.radians(7.0)])
     harmonics = np.array([2, 3, 1, 2, 3, 1])
-    wave = amplitudes * (1.0 - np.cos(np.outer(times, harmonics) * math.pi / 10.0))
+    wave = amplitudes * (1.0 - np.cos(np.outer(times, harmonics) * math.pi / duration))
     return PoseTrajectory.from_poses(times, geometry.home_pose + wave)
 
 
@@ -91,45 +104,110 @@ def table_3_path():
     return PoseTrajectory.from_poses(np.arange(11.0), rows)
 
 
-def main() -> int:
-    """Print the table; return 0."""
+def interleaved(cases, rounds, cpu=None):
+    """
+    Time every case once per round, in a rotating order; return name -> list of seconds.
+
+    :param cases: name -> function of no argument.
+    :param cpu: a dict that receives name -> list of the process's CPU seconds per call (on
+        a shared machine the wall time also counts the time spent waiting for a core).
+    """
+    names = list(cases)
+    times = {name: [] for name in names}
+    if cpu is not None:
+        cpu.update({name: [] for name in names})
+    for round_index in range(rounds):
+        order = names[round_index % len(names):] + names[:round_index % len(names)]
+        for name in order:
+            start, start_cpu = time.perf_counter(), time.process_time()
+            cases[name]()
+            times[name].append(time.perf_counter() - start)
+            if cpu is not None:
+                cpu[name].append(time.process_time() - start_cpu)
+    return times
+
+
+def shown(seconds):
+    """Format seconds as ms, us or s."""
+    if seconds >= 1.0:
+        return f'{seconds:.2f} s'
+    return f'{seconds * 1e3:.1f} ms' if seconds >= 1e-3 else f'{seconds * 1e6:.1f} us'
+
+
+def spread(values):
+    """Return 'median (min-max)' of seconds."""
+    return (f'{shown(statistics.median(values))} ({shown(min(values))} to '
+            f'{shown(max(values))})')
+
+
+def load():
+    """Return the 1-minute load average and the core count, as text."""
+    return f'load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores'
+
+
+def core_benchmark(rounds):
+    """Print the tables of the core cases; return the rows of the targets."""
     geometry = load_geometry(CONFIG)
     actuator_limits = actuator_limits_from_settings(load_settings(GeometrySettings, CONFIG))
-    path = ten_second_trajectory(geometry)
-    given = TimedTrajectory.as_given(path)
-    retime(path, geometry, actuator_limits)  # import toppra and scipy before timing
-
-    rows = []
-    check = check_trajectory(given, geometry, actuator_limits, validation_rate=VALIDATION_RATE)
-    assert check.accepted, check.reason
-    check_time = median_time(lambda: check_trajectory(
-        given, geometry, actuator_limits, validation_rate=VALIDATION_RATE), 7)
-    samples = given.sample_times(VALIDATION_RATE)
-    poses = given.sample(samples)
+    ten = ten_second_trajectory(geometry)
+    long = waves(geometry, 1e4, 1000)
+    plan_motion(ten, geometry, actuator_limits, retime_path=True)   # import toppra first
+    given = plan_motion(ten, geometry, actuator_limits)
+    retimed = plan_motion(ten, geometry, actuator_limits, retime_path=True)
+    long_given = plan_motion(long, geometry, actuator_limits)
+    long_retimed = plan_motion(long, geometry, actuator_limits, retime_path=True)
+    for plan in (given, retimed, long_given, long_retimed):
+        assert plan.accepted, plan.reason
+    print(f'Before: {load()}')
+    cases = {
+        'check 10 s as timed': lambda: plan_motion(ten, geometry, actuator_limits),
+        'retime 10 s': lambda: plan_motion(ten, geometry, actuator_limits, retime_path=True),
+    }
+    cpu = {}
+    times = interleaved(cases, rounds, cpu)
+    both = [a + b for a, b in zip(times['check 10 s as timed'], times['retime 10 s'])]
+    both_cpu = [a + b for a, b in zip(cpu['check 10 s as timed'], cpu['retime 10 s'])]
+    long_times = interleaved({
+        'check 1e4 s as timed': lambda: plan_motion(long, geometry, actuator_limits),
+        'retime 1e4 s': lambda: plan_motion(long, geometry, actuator_limits,
+                                            retime_path=True)}, max(3, rounds // 4))
+    samples = given.trajectory.sample_times(VALIDATION_RATE)
     baseline_samples = samples[::10]
-    baseline_poses = given.sample(baseline_samples)
-
-    def per_pose_check():
-        for position, rotation in zip(baseline_poses.positions, baseline_poses.rotations):
-            limits.check_pose(geometry, position, rotation)
-    baseline_time = median_time(per_pose_check, 3) * samples.shape[0] / baseline_samples.shape[0]
-    retime_time = median_time(lambda: retime(path, geometry, actuator_limits), 7)
-    plan = plan_motion(path, geometry, actuator_limits, retime_path=True,
-                       validation_rate=VALIDATION_RATE)
-    assert plan.accepted, plan.reason
-    plan_time = median_time(lambda: plan_motion(path, geometry, actuator_limits,
-                                                retime_path=True,
-                                                validation_rate=VALIDATION_RATE), 7)
-    rows.append(('check 10 s as timed, 10,001 samples, every limit', check_time,
-                 f'{baseline_time / check_time:.0f}x faster than check_pose per sample '
-                 f'({baseline_time * 1e3:.0f} ms)'))
-    rows.append(('retime (toppra) 100 waypoints', retime_time,
-                 f'{plan.trajectory.duration:.2f} s retimed'))
-    rows.append(('check as timed + retime', check_time + retime_time,
-                 f'target < {CHECK_TARGET * 1e3:.0f} ms'))
-    rows.append(('plan_motion(retime): retime, stretch, check '
-                 f'{plan.check.samples:,} samples', plan_time, ''))
-    del poses
+    baseline_poses = given.trajectory.sample(baseline_samples)
+    start = time.perf_counter()
+    for position, rotation in zip(baseline_poses.positions, baseline_poses.rotations):
+        limits.check_pose(geometry, position, rotation)
+    per_pose = (time.perf_counter() - start) * samples.shape[0] / baseline_samples.shape[0]
+    print(f'After: {load()}')
+    print()
+    print(f'| Case | Wall time: median ({rounds} interleaved rounds; range) | CPU time: median '
+          '| Compared |')
+    print('| --- | --- | --- | --- |')
+    check = statistics.median(times['check 10 s as timed'])
+    print(f'| 10 s, 100 waypoints: check as timed, {given.check.samples:,} samples, every '
+          f'limit | {spread(times["check 10 s as timed"])} | '
+          f'{shown(statistics.median(cpu["check 10 s as timed"]))} | {per_pose / check:.0f}x '
+          f'faster than `limits.check_pose` per sample ({shown(per_pose)}) |')
+    print(f'| 10 s, 100 waypoints: retime (toppra, refinement, check of the '
+          f'{retimed.trajectory.duration:.2f} s result, {retimed.check.samples:,} samples) | '
+          f'{spread(times["retime 10 s"])} | {shown(statistics.median(cpu["retime 10 s"]))} | |')
+    print(f'| 10 s, 100 waypoints: check + retime (target < {CHECK_TARGET * 1e3:.0f} ms) | '
+          f'{spread(both)} | {shown(statistics.median(both_cpu))} | '
+          f'{sum(value < CHECK_TARGET for value in both)} of {rounds} rounds under the target '
+          '(wall time) |')
+    print(f'| 10^4 s, 1000 waypoints: check as timed, {long_given.check.samples:,} samples | '
+          f'{spread(long_times["check 1e4 s as timed"])} | | before: 10^7 samples, 68 s |')
+    print(f'| 10^4 s, 1000 waypoints: retime (to {long_retimed.trajectory.duration:.1f} s) and '
+          f'check | {spread(long_times["retime 1e4 s"])} | | |')
+    rows = [(f'check + retime of the 10 s trajectory < {CHECK_TARGET * 1e3:.0f} ms (wall)',
+             statistics.median(both) < CHECK_TARGET, spread(both)),
+            (f'check + retime of the 10 s trajectory < {CHECK_TARGET * 1e3:.0f} ms (CPU)',
+             statistics.median(both_cpu) < CHECK_TARGET,
+             f'{shown(statistics.median(both_cpu))} ({shown(min(both_cpu))} to '
+             f'{shown(max(both_cpu))})')]
+    rows.append(('check of the 10^4 s trajectory in seconds',
+                 statistics.median(long_times['check 1e4 s as timed']) < 10.0,
+                 spread(long_times['check 1e4 s as timed'])))
 
     command_filter = CommandFilter(actuator_limits, COMMAND_PERIOD, geometry.home_leg_lengths)
     rng = np.random.default_rng(0)
@@ -140,30 +218,17 @@ def main() -> int:
             if index % 50 == 0:
                 command_filter.set_target(targets[index // 50])
             command_filter.step()
-    filter_time = median_time(stream, 3) / 10000
     home = geometry.home_pose
-    ik_time = median_time(lambda: [inverse_kinematics(geometry, home) for _ in range(10000)],
-                          3) / 10000
-    rows.append(('streaming filter, per command (ruckig, 6 legs)', filter_time,
-                 f'{filter_time / ik_time:.2f}x one single-pose IK ({ik_time * 1e6:.1f} us); '
-                 f'target < {FILTER_TARGET * 1e6:.0f} us'))
-
-    print(f'Motion benchmark: Python {platform.python_version()}, numpy {np.__version__}, '
-          f'{platform.machine()}')
-    print(f'{"What":<62} {"Median":>10}  Compared')
-    for what, seconds, compared in rows:
-        shown = f'{seconds * 1e3:.1f} ms' if seconds >= 1e-3 else f'{seconds * 1e6:.1f} us'
-        print(f'{what:<62} {shown:>10}  {compared}')
-
-    print()
-    print(f'{"Target":<62} {"Met":>10}  This run')
-    met = check_time + retime_time < CHECK_TARGET
-    print(f'{"check + retime of 10 s, 100 waypoints, 1 kHz < 100 ms":<62} '
-          f'{"yes" if met else "no":>10}  {(check_time + retime_time) * 1e3:.1f} ms')
-    met = filter_time < FILTER_TARGET
-    print(f'{"streaming filter < 50 us per command":<62} {"yes" if met else "no":>10}  '
-          f'{filter_time * 1e6:.1f} us')
-
+    filter_times = interleaved({
+        'filter': stream,
+        'ik': lambda: [inverse_kinematics(geometry, home) for _ in range(10000)]}, 3)
+    per_command = statistics.median(filter_times['filter']) / 10000
+    per_ik = statistics.median(filter_times['ik']) / 10000
+    print(f'| streaming filter, per command (ruckig, 6 legs; target < '
+          f'{FILTER_TARGET * 1e6:.0f} us) | {shown(per_command)} | | {per_command / per_ik:.2f}x '
+          f'one single-pose IK ({shown(per_ik)}) |')
+    rows.append((f'streaming filter < {FILTER_TARGET * 1e6:.0f} us per command',
+                 per_command < FILTER_TARGET, shown(per_command)))
     print()
     ramp = table_3_path()
     ramp_given = plan_motion(ramp, geometry, actuator_limits)
@@ -176,6 +241,166 @@ def main() -> int:
         print(f'  {name:<34} {plan.trajectory.duration:6.2f} s, peak leg velocity '
               f'{plan.check.peak_velocity_ratio * 100:5.1f} % and acceleration '
               f'{plan.check.peak_acceleration_ratio * 100:5.1f} % of the limits')
+    print()
+    invariance(geometry, actuator_limits)
+    return rows
+
+
+def invariance(geometry, actuator_limits):
+    """Print the retimed durations of paths given with other timings, densities and dwells."""
+    home = geometry.home_pose
+    lift = home + [0.0, 0.0, 0.05, 0.0, 0.0, 0.0]
+    print('| Path (retimed under the example limits) | Given as | Retimed | Retiming time |')
+    print('| --- | --- | --- | --- |')
+    for seconds in (1.0, 6.0, 60.0, 1e4, 1e6):
+        plan, spent = timed_plan(PoseTrajectory.from_poses([0.0, seconds], [home, lift]),
+                                 geometry, actuator_limits)
+        print(f'| 5 cm lift | 2 waypoints over {seconds:g} s | {plan.trajectory.duration:.4f} s '
+              f'| {shown(spent)} |')
+    offset = np.array([0.02, -0.015, 0.03, 0.05, -0.04, 0.1])
+    start = euler_zyx_to_matrix(home[3:])
+    rng = np.random.default_rng(1)
+    for count in (2, 300, 1000, 10_000, 100_000):
+        u = np.sort(np.concatenate([[0.0, 1.0], rng.uniform(0.0, 1.0, count - 2)]))
+        positions = home[:3] + np.outer(u, offset[:3])
+        rotations = start @ rotation_vector_to_matrix(np.outer(u, offset[3:]))
+        plan, spent = timed_plan(PoseTrajectory(np.linspace(0.0, 10.0, count), positions,
+                                                rotations), geometry, actuator_limits)
+        print(f'| screw: 2 cm, 1.5 cm, 3 cm and 0.12 rad about one axis | {count:,} uneven '
+              f'waypoints | {plan.trajectory.duration:.4f} s | {shown(spent)} |')
+    for count in (100, 300, 1000, 10_000, 99_997):
+        u = np.sort(np.concatenate([[0.0, 1.0], rng.uniform(0.0, 1.0, count - 2)]))
+        poses = home + waves_at(u)
+        dwell = rng.integers(0, count, 3)
+        poses = np.insert(poses, dwell, poses[dwell], axis=0)
+        times = np.cumsum(np.concatenate([[0.0], rng.uniform(0.1, 1.0, poses.shape[0] - 1)]))
+        plan, spent = timed_plan(PoseTrajectory.from_poses(times * 1e3 / times[-1], poses),
+                                 geometry, actuator_limits)
+        print(f"| waves (the 10 s trajectory's curve) | {count:,} uneven waypoints, 3 dwells, "
+              f'over 1000 s | {plan.trajectory.duration:.4f} s | {shown(spent)} |')
+    print()
+
+
+def waves_at(u):
+    """Return the 10 s trajectory's offsets from home at fractions ``u`` of its duration."""
+    amplitudes = np.array([0.015, 0.015, 0.01, math.radians(4.0), math.radians(4.0),
+                           math.radians(7.0)])
+    harmonics = np.array([2, 3, 1, 2, 3, 1])
+    return amplitudes * (1.0 - np.cos(np.outer(u, harmonics) * math.pi))
+
+
+def timed_plan(trajectory, geometry, actuator_limits):
+    """Retime a trajectory; return the plan and the seconds it took."""
+    start = time.perf_counter()
+    plan = plan_motion(trajectory, geometry, actuator_limits, retime_path=True)
+    assert plan.accepted, plan.reason
+    return plan, time.perf_counter() - start
+
+
+def node_benchmark(rounds):
+    """Start trajectory_node processes; measure responses and stops; return target rows."""
+    from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
+
+    with isolated_ros_environment():
+        import rclpy
+        rclpy.init(args=[])
+        try:
+            return _node_benchmark(rclpy, NodeProcess, rounds)
+        finally:
+            rclpy.try_shutdown()
+
+
+def _node_benchmark(rclpy, node_process, rounds):
+    from rcl_interfaces.srv import GetParameters
+    from rclpy.executors import SingleThreadedExecutor
+    from trajectory_msgs.msg import MultiDOFJointTrajectory
+
+    sys.path.insert(0, str(ROOT / 'test'))
+    from test_motion_responsiveness import long_trajectory, node_args
+
+    config = ROOT / 'config'
+    client = rclpy.create_node('motion_benchmark')
+    executor = SingleThreadedExecutor()
+    executor.add_node(client)
+    publisher = client.create_publisher(MultiDOFJointTrajectory, '/bench/pose_trajectory', 10)
+    service = client.create_client(GetParameters, '/bench/trajectory_node/get_parameters')
+    long = long_trajectory()
+
+    def spin_until(condition, timeout=60.0):
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > deadline:
+                raise RuntimeError('timed out')
+            executor.spin_once(timeout_sec=0.01)
+
+    def request():
+        start = time.perf_counter()
+        future = service.call_async(GetParameters.Request(names=['validation_rate']))
+        spin_until(future.done)
+        return time.perf_counter() - start
+
+    idle, busy, idle_stops, busy_stops = [], [], [], []
+    for _ in range(rounds):
+        for checking in (False, True):
+            node = node_process('trajectory_node', node_args(config, '/bench'))
+            spin_until(lambda: publisher.get_subscription_count() >= 1
+                       and service.service_is_ready())
+            request()   # the first request sets up the connection: not counted
+            if checking:
+                publisher.publish(long)
+                # Let it arrive and the check start: the check takes seconds.
+                end = time.monotonic() + 1.0
+                spin_until(lambda: time.monotonic() > end)
+            latencies = busy if checking else idle
+            for _ in range(10):
+                latencies.append(request())
+                end = time.monotonic() + 0.05
+                spin_until(lambda: time.monotonic() > end)
+            start = time.perf_counter()
+            node.send_signal(signal.SIGINT)
+            node.process.wait(30.0)
+            (busy_stops if checking else idle_stops).append(time.perf_counter() - start)
+            node.stop()
+    client.destroy_node()
+    print(f'trajectory_node as a process, {rounds} rounds, idle and checking a million-sample '
+          f'trajectory in turn ({load()})')
+    print()
+    print('| Measure | Idle node | Node checking a 10^4 s trajectory (998,145 samples) |')
+    print('| --- | --- | --- |')
+    print(f'| get_parameters round trip, {len(busy)} requests: median, p95, max | '
+          f'{percentiles(idle)} | {percentiles(busy)} |')
+    print(f'| SIGINT to exit, {rounds} stops: median (range) | {spread(idle_stops)} | '
+          f'{spread(busy_stops)} |')
+    print()
+    return [(f'parameter request answered < {RESPONSE_TARGET * 1e3:.0f} ms while checking '
+             '(max)', max(busy) < RESPONSE_TARGET, percentiles(busy)),
+            (f'SIGINT stops the node < {STOP_TARGET:g} s while checking (max)',
+             max(busy_stops) < STOP_TARGET, spread(busy_stops))]
+
+
+def percentiles(values):
+    """Return 'median, p95, max' of seconds."""
+    ordered = sorted(values)
+    p95 = ordered[min(len(ordered) - 1, int(math.ceil(0.95 * len(ordered))) - 1)]
+    return f'{shown(statistics.median(ordered))}, {shown(p95)}, {shown(ordered[-1])}'
+
+
+def main(argv=None) -> int:
+    """Print the tables and the targets; return 0."""
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--rounds', type=int, default=11, help='interleaved rounds')
+    parser.add_argument('--node', action='store_true',
+                        help='also measure trajectory_node as a process (ROS 2 needed)')
+    arguments = parser.parse_args(argv)
+    print(f'Motion benchmark: Python {platform.python_version()}, numpy {np.__version__}, '
+          f'{platform.machine()}')
+    rows = core_benchmark(arguments.rounds)
+    if arguments.node:
+        rows += node_benchmark(max(3, arguments.rounds // 2))
+    print('| Target | Met | This run |')
+    print('| --- | --- | --- |')
+    for target, met, value in rows:
+        print(f'| {target} | {"yes" if met else "**no**"} | {value} |')
     return 0
 
 

@@ -73,7 +73,7 @@ from stewart_kinematics.model.rotations import (
 )
 from stewart_kinematics.model.velocities import leg_velocities, platform_twist, SingularPoseError
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory, LegTrajectory
-from stewart_kinematics.motion.planning import MotionPlan, plan_motion
+from stewart_kinematics.motion.planning import MotionPlan, MotionPlanner, plan_motion
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
 from stewart_kinematics.motion.ramp import Ramp
 from stewart_kinematics.motion.retiming import retime
@@ -127,6 +127,7 @@ __all__ = [
     'matrix_to_quaternion',
     'measurement_poses',
     'MotionPlan',
+    'MotionPlanner',
     'plan_motion',
     'orientation_workspace',
     'platform_twist',

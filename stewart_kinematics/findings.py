@@ -174,19 +174,67 @@ NEAR_SINGULARITY = _register(
 
 RETIMING_FAILED = _register(
     'retiming_failed', 'refusal',
-    '`plan_motion` (trajectory_node)',
-    'toppra found no timing of the path within the leg limits.')
+    '`plan_motion`, `MotionPlanner` (trajectory_node)',
+    'No timing of the path within the leg limits: the path crosses a singularity (the '
+    'platform moves while the legs do not), or toppra failed on its grid; the details give the '
+    'cause, the waypoints and the leg.')
 INVALID_TRAJECTORY = _register(
     'invalid_trajectory', 'refusal',
+    '`MotionPlanner` (trajectory_node: `pose_trajectory`, `pose_path`)',
+    'A malformed trajectory or path: another frame, more than one joint, no point or one, more '
+    'than 100,000, times not finite, negative, beyond 1e6 s or not increasing, velocities or '
+    'accelerations on only some points, a zero quaternion, a turn of half a revolution or more '
+    'between two waypoints, a path of fewer than two different poses.')
+TRAJECTORY_TOO_LONG = _register(
+    'trajectory_too_long', 'refusal',
+    '`check_trajectory`, `plan_motion` (trajectory_node)',
+    'A trajectory whose check would take more than 1,000,000 samples (at most 256 between two '
+    'waypoints): refused before any sample is computed, with the count.')
+SUPERSEDED = _register(
+    'superseded', 'refusal',
     'trajectory_node (`pose_trajectory`, `pose_path`)',
-    'A malformed trajectory or path: another frame, more than one joint, times not '
-    'increasing, velocities on only some points, a turn of half a revolution or more between '
-    'two waypoints, two equal consecutive waypoints of a path.')
-TOOL_FRAME_NOT_SUPPORTED = _register(
-    'tool_frame_not_supported', 'refusal',
-    '`trajectory_frame_refusal` (trajectory_node: `pose_trajectory`, `pose_path`)',
-    'A trajectory or path received while the tool frame is offset from the platform frame '
-    '(trajectories are planned for the platform frame).')
+    'A trajectory or path replaced by a newer one before it was decided (the newest message is '
+    'planned; the one under way is cancelled).')
+PLANNING_ERROR = _register(
+    'planning_error', 'refusal',
+    'trajectory_node (`pose_trajectory`, `pose_path`)',
+    'An unexpected error while planning (a bug): the message gives the error; the node goes '
+    'on.')
+
+
+# Motion cueing (motion_cueing_node) ---------------------------------------------------------
+
+INVALID_VEHICLE_MOTION = _register(
+    'invalid_vehicle_motion', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A specific force or angular velocity that is not three finite numbers, or beyond '
+    '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
+    'vehicle were at rest, so that bad input eases it back to neutral.')
+TIME_NOT_INCREASING = _register(
+    'time_not_increasing', 'refusal',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A sample whose time (`header.stamp`) is not after the previous one: repeated, backward '
+    'or not finite; nothing moves.')
+INPUT_GAP = _register(
+    'input_gap', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'More than `max_input_gap` since the previous sample: counted as `max_input_gap` (the '
+    "washout's clock pauses).")
+CUE_SCALED = _register(
+    'cue_scaled', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue was scaled toward neutral to keep inside the limits model (with its margins); '
+    'the details give the workspace and tilt scales.')
+ACTUATOR_LIMITED = _register(
+    'actuator_limited', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
+    'followed as closely as they allow (or braked, or headed home).')
+LIMITS_HELD = _register(
+    'limits_held', 'warning',
+    '`MotionCueing` (motion_cueing_node)',
+    'Every next pose would have left the limits: the pose was held (not expected; the '
+    'margins prevent it).')
 
 
 def codes_table() -> str:

@@ -109,6 +109,24 @@ def rotation_zyx(alpha, beta, gamma):
     return rz(gamma) @ ry(beta) @ rx(alpha)
 
 
+def rotations_zyx(angles):
+    """
+    Return ``Rz(gamma) @ Ry(beta) @ Rx(alpha)`` for angles (N, 3), shape (N, 3, 3).
+
+    The elementary matrices of each row, stacked and multiplied.
+    """
+    angles = np.asarray(angles, dtype=float)
+    count = len(angles)
+    ca, sa = np.cos(angles[:, 0]), np.sin(angles[:, 0])
+    cb, sb = np.cos(angles[:, 1]), np.sin(angles[:, 1])
+    cg, sg = np.cos(angles[:, 2]), np.sin(angles[:, 2])
+    zero, one = np.zeros(count), np.ones(count)
+    rx_ = np.stack([one, zero, zero, zero, ca, -sa, zero, sa, ca], -1).reshape(-1, 3, 3)
+    ry_ = np.stack([cb, zero, sb, zero, one, zero, -sb, zero, cb], -1).reshape(-1, 3, 3)
+    rz_ = np.stack([cg, -sg, zero, sg, cg, zero, zero, zero, one], -1).reshape(-1, 3, 3)
+    return rz_ @ ry_ @ rx_
+
+
 def rodrigues(axis, angle):
     """Matrix of a rotation by ``angle`` (radians) about a unit ``axis``, by Rodrigues' formula."""
     x, y, z = axis
@@ -120,6 +138,17 @@ def rotation_vector_matrix(vector):
     """Matrix of the rotation by ``|vector|`` radians about ``vector`` (:func:`rodrigues`)."""
     angle = float(np.linalg.norm(vector))
     return np.eye(3) if angle == 0.0 else rodrigues(np.asarray(vector) / angle, angle)
+
+
+def rotation_vector_matrices(vectors):
+    """Rodrigues' formula for rotation vectors (N, 3), vectorised: shape (N, 3, 3)."""
+    vectors = np.asarray(vectors, dtype=float)
+    angle = np.linalg.norm(vectors, axis=-1)[:, None, None]
+    k = vectors / np.maximum(np.linalg.norm(vectors, axis=-1), 1e-300)[:, None]
+    cross = np.zeros((len(vectors), 3, 3))
+    cross[:, 0, 1], cross[:, 0, 2], cross[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
+    cross -= np.swapaxes(cross, 1, 2)
+    return np.eye(3) + np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
 
 
 def quaternion_product(q, r):
@@ -184,6 +213,24 @@ def leg_lengths(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
     position, rotation = np.asarray(pose[:3], dtype=float), rotation_zyx(*pose[3:])
     return [math.sqrt(sum(value * value for value in (position + rotation @ p - b).tolist()))
             for b, p in zip(np.asarray(base), np.asarray(platform))]
+
+
+def leg_lengths_of_matrix(position, rotation, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """
+    Return the six leg lengths ``|t + R p_i - b_i|`` of a position and a rotation matrix.
+
+    Leg by leg, shape (6,); ``base`` and ``platform`` are the joints, metres, (6, 3).
+    """
+    position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+    return np.array([np.linalg.norm(position + rotation @ p - b)
+                     for b, p in zip(np.asarray(base), np.asarray(platform))])
+
+
+def leg_lengths_batch(positions, rotations, base=BASE_JOINTS, platform=PLATFORM_JOINTS):
+    """Return ``|t + R p_i - b_i|`` for positions (N, 3) and rotations (N, 3, 3): (N, 6)."""
+    legs = (np.asarray(positions, dtype=float)[:, None, :]
+            + np.einsum('nij,kj->nki', rotations, platform) - base)
+    return np.linalg.norm(legs, axis=-1)
 
 
 def leg_lengths_long(pose, base=BASE_JOINTS, platform=PLATFORM_JOINTS):

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import reference
 from stewart_kinematics import assembly_mode_margin, assembly_modes, Geometry, load_geometry
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 import yaml
@@ -41,22 +42,6 @@ TABLE_3_END = (0.1, 0.15, 0.5325, 15.0, -15.0, 20.0)
 
 def pose_of(position, angles_deg):
     return np.array(list(position) + [math.radians(a) for a in angles_deg])
-
-
-def lengths_of(base, platform, position, rotation):
-    """Leg lengths |t + R p_i - b_i|, typed out here."""
-    return np.linalg.norm(np.asarray(position) + platform @ np.asarray(rotation).T - base,
-                          axis=-1)
-
-
-def rotation_from_rotation_vector(vectors):
-    """Rodrigues' formula for rotation vectors (n, 3)."""
-    angle = np.linalg.norm(vectors, axis=-1)[:, None, None]
-    k = vectors / np.maximum(np.linalg.norm(vectors, axis=-1), 1e-300)[:, None]
-    cross = np.zeros((len(vectors), 3, 3))
-    cross[:, 0, 1], cross[:, 0, 2], cross[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
-    cross -= np.swapaxes(cross, 1, 2)
-    return np.eye(3) + np.sin(angle) * cross + (1.0 - np.cos(angle)) * cross @ cross
 
 
 def multi_start_modes(base, platform, lengths, starts=4000, seed=0):
@@ -83,7 +68,8 @@ def multi_start_modes(base, platform, lengths, starts=4000, seed=0):
     directions /= np.linalg.norm(directions, axis=-1, keepdims=True)
     positions = directions * reach * rng.uniform(size=(starts, 1)) ** (1 / 3)
     positions, rotations = newton(base, platform, lengths, positions, rotations, 40, reach)
-    residual = np.max(np.abs(lengths_of_batch(base, platform, positions, rotations) - lengths),
+    residual = np.max(np.abs(reference.leg_lengths_batch(positions, rotations, base, platform)
+                             - lengths),
                       axis=-1)
     solved = residual < 1e-10
     found_positions, found_rotations = [], []
@@ -117,13 +103,8 @@ def newton(base, platform, lengths, positions, rotations, iterations, reach=np.i
         step[:, 3:] *= np.minimum(1.0, 0.5 / np.maximum(
             np.linalg.norm(step[:, 3:], axis=-1), 1e-300))[:, None]
         positions = positions - step[:, :3]
-        rotations = rotation_from_rotation_vector(-step[:, 3:]) @ rotations
+        rotations = reference.rotation_vector_matrices(-step[:, 3:]) @ rotations
     return positions, rotations
-
-
-def lengths_of_batch(base, platform, positions, rotations):
-    return np.linalg.norm(positions[:, None, :] + np.einsum('nij,kj->nki', rotations, platform)
-                          - base, axis=-1)
 
 
 def assert_same_modes(result, reference_positions, reference_rotations, tolerance=1e-6):
@@ -181,16 +162,17 @@ def test_dietmaier_all_40_real_modes_found(dietmaier):
     # Leg lengths within 1e-9 after refinement, by an independent formula.
     for mode in result.modes:
         rotation = euler_zyx_to_matrix(mode.pose[3:])
-        assert np.max(np.abs(lengths_of(geometry.base_joints, geometry.platform_joints,
-                                        mode.pose[:3], rotation) - lengths)) <= 1e-9
+        found = reference.leg_lengths_of_matrix(
+            mode.pose[:3], rotation, geometry.base_joints, geometry.platform_joints)
+        assert np.max(np.abs(found - lengths)) <= 1e-9
         assert mode.residual <= 1e-9
         assert 1.0 <= mode.condition < np.inf
 
 
 def test_modes_are_sorted_from_the_reference_pose(dietmaier):
     geometry, lengths, positions, rotations = dietmaier
-    reference = np.concatenate([positions[17], matrix_to_euler_zyx(rotations[17])])
-    result = assembly_modes(geometry, lengths, reference_pose=reference)
+    reference_pose = np.concatenate([positions[17], matrix_to_euler_zyx(rotations[17])])
+    result = assembly_modes(geometry, lengths, reference_pose=reference_pose)
     distances = [mode.distance for mode in result.modes]
     assert distances == sorted(distances)
     assert result.modes[0].distance < 1e-6
@@ -200,7 +182,7 @@ def test_modes_are_sorted_from_the_reference_pose(dietmaier):
                           geometry.platform_radius * second.angle_distance)
     assert second.distance == pytest.approx(expected)
     assert second.position_distance == pytest.approx(
-        np.linalg.norm(second.pose[:3] - reference[:3]))
+        np.linalg.norm(second.pose[:3] - reference_pose[:3]))
 
 
 ramp_rows = [0, 5, 10]
@@ -212,11 +194,12 @@ def test_paper_platform_along_table_3_matches_a_multi_start_search(paper, row):
     start = pose_of((0.0, 0.0, 0.4325), (0.0, 0.0, 0.0))
     pose = start + (end - start) * row / 10
     rotation = euler_zyx_to_matrix(pose[3:])
-    lengths = lengths_of(paper.base_joints, paper.platform_joints, pose[:3], rotation)
+    lengths = reference.leg_lengths_of_matrix(
+        pose[:3], rotation, paper.base_joints, paper.platform_joints)
     result = assembly_modes(paper, lengths, reference_pose=pose)
     assert result.complete, result.reason
-    reference = multi_start_modes(paper.base_joints, paper.platform_joints, lengths)
-    assert_same_modes(result, *reference)
+    expected = multi_start_modes(paper.base_joints, paper.platform_joints, lengths)
+    assert_same_modes(result, *expected)
     # The pose the lengths came from is the nearest mode.
     assert result.modes[0].distance < 1e-9
     assert len(result) + result.complex_solutions + result.at_infinity == 40
@@ -228,7 +211,8 @@ def test_paper_platform_at_random_poses_matches_a_multi_start_search(paper):
         pose = paper.home_pose + np.concatenate([rng.uniform(-0.1, 0.1, 3),
                                                  np.radians(rng.uniform(-15, 15, 3))])
         rotation = euler_zyx_to_matrix(pose[3:])
-        lengths = lengths_of(paper.base_joints, paper.platform_joints, pose[:3], rotation)
+        lengths = reference.leg_lengths_of_matrix(
+            pose[:3], rotation, paper.base_joints, paper.platform_joints)
         result = assembly_modes(paper, lengths, reference_pose=pose)
         assert result.complete, result.reason
         assert_same_modes(result, *multi_start_modes(paper.base_joints, paper.platform_joints,
@@ -237,8 +221,8 @@ def test_paper_platform_at_random_poses_matches_a_multi_start_search(paper):
 
 def test_end_of_table_3_has_a_second_mode_above_the_base(paper):
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-    lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
-                         euler_zyx_to_matrix(end[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
     result = assembly_modes(paper, lengths, reference_pose=end)
     above = [mode for mode in result.modes if mode.pose[2] > 0.0]
     below = [mode for mode in result.modes if mode.pose[2] < 0.0]
@@ -250,8 +234,8 @@ def test_end_of_table_3_has_a_second_mode_above_the_base(paper):
 def test_limits_flag_the_unreachable_modes(paper_with_limits):
     geometry = paper_with_limits
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-    lengths = lengths_of(geometry.base_joints, geometry.platform_joints, end[:3],
-                         euler_zyx_to_matrix(end[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        end[:3], euler_zyx_to_matrix(end[3:]), geometry.base_joints, geometry.platform_joints)
     result = assembly_modes(geometry, lengths, reference_pose=end)
     assert len(result) == 4
     assert [mode.within_limits for mode in result.modes] == [True, False, False, False]
@@ -266,7 +250,8 @@ def test_planar_base_and_planar_platform(paper):
     platform[2, 2] = 0.275
     planar = Geometry(paper.base_joints, platform, home_pose=paper.home_pose)
     pose = planar.home_pose + np.array([0.02, -0.03, 0.05, 0.1, -0.05, 0.2])
-    lengths = lengths_of(planar.base_joints, platform, pose[:3], euler_zyx_to_matrix(pose[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        pose[:3], euler_zyx_to_matrix(pose[3:]), planar.base_joints, platform)
     result = assembly_modes(planar, lengths, reference_pose=pose)
     assert result.complete, result.reason
     assert_same_modes(result, *multi_start_modes(planar.base_joints, platform, lengths))
@@ -312,8 +297,8 @@ def test_margin_to_the_nearest_other_mode(paper, paper_with_limits):
 def test_a_start_is_ambiguous_when_two_modes_are_reachable_and_none_is_near(paper):
     from stewart_kinematics.analysis.assembly_modes import start_ambiguity
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-    lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
-                         euler_zyx_to_matrix(end[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
     # From home, 0.21 m and 26 deg away, neither above-base mode is near: ambiguous.
     check = start_ambiguity(paper, lengths, paper.home_pose, 0.05, math.radians(10.0))
     assert check.ambiguous
@@ -329,8 +314,8 @@ def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
     from stewart_kinematics.analysis.assembly_modes import start_ambiguity
     geometry = paper_with_limits
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-    lengths = lengths_of(geometry.base_joints, geometry.platform_joints, end[:3],
-                         euler_zyx_to_matrix(end[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        end[:3], euler_zyx_to_matrix(end[3:]), geometry.base_joints, geometry.platform_joints)
     check = start_ambiguity(geometry, lengths, geometry.home_pose, 0.05, math.radians(10.0))
     assert not check.ambiguous
     assert (check.modes_within_limits, check.near_known_pose) == (1, 0)
@@ -354,8 +339,8 @@ def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
 def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper, worker):
     from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-    lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
-                         euler_zyx_to_matrix(end[3:]))
+    lengths = reference.leg_lengths_of_matrix(
+        end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
     monitor = AssemblyModeMarginMonitor(paper, warning_distance=0.5, worker=worker)
     try:
         assert monitor.latest is None and monitor.warning() == ''
@@ -386,8 +371,8 @@ def test_margin_monitor_refuses_an_unknown_worker_and_outlives_its_process(paper
             process.join()
         # The dead worker is noticed, and the next request gets a new one.
         end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
-        lengths = lengths_of(paper.base_joints, paper.platform_joints, end[:3],
-                             euler_zyx_to_matrix(end[3:]))
+        lengths = reference.leg_lengths_of_matrix(
+            end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
         for _ in range(3):
             monitor.request(end, lengths)
             monitor.wait(timeout=30.0)

@@ -28,6 +28,7 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+import reference
 
 from stewart_kinematics import load_geometry
 from stewart_kinematics.analysis.calibration import (
@@ -56,20 +57,9 @@ POSITION_RANGE = 0.05
 ANGLE_RANGE = math.radians(10.0)
 
 
-def rotation_matrices(angles):
-    """``R = Rz(gamma) Ry(beta) Rx(alpha)`` for (N, 3) angles, the README's convention."""
-    alpha, beta, gamma = angles.T
-    ca, sa, cb, sb = np.cos(alpha), np.sin(alpha), np.cos(beta), np.sin(beta)
-    cg, sg = np.cos(gamma), np.sin(gamma)
-    return np.stack([
-        np.stack([cg * cb, cg * sb * sa - sg * ca, cg * sb * ca + sg * sa], axis=-1),
-        np.stack([sg * cb, sg * sb * sa + cg * ca, sg * sb * ca - cg * sa], axis=-1),
-        np.stack([-sb, cb * sa, cb * ca], axis=-1)], axis=-2)
-
-
 def readings(base, platform, offsets, poses):
     """Actuator positions ``|t + R p_i - b_i| - o_i`` in metres, (N, 6)."""
-    rotations = rotation_matrices(poses[:, 3:])
+    rotations = reference.rotations_zyx(poses[:, 3:])
     legs = np.einsum('kab,ib->kia', rotations, platform) + poses[:, None, :3] - base
     return np.linalg.norm(legs, axis=-1) - offsets
 

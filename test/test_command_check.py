@@ -58,9 +58,8 @@ rotation_zyx = reference.rotation_zyx
 
 
 def lengths_by_hand(position, rotation):
-    """|t + R p_i - b_i| leg by leg."""
-    return np.array([np.linalg.norm(np.asarray(position) + rotation @ p - b)
-                     for b, p in zip(BASE, PLATFORM)])
+    """|t + R p_i - b_i| leg by leg, for this module's joint tables."""
+    return reference.leg_lengths_of_matrix(position, rotation, BASE, PLATFORM)
 
 
 def test_an_allowed_pose_gives_its_leg_lengths():
@@ -186,12 +185,7 @@ def test_twist_gives_the_rates_of_the_lengths_at_the_last_accepted_pose():
 
     def lengths_at(time):
         # Rotation by the angle vector w * time (Rodrigues), applied in the base frame.
-        angle_vector = twist[3:] * time
-        angle = np.linalg.norm(angle_vector)
-        k = np.array([[0.0, -angle_vector[2], angle_vector[1]],
-                      [angle_vector[2], 0.0, -angle_vector[0]],
-                      [-angle_vector[1], angle_vector[0], 0.0]]) / angle
-        turn = np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * k @ k
+        turn = reference.rotation_vector_matrix(twist[3:] * time)
         return lengths_by_hand(np.array(TILTED[:3]) + twist[:3] * time, turn @ rotation)
     step = 1e-6
     expected = (lengths_at(step) - lengths_at(-step)) / (2.0 * step)

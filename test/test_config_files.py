@@ -30,6 +30,7 @@ from stewart_kinematics import parameters
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
 
@@ -50,6 +51,7 @@ NODE_SPECS = {
     'trajectory_node': (parameters.GEOMETRY_PARAMETERS + parameters.ACTUATOR_PARAMETERS
                         + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
                         + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS),
+    'motion_cueing_node': parameters.MotionCueingNodeSettings.specs(),
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {
@@ -57,6 +59,8 @@ NODE_FILES = {
     'fk_node': (FkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
     'trajectory_node': (TrajectoryNode, ('paper_platform.yaml', 'example_limits.yaml',
                                          'table3_ramp.yaml')),
+    'motion_cueing_node': (MotionCueingNode, ('paper_platform.yaml', 'example_limits.yaml',
+                                              'motion_cueing.yaml')),
 }
 
 

@@ -180,3 +180,69 @@ def test_the_array_forms_agree_with_the_transforms_and_skip_the_identity():
     assert plain.platform_in_base(pose[:3], rotation, '')[1] is rotation
     with pytest.raises(ValueError, match="'camera'"):
         plain.platform_in_base(pose[:3], rotation, 'camera')
+
+
+def _platform_motion(t):
+    """Return a smooth platform motion: position and rotation at time t (base frame)."""
+    pose = np.array([0.01 * math.sin(t), -0.02 * t, 0.45 + 0.01 * t * t,
+                     0.1 * math.sin(2.0 * t), -0.05 * t, 0.2 * math.cos(t)])
+    return pose[:3], euler_zyx_to_matrix(pose[3:])
+
+
+def _derivatives(function, t, step=1e-4):
+    """Return central differences of a function of time returning (position, rotation)."""
+    (p_after, _), (p_now, _), (p_before, _) = function(t + step), function(t), function(t - step)
+    velocity = (p_after - p_before) / (2.0 * step)
+    acceleration = (p_after - 2.0 * p_now + p_before) / step ** 2
+
+    def omega(time):
+        (_, after), (_, before) = function(time + step), function(time - step)
+        skew = (after - before) / (2.0 * step) @ function(time)[1].T
+        return np.array([skew[2, 1], skew[0, 2], skew[1, 0]])
+    return velocity, omega(t), acceleration, (omega(t + step) - omega(t - step)) / (2.0 * step)
+
+
+def test_a_tool_frame_motion_moves_to_the_platform_frame_with_its_derivatives():
+    """Poses, twists and accelerations of a tool in the user frame: finite differences."""
+    tool = Transform([0.03, -0.02, 0.08], euler_zyx_to_matrix([0.2, -0.1, 0.5]))
+    user = Transform([0.1, 0.2, -0.05], euler_zyx_to_matrix([0.0, 0.0, 0.7]))
+    frames = FrameTree(user_frame='work', user_pose=user, tool_frame='tool', tool_pose=tool)
+
+    def tool_in_user(t):
+        placed = user.inverse() @ Transform(*_platform_motion(t)) @ tool
+        return placed.position, placed.rotation
+    times = [0.3, 1.1, 2.0]
+    given = [tool_in_user(t) for t in times]
+    motion = [_derivatives(tool_in_user, t) for t in times]
+    positions, rotations, *derivatives = frames.platform_motion(
+        [p for p, _ in given], [r for _, r in given],
+        *(np.array([m[k] for m in motion]) for k in range(4)), frame_id='work')
+    for index, t in enumerate(times):
+        position, rotation = _platform_motion(t)
+        assert_allclose(positions[index], position, atol=1e-12)
+        assert_allclose(rotations[index], rotation, atol=1e-12)
+        for computed, expected in zip(derivatives, _derivatives(_platform_motion, t)):
+            assert_allclose(computed[index], expected, atol=1e-6)
+    with pytest.raises(ValueError, match="not in base_frame 'stewart_base' or user_frame"):
+        frames.platform_motion([[0.0, 0.0, 0.5]], [np.eye(3)], frame_id='elsewhere')
+
+
+def test_a_twist_moves_between_the_platform_origin_and_the_tool_point():
+    """v_tool = v + w x (R p_tool), by finite differences of the tool's position."""
+    tool = Transform([0.03, -0.02, 0.08], euler_zyx_to_matrix([0.2, -0.1, 0.5]))
+    frames = FrameTree(tool_frame='tool', tool_pose=tool)
+
+    def tool_motion(t):
+        placed = Transform(*_platform_motion(t)) @ tool
+        return placed.position, placed.rotation
+    t = 0.7
+    platform_twist = np.concatenate(_derivatives(_platform_motion, t)[:2])
+    tool_twist = np.concatenate(_derivatives(tool_motion, t)[:2])
+    rotation = _platform_motion(t)[1]
+    assert_allclose(frames.tool_twist_from_platform(platform_twist, rotation), tool_twist,
+                    atol=1e-7)
+    assert_allclose(frames.platform_twist_from_tool(tool_twist, rotation), platform_twist,
+                    atol=1e-7)
+    plain = FrameTree()
+    assert plain.tool_twist_from_platform(platform_twist, rotation) is not None
+    assert_allclose(plain.platform_twist_from_tool(tool_twist, rotation), tool_twist)

@@ -44,19 +44,6 @@ def limited():
     return load_geometry([config / 'paper_platform.yaml', config / 'example_limits.yaml'])
 
 
-def rotations_by_hand(angles):
-    """Return Rz(gamma) Ry(beta) Rx(alpha) for angles (N, 3), as products of three matrices."""
-    count = len(angles)
-    ca, sa = np.cos(angles[:, 0]), np.sin(angles[:, 0])
-    cb, sb = np.cos(angles[:, 1]), np.sin(angles[:, 1])
-    cg, sg = np.cos(angles[:, 2]), np.sin(angles[:, 2])
-    zero, one = np.zeros(count), np.ones(count)
-    rx = np.stack([one, zero, zero, zero, ca, -sa, zero, sa, ca], -1).reshape(-1, 3, 3)
-    ry = np.stack([cb, zero, sb, zero, one, zero, -sb, zero, cb], -1).reshape(-1, 3, 3)
-    rz = np.stack([cg, -sg, zero, sg, cg, zero, zero, zero, one], -1).reshape(-1, 3, 3)
-    return rz @ ry @ rx
-
-
 def limits_by_hand(geometry, poses):
     """
     Return (allowed (N,), broken (N, 6) per limit in LIMIT_NAMES order) from the definitions.
@@ -66,13 +53,13 @@ def limits_by_hand(geometry, poses):
     test/reference.py.
     """
     poses = np.atleast_2d(poses)
-    rotations = rotations_by_hand(poses[:, 3:])
+    rotations = reference.rotations_zyx(poses[:, 3:])
     rotated = np.einsum('nij,kj->nki', rotations, geometry.platform_joints)
     legs = poses[:, None, :3] + rotated - geometry.base_joints
     lengths = np.linalg.norm(legs, axis=-1)
     units = legs / lengths[..., None]
     home = geometry.home_pose
-    home_rotation = rotations_by_hand(home[None, 3:])[0]
+    home_rotation = reference.rotations_zyx(home[None, 3:])[0]
     home_legs = home[:3] + geometry.platform_joints @ home_rotation.T - geometry.base_joints
     home_units = home_legs / np.linalg.norm(home_legs, axis=-1, keepdims=True)
     base_angles = np.arccos(np.clip(np.einsum('nki,ki->nk', units, home_units), -1.0, 1.0))
@@ -262,7 +249,7 @@ def test_slices_classify_their_grid_and_boundary(limited, plane, pose_change):
     some = np.flatnonzero(allowed)[::97]
     centred = limited.platform_joints - limited.platform_joints.mean(axis=0)
     rho = math.sqrt(np.mean(np.sum(centred ** 2, axis=-1)))
-    rotations = rotations_by_hand(grid[some, 3:])
+    rotations = reference.rotations_zyx(grid[some, 3:])
     rotated = np.einsum('nij,kj->nki', rotations, limited.platform_joints)
     legs = grid[some, None, :3] + rotated - limited.base_joints
     units = legs / np.linalg.norm(legs, axis=-1, keepdims=True)

@@ -230,6 +230,85 @@ class FrameTree:
         return np.array([self.platform_from_tool(Transform.from_pose(pose)).as_pose()
                          for pose in tool_poses]).reshape(tool_poses.shape)
 
+    def platform_motion(self, positions, rotations, velocities=None, angular_velocities=None,
+                        accelerations=None, angular_accelerations=None, frame_id: str = ''):
+        """
+        Move the motion of the tool frame to the platform frame, in the base frame (N poses).
+
+        The poses are placed as :meth:`platform_from_tool` places one. The velocities are
+        rotated from ``frame_id`` to the base frame and moved from the tool frame's origin to
+        the platform's: with ``d = R_platform p_tool`` (the tool frame's origin seen from the
+        platform's, base frame), ``v_platform = v_tool - w x d`` and ``a_platform = a_tool -
+        alpha x d - w x (w x d)``; the angular velocity and acceleration are the same for
+        both frames (both are fixed to the platform).
+
+        :param positions: the tool frame's origins, metres, shape (N, 3), in ``frame_id``.
+        :param rotations: the tool frame's orientations, shape (N, 3, 3), in ``frame_id``.
+        :param velocities: of the tool frame's origin, m/s, (N, 3), with the
+            ``angular_velocities`` (rad/s); ``accelerations`` (m/s^2) with the
+            ``angular_accelerations`` (rad/s^2); each pair optional (``None``).
+        :param frame_id: the base frame, the user frame, or ``''`` (the base frame).
+        :returns: ``(positions, rotations, velocities, angular_velocities, accelerations,
+            angular_accelerations)`` of the platform frame in the base frame, as arrays;
+            ``None`` where not given.
+        :raises ValueError: for a frame :meth:`reference` does not accept, or a wrong shape.
+        """
+        positions = _vectors('positions', positions)
+        count = positions.shape[0]
+        rotations = as_float_array(rotations, 'rotations')
+        if rotations.shape != (count, 3, 3):
+            raise ValueError(f'rotations must have shape ({count}, 3, 3), got {rotations.shape}')
+        vectors = [None if value is None else _vectors(name, value, count) for name, value in (
+            ('velocities', velocities), ('angular velocities', angular_velocities),
+            ('accelerations', accelerations), ('angular accelerations', angular_accelerations))]
+        reference = self.reference(frame_id)
+        if reference is not IDENTITY:
+            turn = reference.rotation
+            positions = reference.apply(positions)
+            rotations = turn @ rotations
+            vectors = [None if value is None else value @ turn.T for value in vectors]
+        if self.tool_pose is not IDENTITY:
+            rotations = rotations @ self.tool_pose.rotation.T
+            offsets = rotations @ self.tool_pose.position
+            positions = positions - offsets
+            velocity, omega, acceleration, alpha = vectors
+            if velocity is not None and omega is not None:
+                vectors[0] = velocity - np.cross(omega, offsets)
+            if acceleration is not None and alpha is not None and omega is not None:
+                vectors[2] = (acceleration - np.cross(alpha, offsets)
+                              - np.cross(omega, np.cross(omega, offsets)))
+        return (positions, rotations, *vectors)
+
+    def platform_twist_from_tool(self, twist, platform_rotation) -> np.ndarray:
+        """
+        Return the platform origin's twist of a twist about the tool frame's origin (base).
+
+        :param twist: ``[vx, vy, vz, wx, wy, wz]`` of the tool frame's origin, base frame,
+            m/s and rad/s, shape (6,).
+        :param platform_rotation: the platform's orientation, shape (3, 3).
+        :returns: ``[v - w x d, w]`` with ``d = R_platform p_tool``; the twist itself when the
+            tool frame's origin is the platform's.
+        """
+        twist = as_float_array(twist, 'twist')
+        if not self.tool_pose.position.any() or twist.shape != (6,):
+            return twist   # a wrong shape is the caller's to refuse, with its reason
+        offset = as_float_array(platform_rotation, 'platform_rotation') @ self.tool_pose.position
+        with np.errstate(all='ignore'):   # a NaN or huge twist stays one: refused by the caller
+            return np.concatenate([twist[:3] - np.cross(twist[3:], offset), twist[3:]])
+
+    def tool_twist_from_platform(self, twist, platform_rotation) -> np.ndarray:
+        """
+        Return the twist about the tool frame's origin of the platform origin's (base).
+
+        The inverse of :meth:`platform_twist_from_tool`: ``[v + w x d, w]``.
+        """
+        twist = as_float_array(twist, 'twist')
+        if not self.tool_pose.position.any() or twist.shape != (6,):
+            return twist
+        offset = as_float_array(platform_rotation, 'platform_rotation') @ self.tool_pose.position
+        with np.errstate(all='ignore'):
+            return np.concatenate([twist[:3] + np.cross(twist[3:], offset), twist[3:]])
+
     def static_transforms(self):
         """
         Return the fixed transforms of named frames, for ``/tf_static``.
@@ -243,3 +322,14 @@ class FrameTree:
         if self.tool_frame:
             transforms.append((self.platform_frame, self.tool_frame, self.tool_pose))
         return transforms
+
+
+def _vectors(name, values, count=None):
+    """Convert to a float array of shape (N, 3), or (count, 3), saying what is wrong."""
+    array = np.array(as_float_array(values, name))
+    if array.size == 0 and count in (None, 0):
+        return array.reshape(0, 3)
+    if array.ndim != 2 or array.shape[1] != 3 or (count is not None and array.shape[0] != count):
+        shown = 'N' if count is None else count
+        raise ValueError(f'{name} must have shape ({shown}, 3), got {array.shape}')
+    return array

@@ -29,6 +29,9 @@ import numpy as np
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
 
+#: Most points of a leg trajectory (a JointTrajectory of 100,000 points is about 20 MB).
+MAX_POINTS = 100_000
+
 
 @dataclass(frozen=True)
 class LegTrajectory:
@@ -50,13 +53,20 @@ class LegTrajectory:
 
 
 def leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInterface,
-                   rate: float) -> LegTrajectory:
+                   rate: float, max_points: int = MAX_POINTS) -> LegTrajectory:
     """
     Sample a timed trajectory for an actuator interface: every ``1 / rate`` s and at waypoints.
 
-    :param rate: points per second, hertz; every waypoint and the end are points too.
+    The points are those of :meth:`TimedTrajectory.sample_times`: every waypoint (and gridpoint
+    of a retiming) and, between two, every ``1 / rate`` seconds or closer, at most
+    :data:`~stewart_kinematics.motion.pose_trajectory.MAX_PIECE_SAMPLES` intervals; a long
+    trajectory that would need more than ``max_points`` gets proportionally fewer points
+    between two (the controller interpolates between them with their velocities and
+    accelerations).
+
+    :param rate: points per second, hertz.
     """
-    times = trajectory.sample_times(rate)
+    times = trajectory.sample_times(rate, max_samples=max_points)
     legs = trajectory.legs(geometry, times)
     return LegTrajectory(actuators.joint_names, times, actuators.positions(legs.lengths),
                          legs.velocities, legs.accelerations)

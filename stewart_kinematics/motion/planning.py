@@ -12,32 +12,38 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
+
 """
 Motion planning: decide whether, and how, to play a platform trajectory.
 
 :func:`plan_motion` checks a trajectory whole (:mod:`~stewart_kinematics.motion.
 trajectory_check`), retimes it if asked (:mod:`~stewart_kinematics.motion.retiming`), and
 returns a :class:`MotionPlan` that says whether it is accepted and, if not, why.
+:class:`MotionPlanner` does the same from what a message carries (waypoints of the tool frame,
+in the base or user frame, with or without timing): what trajectory_node calls, and what a
+Python user's own loop can call.
 
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
 import math
-from typing import Optional
+from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.findings import (
-    Finding,
-    OUT_OF_LIMITS,
-    RETIMING_FAILED,
-    TOO_FAST,
-    violation_details,
-)
+from stewart_kinematics import findings
+from stewart_kinematics.findings import Decision, Finding, violation_details
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
-from stewart_kinematics.motion.retiming import retime
+from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.frames import FrameTree
+from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.motion.pose_trajectory import (
+    PoseTrajectory,
+    SingularPathError,
+    TimedTrajectory,
+)
+from stewart_kinematics.motion.retiming import retime, RetimingError
 from stewart_kinematics.motion.trajectory_check import (
     check_trajectory,
     DEFAULT_VALIDATION_RATE,
@@ -52,92 +58,191 @@ MAX_STRETCHES = 5
 
 
 @dataclass(frozen=True)
-class MotionPlan:
+class MotionPlan(Decision):
     """
     What :func:`plan_motion` decided.
 
-    :param accepted: True when the trajectory may be played.
-    :param reason: ``''``, or why it is refused (time, segment, leg, limit).
+    :param refusal: ``None`` when the trajectory may be played, else why not (a
+        :class:`~stewart_kinematics.findings.Finding`: ``invalid_trajectory``,
+        ``out_of_limits``, ``too_fast``, ``retiming_failed``, ``trajectory_too_long``).
     :param trajectory: the timed trajectory to play, or ``None`` when refused.
-    :param check: the whole-trajectory check (of the timing played, or of the path when the
-        path itself breaks a pose limit).
+    :param check: the whole-trajectory check of the timing played (or refused), if made.
     :param retimed: True when the timing comes from :func:`retime`.
+    :param warnings: findings about an accepted trajectory (none yet).
+
+    ``accepted`` and ``reason`` come from :class:`~stewart_kinematics.findings.Decision`.
     """
 
-    accepted: bool
-    reason: str
-    trajectory: Optional[TimedTrajectory]
-    check: Optional[TrajectoryCheck]
+    refusal: Optional[Finding]
+    trajectory: Optional[TimedTrajectory] = None
+    check: Optional[TrajectoryCheck] = None
     retimed: bool = False
-
-    @property
-    def refusal(self) -> Optional[Finding]:
-        """
-        Return why the trajectory is refused, as a finding to count and report; ``None``.
-
-        Its code is :data:`OUT_OF_LIMITS` (stroke, cones, singularity margin), :data:`TOO_FAST`
-        (only leg velocity or acceleration broken) or :data:`RETIMING_FAILED`; its details
-        give the time, the segment and every violated limit.
-        """
-        if self.accepted:
-            return None
-        check = self.check
-        if check is None or check.accepted or not check.violations:
-            return Finding(RETIMING_FAILED, self.reason)
-        code = TOO_FAST if all(violation.limit in SPEED_LIMITS
-                               for violation in check.violations) else OUT_OF_LIMITS
-        return Finding(code, self.reason, (
-            ('time_s', f'{check.time:.4f}'),
-            ('segment', f'points {check.segment[0]} and {check.segment[1]}'),
-        ) + violation_details(check.violations))
+    warnings: Tuple[Finding, ...] = ()
 
 
 def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[ActuatorLimits] = None,
                 *, retime_path: bool = False, speed_scale: float = 1.0,
-                validation_rate: float = DEFAULT_VALIDATION_RATE) -> MotionPlan:
+                validation_rate: float = DEFAULT_VALIDATION_RATE, cancel=None) -> MotionPlan:
     """
     Decide whether, and how, to play a platform trajectory: checked whole, timed, or refused.
 
     Without ``retime_path`` the trajectory keeps its own timing, slowed by ``1 /
     speed_scale``, and is refused if any sample breaks a limit, leg velocity and acceleration
-    included. With it, the path is retimed (:func:`retime`) and the result checked whole;
-    where the motion between toppra's gridpoints exceeds a leg limit, the timing is
-    first stretched uniformly by that excess (times :data:`STRETCH_MARGIN`), until every
-    sample is within.
+    included. With it, the path through its waypoint poses is retimed (:func:`retime`: its own
+    times, velocities and accelerations are dropped, repeated waypoints merged) and the result
+    checked whole (:func:`retime` keeps every leg within its limits at the check's samples;
+    should a sample still exceed a leg limit, the timing is stretched uniformly by that excess
+    times :data:`STRETCH_MARGIN`, and checked again).
 
     :param path: the trajectory; a path without timing comes from :meth:`PoseTrajectory.path`
         and must be retimed.
     :param actuator_limits: leg velocity, acceleration (and jerk, unused here); ``None``: none.
     :param speed_scale: in (0, 1].
-    :param validation_rate: samples per second of the check, hertz.
+    :param validation_rate: samples per second of the check, hertz (see
+        :func:`check_trajectory` for its bounds).
+    :param cancel: ``None``, or an event: set, the work stops with
+        :class:`~stewart_kinematics.motion.retiming.Cancelled` (raised, not a refusal).
     """
     actuator_limits = actuator_limits or ActuatorLimits()
     if not retime_path:
         trajectory = TimedTrajectory.as_given(path, speed_scale)
         check = check_trajectory(trajectory, geometry, actuator_limits,
-                                 validation_rate=validation_rate)
-        if not check.accepted:
-            return MotionPlan(False, check.reason, None, check)
-        return MotionPlan(True, '', trajectory, check)
+                                 validation_rate=validation_rate, cancel=cancel)
+        return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check)
     try:
-        trajectory = retime(path, geometry, actuator_limits, speed_scale)
+        trajectory = retime(path, geometry, actuator_limits, speed_scale,
+                            sample_rate=validation_rate, cancel=cancel)
+    except SingularPathError as error:
+        return MotionPlan(Finding(findings.RETIMING_FAILED, str(error), (
+            ('cause', 'singularity'), ('segment', f'points {error.point} and after'))),
+            retimed=True)
+    except RetimingError as error:
+        return MotionPlan(Finding(findings.RETIMING_FAILED, str(error), error.details),
+                          retimed=True)
     except ValueError as error:
-        # Say what is wrong with the path itself, if anything, rather than toppra's failure.
-        check = check_trajectory(TimedTrajectory.as_given(path), geometry,
-                                 validation_rate=validation_rate)
-        reason = f'{check.reason} (on the path as given)' if not check.accepted else str(error)
-        return MotionPlan(False, reason, None, check, True)
-    # toppra meets the limits at its gridpoints; between them the motion may exceed them
-    # slightly: stretch the timing by the largest excess over the check's samples.
+        return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)), retimed=True)
     scaled = actuator_limits.scaled(speed_scale)
     for _ in range(MAX_STRETCHES):
-        legs = trajectory.legs(geometry, trajectory.sample_times(validation_rate))
-        excess = max(np.abs(legs.velocities).max() / scaled.velocity_max,
-                     math.sqrt(np.abs(legs.accelerations).max() / scaled.acceleration_max))
-        if not excess > 1.0:
+        check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate,
+                                 cancel=cancel)
+        if check.accepted or not check.violations or not all(
+                violation.limit in SPEED_LIMITS for violation in check.violations):
             break
-        trajectory = trajectory.stretched(excess * STRETCH_MARGIN)
-    check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate)
-    if not check.accepted:
-        return MotionPlan(False, check.reason, None, check, True)
-    return MotionPlan(True, '', trajectory, check, True)
+        # toppra's timing exceeds a leg limit between the samples of the stretch: stretch on.
+        trajectory = trajectory.stretched(max(_speed_excess(violation)
+                                              for violation in check.violations) * STRETCH_MARGIN)
+    return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check, True)
+
+
+def _speed_excess(violation) -> float:
+    """Return the stretch that brings one leg speed violation within its limit."""
+    ratio = abs(violation.value) / violation.allowed
+    return math.sqrt(ratio) if violation.limit == 'leg_acceleration_max' else ratio
+
+
+def _check_refusal(check: TrajectoryCheck) -> Optional[Finding]:
+    """
+    Return the refusal of a failed check, or ``None``.
+
+    :data:`TOO_FAST` when only leg velocity or acceleration is broken, :data:`OUT_OF_LIMITS`
+    otherwise, :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give
+    the time, the waypoints around it and every violated limit.
+    """
+    if check.accepted:
+        return None
+    if not check.complete:
+        return Finding(findings.TRAJECTORY_TOO_LONG, check.reason)
+    code = findings.TOO_FAST if all(violation.limit in SPEED_LIMITS
+                                    for violation in check.violations) else (
+        findings.OUT_OF_LIMITS)
+    return Finding(code, check.reason, (
+        ('time_s', f'{check.time:.4f}'),
+        ('segment', f'points {check.segment[0]} and {check.segment[1]}'),
+    ) + violation_details(check.violations))
+
+
+class MotionPlanner:
+    """
+    Plan the trajectories a message carries: tool-frame waypoints in, a decided plan out.
+
+    The waypoints are poses of the tool frame (:mod:`stewart_kinematics.model.frames`; by
+    default the platform frame itself) in the base frame or the user frame, as every pose
+    topic; with their twists (about the tool frame's origin, in the same frame) and
+    accelerations when given. They are moved to the platform frame in the base frame
+    (:meth:`FrameTree.platform_motion`), interpolated and checked there, and planned by
+    :func:`plan_motion`. Immutable: a node builds a new planner when a parameter changes, so a
+    trajectory is planned with one set of settings from start to end.
+
+    :param geometry: the platform.
+    :param actuator_limits: the legs' velocity and acceleration limits.
+    :param frames: the frame tree (tool and user frames).
+    :param retime: retime timed trajectories too (paths always are).
+    :param speed_scale: in (0, 1].
+    :param validation_rate: hertz, see :func:`check_trajectory`.
+    """
+
+    def __init__(self, geometry, actuator_limits: ActuatorLimits, frames: FrameTree = None, *,
+                 retime: bool = False, speed_scale: float = 1.0,
+                 validation_rate: float = DEFAULT_VALIDATION_RATE):
+        self.geometry = geometry
+        self.actuator_limits = actuator_limits
+        self.frames = frames if frames is not None else FrameTree()
+        self.retime = retime
+        self.speed_scale = speed_scale
+        self.validation_rate = validation_rate
+
+    def plan_trajectory(self, times, positions, quaternions, velocities=None,
+                        angular_velocities=None, accelerations=None, angular_accelerations=None,
+                        frame_id: str = '', cancel=None) -> MotionPlan:
+        """
+        Plan timed waypoints of the tool frame: as timed, or retimed with ``retime``.
+
+        :param times: seconds from the start, shape (N,); ``positions`` (N, 3), metres;
+            ``quaternions`` (N, 4), ``(x, y, z, w)``; optional twists and accelerations
+            (N, 3) each, m/s, rad/s, m/s^2, rad/s^2, about the tool frame's origin, all in
+            ``frame_id`` (the base frame, the user frame, or ``''`` for the base frame).
+        :returns: a :class:`MotionPlan`, refused with ``invalid_trajectory`` (and the reason)
+            when the waypoints cannot make a trajectory.
+        """
+        try:
+            motion = self.frames.platform_motion(
+                positions, quaternion_to_matrix(_rows('quaternions', quaternions, 4)),
+                velocities, angular_velocities, accelerations, angular_accelerations, frame_id)
+            trajectory = PoseTrajectory(times, *motion)
+        except ValueError as error:
+            return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)))
+        return plan_motion(trajectory, self.geometry, self.actuator_limits,
+                           retime_path=self.retime, speed_scale=self.speed_scale,
+                           validation_rate=self.validation_rate, cancel=cancel)
+
+    def plan_path(self, positions, quaternions, frame_id: str = '', cancel=None) -> MotionPlan:
+        """
+        Plan waypoints of the tool frame without timing: always retimed.
+
+        :param positions: metres, shape (N, 3); ``quaternions`` (N, 4), in ``frame_id``.
+        :returns: a :class:`MotionPlan` (see :meth:`plan_trajectory`).
+        """
+        try:
+            motion = self.frames.platform_motion(
+                positions, quaternion_to_matrix(_rows('quaternions', quaternions, 4)),
+                frame_id=frame_id)
+            path = PoseTrajectory.path(self.geometry, motion[0], motion[1])
+        except SingularPathError as error:
+            return MotionPlan(Finding(findings.RETIMING_FAILED, str(error), (
+                ('cause', 'singularity'), ('segment', f'points {error.point} and after'))),
+                retimed=True)
+        except ValueError as error:
+            return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)), retimed=True)
+        return plan_motion(path, self.geometry, self.actuator_limits, retime_path=True,
+                           speed_scale=self.speed_scale,
+                           validation_rate=self.validation_rate, cancel=cancel)
+
+
+def _rows(name, values, width):
+    """Convert to a float array of shape (N, width), saying what is wrong otherwise."""
+    array = np.array(as_float_array(values, name))
+    if array.size == 0:
+        return array.reshape(0, width)
+    if array.ndim != 2 or array.shape[1] != width:
+        raise ValueError(f'{name} must have shape (N, {width}), got {array.shape}')
+    return array

@@ -12,19 +12,22 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
+
 """
 Whole-trajectory check: every sample of a timed trajectory against every limit.
 
 :func:`check_trajectory` samples a :class:`~stewart_kinematics.motion.pose_trajectory.
-TimedTrajectory` densely in time and reports the first sample that breaks a limit of the
-geometry (stroke, joint cones, singularity margin, leg collisions) or of the actuators (leg
-velocity, leg acceleration), naming the time, the waypoint segment, the leg and the limit. The
-limits are the limits model's (:class:`~stewart_kinematics.limits.LimitModel`): the pose limits
-on the samples' poses, the leg rates on their leg states
-(:func:`~stewart_kinematics.model.velocities.leg_states`).
-
-:func:`trajectory_frame_refusal` refuses a trajectory given for a tool frame that is offset
-from the platform frame (trajectories are interpolated and checked as platform-frame poses).
+TimedTrajectory` piece by piece (between waypoints, and gridpoints of a retiming: see
+:meth:`~stewart_kinematics.motion.pose_trajectory.TimedTrajectory.sample_times`), at the
+validation rate but at most :data:`~stewart_kinematics.motion.pose_trajectory.
+MAX_PIECE_SAMPLES` samples in a piece, so that its cost is bounded whatever the trajectory
+lasts; beyond :data:`MAX_CHECK_SAMPLES` samples it refuses to check rather than run for
+minutes. It reports the first sample that breaks a limit of the geometry (stroke, joint cones,
+singularity margin, leg collisions) or of the actuators (leg velocity, leg acceleration),
+naming the time, the waypoints around it, the leg and the limit. The limits are the limits
+model's (:class:`~stewart_kinematics.limits.LimitModel`): the pose limits on the samples'
+poses, the leg rates on their leg states (:func:`~stewart_kinematics.model.velocities.
+leg_states`).
 
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
@@ -34,20 +37,23 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics import findings
-from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel, Violation
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.velocities import leg_states
-from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+from stewart_kinematics.motion.pose_trajectory import MAX_PIECE_SAMPLES, TimedTrajectory
+from stewart_kinematics.motion.retiming import raise_if_cancelled
 
 #: The leg speed limits, as :class:`~stewart_kinematics.limits.Violation` names them.
 SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 #: Default sampling rate of the whole-trajectory check, hertz.
 DEFAULT_VALIDATION_RATE = 1000.0
-#: Samples checked at once: bounds the memory of a long trajectory's check.
-CHECK_CHUNK = 20000
+#: Samples checked at once: bounds the memory of a long trajectory's check, and the time
+#: between two looks at the cancel flag (about 10 ms on an idle machine).
+CHECK_CHUNK = 2500
+#: Most samples a check takes (a few seconds of work); a trajectory that needs more is
+#: refused with a reason instead (``complete`` False).
+MAX_CHECK_SAMPLES = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -57,14 +63,16 @@ class TrajectoryCheck:
 
     :param accepted: True when no sample breaks a limit.
     :param reason: ``''``, or what the first failing sample breaks: time, segment, legs,
-        limits.
+        limits; or why the check was not made.
     :param time: clock time of the first failing sample, seconds, or ``None``.
-    :param segment: ``(k, k + 1)``, the waypoints around it, or ``None``.
+    :param segment: ``(k, k + 1)``, the waypoints around it (numbered as given), or ``None``.
     :param violations: every limit the first failing sample breaks.
     :param samples: how many samples were checked.
     :param peak_velocity_ratio: largest ``|leg velocity| / leg_velocity_max`` seen (0 when
         there is no velocity limit).
     :param peak_acceleration_ratio: likewise for the acceleration.
+    :param complete: False when the check was not made: it would need more than
+        ``max_samples`` samples (``accepted`` is then False too).
     """
 
     accepted: bool
@@ -75,30 +83,47 @@ class TrajectoryCheck:
     samples: int = 0
     peak_velocity_ratio: float = 0.0
     peak_acceleration_ratio: float = 0.0
+    complete: bool = True
 
 
 def check_trajectory(trajectory: TimedTrajectory, geometry,
                      actuator_limits: Optional[ActuatorLimits] = None, *,
-                     validation_rate: float = DEFAULT_VALIDATION_RATE) -> TrajectoryCheck:
+                     validation_rate: float = DEFAULT_VALIDATION_RATE,
+                     max_samples: int = MAX_CHECK_SAMPLES, cancel=None) -> TrajectoryCheck:
     """
     Check every sample of a timed trajectory against every limit; stop at the first failure.
 
-    Samples every ``1 / validation_rate`` seconds, at every waypoint and at the end, against
-    the pose limits of ``geometry`` and the leg velocity and acceleration limits of
+    Samples each piece of the trajectory (between waypoints, and between gridpoints of a
+    retiming) at both ends and every ``1 / validation_rate`` seconds or closer, with at most
+    :data:`~stewart_kinematics.motion.pose_trajectory.MAX_PIECE_SAMPLES` intervals per piece,
+    against the pose limits of ``geometry`` and the leg velocity and acceleration limits of
     ``actuator_limits`` (``None``: none; the jerk limit is for streamed commands, and not
     checked here), with :data:`~stewart_kinematics.limits.leg_rates.RATE_SLACK` for rounding.
     Vectorised over samples, in chunks of :data:`CHECK_CHUNK`.
 
+    :param max_samples: a trajectory that needs more samples is not checked: the result says
+        so (``complete`` False), before any sample is computed.
+    :param cancel: ``None``, or an event: set, the check stops between two chunks with
+        :class:`~stewart_kinematics.motion.retiming.Cancelled`.
     :returns: a :class:`TrajectoryCheck`; its ``reason`` names the first failing time, the
-        waypoint segment (points k and k + 1), and each leg and limit broken there.
+        waypoints around it (as numbered in the input), and each leg and limit broken there.
     """
     actuator_limits = actuator_limits or ActuatorLimits()
+    count = trajectory.sample_count(validation_rate)
+    if count > max_samples:
+        return TrajectoryCheck(False, (
+            f'checking the trajectory ({trajectory.duration:.6g} s, '
+            f'{trajectory.path.waypoint_count:,} waypoints) at {validation_rate:g} Hz, at most '
+            f'{MAX_PIECE_SAMPLES} samples between two waypoints, needs {count:,} samples, more '
+            f'than the {max_samples:,} a check may take: send it in parts, or lower '
+            'validation_rate'), complete=False)
     model = LimitModel(geometry, ActuatorLimits(actuator_limits.velocity_max,
                                                 actuator_limits.acceleration_max),
                        rate_slack=RATE_SLACK)
     times = trajectory.sample_times(validation_rate)
     peaks = dict.fromkeys(SPEED_LIMITS, 0.0)
     for start in range(0, times.shape[0], CHECK_CHUNK):
+        raise_if_cancelled(cancel)
         chunk = times[start:start + CHECK_CHUNK]
         poses = trajectory.sample(chunk)
         pose_checks = model.check_pose_matrices(poses.positions, poses.rotations, exact=False)
@@ -117,33 +142,13 @@ def check_trajectory(trajectory: TimedTrajectory, geometry,
         if failing.size:
             first = int(failing[0])
             time = float(chunk[first])
-            segment = int(trajectory.segments(np.array([time]))[0])
+            segment = trajectory.path.points(int(trajectory.segments(np.array([time]))[0]))
             violations = tuple(pose_checks.violations(first)) + (
                 () if rates is None else tuple(rates.violations(first)))
-            reason = (f't = {time:.4f} s, between points {segment} and {segment + 1}: '
+            reason = (f't = {time:.4f} s, between points {segment[0]} and {segment[1]}: '
                       + '; '.join(str(violation) for violation in violations))
-            return TrajectoryCheck(False, reason, time, (segment, segment + 1), violations,
+            return TrajectoryCheck(False, reason, time, segment, violations,
                                    start + first + 1, *peaks.values())
     return TrajectoryCheck(True, samples=times.shape[0],
                            peak_velocity_ratio=peaks['leg_velocity_max'],
                            peak_acceleration_ratio=peaks['leg_acceleration_max'])
-
-
-def trajectory_frame_refusal(frames, topic: str) -> Optional[Finding]:
-    """
-    Refuse a trajectory while the tool frame is offset from the platform frame, or say nothing.
-
-    Trajectories are interpolated and checked as platform-frame poses; with another tool frame
-    their velocities would have to be moved to it too.
-
-    :param frames: the node's :class:`stewart_kinematics.FrameTree`.
-    :param topic: the topic the trajectory came on, for the message.
-    :returns: a ``tool_frame_not_supported`` finding, or ``None`` when the tool frame is the
-        platform frame.
-    """
-    if frames.tool_pose.is_identity():
-        return None
-    return Finding(findings.TOOL_FRAME_NOT_SUPPORTED, (
-        f'{topic} is planned for the platform frame, but tool_frame '
-        f"'{frames.tool_frame}' is offset from it: set tool_frame_position and "
-        'tool_frame_orientation_deg to zero to send trajectories'))

@@ -438,12 +438,182 @@ STREAMING_PARAMETERS = (
 )
 
 
+#: motion_cueing_node: the classical washout, its limits and its input checks
+#: (stewart_kinematics.cueing.CueingSettings; the defaults are the literature's, the same as
+#: that class's, which a test checks; config/motion_cueing.yaml tunes them for the paper's
+#: platform).
+MOTION_CUEING_PARAMETERS = (
+    ParameterSpec(
+        'translation_scale', DOUBLE_ARRAY,
+        'Gain on the specific force of the translational channel, x y z (vehicle frame: x '
+        'forward, y left, z up)',
+        default=[0.5, 0.5, 0.5], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 10.0)),
+        constraints='3 values in [0, 10]'),
+    ParameterSpec(
+        'translation_input_limit', DOUBLE,
+        "Soft limit of the translational channel's input, m/s^2 per axis: a = L tanh(a_in / L) "
+        '(nonlinear scaling); .inf for none',
+        default=math.inf, read_only=True,
+        validators=(in_range(0.0, math.inf, low_inclusive=False),),
+        constraints='> 0; .inf allowed'),
+    ParameterSpec(
+        'translation_order', INTEGER,
+        'Order of the translational high-pass: 3 returns the platform to neutral after a '
+        'sustained acceleration, 2 keeps a displacement while it lasts',
+        default=3, read_only=True, validators=(in_range(2, 3),), constraints='2 or 3'),
+    ParameterSpec(
+        'translation_frequency', DOUBLE_ARRAY,
+        'Natural frequency of the second-order translational high-pass, rad/s, x y z',
+        default=[2.5, 2.5, 4.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
+        constraints='3 values in (0, 100]'),
+    ParameterSpec(
+        'translation_damping', DOUBLE_ARRAY,
+        'Damping ratio of the translational high-pass, x y z; >= 1 never reverses through '
+        'neutral after a step',
+        default=[1.0, 1.0, 1.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 10.0, low_inclusive=False)),
+        constraints='3 values in (0, 10]'),
+    ParameterSpec(
+        'translation_break_frequency', DOUBLE_ARRAY,
+        'Frequency of the first-order part of the third-order translational high-pass, rad/s, '
+        'x y z',
+        default=[0.25, 0.25, 0.25], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
+        constraints='3 values in (0, 100]'),
+    ParameterSpec(
+        'tilt_scale', DOUBLE_ARRAY,
+        'Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll)',
+        default=[0.5, 0.5], read_only=True,
+        validators=(fixed_length(2), finite, in_range(0.0, 10.0)),
+        constraints='2 values in [0, 10]'),
+    ParameterSpec(
+        'tilt_complementary', BOOL,
+        'Use 1 - (the translational high-pass) as the tilt low-pass, per axis, instead of the '
+        'classical low-pass of tilt_order',
+        default=False, read_only=True),
+    ParameterSpec(
+        'tilt_order', INTEGER, 'Order of the tilt low-pass',
+        default=2, read_only=True, validators=(in_range(1, 2),), constraints='1 or 2'),
+    ParameterSpec(
+        'tilt_frequency', DOUBLE, 'Cut-off of the tilt low-pass, rad/s',
+        default=5.0, read_only=True,
+        validators=(finite, in_range(0.0, 100.0, low_inclusive=False)), constraints='in (0, 100]'),
+    ParameterSpec(
+        'tilt_damping', DOUBLE, 'Damping ratio of the tilt low-pass (order 2)',
+        default=1.0, read_only=True,
+        validators=(finite, in_range(0.0, 10.0, low_inclusive=False)), constraints='in (0, 10]'),
+    ParameterSpec(
+        'tilt_rate_max_deg', DOUBLE,
+        'Largest tilt rate of tilt coordination, degrees per second (the threshold below which '
+        'a rotation is not perceived)',
+        default=3.0, read_only=True,
+        validators=(finite, in_range(0.0, 90.0, low_inclusive=False)), constraints='in (0, 90]'),
+    ParameterSpec(
+        'tilt_acceleration_max_deg', DOUBLE,
+        'Largest tilt acceleration of tilt coordination, degrees per second squared (a smooth '
+        'onset of the tilt)',
+        default=10.0, read_only=True,
+        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
+        constraints='in (0, 1000]'),
+    ParameterSpec(
+        'tilt_max_deg', DOUBLE, 'Largest tilt angle of tilt coordination, degrees',
+        default=15.0, read_only=True,
+        validators=(finite, in_range(0.0, 45.0, low_inclusive=False)), constraints='in (0, 45]'),
+    ParameterSpec(
+        'rotation_scale', DOUBLE_ARRAY, 'Gain on the angular velocity, roll pitch yaw',
+        default=[0.5, 0.5, 0.5], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 10.0)),
+        constraints='3 values in [0, 10]'),
+    ParameterSpec(
+        'rotation_order', INTEGER,
+        'Order of the rotational high-pass: 2 returns the angle to neutral after a sustained '
+        'rate',
+        default=2, read_only=True, validators=(in_range(1, 2),), constraints='1 or 2'),
+    ParameterSpec(
+        'rotation_frequency', DOUBLE_ARRAY,
+        'Natural frequency of the rotational high-pass, rad/s, roll pitch yaw',
+        default=[1.0, 1.0, 1.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
+        constraints='3 values in (0, 100]'),
+    ParameterSpec(
+        'rotation_damping', DOUBLE_ARRAY,
+        'Damping ratio of the rotational high-pass, roll pitch yaw',
+        default=[1.0, 1.0, 1.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(0.0, 10.0, low_inclusive=False)),
+        constraints='3 values in (0, 10]'),
+    ParameterSpec(
+        'head_position', DOUBLE_ARRAY,
+        "The cueing reference point (the driver's head) in the platform frame, metres: the "
+        "cue's rotations turn about it, and the perceived specific force is computed there",
+        default=[0.0, 0.0, 0.5], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-10.0, 10.0)),
+        constraints='3 values in [-10, 10]'),
+    ParameterSpec(
+        'follower_frequency', DOUBLE,
+        'Bandwidth of the follower that brings the platform back onto the cue after the leg '
+        'velocity or acceleration limits held it back, rad/s',
+        default=10.0, read_only=True,
+        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
+        constraints='in (0, 1000]'),
+    ParameterSpec(
+        'workspace_recovery_rate', DOUBLE,
+        'Fastest rise of the workspace scale (the share of the cue kept inside the limits) '
+        'back toward 1, per second',
+        default=0.5, read_only=True,
+        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
+        constraints='in (0, 1000]'),
+    ParameterSpec(
+        'leg_length_margin', DOUBLE,
+        'The cue keeps this far inside each end of the stroke, metres (raised to the braking '
+        'distance leg_velocity_max^2 / (2 leg_acceleration_max) when that is longer)',
+        default=0.01, read_only=True, validators=(finite, in_range(0.0, 1.0)),
+        constraints='in [0, 1]'),
+    ParameterSpec(
+        'joint_angle_margin_deg', DOUBLE,
+        'The cue keeps this far inside each joint cone, degrees',
+        default=2.0, read_only=True, validators=(finite, in_range(0.0, 45.0)),
+        constraints='in [0, 45]'),
+    ParameterSpec(
+        'condition_margin', DOUBLE,
+        'The cue keeps the Jacobian condition number below this share of '
+        'max_jacobian_condition',
+        default=0.9, read_only=True,
+        validators=(finite, in_range(0.0, 1.0, low_inclusive=False)), constraints='in (0, 1]'),
+    ParameterSpec(
+        'max_input_gap', DOUBLE,
+        'A longer time between two vehicle_imu stamps counts as this long (the washout pauses, '
+        'with an input_gap warning), seconds',
+        default=0.1, read_only=True,
+        validators=(finite, in_range(0.0, 3600.0, low_inclusive=False)),
+        constraints='in (0, 3600]'),
+    ParameterSpec(
+        'max_specific_force', DOUBLE,
+        'A larger specific force is refused as absurd (the platform eases to neutral), m/s^2',
+        default=100.0, read_only=True,
+        validators=(finite, in_range(0.0, 1e4, low_inclusive=False)), constraints='in (0, 10000]'),
+    ParameterSpec(
+        'max_angular_velocity', DOUBLE,
+        'A larger angular velocity is refused as absurd (the platform eases to neutral), rad/s',
+        default=20.0, read_only=True,
+        validators=(finite, in_range(0.0, 1e4, low_inclusive=False)), constraints='in (0, 10000]'),
+    ParameterSpec(
+        'input_timeout', DOUBLE,
+        'When no vehicle_imu message came for this long, the platform eases to neutral as if '
+        'the vehicle were at rest, seconds (node clock); 0.0 turns this off',
+        default=0.5, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
+        constraints='in [0, 3600]'),
+)
+
+
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
-            + RAMP_PARAMETERS + MOTION_PARAMETERS + STREAMING_PARAMETERS)
+            + RAMP_PARAMETERS + MOTION_PARAMETERS + STREAMING_PARAMETERS
+            + MOTION_CUEING_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

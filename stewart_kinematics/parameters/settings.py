@@ -46,6 +46,7 @@ from stewart_kinematics.parameters.declarations import (
     GEOMETRY_PARAMETERS,
     IK_FRAME_PARAMETERS,
     MARKER_PARAMETERS,
+    MOTION_CUEING_PARAMETERS,
     MOTION_PARAMETERS,
     QUEUE_PARAMETERS,
     RAMP_PARAMETERS,
@@ -246,6 +247,11 @@ MotionSettings = settings_class(
     'Trajectories and paths received by trajectory_node: checking, retiming, playing.')
 StreamingSettings = settings_class(
     'StreamingSettings', STREAMING_PARAMETERS, "ik_node's streamed, jerk-limited commands.")
+MotionCueingSettings = settings_class(
+    'MotionCueingSettings', MOTION_CUEING_PARAMETERS,
+    "motion_cueing_node's washout, limit margins and input checks, as parameters (degrees "
+    'where named); :meth:`stewart_kinematics.cueing.CueingSettings.from_parameters` turns them '
+    "into the core's settings.")
 
 # The nodes' settings: the groups each node declares, in order.
 IkNodeSettings = node_settings_class(
@@ -258,6 +264,9 @@ FkNodeSettings = node_settings_class(
     actuators=ActuatorSettings, solver=SolverSettings, assembly_modes=AssemblyModeSettings,
     frames=FrameSettings, fk_frames=FkFrameSettings, markers=MarkerSettings,
     queue=QueueSettings)
+MotionCueingNodeSettings = node_settings_class(
+    'MotionCueingNodeSettings', "motion_cueing_node's settings.", geometry=GeometrySettings,
+    frames=FrameSettings, cueing=MotionCueingSettings, queue=QueueSettings)
 TrajectoryNodeSettings = node_settings_class(
     'TrajectoryNodeSettings', "trajectory_node's settings.", geometry=GeometrySettings,
     actuators=ActuatorSettings, frames=FrameSettings, ramp=RampSettings, motion=MotionSettings,

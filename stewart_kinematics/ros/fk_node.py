@@ -21,15 +21,16 @@ Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), `
 the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
 in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
 the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at
-the last pose), the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on
-``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good
-solution, since a platform moves continuously, and falls back to the home pose when that fails; the
-service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for
-homing and restarts. What to publish and what to refuse is decided by
+the last pose; the velocity of the tool frame's origin and the angular velocity, like every pose
+topic about the tool frame's point), the platform frame on ``/tf`` (with the same stamp) and the
+user and tool frames on ``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve
+starts from the last good solution, since a platform moves continuously, and falls back to the home
+pose when that fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve
+start from the home pose, for homing and restarts. What to publish and what to refuse is decided by
 :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
 solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
-assembly mode); the node converts the messages, publishes, and counts each refusal and each
-warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
+assembly mode); the node converts the messages, publishes, and counts each refusal and each warning
+(near a singularity) with the core's reason on the log and ``/diagnostics``.
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
 nearest other real assembly mode within the limits is computed in a worker process (a thread
@@ -54,6 +55,7 @@ from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
 from stewart_kinematics.decisions.pose_tracker import margin_status, PoseTracker
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     FkNodeSettings,
@@ -186,7 +188,7 @@ class FkNode(Node):
         estimate = self.estimate(lengths, message.header, self.joint_state_accounting,
                                  velocities)
         if estimate.twist is not None:
-            self.twist_publisher.publish(twist_to_message(estimate.twist))
+            self.twist_publisher.publish(twist_to_message(self.tool_twist(estimate.twist)))
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""
@@ -196,7 +198,13 @@ class FkNode(Node):
         if not twist.accepted:
             self.velocity_accounting.reject(twist.refusal)
             return
-        self.velocity_accounting.publish(self.twist_publisher, twist_to_message(twist.twist))
+        self.velocity_accounting.publish(self.twist_publisher,
+                                         twist_to_message(self.tool_twist(twist.twist)))
+
+    def tool_twist(self, twist):
+        """Move the platform origin's twist at the last pose to the tool frame's origin."""
+        return self.frames.tool_twist_from_platform(
+            twist, euler_zyx_to_matrix(self.tracker.last_pose[3:]))
 
     def on_reset_tracker(self, request: Trigger.Request, response: Trigger.Response):
         """Forget the last solution: the next solve starts from the home pose."""

@@ -18,7 +18,8 @@ Inverse kinematics node: a commanded platform pose in, six leg lengths out.
 Subscribes ``target_pose`` (geometry_msgs/msg/Pose, base frame) or ``target_pose_stamped``
 (geometry_msgs/msg/PoseStamped, base frame or user frame), metres: the pose of the tool frame
 (:mod:`stewart_kinematics.model.frames`; by default the platform frame itself), and
-``target_twist`` (geometry_msgs/msg/Twist, base frame).
+``target_twist`` (geometry_msgs/msg/Twist, base frame: the velocity of the tool frame's origin
+and the angular velocity, like every pose topic about the tool frame's point).
 
 Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6),
 ``leg_extensions`` (the same layout: each length minus its length at the home pose, the
@@ -250,11 +251,14 @@ class IkNode(Node):
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):
-        """Publish the leg velocities of a platform twist at the last accepted pose."""
+        """Publish the leg velocities of a tool-frame twist at the last accepted pose."""
         self.twist_accounting.receive()
         linear, angular = message.linear, message.angular
-        command = self.check.twist((linear.x, linear.y, linear.z, angular.x, angular.y,
-                                    angular.z))
+        twist = (linear.x, linear.y, linear.z, angular.x, angular.y, angular.z)
+        if self.check.last_pose is not None:
+            # About the tool frame's origin, as every pose topic: moved to the platform's.
+            twist = self.frames.platform_twist_from_tool(twist, self.check.last_pose[1])
+        command = self.check.twist(twist)
         for warning in command.warnings:
             self.twist_accounting.warn(warning)
         if not command.accepted:

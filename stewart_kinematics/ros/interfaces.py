@@ -112,8 +112,8 @@ IK_NODE = NodeInterface('ik_node', (
              "The same with a header: in `base_frame` (or `''`) or `user_frame`, another "
              'frame is refused with the reason; its stamp is carried to `joint_commands`.'),
     Endpoint('target_twist', SUBSCRIPTION, 'geometry_msgs/msg/Twist', QUEUE,
-             'Platform velocity (m/s) and angular velocity (rad/s), base frame, applied at '
-             'the last accepted pose.'),
+             "Velocity of the tool frame's origin (m/s) and angular velocity (rad/s), base "
+             'frame (about the same point as the poses), applied at the last accepted pose.'),
     Endpoint('leg_lengths', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
              'Six leg lengths of each accepted pose, metres, leg 1..6; layout: one dimension '
              'labelled `leg`, size 6.'),
@@ -173,8 +173,8 @@ FK_NODE = NodeInterface('fk_node', (
              'joint state it comes from (or the time of arrival); built only while someone '
              'subscribes.'),
     Endpoint('estimated_twist', PUBLISHER, 'geometry_msgs/msg/Twist', QUEUE,
-             'Platform velocity and angular velocity (m/s, rad/s, base frame) from leg '
-             'velocities.'),
+             "Velocity of the tool frame's origin and angular velocity (m/s, rad/s, base "
+             'frame: about the same point as the poses) from leg velocities.'),
     Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
              '`base_frame` -> `platform_frame`: the estimated platform pose, with the stamp of '
              'the lengths it comes from; sent only while someone listens (needs tf2_msgs).',
@@ -194,18 +194,23 @@ FK_NODE = NodeInterface('fk_node', (
 
 TRAJECTORY_NODE = NodeInterface('trajectory_node', (
     Endpoint('pose_trajectory', SUBSCRIPTION, 'trajectory_msgs/msg/MultiDOFJointTrajectory',
-             QUEUE, 'Waypoints of one joint, the platform: per point one transform (the '
-             'platform frame in `base_frame`), `time_from_start` (strictly increasing; the '
-             'first point is time 0 of the output), optionally one twist (base frame) on every '
-             'point. Checked whole, timed or retimed, then handed on.'),
+             QUEUE, 'Waypoints of one joint, the tool frame (by default the platform frame): '
+             'per point one transform (the tool frame in the header frame, `base_frame` or '
+             '`user_frame`), `time_from_start` (0 to 1e6 s, strictly increasing; the first '
+             'point is time 0 of the output), optionally one twist on every point (about the '
+             "tool frame's origin, header frame) and with them one acceleration (then the "
+             'motion is C2). Planned in a worker: checked whole, timed or retimed, then handed '
+             'on; a newer trajectory or path replaces one not yet decided (`superseded`).'),
     Endpoint('pose_path', SUBSCRIPTION, 'nav_msgs/msg/Path', QUEUE,
-             'Waypoints without timing, in `base_frame`: always retimed.'),
+             'Waypoints of the tool frame without timing, in `base_frame` or `user_frame`: '
+             'always retimed (repeated waypoints merged).'),
     Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
              "The ramp's poses (tool frame, base frame, metres, unit quaternion); with `play`, "
-             'the poses of an accepted trajectory at `publish_rate`.'),
+             "the tool frame's poses of an accepted trajectory at `publish_rate`."),
     Endpoint('leg_trajectory', PUBLISHER, 'trajectory_msgs/msg/JointTrajectory', QUEUE,
              'An accepted trajectory for the actuators: `joint_names`, and per point (every '
-             '`1 / publish_rate` s and at every waypoint) the actuator positions (leg length '
+             '`1 / publish_rate` s or closer, at most 256 between two waypoints, and at every '
+             'waypoint) the actuator positions (leg length '
              'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2) and '
              '`time_from_start`, as joint_trajectory_controller takes it.'),
     Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
@@ -213,9 +218,31 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
              'refused trajectory.'),
 ))
 
+MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
+    Endpoint('vehicle_imu', SUBSCRIPTION, 'sensor_msgs/msg/Imu', QUEUE,
+             "The vehicle's specific force (linear_acceleration, m/s^2: 9.81 on z at rest) and "
+             "angular velocity (rad/s) at the driver's head, vehicle frame (x forward, y left, "
+             'z up); header.stamp sets the time step; the orientation is not used'),
+    Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
+             'The cue as the pose of the tool frame in the base frame, one per sample (and while '
+             'easing home after input_timeout), for ik_node'),
+    Endpoint('cue_pose', PUBLISHER, 'geometry_msgs/msg/PoseStamped', QUEUE,
+             'The platform frame in base_frame, with the stamp of the sample: for VR motion '
+             'compensation and RViz'),
+    Endpoint('perceived_accel', PUBLISHER, 'geometry_msgs/msg/AccelStamped', QUEUE,
+             'The specific force felt at head_position (platform frame, m/s^2) in accel.linear, '
+             'with the stamp of the sample it belongs to (one sample behind); accel.angular is '
+             'zero'),
+    Endpoint('reset', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Wash out to neutral: the washout forgets its history, the platform glides home '
+             'within the actuator limits'),
+    DIAGNOSTICS_TOPIC,
+))
+
 #: Every node's interface, by node name.
 NODE_INTERFACES = {
-    interface.node: interface for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE)}
+    interface.node: interface
+    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE)}
 
 
 def markdown_table(interface: NodeInterface) -> str:

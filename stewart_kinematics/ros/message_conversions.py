@@ -37,6 +37,7 @@ from stewart_kinematics.model.rotations import (
     quaternion_to_euler_zyx,
 )
 from stewart_kinematics.motion.leg_trajectory import LegTrajectory
+from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
 #: Label of the one layout dimension of a leg array message.
@@ -185,80 +186,104 @@ def duration_message(value: float) -> Duration:
     return Duration(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
 
 
-def check_frame(frame_id: str, base_frame: str, what: str) -> None:
+def pose_trajectory_from_message(message: MultiDOFJointTrajectory) -> dict:
     """
-    Refuse a frame other than ``base_frame`` (an empty frame counts as ``base_frame``).
+    Waypoints of a trajectory_msgs/msg/MultiDOFJointTrajectory of one joint, the tool frame.
 
-    :raises ValueError: naming the frame and what to do.
+    Each point's transform places the tool frame (by default the platform frame) in the
+    message's frame; its twist (about the tool frame's origin, in that frame) is used when
+    every point has one, and its acceleration when every point has one too (the trajectory is
+    then C2, see :class:`stewart_kinematics.PoseTrajectory`). The times are not checked here:
+    :class:`stewart_kinematics.MotionPlanner` says what is wrong with them.
+
+    :returns: keyword arguments of :meth:`stewart_kinematics.MotionPlanner.plan_trajectory`:
+        ``times`` (time_from_start, seconds), ``positions`` (N, 3), ``quaternions`` (N, 4)
+        and, when given, ``velocities``, ``angular_velocities``, ``accelerations`` and
+        ``angular_accelerations`` (N, 3) each; ``frame_id``, the header's.
+    :raises ValueError: if there is not one joint, a point has not one transform, only some
+        points have velocities (or accelerations), or a quaternion is zero or not finite.
     """
-    if frame_id and frame_id != base_frame:
-        raise ValueError(f"{what} is in frame '{frame_id}', not in base_frame "
-                         f"'{base_frame}'; transform it first")
-
-
-def pose_trajectory_from_message(message: MultiDOFJointTrajectory, base_frame: str) -> dict:
-    """
-    Waypoints of a trajectory_msgs/msg/MultiDOFJointTrajectory of one joint, the platform.
-
-    Transforms place the platform frame in the base frame; velocities (twists, base frame)
-    are used when every point has one; accelerations are not used (the interpolation is a
-    cubic through positions and velocities).
-
-    :returns: keyword arguments of :meth:`stewart_kinematics.PoseTrajectory.from_quaternions`:
-        ``times`` (time_from_start, seconds), ``positions``, ``quaternions`` and, when given,
-        ``velocities`` and ``angular_velocities``.
-    :raises ValueError: if the frame is not ``base_frame``, there is not one joint, a point
-        has not one transform, only some points have velocities, or a value is not finite.
-    """
-    check_frame(message.header.frame_id, base_frame, 'the trajectory')
     if len(message.joint_names) > 1:
         raise ValueError(f'the trajectory must have one joint, the platform; got '
                          f'{len(message.joint_names)}: {list(message.joint_names)}')
     points = message.points
+    _check_count(len(points))
     if any(len(point.transforms) != 1 for point in points):
         raise ValueError('every trajectory point must have exactly one transform (the '
-                         'platform in the base frame)')
+                         'platform, or the tool frame, in the frame of the header)')
     transforms = [point.transforms[0] for point in points]
     arguments = {
-        'times': [seconds(point.time_from_start) for point in points],
-        'positions': [[t.translation.x, t.translation.y, t.translation.z] for t in transforms],
-        'quaternions': [_quaternion(t.rotation, index) for index, t in enumerate(transforms)],
+        'times': np.array([seconds(point.time_from_start) for point in points], dtype=float),
+        'positions': _rows([(t.translation.x, t.translation.y, t.translation.z)
+                            for t in transforms], 3),
+        'quaternions': _unit_quaternions(_rows([(t.rotation.x, t.rotation.y, t.rotation.z,
+                                                 t.rotation.w) for t in transforms], 4)),
+        'frame_id': message.header.frame_id,
     }
-    with_velocity = [len(point.velocities) == 1 for point in points]
-    if all(with_velocity) and points:
-        twists = [point.velocities[0] for point in points]
-        arguments['velocities'] = [[v.linear.x, v.linear.y, v.linear.z] for v in twists]
-        arguments['angular_velocities'] = [[v.angular.x, v.angular.y, v.angular.z]
-                                           for v in twists]
-    elif any(len(point.velocities) for point in points):
-        raise ValueError('velocities must be given for every point (one twist each) or for '
-                         'none')
+    for field, names in (('velocities', ('velocities', 'angular_velocities')),
+                         ('accelerations', ('accelerations', 'angular_accelerations'))):
+        counts = [len(getattr(point, field)) for point in points]
+        if points and all(count == 1 for count in counts):
+            twists = [getattr(point, field)[0] for point in points]
+            arguments[names[0]] = _rows([(v.linear.x, v.linear.y, v.linear.z)
+                                         for v in twists], 3)
+            arguments[names[1]] = _rows([(v.angular.x, v.angular.y, v.angular.z)
+                                         for v in twists], 3)
+        elif any(counts):
+            raise ValueError(f'{field} must be given for every point (one twist each) or for '
+                             'none')
     return arguments
 
 
-def path_from_message(message: Path, base_frame: str):
+def path_from_message(message: Path):
     """
     Positions and quaternions of the waypoints of a nav_msgs/msg/Path (no timing).
 
-    :returns: ``(positions (N, 3), quaternions (N, 4))``, metres and unit quaternions.
-    :raises ValueError: if the path or a pose is in another frame than ``base_frame``, or a
-        value is not finite.
+    :returns: ``(positions (N, 3), quaternions (N, 4), frame_id)``, metres and unit
+        quaternions, in the path's frame (a pose's own frame may be empty or the same).
+    :raises ValueError: if a pose is in another frame than the path, or a quaternion is zero
+        or not finite.
     """
-    check_frame(message.header.frame_id, base_frame, 'the path')
-    positions, quaternions = [], []
+    frame_id = message.header.frame_id
+    _check_count(len(message.poses))
     for index, stamped in enumerate(message.poses):
-        check_frame(stamped.header.frame_id, base_frame, f'pose {index} of the path')
-        point = stamped.pose.position
-        positions.append([point.x, point.y, point.z])
-        quaternions.append(_quaternion(stamped.pose.orientation, index))
-    return np.array(positions, dtype=float).reshape(-1, 3), np.array(quaternions).reshape(-1, 4)
+        if stamped.header.frame_id and stamped.header.frame_id != frame_id:
+            raise ValueError(f'pose {index} of the path is in frame '
+                             f"'{stamped.header.frame_id}', not in the path's frame "
+                             f"'{frame_id}'")
+    poses = [stamped.pose for stamped in message.poses]
+    positions = _rows([(p.position.x, p.position.y, p.position.z) for p in poses], 3)
+    quaternions = _unit_quaternions(_rows([(p.orientation.x, p.orientation.y,
+                                            p.orientation.z, p.orientation.w)
+                                           for p in poses], 4))
+    return positions, quaternions, frame_id
 
 
-def _quaternion(orientation, index):
-    try:
-        return normalize_quaternion([orientation.x, orientation.y, orientation.z, orientation.w])
-    except ValueError as error:
-        raise ValueError(f'point {index}: {error}') from error
+def _check_count(count):
+    """Refuse more waypoints than a trajectory may have before converting any (ValueError)."""
+    if count > MAX_WAYPOINTS:
+        raise ValueError(f'a trajectory may have at most {MAX_WAYPOINTS:,} waypoints, got '
+                         f'{count:,}: send it in parts')
+
+
+def _rows(values, width):
+    """Return a float array of shape (N, width), also for no rows."""
+    return np.array(values, dtype=float).reshape(-1, width)
+
+
+def _unit_quaternions(quaternions):
+    """
+    Normalise quaternions ``(x, y, z, w)``, shape (N, 4).
+
+    :raises ValueError: naming the first point whose quaternion is zero or not finite.
+    """
+    norms = np.linalg.norm(quaternions, axis=-1)
+    bad = ~np.isfinite(norms) | (norms < 1e-12)
+    if bad.any():
+        index = int(np.argmax(bad))
+        raise ValueError(f'point {index}: a quaternion must be finite and not zero, got '
+                         f'{quaternions[index].tolist()}')
+    return quaternions / norms[:, None]
 
 
 def joint_trajectory_message(header, trajectory: LegTrajectory) -> JointTrajectory:

@@ -196,6 +196,24 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             signal.signal(number, handler)
 
 
+def hand_to_executor(node, callback) -> bool:
+    """
+    Have ``callback()`` called by the executor that spins ``node``; safe from any thread.
+
+    The worker threads' way back to the executor (ik_node's workspace results, trajectory_node's
+    plans): ``executor.create_task``, which both executors take from another thread and which
+    wakes them. The EventsExecutor supports no guard condition, the usual way.
+
+    :returns: whether it was handed over: not while the node is in no executor (the caller
+        keeps what it had to deliver and tries again later).
+    """
+    executor = node.executor
+    if executor is None:
+        return False
+    executor.create_task(callback)
+    return True
+
+
 def create_output_publisher(node, endpoint, qos):
     """
     Create a declared publisher (by default reliable, keep-last) without rclpy's event handlers.

@@ -24,31 +24,40 @@ failing samples, rather than play half of the ramp. ``mode: 'off'`` plays no ram
 played when, and the check, are :class:`stewart_kinematics.motion.ramp.RampSchedule`'s.
 
 Trajectories: ``pose_trajectory`` (trajectory_msgs/msg/MultiDOFJointTrajectory, one joint,
-the platform) and ``pose_path`` (nav_msgs/msg/Path, waypoints without timing) are checked whole
-and timed by :func:`stewart_kinematics.plan_motion` (retimed with ``retime`` or for a path);
-an accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
+the tool frame, with its twists and accelerations when given) and ``pose_path``
+(nav_msgs/msg/Path, waypoints without timing), in the base frame or the user frame, are
+planned by :class:`stewart_kinematics.MotionPlanner`: moved from the tool frame to the
+platform frame, checked whole and timed (retimed with ``retime``, and always for a path). An
+accepted one goes out on ``leg_trajectory`` (trajectory_msgs/msg/JointTrajectory: the
 actuators' positions, velocities and accelerations, for joint_trajectory_controller) and, with
-``play``, as poses on ``target_pose`` at ``publish_rate``. A refused one publishes nothing; the
-reason (time, segment, leg, limit) goes to the log and ``/diagnostics``. So does a trajectory
-received while the tool frame is offset from the platform frame
-(:func:`~stewart_kinematics.motion.trajectory_check.trajectory_frame_refusal`).
+``play``, as poses of the tool frame on ``target_pose`` at ``publish_rate``. A refused one
+publishes nothing; the reason (time, waypoints, leg, limit) goes to the log and
+``/diagnostics``.
+
+Planning runs in a worker thread (:class:`PlanningWorker`), never in the executor: the node
+answers parameters, services and diagnostics, and takes new messages, while a long trajectory
+is checked. A new trajectory or path replaces the one being planned, which is answered with
+``superseded``; a stop (SIGINT) cancels it within one step of the work (about 0.1 s). A
+parameter changed at run time (tool frame, ``retime``, ``speed_scale``, ``validation_rate``,
+``play``) applies from the next message on, exactly as it would from a start-up with it.
 """
 
+from dataclasses import dataclass, field
+import os
 import threading
-
+from typing import Any, Callable, Optional
 
 from nav_msgs.msg import Path
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY
-from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY, PLANNING_ERROR, SUPERSEDED
+from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.leg_trajectory import leg_trajectory
-from stewart_kinematics.motion.planning import plan_motion
-from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+from stewart_kinematics.motion.planning import MotionPlanner
 from stewart_kinematics.motion.ramp import RampSchedule
-from stewart_kinematics.motion.retiming import load_retiming
-from stewart_kinematics.motion.trajectory_check import trajectory_frame_refusal
+from stewart_kinematics.motion.retiming import Cancelled, load_retiming
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     actuator_limits_from_settings,
@@ -69,13 +78,19 @@ from stewart_kinematics.ros.message_conversions import (
 from stewart_kinematics.ros.node_main import (
     create_input_subscription,
     create_output_publisher,
+    hand_to_executor,
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
-from trajectory_msgs.msg import MultiDOFJointTrajectory
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
+#: Longest a stopping node waits for the worker to leave the step it is in, seconds (then
+#: it leaves it behind: a daemon thread, which publishes nothing once the node is closed).
+WORKER_STOP_TIMEOUT = 0.25
+#: Scheduling priority of the planning thread below the executor's (nice(2) increment).
+WORKER_NICENESS = 10
 
 
 class TrajectoryNode(Node):
@@ -93,12 +108,13 @@ class TrajectoryNode(Node):
         self.schedule = RampSchedule.from_settings(settings.ramp)
         self.rows = self.schedule.ramp.rows
         self.frames = frames_from_settings(settings.frames)
+        self.planner = self.make_planner(settings)
         refusal = self.schedule.check(self.geometry, self.frames)
         if refusal is not None:
             raise ValueError(refusal.message)     # the node cannot start: main() says why
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
-        # and the ramp, not in the first callback; a callback that needs them meanwhile waits
-        # for the import to finish (Python's import lock).
+        # and the ramp, not in the first plan; a plan that needs them meanwhile waits for the
+        # import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
         depth = settings.queue.queue_depth
         self.publisher = create_output_publisher(self, TRAJECTORY_NODE['target_pose'], depth)
@@ -107,6 +123,7 @@ class TrajectoryNode(Node):
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
+        self.worker = PlanningWorker(self, self.on_planned)
         create_input_subscription(
             self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
         create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
@@ -124,11 +141,28 @@ class TrajectoryNode(Node):
                 f'{settings.ramp.mode} ramp of {len(self.rows)} rows, '
                 + ('looping' if settings.ramp.loop else 'once'))
 
+    def make_planner(self, settings) -> 'PlanSettings':
+        """Build the planner and the output settings of ``settings``, as at start-up."""
+        motion = settings.motion
+        return PlanSettings(
+            MotionPlanner(self.geometry, self.actuator_limits,
+                          frames_from_settings(settings.frames), retime=motion.retime,
+                          speed_scale=motion.speed_scale,
+                          validation_rate=motion.validation_rate),
+            self.actuators, settings.ramp.publish_rate, motion.play, settings.frames.base_frame)
+
     def on_parameter_change(self, name, value):
         """Take a validated run-time change (the motion settings, the tool frame) from now on."""
         self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             self.frames = frames_from_settings(self.settings.frames)
+        # A new planner for the next message; the one being planned keeps its own.
+        self.planner = self.make_planner(self.settings)
+
+    def destroy_node(self):
+        """Stop the worker (a plan under way is cancelled), then destroy the node."""
+        self.worker.close()
+        return super().destroy_node()
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""
@@ -179,73 +213,233 @@ class TrajectoryNode(Node):
             self.get_logger().info(f'ramp finished: {self.published} poses published')
 
     def on_pose_trajectory(self, message: MultiDOFJointTrajectory):
-        """Check, time (with ``retime``) and publish a platform trajectory, or refuse it."""
+        """Hand a platform trajectory to the worker: checked and timed (``retime``) there."""
         self.trajectory_accounting.receive()
-        try:
-            path = PoseTrajectory.from_quaternions(
-                **pose_trajectory_from_message(message, self.settings.frames.base_frame))
-        except ValueError as error:
-            self.trajectory_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
-            return
-        self.plan(path, self.settings.motion.retime, self.trajectory_accounting)
+        settings = self.planner
+        self.worker.submit(PlanningJob(
+            self.trajectory_accounting, settings, len(message.points), lambda cancel: (
+                settings.planner.plan_trajectory(**pose_trajectory_from_message(message),
+                                                 cancel=cancel))))
 
     def on_pose_path(self, message: Path):
-        """Check, retime and publish a path of waypoints without timing, or refuse it."""
+        """Hand a path of waypoints without timing to the worker: always retimed there."""
         self.path_accounting.receive()
-        try:
-            positions, quaternions = path_from_message(message, self.settings.frames.base_frame)
-            path = PoseTrajectory.path(self.geometry, positions,
-                                       quaternion_to_matrix(quaternions))
-        except ValueError as error:
-            self.path_accounting.reject(Finding(INVALID_TRAJECTORY, str(error)))
-            return
-        self.plan(path, True, self.path_accounting)
+        settings = self.planner
 
-    def plan(self, path, retime, accounting):
-        """Check and time a path; publish its leg trajectory (and play it) or count the refusal."""
-        refusal = trajectory_frame_refusal(self.frames, accounting.topic)
-        if refusal is not None:
-            accounting.reject(refusal)
+        def plan(cancel):
+            positions, quaternions, frame_id = path_from_message(message)
+            return settings.planner.plan_path(positions, quaternions, frame_id, cancel=cancel)
+        self.worker.submit(PlanningJob(self.path_accounting, settings, len(message.poses), plan))
+
+    def on_planned(self, job: 'PlanningJob', outcome):
+        """
+        Publish a plan the worker finished, or count its refusal (executor thread).
+
+        :param outcome: a :class:`PlannedTrajectory`, a :class:`Finding` (superseded, or an
+            error of the worker), never an exception.
+        """
+        accounting = job.accounting
+        if isinstance(outcome, Finding):
+            accounting.reject(outcome)
             return
-        plan = plan_motion(path, self.geometry, self.actuator_limits, retime_path=retime,
-                           speed_scale=self.settings.motion.speed_scale,
-                           validation_rate=self.settings.motion.validation_rate)
+        plan = outcome.plan
         if not plan.accepted:
             accounting.reject(plan.refusal)
             return
-        points = leg_trajectory(plan.trajectory, self.geometry, self.actuators,
-                                self.settings.ramp.publish_rate)
-        header = Header(stamp=self.get_clock().now().to_msg(),
-                        frame_id=self.settings.frames.base_frame)
-        accounting.publish(self.leg_trajectory_publisher,
-                           joint_trajectory_message(header, points))
+        message = outcome.message
+        message.header = Header(stamp=self.get_clock().now().to_msg(),
+                                frame_id=job.settings.base_frame)
+        accounting.publish(self.leg_trajectory_publisher, message)
         self.get_logger().info(
-            f'{accounting.topic}: {path.waypoint_count} waypoints accepted, '
+            f'{accounting.topic}: {job.waypoints} waypoints accepted, '
             + ('retimed to ' if plan.retimed else 'timed ')
-            + f'{plan.trajectory.duration:.3f} s; {len(points.times)} points on leg_trajectory')
-        if self.settings.motion.play:
-            self.play(plan.trajectory)
+            + f'{plan.trajectory.duration:.3f} s; {len(message.points)} points on '
+            'leg_trajectory')
+        if job.settings.play:
+            self.play(plan.trajectory, job.settings)
 
-    def play(self, trajectory):
-        """Stream a timed trajectory's poses on ``target_pose``; a new one replaces it."""
+    def play(self, trajectory, settings: 'PlanSettings'):
+        """Stream a timed trajectory's tool poses on ``target_pose``; a new one replaces it."""
         if self.play_timer is not None:
             self.play_timer.cancel()
             self.destroy_timer(self.play_timer)
-        self.playing = trajectory
+        self.playing = trajectory, settings.planner.frames
         self.play_start = self.get_clock().now()
-        self.play_timer = self.create_timer(1.0 / self.settings.ramp.publish_rate,
-                                            self.publish_playing)
+        self.play_timer = self.create_timer(1.0 / settings.publish_rate, self.publish_playing)
         self.publish_playing()
 
     def publish_playing(self):
-        """Publish the pose of the trajectory being played at the current time."""
+        """Publish the tool frame's pose on the trajectory being played, at the current time."""
+        trajectory, frames = self.playing
         elapsed = (self.get_clock().now() - self.play_start).nanoseconds * 1e-9
-        duration = self.playing.duration
-        sample = self.playing.sample([min(elapsed, duration)])
-        self.publisher.publish(pose_message(sample.positions[0], sample.rotations[0]))
+        duration = trajectory.duration
+        sample = trajectory.sample([min(elapsed, duration)])
+        tool = frames.tool_from_platform(Transform(sample.positions[0], sample.rotations[0]))
+        self.publisher.publish(pose_message(tool.position, tool.rotation))
         self.published += 1
         if elapsed >= duration:
             self.play_timer.cancel()
+
+
+@dataclass(frozen=True)
+class PlanSettings:
+    """
+    What a trajectory is planned and published with: one snapshot of the parameters.
+
+    :param planner: the core's planner (geometry, limits, frames, retiming, check rate).
+    :param actuators: joint names and offsets of leg_trajectory.
+    :param publish_rate: points per second of leg_trajectory, and of the poses played.
+    :param play: also play an accepted trajectory on target_pose.
+    :param base_frame: frame of leg_trajectory's header.
+    """
+
+    planner: MotionPlanner
+    actuators: ActuatorInterface
+    publish_rate: float
+    play: bool
+    base_frame: str
+
+
+@dataclass
+class PlanningJob:
+    """
+    One message to plan in the worker.
+
+    :param accounting: the input's message accounting (where its answer is counted).
+    :param settings: the parameters it is planned with (those when it arrived).
+    :param waypoints: how many waypoints the message has, for the log.
+    :param plan: ``plan(cancel) -> MotionPlan``: converts the message and plans it.
+    """
+
+    accounting: Any
+    settings: PlanSettings
+    waypoints: int
+    plan: Callable
+    cancel: threading.Event = field(default_factory=threading.Event)
+
+    def run(self):
+        """
+        Plan, then sample and convert an accepted plan (worker thread).
+
+        :returns: a :class:`PlannedTrajectory`, or the :class:`Finding` of a message that
+            cannot be converted.
+        :raises Cancelled: when ``cancel`` is set meanwhile.
+        """
+        try:
+            plan = self.plan(self.cancel)
+        except ValueError as error:   # the message cannot be converted
+            return Finding(INVALID_TRAJECTORY, str(error))
+        if not plan.accepted:
+            return PlannedTrajectory(plan)
+        points = leg_trajectory(plan.trajectory, self.settings.planner.geometry,
+                                self.settings.actuators, self.settings.publish_rate)
+        return PlannedTrajectory(plan, joint_trajectory_message(Header(), points))
+
+
+@dataclass(frozen=True)
+class PlannedTrajectory:
+    """An answer of the worker: the plan and, accepted, its leg_trajectory message."""
+
+    plan: Any
+    message: Optional[JointTrajectory] = None
+
+
+class PlanningWorker:
+    """
+    A thread that plans one message at a time, off the executor; the newest replaces the rest.
+
+    :meth:`submit` (executor thread) makes a job the next one: a job still waiting is answered
+    ``superseded`` at once, and the one running is cancelled (its work stops at its next step
+    and it is answered ``superseded`` too). Each answer goes back to the node's executor as a
+    task (:func:`~stewart_kinematics.ros.node_main.hand_to_executor`; the EventsExecutor
+    supports no guard condition), which calls ``on_done(job, outcome)`` there, so that all
+    publishing and counting happens on the executor. An unexpected error in the work (a bug)
+    is answered with ``planning_error`` and the thread goes on. :meth:`close` cancels the work
+    and waits at most :data:`WORKER_STOP_TIMEOUT` for the thread (a daemon, so it never holds
+    up the exit).
+
+    :param node: the node whose executor gets the answers.
+    :param on_done: ``on_done(job, outcome)``, outcome a :class:`PlannedTrajectory` or a
+        :class:`Finding`.
+    """
+
+    def __init__(self, node, on_done):
+        self.node = node
+        self.on_done = on_done
+        self._condition = threading.Condition()
+        self._next = None
+        self._running = None
+        self._answers = []
+        self._closed = False
+        self._thread = threading.Thread(target=self._serve, name='trajectory planning',
+                                        daemon=True)
+        self._thread.start()
+
+    def submit(self, job: PlanningJob) -> None:
+        """Plan ``job`` next: it replaces a job waiting, and cancels the one running."""
+        with self._condition:
+            replaced, self._next = self._next, job
+            if self._running is not None:
+                self._running.cancel.set()
+            self._condition.notify()
+        if replaced is not None:
+            self.on_done(replaced, _superseded(replaced))
+
+    def _serve(self):
+        # Below the executor's thread: on a busy machine the kernel runs the node's callbacks
+        # first (Linux gives each thread its own niceness).
+        try:
+            os.setpriority(os.PRIO_PROCESS, threading.get_native_id(), WORKER_NICENESS)
+        except (AttributeError, OSError):  # not Linux: the thread runs at the node's priority
+            pass
+        while True:
+            with self._condition:
+                while self._next is None and not self._closed:
+                    self._condition.wait()
+                if self._closed:
+                    return
+                job, self._next = self._next, None
+                self._running = job
+            try:
+                outcome = job.run()
+            except Cancelled:
+                outcome = _superseded(job)
+            except Exception as error:  # noqa: B902 - a bug must not leave messages unanswered
+                outcome = Finding(PLANNING_ERROR, f'planning failed unexpectedly: '
+                                  f'{type(error).__name__}: {error}')
+            with self._condition:
+                self._running = None
+                if self._closed:
+                    return
+                self._answers.append((job, outcome))
+                # Under the lock: close() marks the worker closed only after it.
+                hand_to_executor(self.node, self._deliver)
+
+    def _deliver(self):
+        """Hand the finished answers to ``on_done`` (executor thread)."""
+        with self._condition:
+            if self._closed:   # a task queued before the node was destroyed
+                return
+            answers, self._answers = self._answers, []
+        for job, outcome in answers:
+            self.on_done(job, outcome)
+
+    def close(self) -> None:
+        """Cancel the work under way and stop the thread."""
+        with self._condition:
+            self._closed = True
+            if self._running is not None:
+                self._running.cancel.set()
+                self.node.get_logger().info(
+                    f'{self._running.accounting.topic}: planning cancelled, the node stops')
+            self._condition.notify()
+        self._thread.join(WORKER_STOP_TIMEOUT)
+
+
+def _superseded(job):
+    """Return the answer of a job that a newer message replaced."""
+    return Finding(SUPERSEDED, f'{job.accounting.topic}: replaced by a newer trajectory or path '
+                   'before it was decided')
 
 
 def main(args=None) -> int:

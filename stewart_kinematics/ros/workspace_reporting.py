@@ -19,9 +19,9 @@ ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off th
 The core's :mod:`stewart_kinematics.analysis.workspace` does the work in a worker process of its
 own (:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
 measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. Each
-result is handed back to the node's executor as a task (``executor.create_task``, safe from
-another thread on both executors the nodes run on; the EventsExecutor supports no guard
-condition), which only converts and publishes. So a 3 s workspace computation or a 0.2 s
+result is handed back to the node's executor as a task
+(:func:`~stewart_kinematics.ros.node_main.hand_to_executor`; the EventsExecutor supports no
+guard condition), which only converts and publishes. So a 3 s workspace computation or a 0.2 s
 travel range never holds up a pose in the command stream, and at most one job of each kind is
 in flight: a travel range due while the last one is still running is skipped.
 """
@@ -38,7 +38,7 @@ from stewart_kinematics.analysis import workspace
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
-from stewart_kinematics.ros.node_main import create_output_publisher
+from stewart_kinematics.ros.node_main import create_output_publisher, hand_to_executor
 
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
@@ -164,10 +164,8 @@ class WorkspaceReporter:
             if self.closed:
                 return
             self.results[kind] = (generation, value)
-            executor = self.node.executor
             # Under the lock: shutdown() cannot free the node meanwhile.
-            if executor is not None:
-                executor.create_task(self.publish_results)
+            hand_to_executor(self.node, self.publish_results)
 
     def publish_results(self):
         """Publish the results the worker has finished (executor thread)."""

@@ -1,0 +1,487 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+From the washout's cue to a platform pose that keeps every limit, scaled back smoothly.
+
+Two stages, each reported in the result:
+
+1. **Workspace scale** ``sigma`` in [0, 1]: the cue (the head's displacement and the rotation
+   angles) is scaled toward neutral until its pose keeps every limit of the limits model drawn
+   in by the margins (:func:`~.limit_check.with_margins`). ``sigma`` falls at once when it must
+   and rises again no faster than ``workspace_recovery_rate``; the search runs only when the
+   cue would leave the narrowed limits.
+2. **Follower**: the platform follows the scaled cue's pose within the actuators' leg velocity
+   and acceleration limits. Each step asks for the change of the pose velocity that would keep
+   it on the cue (feed-forward of the cue's own motion, plus a critically damped correction at
+   ``follower_frequency`` when it has fallen behind), and takes the largest fraction
+   ``lambda`` in [0, 1] of that change for which every leg keeps ``|v| <= leg_velocity_max``,
+   ``|dv / dt| <= leg_acceleration_max`` and can still brake to rest inside its stroke
+   (``v dt + v^2 / (2 a) <= distance to the end``). The legs' velocities are nearly affine in
+   ``lambda`` over one step, so ``lambda`` comes from two inverse kinematics and is verified on
+   the exact leg lengths. A cue within the limits is followed exactly (``lambda = 1``, the pose
+   equals the cue's); a cue too fast for the actuators is followed as closely as they allow,
+   never with a jump and never frozen.
+
+The output pose is judged by the limits model (:mod:`.limit_check`): when it equals the cue's
+pose, that pose already passed the narrower limits; otherwise it is checked again. Nothing here
+imports ROS.
+"""
+
+import dataclasses
+from dataclasses import dataclass
+import math
+from typing import Tuple
+
+import numpy as np
+
+from stewart_kinematics.cueing.limit_check import limit_margins, pose_violations, with_margins
+from stewart_kinematics.findings import ACTUATOR_LIMITED, CUE_SCALED, Finding, LIMITS_HELD
+from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.kinematics import (
+    forward_kinematics,
+    inverse_kinematics,
+    twist_jacobian,
+)
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
+
+#: Share of the actuator limits the follower plans with; the rest absorbs the legs'
+#: nonlinearity over one step (verified on the exact lengths).
+PLANNING_SHARE = 0.98
+#: The workspace scale is located to this (a share of the cue), or to a pose this close to the
+#: boundary (metres, radians), within this many evaluations.
+SCALE_TOLERANCE = 1e-9
+SCALE_MARGIN_TOLERANCE = 1e-7
+SCALE_ITERATIONS = 40
+#: The first bracket reaches at least this far below the last step's share.
+SCALE_WINDOW = 0.01
+#: The follower counts as on the cue when every pose coordinate is within this.
+ON_CUE_TOLERANCE = 1e-12
+
+
+@dataclass(frozen=True)
+class LimitedPose:
+    """
+    One step of :class:`CueLimiter`.
+
+    :param pose: the platform pose to command, ``[X, Y, Z, alpha, beta, gamma]``, base frame,
+        metres and radians, shape (6,).
+    :param target: the scaled cue's pose, shape (6,).
+    :param lengths: the leg lengths of ``pose``, metres, shape (6,).
+    :param workspace_scale: ``sigma``, the share of the displacement and of the rotational
+        channel kept to stay inside the limits.
+    :param tilt_scale: the share of the tilt kept (below 1 only when the tilt alone would
+        leave the limits).
+    :param acceleration_scale: ``lambda``, the share of the wanted change of velocity the
+        actuators allowed (1: the cue's motion was followed as asked).
+    :param on_cue: whether ``pose`` equals ``target``.
+    :param findings: warnings: the cue scaled, the actuators limiting, a pose held.
+    """
+
+    pose: np.ndarray
+    target: np.ndarray
+    lengths: np.ndarray
+    workspace_scale: float
+    tilt_scale: float
+    acceleration_scale: float
+    on_cue: bool
+    findings: Tuple[Finding, ...] = ()
+
+
+class CueLimiter:
+    """
+    Turn cues into platform poses within the limits model and the actuator limits.
+
+    :param geometry: the platform, with its limits.
+    :param actuator_limits: leg velocity and acceleration limits (``inf``: none).
+    :param head_position: the cueing reference point in the platform frame, metres, (3,).
+    :param settings: a :class:`~stewart_kinematics.cueing.CueingSettings` (margins, follower
+        bandwidth, recovery rate).
+    :raises ValueError: if the margins leave no room around the home pose.
+    """
+
+    def __init__(self, geometry, actuator_limits: ActuatorLimits, settings):
+        self.geometry = geometry
+        self.actuator_limits = actuator_limits
+        self.settings = settings
+        velocity_max = actuator_limits.velocity_max
+        acceleration_max = actuator_limits.acceleration_max
+        braking = (velocity_max ** 2 / (2.0 * acceleration_max)
+                   if math.isfinite(velocity_max) and math.isfinite(acceleration_max) else 0.0)
+        #: The narrowed limits the cue keeps; the stroke margin covers the braking distance.
+        self.leg_length_margin = max(settings.leg_length_margin, braking)
+        self.cue_geometry = with_margins(geometry, self.leg_length_margin,
+                                         settings.joint_angle_margin, settings.condition_margin)
+        #: The limits a stopping pose is checked against: all but the stroke.
+        self._stop_geometry = dataclasses.replace(geometry, leg_length_min=0.0,
+                                                  leg_length_max=math.inf)
+        self.limits_speed = actuator_limits.limits_speed
+        self._velocity_plan = PLANNING_SHARE * velocity_max
+        self._acceleration_plan = PLANNING_SHARE * acceleration_max
+        home = np.array(geometry.home_pose, dtype=float)
+        self.home_pose = home
+        self.home_rotation = euler_zyx_to_matrix(home[3:])
+        self._home_is_level = bool(np.all(home[3:] == 0.0))
+        self.head_position = np.array(settings.head_position, dtype=float)
+        self.head_home = home[:3] + self.home_rotation @ self.head_position
+        self.home_lengths = inverse_kinematics(geometry, home)
+        self.reset()
+
+    def reset(self) -> None:
+        """Put the platform at rest at the home pose, with the full cue allowed."""
+        self.pose = self.home_pose.copy()
+        self.velocity = np.zeros(6)
+        self.lengths = self.home_lengths.copy()
+        self.leg_velocities = np.zeros(6)
+        self.scale = self.tilt_scale = 1.0
+        self._target = self.home_pose.copy()
+        self._target_velocity = np.zeros(6)
+        self._last_dt = None
+
+    def cue_poses(self, displacement, angles) -> np.ndarray:
+        """
+        Platform poses of cues: the head displaced by ``d`` and the platform turned about it.
+
+        :param displacement: the head's displacement, base frame, metres, (3,) or (N, 3).
+        :param angles: roll, pitch, yaw of the cue, radians, (3,) or (N, 3).
+        :returns: ``[X, Y, Z, alpha, beta, gamma]`` of the platform frame, (6,) or (N, 6):
+            rotation ``R = R_cue R_home``, position ``head_home + d - R head_position``.
+        """
+        displacement = np.asarray(displacement, dtype=float)
+        angles = np.asarray(angles, dtype=float)
+        rotation = euler_zyx_to_matrix(angles)
+        if not self._home_is_level:
+            rotation = rotation @ self.home_rotation
+            angles = matrix_to_euler_zyx(rotation)
+        position = self.head_home + displacement - rotation @ self.head_position
+        return np.concatenate([position, angles], axis=-1)
+
+    def _scaled_target(self, displacement, rotation, tilt, dt):
+        """
+        Return ``(sigma, sigma_tilt, pose)``: the largest allowed shares of the cue.
+
+        The displacement and the rotational channel are scaled first (``sigma``), the tilt
+        only when the tilt alone leaves the narrowed limits (``sigma_tilt``): the tilt's rate
+        limit then holds whatever ``sigma`` does. Both fall at once when they must and rise no
+        faster than ``workspace_recovery_rate``.
+        """
+        recovery = self.settings.workspace_recovery_rate * dt
+        ceiling = min(1.0, self.scale + recovery)
+        tilt_ceiling = min(1.0, self.tilt_scale + recovery)
+        tilt = np.array([tilt[0], tilt[1], 0.0])
+
+        def poses(shares, tilt_shares):
+            shares, tilt_shares = np.atleast_1d(shares)[:, None], np.atleast_1d(tilt_shares)
+            return self.cue_poses(shares * displacement,
+                                  shares * rotation + tilt_shares[:, None] * tilt)
+
+        if self.scale == 1.0 and self.tilt_scale == 1.0:
+            # Off the boundary last time: one check usually settles it.
+            pose = self.cue_poses(displacement, rotation + tilt)
+            if not pose_violations(self.cue_geometry, pose[:3], euler_zyx_to_matrix(pose[3:])):
+                return ceiling, tilt_ceiling, pose
+        found = _largest_allowed(self.cue_geometry, lambda shares: poses(shares, tilt_ceiling),
+                                 ceiling, self.scale)
+        if found is not None:
+            return found[0], tilt_ceiling, found[1]
+        tilt_share, pose = _largest_allowed(self.cue_geometry, lambda shares: poses(
+            np.zeros_like(shares), shares), tilt_ceiling, self.tilt_scale, home_allowed=True)
+        return 0.0, tilt_share, pose
+
+    def step(self, displacement, rotation, tilt, dt: float) -> LimitedPose:
+        """
+        Advance the platform by ``dt`` seconds toward the cue.
+
+        :param displacement: the head's displacement from neutral, base frame, metres, (3,).
+        :param rotation: the rotational channel's roll, pitch, yaw, radians, (3,).
+        :param tilt: the tilt channel's roll and pitch, radians, (2,).
+        :param dt: seconds since the previous step, > 0.
+        """
+        findings = []
+        scale, tilt_scale, target = self._scaled_target(
+            np.asarray(displacement, dtype=float), np.asarray(rotation, dtype=float),
+            np.asarray(tilt, dtype=float), dt)
+        if min(scale, tilt_scale) < 1.0:
+            findings.append(Finding(
+                CUE_SCALED, f'cue scaled to {scale:.3f} of itself (tilt {tilt_scale:.3f}) to '
+                'keep inside the limits', (('workspace_scale', f'{scale:.6g}'),
+                                           ('tilt_scale', f'{tilt_scale:.6g}'))))
+        target_velocity = (target - self._target) / dt
+        gain = min(self.settings.follower_frequency, 0.5 / dt)
+        # The change of the pose velocity that keeps the platform on the cue: the cue's own
+        # change, plus a critically damped pull back onto it when it has fallen behind.
+        wanted = (target_velocity - self._target_velocity + dt * (
+            gain * gain * (self._target - self.pose)
+            + 2.0 * gain * (self._target_velocity - self.velocity)))
+        share, pose, lengths = self._follow(self.pose + dt * (self.velocity + wanted), dt)
+        on_cue = bool(np.all(np.abs(pose - target) <= ON_CUE_TOLERANCE))
+        if not on_cue and not self._keeps_limits(pose, lengths, dt):
+            share, pose, lengths = self._retreat(dt, findings)
+        if share < 1.0:
+            findings.append(Finding(
+                ACTUATOR_LIMITED, f'the cue asks more than the legs can do; followed at '
+                f'{share:.3f} of the change asked', (('acceleration_scale', f'{share:.6g}'),)))
+        self.leg_velocities = (lengths - self.lengths) / dt
+        self.velocity = (pose - self.pose) / dt
+        self.pose, self.lengths = pose, lengths
+        self.scale, self.tilt_scale = scale, tilt_scale
+        self._target, self._target_velocity = target, target_velocity
+        self._last_dt = dt
+        return LimitedPose(pose=pose, target=target, lengths=lengths, workspace_scale=scale,
+                           tilt_scale=tilt_scale, acceleration_scale=share, on_cue=on_cue,
+                           findings=tuple(findings))
+
+    def _leg_bounds(self, dt, stroke=True):
+        """
+        Return the per-leg bounds ``(lower, upper)`` on the next leg velocity.
+
+        Speed, acceleration, and (``stroke``) the braking curve that keeps each leg able to
+        stop inside its stroke.
+        """
+        span = dt if self._last_dt is None else min(dt, 0.5 * (dt + self._last_dt))
+        acceleration = self._acceleration_plan
+        change = acceleration * span
+        speed = self._velocity_plan
+        geometry = self.geometry
+        stroke = stroke and math.isfinite(acceleration)
+        lower, upper = [], []
+        for length, velocity in zip(self.lengths.tolist(), self.leg_velocities.tolist()):
+            low = max(-speed, velocity - change)
+            high = min(speed, velocity + change)
+            if stroke:
+                # v dt + v^2 / (2 a) <= room: one step, then braking at the planned rate.
+                if math.isfinite(geometry.leg_length_max):
+                    room = max(geometry.leg_length_max - length, 0.0)
+                    high = max(low, min(high, acceleration * (
+                        -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
+                if geometry.leg_length_min > 0.0:
+                    room = max(length - geometry.leg_length_min, 0.0)
+                    low = min(high, max(low, -acceleration * (
+                        -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
+            lower.append(low)
+            upper.append(high)
+        return lower, upper
+
+    def _follow(self, wanted_pose, dt):
+        """
+        Return ``(share, pose, lengths)``: ``wanted_pose``, or the nearest the legs allow.
+
+        When the leg velocities that reach ``wanted_pose`` break a leg's bounds
+        (:meth:`_leg_bounds`), the next leg velocities are those within every bound whose
+        motion differs least from the wanted one: a least-squares problem in the platform's
+        twist (metres and radians alike: a degree of rotation costs as much as 17 mm) through
+        the legs' twist Jacobian, with box constraints on each leg
+        (:func:`box_least_squares`). The pose is then the forward kinematics of those lengths,
+        started at the wanted pose. ``share`` is 1 minus the part of the wanted change of
+        motion that the legs could not follow (in that metric).
+        """
+        lengths = inverse_kinematics(self.geometry, wanted_pose)
+        if not self.limits_speed:
+            return 1.0, wanted_pose, lengths
+        wanted = (lengths - self.lengths) / dt
+        lower, upper = self._leg_bounds(dt)
+        if all(low <= value <= high for value, low, high in zip(wanted.tolist(), lower, upper)):
+            return 1.0, wanted_pose, lengths
+        metric = self._twist_metric()
+        velocities = box_least_squares(metric, wanted, np.array(lower), np.array(upper))
+        asked = wanted - self.leg_velocities
+        missed = velocities - wanted
+        asked_size = float(asked @ metric @ asked)
+        share = (max(0.0, 1.0 - math.sqrt(float(missed @ metric @ missed) / asked_size))
+                 if asked_size > 0.0 else 0.0)
+        return self._pose_of(self.lengths + dt * velocities, wanted_pose, min(share, 1.0 - 1e-12))
+
+    def _twist_metric(self) -> np.ndarray:
+        """
+        Return ``J^-T J^-1`` at the current pose, ``J`` the twist Jacobian.
+
+        A change of the leg velocities ``dv`` moves the platform by the twist ``J^-1 dv``; its
+        squared size, metres and radians alike, is ``dv^T J^-T J^-1 dv``.
+        """
+        inverse = np.linalg.inv(twist_jacobian(self.geometry, self.pose[:3],
+                                               euler_zyx_to_matrix(self.pose[3:])))
+        return inverse.T @ inverse
+
+    def _brake(self, dt, guess):
+        """
+        Slow the legs down as fast as their bounds allow; return ``(0, pose, lengths)``.
+
+        The feasible leg velocities nearest to rest in the twist metric (stroke braking curves
+        included).
+        """
+        lower, upper = self._leg_bounds(dt)
+        velocities = box_least_squares(self._twist_metric(), np.zeros(6), np.array(lower),
+                                       np.array(upper))
+        return self._pose_of(self.lengths + dt * velocities, guess, 0.0)
+
+    def _pose_of(self, lengths, guess, share):
+        """Return ``(share, pose, lengths)`` for leg lengths, by forward kinematics."""
+        result = forward_kinematics(self.geometry, lengths, initial_guess=guess)
+        if not result.converged:
+            # Not expected this close to a known pose: stay where the platform is.
+            return 0.0, self.pose.copy(), self.lengths.copy()
+        return share, np.asarray(result.pose, dtype=float), lengths
+
+    def _keeps_limits(self, pose, lengths, dt) -> bool:
+        """
+        Whether ``pose`` and the pose where the platform would stop from it keep the limits.
+
+        A pose inside the narrowed limits passes at once: the margins cover the braking
+        distance. Otherwise braking at the legs' acceleration limit takes
+        ``T = max |v_leg| / a`` and stops about ``velocity T / 2`` further on; a follower that
+        can always still stop inside the limits never has to leave them.
+        """
+        rotation = euler_zyx_to_matrix(pose[3:])
+        if not pose_violations(self.cue_geometry, pose[:3], rotation):
+            # Inside the narrowed limits: the margins cover the braking distance.
+            return True
+        if pose_violations(self.geometry, pose[:3], rotation):
+            return False
+        acceleration = self._acceleration_plan
+        speed = float(np.max(np.abs(lengths - self.lengths))) / dt
+        if not math.isfinite(acceleration) or speed == 0.0:
+            return True
+        # The stroke is kept leg by leg by the braking curves; the stop estimate is for the
+        # joint cones and the singularity margin.
+        stop = pose + (pose - self.pose) / dt * (0.5 * speed / acceleration)
+        return not pose_violations(self._stop_geometry, stop[:3], euler_zyx_to_matrix(stop[3:]))
+
+    def _retreat(self, dt, findings):
+        """
+        Return the next pose when following the cue would leave the limits: brake, or go home.
+
+        A moving platform brakes each leg as hard as it may; one at rest moves toward the
+        home pose (always inside the limits) with the follower's dynamics; if neither keeps
+        the limits, the pose holds (``limits_held``, not expected).
+        """
+        candidates = []
+        if np.any(self.leg_velocities != 0.0) and self.limits_speed:
+            candidates.append(self._brake(dt, self.pose + dt * self.velocity))
+        gain = min(self.settings.follower_frequency, 0.5 / dt)
+        homeward = dt * (gain * gain * (self.home_pose - self.pose) - 2.0 * gain * self.velocity)
+        candidates.append(self._follow(self.pose + dt * (self.velocity + homeward), dt))
+        for _, pose, lengths in candidates:
+            if self._keeps_limits(pose, lengths, dt):
+                findings.append(Finding(ACTUATOR_LIMITED, 'following the cue would have left the '
+                                        'limits: braking or heading home instead'))
+                return 0.0, pose, lengths
+        for _, pose, lengths in candidates:
+            # Too late to stop inside by the estimate, but this pose is inside: keep braking.
+            if not pose_violations(self.geometry, pose[:3], euler_zyx_to_matrix(pose[3:])):
+                findings.append(Finding(ACTUATOR_LIMITED, 'braking hard: the platform may not '
+                                        'stop inside the cue margins'))
+                return 0.0, pose, lengths
+        findings.append(Finding(LIMITS_HELD, 'every next pose would have left the limits; pose '
+                                'held'))
+        return 0.0, self.pose.copy(), self.lengths.copy()
+
+
+def box_least_squares(metric, target, lower, upper, max_iterations=30):
+    """
+    Minimise ``(x - target)^T metric (x - target)`` subject to ``lower <= x <= upper``.
+
+    A primal active-set method for a small positive-definite ``metric``: solve with the free
+    coordinates, fix those that leave their box at the bound they cross, release a fixed one
+    whose gradient says it would rather move inside, until the Karush-Kuhn-Tucker conditions
+    hold (Nocedal and Wright, *Numerical Optimization*, 2nd ed., section 16.5).
+
+    :param metric: shape (n, n), symmetric positive definite.
+    :param target: shape (n,).
+    :param lower: shape (n,), ``lower <= upper``.
+    :param upper: shape (n,).
+    :returns: shape (n,), within the box (the clipped target if the iterations run out).
+    """
+    x = np.clip(target, lower, upper)
+    fixed = (x != target)
+    for _ in range(max_iterations):
+        free = ~fixed
+        if np.any(free):
+            # Free coordinates minimise with the fixed ones held: Q_ff dx_f = -Q_fb dx_b.
+            offset = x - target
+            x[free] = target[free] - np.linalg.solve(
+                metric[np.ix_(free, free)], metric[np.ix_(free, fixed)] @ offset[fixed])
+        outside = free & ((x < lower) | (x > upper))
+        if np.any(outside):
+            x = np.clip(x, lower, upper)
+            fixed |= outside
+            continue
+        gradient = metric @ (x - target)
+        # At its lower bound a coordinate may stay if the objective wants it lower (g >= 0).
+        wrong = fixed & (((x <= lower) & (gradient < 0.0)) | ((x >= upper) & (gradient > 0.0)))
+        if not np.any(wrong):
+            return x
+        worst = int(np.argmax(np.where(wrong, np.abs(gradient), -1.0)))
+        fixed[worst] = False
+    return np.clip(x, lower, upper)
+
+
+def _largest_allowed(geometry, make_poses, high, previous=0.0, home_allowed=False):
+    """
+    Return the largest share in [0, ``high``) whose pose keeps the limits.
+
+    To :data:`SCALE_TOLERANCE`, or to a pose within :data:`SCALE_MARGIN_TOLERANCE` of the
+    boundary.
+
+    Regula falsi with the Illinois modification (Dahlquist and Bjorck, *Numerical Methods*,
+    section 6.2) on the continuous :func:`~.limit_check.limit_margins`. The first evaluation
+    (one call) tries ``previous`` (the last step's share), a little below it, and ``high``: on
+    a boundary that moves slowly, as it does, the bracket is then narrow and two or three more
+    evaluations suffice; else it widens down to 0. The share found moves smoothly as the cue
+    does, so the scaled cue does not jitter on the boundary.
+
+    :param make_poses: shares (N,) -> poses (N, 6).
+    :param previous: the last step's share.
+    :param home_allowed: whether share 0 is known to be allowed (the home pose).
+    :returns: ``(share, pose)`` on the allowed side, or ``None`` when share 0 breaks a limit.
+    """
+    previous = min(max(previous, 0.0), high)
+    below = max(0.0, previous - max(SCALE_WINDOW, 2.0 * (high - previous)))
+    shares = np.array([below, previous, high])
+    poses = make_poses(shares)
+    margins = limit_margins(geometry, poses)
+    if below == 0.0 and home_allowed:
+        margins[0] = min(margins[0], -1e-12)
+    if not margins[2] >= 0.0:  # allowed after all (the single check was stricter): keep it
+        return high, poses[2]
+    if margins[1] < 0.0:
+        low, low_margin, low_pose = previous, float(margins[1]), poses[1]
+        high_margin = float(margins[2])
+    elif margins[0] < 0.0:
+        low, low_margin, low_pose = below, float(margins[0]), poses[0]
+        high, high_margin = previous, float(margins[1])
+    elif below == 0.0:
+        return None
+    else:
+        return _largest_allowed(geometry, make_poses, below, 0.0, home_allowed)
+    side = 0
+    for _ in range(SCALE_ITERATIONS):
+        if high - low <= SCALE_TOLERANCE or -SCALE_MARGIN_TOLERANCE < low_margin:
+            break
+        share = (high - high_margin * (high - low) / (high_margin - low_margin)
+                 if math.isfinite(high_margin) and math.isfinite(low_margin)
+                 else 0.5 * (low + high))
+        share = min(max(share, low + 1e-3 * (high - low)), high - 1e-3 * (high - low))
+        pose = make_poses(np.array([share]))
+        margin = float(limit_margins(geometry, pose)[0])
+        if margin < 0.0:
+            low, low_margin, low_pose = share, margin, pose[0]
+            if side == -1:
+                high_margin *= 0.5
+            side = -1
+        else:
+            high, high_margin = share, margin
+            if side == 1:
+                low_margin *= 0.5
+            side = 1
+    return low, low_pose

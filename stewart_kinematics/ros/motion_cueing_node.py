@@ -1,0 +1,173 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Motion cueing node: a vehicle's IMU in, the platform pose a person should feel out.
+
+Subscribes ``vehicle_imu`` (sensor_msgs/msg/Imu: the specific force in ``linear_acceleration``,
+9.81 m/s^2 on z at rest, and ``angular_velocity``, at the driver's head, vehicle frame x
+forward, y left, z up; the orientation is not used). For each message it publishes
+``target_pose`` (geometry_msgs/msg/Pose, the tool frame in the base frame, for ik_node),
+``cue_pose`` (geometry_msgs/msg/PoseStamped, the platform frame in ``base_frame`` with the
+message's stamp, for VR motion compensation and RViz) and ``perceived_accel``
+(geometry_msgs/msg/AccelStamped, the specific force felt at ``head_position`` one message
+behind, with that message's stamp). The ``reset`` service (std_srvs/srv/Trigger) washes out to
+neutral. Declared once in :data:`stewart_kinematics.ros.interfaces.MOTION_CUEING_NODE`.
+
+Everything is decided by :class:`stewart_kinematics.cueing.MotionCueing`: the time step is the
+difference of the stamps; a message with a non-finite or absurd value is refused with its
+reason and the platform takes the step at rest (bad input eases it back to neutral); a stamp
+that does not move forward is refused and nothing is published. When no message came for
+``input_timeout`` seconds, the node eases the platform home on its own clock until it rests
+(``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
+Refusals and warnings are counted on ``/diagnostics``.
+"""
+
+from geometry_msgs.msg import AccelStamped, PoseStamped
+from rclpy.node import Node
+from sensor_msgs.msg import Imu
+from std_msgs.msg import Header
+
+from stewart_kinematics.cueing import MotionCueing
+from stewart_kinematics.parameters import (
+    frame_parameters_reason,
+    frames_from_parameters,
+    MotionCueingNodeSettings,
+)
+from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
+from stewart_kinematics.ros.message_accounting import NodeDiagnostics
+from stewart_kinematics.ros.message_conversions import pose_to_message
+from stewart_kinematics.ros.node_main import (
+    create_declared_service,
+    create_input_subscription,
+    create_output_publisher,
+    run_node,
+)
+from stewart_kinematics.ros.ros_parameters import declare_parameters
+
+#: Period of the input watchdog, seconds (at most; input_timeout / 2 when shorter).
+WATCHDOG_PERIOD = 0.02
+
+
+class MotionCueingNode(Node):
+    """Turn every vehicle IMU message into a platform pose within the limits."""
+
+    def __init__(self, **kwargs):
+        super().__init__('motion_cueing_node', **kwargs)
+        values = declare_parameters(self, MotionCueingNodeSettings.specs(),
+                                    check=frame_parameters_reason)
+        self.settings = MotionCueingNodeSettings.from_values(values)
+        self.cueing = MotionCueing.from_parameters(self.settings.as_values())
+        self.frames = frames_from_parameters(values)
+        depth = self.settings.queue.queue_depth
+        interface = MOTION_CUEING_NODE
+        self.target_publisher = create_output_publisher(self, interface['target_pose'], depth)
+        self.cue_publisher = create_output_publisher(self, interface['cue_pose'], depth)
+        self.perceived_publisher = create_output_publisher(
+            self, interface['perceived_accel'], depth)
+        self.accounting = NodeDiagnostics(self).accounting('vehicle_imu')
+        create_input_subscription(self, interface['vehicle_imu'], self.on_imu, depth)
+        create_declared_service(self, interface['reset'], self.on_reset)
+        #: The first stamp, nanoseconds: times are kept relative to it (float precision).
+        self.origin_ns = None
+        self.last_input = None
+        self.last_rest = None
+        self.input_timeout = self.settings.cueing.input_timeout
+        if self.input_timeout > 0.0:
+            self.create_timer(min(WATCHDOG_PERIOD, self.input_timeout / 2.0), self.on_watchdog)
+        self.get_logger().info(
+            f'ready: cueing vehicle_imu into target_pose (head at '
+            f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
+            f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
+
+    def on_imu(self, message: Imu):
+        """Cue one sample; publish the pose (also for a refused value: it eases home)."""
+        self.accounting.receive()
+        self.last_input = self.get_clock().now()
+        stamp = message.header.stamp
+        stamp_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+        if self.origin_ns is None:
+            self.origin_ns = stamp_ns
+        force, rate = message.linear_acceleration, message.angular_velocity
+        result = self.cueing.cue((stamp_ns - self.origin_ns) * 1e-9,
+                                 (force.x, force.y, force.z), (rate.x, rate.y, rate.z))
+        if result.refusal is not None:
+            self.accounting.reject(result.refusal)
+        for warning in result.warnings:
+            self.accounting.warn(warning)
+        if result.pose is None:
+            return
+        target = pose_to_message(self.frames.tool_pose_vector(result.pose))
+        if result.refusal is None:
+            self.accounting.publish(self.target_publisher, target)
+        else:
+            self.target_publisher.publish(target)
+        self.publish_extras(result, stamp)
+
+    def publish_extras(self, result, stamp, perceived=True):
+        """Publish cue_pose and (``perceived``) perceived_accel, each only to a subscriber."""
+        base_frame = self.settings.frames.base_frame
+        if self.cue_publisher.get_subscription_count():
+            self.cue_publisher.publish(PoseStamped(
+                header=Header(stamp=stamp, frame_id=base_frame),
+                pose=pose_to_message(result.pose)))
+        if (perceived and result.perceived is not None
+                and self.perceived_publisher.get_subscription_count()):
+            time, force = result.perceived
+            message = AccelStamped()
+            message.header.frame_id = self.settings.frames.platform_frame
+            if isinstance(time, float) and self.origin_ns is not None:
+                nanoseconds = self.origin_ns + round(time * 1e9)
+                message.header.stamp.sec, message.header.stamp.nanosec = divmod(
+                    nanoseconds, 1_000_000_000)
+            else:
+                message.header.stamp = stamp
+            linear = message.accel.linear
+            linear.x, linear.y, linear.z = (float(value) for value in force)
+            self.perceived_publisher.publish(message)
+
+    def on_reset(self, request, response):
+        """Wash out to neutral from the next sample (or on the watchdog without input)."""
+        self.cueing.reset()
+        response.success = True
+        response.message = ('washing out to neutral: the washout restarts from the next '
+                            'sample, the platform glides home within the actuator limits')
+        return response
+
+    def on_watchdog(self):
+        """Without input for input_timeout, ease the platform home until it rests."""
+        now = self.get_clock().now()
+        if self.last_input is None or self.cueing.settled():
+            self.last_rest = now
+            return
+        if (now - self.last_input).nanoseconds * 1e-9 < self.input_timeout:
+            self.last_rest = now
+            return
+        dt = (now - self.last_rest).nanoseconds * 1e-9
+        self.last_rest = now
+        if dt <= 0.0:
+            return
+        result = self.cueing.rest(dt)
+        self.target_publisher.publish(pose_to_message(self.frames.tool_pose_vector(result.pose)))
+        # No sample to stamp the felt force with: only the pose, stamped now.
+        self.publish_extras(result, now.to_msg(), perceived=False)
+
+
+def main(args=None) -> int:
+    """Run the motion cueing node until SIGINT or SIGTERM; see :func:`run_node`."""
+    return run_node(MotionCueingNode, 'motion_cueing_node', args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

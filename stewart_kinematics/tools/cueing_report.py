@@ -1,0 +1,461 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+r"""
+``stewart_cueing``: replay a vehicle's motion through the motion cueing and measure the cue.
+
+Runs the generated scenarios (``--scenario``, default all four), a CSV file (``--csv``) or a
+recording of ``vehicle_imu`` (``--mcap``: an ``.mcap`` file or a rosbag2 folder holding one)
+through :class:`stewart_kinematics.cueing.MotionCueing`, configured from the nodes' own
+parameter files, and reports per axis the specific-force RMSE, Pearson correlation, delay and
+false cues between input and felt cue, the tilt rate, the share of each travel range used, the
+limit violations and the return to neutral; it writes to ``--output`` a Markdown table
+(``cueing_results.md``), the numbers (``cueing_results.yaml``) and one figure per run (input
+against felt specific force, and the platform's motion, over time)::
+
+    stewart_cueing --params-file config/paper_platform.yaml \
+        --params-file config/example_limits.yaml --params-file config/motion_cueing.yaml \
+        --output cueing_output
+
+CSV input: a header line, then one row per sample (``#`` starts a comment line)::
+
+    time,specific_force_x,specific_force_y,specific_force_z,angular_velocity_x,angular_velocity_y,angular_velocity_z
+
+in seconds, m/s^2 (what an accelerometer at the driver's head reads: 9.81 on z at rest) and
+rad/s, vehicle frame (x forward, y left, z up), times increasing.
+
+Exit codes: 0 done; 1 an input or parameter file cannot be used (the message says why); 2 a
+bad option (argparse names it); 3 with ``--strict``, a target missed.
+"""
+
+import argparse
+import csv
+import math
+from pathlib import Path
+import sys
+import time
+
+import numpy as np
+
+from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
+import yaml
+
+#: The CSV columns, in order.
+CSV_COLUMNS = ('time', 'specific_force_x', 'specific_force_y', 'specific_force_z',
+               'angular_velocity_x', 'angular_velocity_y', 'angular_velocity_z')
+#: The node's name: the parameter files' sections read besides /**.
+NODE_NAME = 'motion_cueing_node'
+#: Targets (issue 23): correlation and delay on the multi-sine, return to neutral everywhere.
+CORRELATION_TARGET = 0.8
+DELAY_TARGET = 0.05
+RESIDUAL_POSITION_TARGET = 1e-3
+RESIDUAL_ANGLE_TARGET = math.radians(0.1)
+#: Exit codes.
+EXIT_INPUT = 1
+EXIT_TARGET_MISSED = 3
+
+
+class ProgressBar:
+    """
+    A text progress bar on stderr, ``[#####-----]  52% slalom``, fed by a replay's callback.
+
+    Drawn in place on a terminal; on anything else (a log, a test) one line per quarter.
+    """
+
+    def __init__(self, label, stream=None, width=30):
+        self.label, self.width = label, width
+        self.stream = sys.stderr if stream is None else stream
+        self.interactive = hasattr(self.stream, 'isatty') and self.stream.isatty()
+        self.started = time.monotonic()
+        self._quarter = -1
+
+    def __call__(self, done, total):
+        """Show ``done`` of ``total`` samples."""
+        fraction = done / total if total else 1.0
+        if not self.interactive:
+            quarter = int(fraction * 4)
+            if quarter == self._quarter:
+                return
+            self._quarter = quarter
+        filled = int(self.width * fraction)
+        line = (f'[{"#" * filled}{"-" * (self.width - filled)}] {100 * fraction:3.0f}% '
+                f'{self.label} ({time.monotonic() - self.started:.1f} s)')
+        self.stream.write(f'\r{line:<79}' if self.interactive else line + '\n')
+        if self.interactive and done >= total:
+            self.stream.write('\n')
+        self.stream.flush()
+
+
+def _existing_file(text):
+    path = Path(text)
+    if not path.exists():
+        raise argparse.ArgumentTypeError(f'{text} does not exist')
+    return path
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Return the command line's parser."""
+    from stewart_kinematics.cueing.evaluation import FALSE_CUE_THRESHOLD, SETTLE_TIME
+    from stewart_kinematics.cueing.scenarios import DEFAULT_RATE, SCENARIO_NAMES
+    parser = argparse.ArgumentParser(
+        prog='stewart_cueing', description=__doc__.split('\n\n')[1].replace('\n', ' '),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog='CSV columns: ' + ','.join(CSV_COLUMNS))
+    source = parser.add_mutually_exclusive_group()
+    source.add_argument('--scenario', action='append', choices=SCENARIO_NAMES + ('all',),
+                        help='a generated scenario; repeat for several (default: all)')
+    source.add_argument('--csv', type=_existing_file, help='replay this CSV file')
+    source.add_argument('--mcap', type=_existing_file,
+                        help='replay sensor_msgs/msg/Imu from this .mcap file or rosbag2 folder')
+    parser.add_argument('--topic', default='/vehicle_imu',
+                        help='the Imu topic in the --mcap recording (default /vehicle_imu)')
+    parser.add_argument('--params-file', dest='params_files', action='append', required=True,
+                        type=_existing_file,
+                        help='ROS 2 parameter file (geometry, limits, motion_cueing_node); '
+                             'repeat to layer files, as the node takes them')
+    parser.add_argument('--rate', type=number_in(0.0, 10000.0, low_inclusive=False),
+                        default=DEFAULT_RATE,
+                        help=f'sampling rate of the scenarios, Hz (default {DEFAULT_RATE:g})')
+    parser.add_argument('--output', type=Path, default=Path('cueing_output'),
+                        help='folder for the table, the numbers and the figures '
+                             '(default cueing_output/)')
+    parser.add_argument('--no-figures', action='store_true', help='write no figures')
+    parser.add_argument('--false-cue-threshold',
+                        type=number_in(0.0, 100.0, low_inclusive=False),
+                        default=FALSE_CUE_THRESHOLD,
+                        help='felt specific force of the opposite sign beyond this is a false '
+                             f'cue, m/s^2 (default {FALSE_CUE_THRESHOLD:g})')
+    parser.add_argument('--settle-time', type=number_in(0.0, 3600.0, low_inclusive=False),
+                        default=SETTLE_TIME,
+                        help='judge the return to neutral this long after the input rests, s '
+                             f'(default {SETTLE_TIME:g})')
+    parser.add_argument('--strict', action='store_true', help='exit 3 when a target is missed')
+    parser.add_argument('--quiet', action='store_true', help='no progress bar')
+    return parser
+
+
+def check_output(parser, folder: Path) -> None:
+    """Make sure the output folder and its files can be written, before any work (exit 2)."""
+    check_output_paths(parser, [('--output', folder, True)] + [
+        ('--output', folder / name, False)
+        for name in ('cueing_results.md', 'cueing_results.yaml')])
+    folder.mkdir(parents=True, exist_ok=True)
+
+
+def load_csv(path: Path):
+    """
+    Read a CSV input: ``(times, specific_force, angular_velocity)``.
+
+    :raises ValueError: naming the file, the line and the column, for a bad header, a row of
+        the wrong length, a value that is not a finite number, or times that do not increase.
+    """
+    rows = []
+    with open(path, encoding='utf-8', newline='') as stream:
+        lines = [(number, line) for number, line in enumerate(stream, start=1)
+                 if line.strip() and not line.lstrip().startswith('#')]
+        if not lines:
+            raise ValueError(f'{path}: no header and no data')
+        reader = csv.reader(line for _, line in lines)
+        header = [cell.strip() for cell in next(reader)]
+        if tuple(header) != CSV_COLUMNS:
+            raise ValueError(f'{path} line {lines[0][0]}: the header must be '
+                             f'{",".join(CSV_COLUMNS)}, got {",".join(header)}')
+        for (number, _), cells in zip(lines[1:], reader):
+            if len(cells) != len(CSV_COLUMNS):
+                raise ValueError(f'{path} line {number}: expected {len(CSV_COLUMNS)} values, '
+                                 f'got {len(cells)}')
+            row = []
+            for column, cell in zip(CSV_COLUMNS, cells):
+                try:
+                    value = float(cell)
+                except ValueError:
+                    value = math.nan
+                if not math.isfinite(value):
+                    raise ValueError(f'{path} line {number}: {column} must be a finite number, '
+                                     f'got {cell.strip()!r}')
+                row.append(value)
+            rows.append(row)
+    return _checked_samples(str(path), np.array(rows).reshape(-1, len(CSV_COLUMNS)))
+
+
+def _checked_samples(source, data):
+    if data.shape[0] < 3:
+        raise ValueError(f'{source}: needs at least 3 samples, got {data.shape[0]}')
+    steps = np.diff(data[:, 0])
+    if not np.all(steps > 0.0):
+        bad = int(np.argmax(~(steps > 0.0))) + 1
+        raise ValueError(f'{source}: times must increase; sample {bad} is at {data[bad, 0]!r} s '
+                         f'after {data[bad - 1, 0]!r} s')
+    return data[:, 0] - data[0, 0], data[:, 1:4], data[:, 4:7]
+
+
+def mcap_file(path: Path) -> Path:
+    """Return the .mcap file of a path: the file itself, or the one in a rosbag2 folder."""
+    if path.is_dir():
+        files = sorted(path.glob('*.mcap'))
+        if len(files) != 1:
+            raise ValueError(f'{path}: a rosbag2 folder with one .mcap file expected, found '
+                             f'{len(files)}')
+        return files[0]
+    return path
+
+
+def load_mcap(path: Path, topic: str):
+    """
+    Read ``sensor_msgs/msg/Imu`` samples of ``topic`` from an MCAP recording.
+
+    Times are the messages' ``header.stamp`` (as the node uses them); a recording whose stamps
+    are all zero falls back to the log times.
+
+    :raises ValueError: naming the file, when it cannot be read or holds no such messages.
+    """
+    from mcap.exceptions import McapError
+    from mcap_ros2.reader import read_ros2_messages
+    source = mcap_file(path)
+    rows = []
+    try:
+        for message in read_ros2_messages(str(source), topics=[topic]):
+            imu = message.ros_msg
+            stamp = imu.header.stamp.sec + 1e-9 * imu.header.stamp.nanosec
+            a, w = imu.linear_acceleration, imu.angular_velocity
+            rows.append((stamp, message.log_time_ns * 1e-9, a.x, a.y, a.z, w.x, w.y, w.z))
+    except (McapError, OSError, ValueError, KeyError, AttributeError) as error:
+        raise ValueError(
+            f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
+    if not rows:
+        raise ValueError(f'{source}: no message on {topic}')
+    data = np.array(rows)
+    if np.all(data[:, 0] == 0.0):
+        data[:, 0] = data[:, 1]
+    data = np.delete(data, 1, axis=1)
+    finite = np.all(np.isfinite(data), axis=1)
+    if not np.all(finite):
+        raise ValueError(f'{source}: message {int(np.argmin(finite))} on {topic} is not finite')
+    return _checked_samples(f'{source} ({topic})', data)
+
+
+def read_parameters(paths):
+    """Return the parameter values motion_cueing_node would see from ``paths``."""
+    from stewart_kinematics.parameters import check_known_names, read_parameter_file
+    values = {}
+    for path in paths:
+        values.update(read_parameter_file(path, NODE_NAME))
+    check_known_names(values, ', '.join(map(str, paths)))
+    return values
+
+
+def targets(name, evaluation):
+    """Return ``[(target, met, value)]`` of one run (the multi-sine adds fidelity targets)."""
+    result = [
+        ('zero limit violations', evaluation.limit_violations == 0,
+         str(evaluation.limit_violations)),
+        ('tilt rate within its limit', evaluation.tilt_rate_violations == 0,
+         f'{math.degrees(evaluation.tilt_rate_peak):.2f} deg/s peak')]
+    if evaluation.residual_position is not None:
+        result.append((
+            'within 1 mm and 0.1 deg of neutral 10 s after rest',
+            evaluation.residual_position <= RESIDUAL_POSITION_TARGET
+            and evaluation.residual_angle <= RESIDUAL_ANGLE_TARGET,
+            f'{evaluation.residual_position * 1e3:.3f} mm, '
+            f'{math.degrees(evaluation.residual_angle):.4f} deg'))
+    if name == 'multi_sine':
+        for axis in evaluation.axes[:2]:
+            result.append((f'correlation >= 0.8 ({axis.axis})',
+                           axis.correlation >= CORRELATION_TARGET, f'{axis.correlation:.3f}'))
+            result.append((f'delay <= 50 ms ({axis.axis})', abs(axis.delay) <= DELAY_TARGET,
+                           f'{_number(axis.delay * 1e3, ".0f")} ms'))
+    return result
+
+
+def markdown_table(results) -> str:
+    """Return the results as the documentation's Markdown table, one row per run."""
+    lines = ['| Run | Limit violations | Tilt rate peak (deg/s) | r x / y | Delay x / y (ms) | '
+             'RMSE x / y (m/s^2) | False cues x / y (s) | Travel used (largest) | '
+             'Residual 10 s after rest | Workspace scale min | Actuator-limited share |',
+             '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |']
+    for name, evaluation in results:
+        x, y = evaluation.axes[:2]
+        travel = '-'
+        if evaluation.travel_used is not None:
+            from stewart_kinematics.cueing.evaluation import POSE_AXES
+            index = int(np.argmax(evaluation.travel_used))
+            travel = f'{100 * evaluation.travel_used[index]:.0f} % ({POSE_AXES[index]})'
+        residual = '-' if evaluation.residual_position is None else (
+            f'{evaluation.residual_position * 1e3:.2f} mm, '
+            f'{math.degrees(evaluation.residual_angle):.3f} deg')
+        lines.append(
+            f'| {name} | {evaluation.limit_violations} | '
+            f'{math.degrees(evaluation.tilt_rate_peak):.2f} | '
+            f'{_number(x.correlation)} / {_number(y.correlation)} | '
+            f'{_number(x.delay * 1e3, ".0f")} / {_number(y.delay * 1e3, ".0f")} | '
+            f'{x.rmse:.2f} / {y.rmse:.2f} | {x.false_cue_time:.2f} / {y.false_cue_time:.2f} | '
+            f'{travel} | {residual} | {evaluation.workspace_scale_min:.2f} | '
+            f'{100 * evaluation.limited_share:.0f} % |')
+    return '\n'.join(lines)
+
+
+def _number(value, spec='.3f'):
+    if math.isnan(value):
+        return '-'
+    if math.isinf(value):
+        from stewart_kinematics.cueing.evaluation import MAX_DELAY
+        return f'> {MAX_DELAY * 1e3:.0f}' if value > 0 else f'< -{MAX_DELAY * 1e3:.0f}'
+    return format(value, spec)
+
+
+def write_figure(path: Path, name, replay, evaluation, geometry, scales=(1.0, 1.0)):
+    """
+    Draw input against felt specific force (x, y) and the platform's motion over time.
+
+    :param scales: the translational scale per axis (x, y): the input times it is drawn too.
+    """
+    import matplotlib
+    matplotlib.use('Agg')
+    from matplotlib import pyplot
+    times = replay.times
+    figure, axes = pyplot.subplots(3, 1, figsize=(9, 7.5), sharex=True)
+    for row, (axis, label) in enumerate((('x', 'longitudinal'), ('y', 'lateral'))):
+        index = 'xy'.index(axis)
+        measures = evaluation.axes[index]
+        axes[row].plot(times, replay.specific_force[:, index], color='0.55', label='input')
+        if scales[index] != 1.0:
+            axes[row].plot(times, scales[index] * replay.specific_force[:, index], color='0.55',
+                           linestyle=':', label=f'input x {scales[index]:g}')
+        axes[row].plot(times, replay.perceived.specific_force[:, index], color='C0',
+                       label='felt at the head')
+        axes[row].set_ylabel(f'f_{axis} (m/s^2)')
+        axes[row].set_title(f'{label}: r = {_number(measures.correlation)}, delay '
+                            f'{_number(measures.delay * 1e3, ".0f")} ms, RMSE '
+                            f'{measures.rmse:.2f} m/s^2', fontsize=9)
+        axes[row].legend(loc='upper right', fontsize=8)
+        axes[row].grid(alpha=0.3)
+    offsets = replay.poses - geometry.home_pose
+    for column, label in enumerate(('X', 'Y', 'Z')):
+        axes[2].plot(times, offsets[:, column] * 1e3, label=f'{label} (mm)')
+    for column, label in enumerate(('roll', 'pitch', 'yaw'), start=3):
+        axes[2].plot(times, np.degrees(offsets[:, column]) * 10.0, '--',
+                     label=f'{label} (0.1 deg)')
+    axes[2].set_ylabel('platform from neutral')
+    axes[2].set_xlabel('time (s)')
+    axes[2].legend(loc='upper right', fontsize=7, ncol=2)
+    axes[2].grid(alpha=0.3)
+    figure.suptitle(f'motion cueing: {name}')
+    figure.tight_layout()
+    figure.savefig(path, dpi=90)
+    pyplot.close(figure)
+
+
+def _inputs(options):
+    """Yield ``(name, times, specific_force, angular_velocity, rest_time)`` of each run."""
+    from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
+    if options.csv is not None:
+        times, forces, rates = load_csv(options.csv)
+        yield options.csv.name, times, forces, rates, None
+    elif options.mcap is not None:
+        times, forces, rates = load_mcap(options.mcap, options.topic)
+        yield mcap_file(options.mcap).name, times, forces, rates, None
+    else:
+        names = options.scenario or ['all']
+        names = SCENARIO_NAMES if 'all' in names else list(dict.fromkeys(names))
+        for name in names:
+            generated = scenario(name, options.rate)
+            yield (name, generated.times, generated.specific_force, generated.angular_velocity,
+                   generated.rest_time)
+
+
+def run(options, stream=None):
+    """Replay every input and write the outputs; return ``(results, every target met)``."""
+    stream = sys.stdout if stream is None else stream
+    from stewart_kinematics import travel_ranges
+    from stewart_kinematics.cueing import evaluate, MotionCueing, replay
+    values = read_parameters(options.params_files)
+    template = MotionCueing.from_parameters(values)
+    geometry, settings = template.geometry, template.settings
+    travel = travel_ranges(geometry).as_array()
+    results, numbers, all_met = [], {}, True
+    for name, times, forces, rates, rest in _inputs(options):
+        cueing = MotionCueing(geometry, settings, template.actuator_limits)
+        progress = None if options.quiet else ProgressBar(name)
+        started = time.perf_counter()
+        try:
+            played = replay(cueing, times, forces, rates, progress)
+        except ValueError as error:
+            raise ValueError(f'{name}: {error}') from None
+        seconds = time.perf_counter() - started
+        evaluation = evaluate(played, geometry, template.actuator_limits,
+                              settings.tilt_rate_max, rest=rest, travel=travel,
+                              false_cue_threshold=options.false_cue_threshold,
+                              settle_time=options.settle_time, gravity=settings.gravity)
+        results.append((name, evaluation))
+        met = targets(name, evaluation)
+        all_met &= all(ok for _, ok, _ in met)
+        print(f'{name}: {times.size} samples over {times[-1]:.1f} s, replayed in {seconds:.2f} s '
+              f'({1e6 * seconds / times.size:.0f} us a sample)', file=stream)
+        for target, ok, value in met:
+            print(f'  {"met   " if ok else "MISSED"} {target}: {value}', file=stream)
+        numbers[name] = _numbers(evaluation, met)
+        if not options.no_figures:
+            write_figure(options.output / f'{Path(name).stem}.png', name, played, evaluation,
+                         geometry, settings.translation_scale[:2])
+    table = markdown_table(results)
+    (options.output / 'cueing_results.md').write_text(table + '\n', encoding='utf-8')
+    with open(options.output / 'cueing_results.yaml', 'w', encoding='utf-8') as out:
+        yaml.safe_dump(numbers, out, sort_keys=False)
+    print(table, file=stream)
+    return results, all_met
+
+
+def _numbers(evaluation, met):
+    axes = {axis.axis: {'rmse': axis.rmse, 'correlation': _plain(axis.correlation),
+                        'delay': _plain(axis.delay), 'false_cues': axis.false_cues,
+                        'false_cue_time': axis.false_cue_time} for axis in evaluation.axes}
+    return {
+        'specific_force': axes,
+        'tilt_rate_peak_deg': math.degrees(evaluation.tilt_rate_peak),
+        'tilt_rate_violations': evaluation.tilt_rate_violations,
+        'travel_used': None if evaluation.travel_used is None else list(evaluation.travel_used),
+        'pose_violations': evaluation.pose_violations,
+        'leg_velocity_violations': evaluation.leg_velocity_violations,
+        'leg_acceleration_violations': evaluation.leg_acceleration_violations,
+        'leg_velocity_peak': evaluation.leg_velocity_peak,
+        'leg_acceleration_peak': evaluation.leg_acceleration_peak,
+        'residual_position': evaluation.residual_position,
+        'residual_angle_deg': None if evaluation.residual_angle is None else math.degrees(
+            evaluation.residual_angle),
+        'workspace_scale_min': evaluation.workspace_scale_min,
+        'limited_share': evaluation.limited_share,
+        'warnings': dict(evaluation.warnings),
+        'targets': {target: bool(ok) for target, ok, _ in met},
+    }
+
+
+def _plain(value):
+    return None if math.isnan(value) else float(value)
+
+
+def main(argv=None) -> int:
+    """Run the report; see the module's documentation for the exit codes."""
+    parser = build_parser()
+    options = parser.parse_args(argv)
+    check_output(parser, options.output)
+    try:
+        _, all_met = run(options)
+    except ValueError as error:
+        print(f'stewart_cueing: {error}', file=sys.stderr)
+        return EXIT_INPUT
+    return EXIT_TARGET_MISSED if options.strict and not all_met else 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

@@ -1,0 +1,120 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Conversions of trajectory_msgs/MultiDOFJointTrajectory and nav_msgs/Path to the planner's input.
+
+Messages built field by field here; the expected numbers are the ones typed into them.
+"""
+
+from builtin_interfaces.msg import Duration
+from geometry_msgs.msg import PoseStamped, Transform, Twist
+from nav_msgs.msg import Path
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
+from stewart_kinematics.ros.message_conversions import (
+    path_from_message,
+    pose_trajectory_from_message,
+)
+from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
+
+pytestmark = pytest.mark.node
+
+
+def twist(linear, angular):
+    """Build a Twist of two triples."""
+    message = Twist()
+    message.linear.x, message.linear.y, message.linear.z = linear
+    message.angular.x, message.angular.y, message.angular.z = angular
+    return message
+
+
+def point(seconds, nanoseconds, z, velocity=None, acceleration=None):
+    """Build a point 'z' metres up, with a quaternion of norm 2 about z, and optional twists."""
+    transform = Transform()
+    transform.translation.z = z
+    transform.rotation.z, transform.rotation.w = 0.0, 2.0
+    return MultiDOFJointTrajectoryPoint(
+        transforms=[transform], velocities=[velocity] if velocity else [],
+        accelerations=[acceleration] if acceleration else [],
+        time_from_start=Duration(sec=seconds, nanosec=nanoseconds))
+
+
+def test_times_positions_quaternions_twists_and_accelerations_are_read():
+    """Seconds and nanoseconds, normalised quaternions, twists and accelerations when all have."""
+    message = MultiDOFJointTrajectory(joint_names=['platform'])
+    message.header.frame_id = 'work'
+    message.points = [
+        point(0, 0, 0.4, twist((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
+              twist((0.0, 0.0, 0.1), (0.0, 0.0, 0.2))),
+        point(1, 500_000_000, 0.45, twist((0.0, 0.0, 0.02), (0.0, 0.0, 0.1)),
+              twist((0.0, 0.0, -0.1), (0.0, 0.0, 0.0)))]
+    arguments = pose_trajectory_from_message(message)
+    assert_allclose(arguments['times'], [0.0, 1.5])
+    assert_allclose(arguments['positions'], [[0.0, 0.0, 0.4], [0.0, 0.0, 0.45]])
+    assert_allclose(arguments['quaternions'], [[0.0, 0.0, 0.0, 1.0]] * 2)
+    assert_allclose(arguments['velocities'][1], [0.0, 0.0, 0.02])
+    assert_allclose(arguments['angular_velocities'][1], [0.0, 0.0, 0.1])
+    assert_allclose(arguments['accelerations'][0], [0.0, 0.0, 0.1])
+    assert_allclose(arguments['angular_accelerations'][0], [0.0, 0.0, 0.2])
+    assert arguments['frame_id'] == 'work'
+
+
+@pytest.mark.parametrize('field', ['velocities', 'accelerations'])
+def test_twists_on_only_some_points_are_refused(field):
+    """All points or none."""
+    message = MultiDOFJointTrajectory(joint_names=['platform'],
+                                      points=[point(0, 0, 0.4), point(1, 0, 0.45)])
+    getattr(message.points[1], field).append(Twist())
+    with pytest.raises(ValueError, match=f'{field} must be given for every point'):
+        pose_trajectory_from_message(message)
+
+
+def test_an_empty_trajectory_converts_and_a_huge_one_is_refused_before_converting():
+    """No point: empty arrays (the planner says why); too many: refused by count at once."""
+    arguments = pose_trajectory_from_message(MultiDOFJointTrajectory())
+    assert arguments['positions'].shape == (0, 3) and arguments['quaternions'].shape == (0, 4)
+    message = MultiDOFJointTrajectory(points=[MultiDOFJointTrajectoryPoint()]
+                                      * (MAX_WAYPOINTS + 1))
+    with pytest.raises(ValueError, match='at most 100,000 waypoints, got 100,001'):
+        pose_trajectory_from_message(message)
+
+
+def test_a_zero_quaternion_is_refused_naming_the_point():
+    """Point 1's quaternion is zero."""
+    message = MultiDOFJointTrajectory(points=[point(0, 0, 0.4), point(1, 0, 0.45)])
+    message.points[1].transforms[0].rotation.w = 0.0
+    with pytest.raises(ValueError, match='point 1: a quaternion must be finite and not zero'):
+        pose_trajectory_from_message(message)
+
+
+def test_a_path_is_read_in_its_frame_and_a_pose_in_another_is_refused():
+    """Poses with the path's frame or none are read; a pose in another frame is refused."""
+    message = Path()
+    message.header.frame_id = 'work'
+    for z, frame in ((0.4, ''), (0.45, 'work')):
+        stamped = PoseStamped()
+        stamped.header.frame_id = frame
+        stamped.pose.position.z = z
+        stamped.pose.orientation.w = 1.0
+        message.poses.append(stamped)
+    positions, quaternions, frame_id = path_from_message(message)
+    assert_allclose(positions[:, 2], [0.4, 0.45]) and frame_id == 'work'
+    assert_allclose(quaternions, np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)))
+    message.poses[1].header.frame_id = 'elsewhere'
+    with pytest.raises(ValueError, match="pose 1 of the path is in frame 'elsewhere'"):
+        path_from_message(message)
