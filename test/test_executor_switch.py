@@ -177,7 +177,8 @@ def test_the_default_executor_is_events(client, start_node, config_directory):
 
 @pytest.mark.parametrize('executable, chosen_by', [
     ('ik_node', 'option'), ('ik_node', 'environment'), ('fk_node', 'option'),
-    ('trajectory_node', 'option'), ('stewart_platform', 'option')])
+    ('trajectory_node', 'option'), ('stewart_platform', 'option'),
+    ('motion_cueing_node', 'option')])
 def test_an_unknown_executor_is_refused(start_node, config_directory, executable, chosen_by):
     """An unknown executor name stops the start with code 1, naming the allowed ones."""
     if chosen_by == 'option':
