@@ -82,12 +82,6 @@ def pytest_unconfigure(config):
 
 
 @pytest.fixture
-def executor_kind():
-    """Return the name of the session's executor (``events`` or ``single_threaded``)."""
-    return executor_name()
-
-
-@pytest.fixture
 def config_directory():
     """Return the package's config/ folder."""
     return CONFIG_DIRECTORY

@@ -197,8 +197,9 @@ class IkNode(Node):
                 self.stream_accounting.warn(refusal)
             self.streaming = True
         elif self.joint_command_publisher.get_subscription_count():
+            header = self.header_now(header)
             self.joint_command_publisher.publish(
-                joint_state_message(self.header_now(header), lengths, actuators=self.actuators))
+                joint_state_message(header, lengths, actuators=self.actuators))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
                          Transform(command.position, command.rotation),

@@ -55,7 +55,8 @@ STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 #: The executors a node process can spin on, by the name that chooses them.
 EXECUTORS = {
     # Callbacks run as rmw reports events, without rebuilding a wait set for each message:
-    # about twice the loss-free rate of the single-threaded executor (doc/benchmarks.md).
+    # under half the processor time per message of the single-threaded executor
+    # (doc/benchmarks.md).
     'events': EventsExecutor,
     # rclpy's default executor; it also supports guard conditions.
     'single_threaded': SingleThreadedExecutor,
