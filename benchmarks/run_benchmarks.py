@@ -824,7 +824,8 @@ def node_benchmarks(table, geometry, ramp, rounds):
                     if process:
                         cpu[subject].add((process_seconds(process) - used)
                                          / (LATENCY_RATE * LATENCY_SECONDS))
-                    p50, p99 = (math.nan, math.nan) if delays is None else \
+                    # A round that lost a message counts as an infinite latency.
+                    p50, p99 = (math.inf, math.inf) if delays is None else \
                         np.percentile(delays, [50, 99])
                     latency[subject][0].add(p50)
                     latency[subject][1].add(p99)
