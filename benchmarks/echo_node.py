@@ -17,16 +17,24 @@ Bare rclpy echo node: the middleware's own limit, for the node benchmarks.
 
 Subscribes ``echo_in`` (geometry_msgs/msg/Pose) and republishes every message unchanged on
 ``echo_out``, with no work in between; reliable, keep-last queues of depth ``queue_depth``
-(``-p queue_depth:=100``, default 100). Run it as a script:
-``python benchmarks/echo_node.py --ros-args -p queue_depth:=100``.
+(``-p queue_depth:=100``, default 100); rclpy's defaults otherwise. It spins as the package's
+nodes do (:func:`stewart_kinematics.ros.node_main.run_nodes`: slices of 0.1 s in the main
+thread) on the executor that ``--executor`` names before ``--ros-args``, else
+``STEWART_EXECUTOR``, else the EventsExecutor. Run it as a script:
+``python benchmarks/echo_node.py --executor single_threaded --ros-args -p queue_depth:=100``.
 """
 
+import signal
 import sys
 
 from geometry_msgs.msg import Pose
 import rclpy
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
+from rclpy.utilities import remove_ros_args
+
+from stewart_kinematics.ros.node_main import create_executor, executor_name, SPIN_SLICE
 
 #: Queue depth when no ``queue_depth`` parameter is given.
 DEFAULT_QUEUE_DEPTH = 100
@@ -43,17 +51,24 @@ class EchoNode(Node):
 
 
 def main(args=None) -> int:
-    """Run the echo node until SIGINT."""
-    rclpy.init(args=args)
-    node = None
+    """Run the echo node until SIGINT or SIGTERM."""
+    args = sys.argv if args is None else args
+    kind = executor_name(remove_ros_args(args))
+    stop = []
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, lambda number, frame: stop.append(number))
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    node = EchoNode()
+    executor = create_executor(kind)
+    executor.add_node(node)
     try:
-        node = EchoNode()
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
+        while not stop and rclpy.ok():
+            executor.spin_once(timeout_sec=SPIN_SLICE)
+    except ExternalShutdownException:
         pass
     finally:
-        if node is not None:
-            node.destroy_node()
+        executor.shutdown()
+        node.destroy_node()
         rclpy.try_shutdown()
     return 0
 

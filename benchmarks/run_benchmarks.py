@@ -43,6 +43,7 @@ its rows there are the fair ones. The paper-frame rows stay, labelled as such.
 import argparse
 from dataclasses import dataclass, field
 import math
+import os
 from pathlib import Path
 import platform
 import statistics
@@ -77,8 +78,17 @@ TARGETS = (
     'FK warm >= 2x faster than FK cold from home',
     'FK batch > 100 000 poses/s',
     '100 % convergence, error < 1e-9 (ours, every benchmark)',
-    'ik_node loss-free rate >= 80 % of the bare echo node',
-    'fk_node loss-free rate >= 80 % of the bare echo node',
+    'ik_node loss-free rate >= 1.3x the bare echo node on the single-threaded executor',
+    'fk_node loss-free rate >= 1.3x the bare echo node on the single-threaded executor',
+    'ik_node loss-free rate >= 80 % of the bare echo node on the events executor',
+    'fk_node loss-free rate >= 80 % of the bare echo node on the events executor',
+    'ik_node and fk_node p99 latency at 1 kHz < 2 ms (events executor)',
+)
+#: The targets of the nodes, which run on the events executor (their default), each against
+#: the echo node on one executor: (node, echo's executor, the ratio needed).
+NODE_TARGETS = (
+    ('ik_node', 'single_threaded', 1.3), ('fk_node', 'single_threaded', 1.3),
+    ('ik_node', 'events', 0.8), ('fk_node', 'events', 0.8),
 )
 #: Rounds of every ratio benchmark; the median decides.
 ROUNDS = 3
@@ -100,22 +110,31 @@ BASIC_ROBOTICS_OWN_TOLERANCE = 5e-6
 BASIC_ROBOTICS_TIGHT_TOLERANCE = 1e-14
 #: The required accuracy of our solvers, metres and radians.
 REQUIRED_ERROR = 1e-9
-#: Node benchmark: the nodes' queue depth; latency rate and duration; the coarse rate ladder,
-#: its rung duration and the bisections between the last loss-free rung and the first loss.
+#: Node benchmark: the nodes' queue depth; latency rate and duration, and the p99 latency
+#: target there (seconds); the coarse rate ladder, its rung duration and the bisections
+#: between the last loss-free rung and the first loss.
 QUEUE_DEPTH = 100
-LATENCY_RATE = 200.0
+LATENCY_RATE = 1000.0
 LATENCY_SECONDS = 2.0
+LATENCY_TARGET = 2e-3
 LADDER = (250.0, 500.0, 1000.0, 1500.0, 2000.0, 3000.0, 4000.0, 6000.0, 8000.0, 12000.0,
           16000.0, 24000.0, 32000.0)
 RUNG_SECONDS = 1.0
 BISECTIONS = 3
-#: The probe's own receive queue: larger than any rung sends, so the probe never drops a
-#: message (DDS fills it from its own threads while the probe publishes), and every loss counted
-#: is the node's.
+#: The probe's own receive queue, which DDS fills from its own threads while the probe
+#: publishes: larger than any rung sends (see RUNG_MESSAGES), so that every loss counted is the
+#: node's.
 PROBE_RECEIVE_DEPTH = 40000
+#: Most messages of one rung: Fast DDS's reader holds at most 5000 samples whatever the depth
+#: (its default resource limits; measured: 5100 answers of any longer burst arrive, on either
+#: executor), so a rung above this many messages is shorter than RUNG_SECONDS.
+RUNG_MESSAGES = 4000
 #: The chain of both nodes: latency of a pose to the pose fk_node finds for its leg lengths.
 CHAIN = 'ik_node -> fk_node'
 ECHO = 'bare echo node'
+#: The executors every node is measured on (stewart_kinematics.ros.node_main.EXECUTORS); the
+#: nodes' default last.
+NODE_EXECUTORS = ('single_threaded', 'events')
 
 
 @dataclass
@@ -436,10 +455,15 @@ def microseconds(seconds):
     return f'{seconds * 1e6:.1f} us'
 
 
+def table3_ramp():
+    """Return the paper's Table 3 ramp."""
+    return Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
+                           [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
+
+
 def kinematics_benchmarks(table, geometry, random_count, batch_count, rounds):
     """IK and FK, one pose, tracking and batches, against the baselines; returns the ramp."""
-    ramp = Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
-                           [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
+    ramp = table3_ramp()
     rng = np.random.default_rng(20260101)
     random_poses = geometry.home_pose + rng.uniform(-1.0, 1.0, (random_count, 6)) * WORKSPACE
     poses = np.concatenate([ramp.rows, random_poses])
@@ -654,12 +678,13 @@ class Probe:
         Publish at ``rate`` for ``seconds`` without receiving, then collect what arrived.
 
         The probe does not spin while publishing, so that it keeps the rate; its receive queue
-        (:data:`PROBE_RECEIVE_DEPTH`) holds every answer meanwhile.
+        (:data:`PROBE_RECEIVE_DEPTH`) holds every answer meanwhile, up to
+        :data:`RUNG_MESSAGES` of them: a faster rung is shorter.
 
         :returns: ``(every message answered, achieved send rate)``.
         """
         self.arrivals = []
-        count = int(rate * seconds)
+        count = min(int(rate * seconds), RUNG_MESSAGES)
         period = 1.0 / rate
         clock = time.perf_counter
         publish = self.publisher.publish
@@ -726,7 +751,13 @@ class RateSearch:
 
 
 def node_benchmarks(table, geometry, ramp, rounds):
-    """Latency and loss-free rate of ik_node, fk_node and a bare echo node."""
+    """
+    Latency and loss-free rate of ik_node, fk_node and a bare echo node, on both executors.
+
+    Six subjects (echo, ik_node, fk_node, each on each executor of :data:`NODE_EXECUTORS`,
+    each in a namespace of the executor's name) and the chain ik_node -> fk_node on the
+    nodes' default executor; the rate searches of the six interleaved, rung by rung.
+    """
     import rclpy
     from geometry_msgs.msg import Pose
     from std_msgs.msg import Float64MultiArray
@@ -739,95 +770,138 @@ def node_benchmarks(table, geometry, ramp, rounds):
                        for lengths in inverse_kinematics(geometry, poses)]
     params = ['--params-file', str(PLATFORM_FILE), '--params-file', str(SOLVER_FILE),
               '-p', f'queue_depth:={QUEUE_DEPTH}']
-    latency = {name: (Series(), Series()) for name in (ECHO, 'ik_node', 'fk_node', CHAIN)}
-    rates = {name: Series() for name in (ECHO, 'ik_node', 'fk_node')}
-    first_loss = {name: Series() for name in rates}
+    subjects = [(name, executor) for executor in NODE_EXECUTORS
+                for name in (ECHO, 'ik_node', 'fk_node')]
+    latency = {subject: (Series(), Series()) for subject in subjects + [(CHAIN, 'events')]}
+    cpu = {subject: Series() for subject in subjects}
+    rates = {subject: Series() for subject in subjects}
+    first_loss = {subject: Series() for subject in subjects}
+    load = [os.getloadavg()[0]]
     with isolated_ros_environment() as domain:
         print(f'nodes on ROS_DOMAIN_ID {domain}', file=sys.stderr)
-        processes = [
-            NodeProcess('python', [str(Path(__file__).with_name('echo_node.py')), '--ros-args',
-                                   '-p', f'queue_depth:={QUEUE_DEPTH}']),
-            NodeProcess('ik_node', ['--ros-args', *params]),
-            # Its own input topic, so that it stays idle while ik_node is measured.
-            NodeProcess('fk_node', ['--ros-args', *params, '-r', 'leg_lengths:=fk_lengths']),
-            # The chain pose -> ik_node -> leg lengths -> fk_node -> pose, in its own namespace.
-            NodeProcess('ik_node', ['--ros-args', *params, '-r', '__ns:=/chain']),
-            NodeProcess('fk_node', ['--ros-args', *params, '-r', '__ns:=/chain']),
-        ]
+        processes = []
+        for executor in NODE_EXECUTORS:
+            options = ['--executor', executor, '--ros-args', '-r', f'__ns:=/{executor}']
+            processes += [
+                NodeProcess('python', [str(Path(__file__).with_name('echo_node.py')), *options,
+                                       '-p', f'queue_depth:={QUEUE_DEPTH}']),
+                NodeProcess('ik_node', [*options, *params]),
+                # Its own input topic, so that it stays idle while ik_node is measured.
+                NodeProcess('fk_node', [*options, *params, '-r', 'leg_lengths:=fk_lengths']),
+            ]
+        subject_processes = dict(zip(subjects, processes))
+        # The chain pose -> ik_node -> leg lengths -> fk_node -> pose, on the default executor.
+        processes += [NodeProcess(name, ['--ros-args', *params, '-r', '__ns:=/chain'])
+                      for name in ('ik_node', 'fk_node')]
         rclpy.init()
         try:
-            probes = {
-                ECHO: (Probe(Pose, 'echo_in', Pose, 'echo_out'), pose_messages),
-                'ik_node': (Probe(Pose, 'target_pose', Float64MultiArray, 'leg_lengths'),
-                            pose_messages),
-                'fk_node': (Probe(Float64MultiArray, 'fk_lengths', Pose, 'estimated_pose'),
-                            length_messages),
-                CHAIN: (Probe(Pose, 'chain/target_pose', Pose, 'chain/estimated_pose'),
-                        pose_messages),
-            }
-            deadline = time.monotonic() + 30.0
-            for name, (probe, messages) in probes.items():
+            probes = {}
+            for name, executor in subjects:
+                prefix = f'{executor}/'
+                probes[name, executor] = {
+                    ECHO: (Probe(Pose, prefix + 'echo_in', Pose, prefix + 'echo_out'),
+                           pose_messages),
+                    'ik_node': (Probe(Pose, prefix + 'target_pose', Float64MultiArray,
+                                      prefix + 'leg_lengths'), pose_messages),
+                    'fk_node': (Probe(Float64MultiArray, prefix + 'fk_lengths', Pose,
+                                      prefix + 'estimated_pose'), length_messages),
+                }[name]
+            probes[CHAIN, 'events'] = (Probe(Pose, 'chain/target_pose', Pose,
+                                             'chain/estimated_pose'), pose_messages)
+            deadline = time.monotonic() + 60.0
+            for subject, (probe, messages) in probes.items():
                 if not probe.wait_connected(deadline, processes):
-                    raise RuntimeError(f'{name} did not connect: '
+                    raise RuntimeError(f'{subject} did not connect: '
                                        + ' '.join(p.output()[-500:] for p in processes))
                 probe.latency(messages, LATENCY_RATE, 0.5)  # warm-up, not counted
             for round_index in range(rounds):
-                print(f'node round {round_index + 1} of {rounds}', file=sys.stderr)
-                for name, (probe, messages) in probes.items():
+                print(f'node round {round_index + 1} of {rounds} (load average '
+                      f'{os.getloadavg()[0]:.2f})', file=sys.stderr)
+                for subject, (probe, messages) in probes.items():
+                    process = subject_processes.get(subject)
+                    used = process and process_seconds(process)
                     delays = probe.latency(messages, LATENCY_RATE, LATENCY_SECONDS)
-                    p50, p99 = (math.nan, math.nan) if delays is None else \
+                    if process:
+                        cpu[subject].add((process_seconds(process) - used)
+                                         / (LATENCY_RATE * LATENCY_SECONDS))
+                    # A round that lost a message counts as an infinite latency.
+                    p50, p99 = (math.inf, math.inf) if delays is None else \
                         np.percentile(delays, [50, 99])
-                    latency[name][0].add(p50)
-                    latency[name][1].add(p99)
-                # Rates interleaved across the nodes, so that a slow moment of the machine
-                # hits them alike; each node climbs the ladder to its first loss, then bisects.
-                searches = {name: RateSearch() for name in rates}
+                    latency[subject][0].add(p50)
+                    latency[subject][1].add(p99)
+                # Rates interleaved across the subjects, so that a slow moment of the machine
+                # hits them alike; each climbs the ladder to its first loss, then bisects.
+                searches = {subject: RateSearch() for subject in subjects}
                 while any(search.next_rate() for search in searches.values()):
-                    for name, search in searches.items():
+                    for subject, search in searches.items():
                         rate = search.next_rate()
                         if rate:
-                            probe, messages = probes[name]
+                            probe, messages = probes[subject]
                             search.record(rate, *probe.loss_free(messages, rate, RUNG_SECONDS))
-                for name, search in searches.items():
-                    rates[name].add(search.best)
-                    first_loss[name].add(search.lost_at or math.inf)
-                    print(f'  {name}: loss-free up to {search.best:,.0f} Hz, first loss at '
-                          f'{search.lost_at or math.inf:,.0f} Hz', file=sys.stderr)
+                for subject, search in searches.items():
+                    rates[subject].add(search.best)
+                    first_loss[subject].add(search.lost_at or math.inf)
+                    print(f'  {subject[0]} ({subject[1]}): loss-free up to {search.best:,.0f} '
+                          f'Hz, first loss at {search.lost_at or math.inf:,.0f} Hz',
+                          file=sys.stderr)
+                load.append(os.getloadavg()[0])
         finally:
             rclpy.try_shutdown()
             for process in processes:
                 process.stop()
+    node_rows(table, latency, cpu, rates, first_loss, load)
 
-    echo_p50 = latency[ECHO][0]
-    echo_rate = rates[ECHO]
-    ceiling = any(math.isinf(value) for value in first_loss[ECHO].values)
-    for name in (ECHO, 'ik_node', 'fk_node'):
-        p50, p99 = latency[name]
+
+def process_seconds(process):
+    """Processor time a NodeProcess has used so far (user and system, all threads), seconds."""
+    fields = Path(f'/proc/{process.process.pid}/stat').read_text().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+def node_rows(table, latency, cpu, rates, first_loss, load):
+    """
+    Add the node rows and judge the node targets.
+
+    :param cpu: per subject, the processor time its process used per message at
+        :data:`LATENCY_RATE`, seconds (its timers and worker threads included).
+    :param load: the load averages seen (1 min).
+    """
+    def ratio(values, reference, scale=1.0):
+        return Series([scale * a / b for a, b in zip(values.values, reference.values)])
+
+    echo = {executor: rates[ECHO, executor] for executor in NODE_EXECUTORS}
+    ceiling = {executor: any(math.isinf(value) for value in first_loss[ECHO, executor].values)
+               for executor in NODE_EXECUTORS}
+    for (name, executor), rate in rates.items():
+        p50, p99 = latency[name, executor]
         limit = ('no loss up to the top of the ladder' if any(
-            math.isinf(value) for value in first_loss[name].values)
-            else f'first loss at {first_loss[name].median:,.0f} Hz')
-        if name == ECHO:
-            ratio = '1.00'
-        else:
-            latency_ratio = Series([a / b for a, b in zip(p50.values, echo_p50.values)])
-            rate_ratio = Series([a / b for a, b in zip(rates[name].values, echo_rate.values)])
-            ratio = (f'latency p50 {latency_ratio.text(".2f")}, rate '
-                     f'{rate_ratio.text(".2f")} echo')
-        table.add('Node: publish -> receive', name,
-                  f'p50 {p50.median * 1e3:.2f} ms, p99 {p99.median * 1e3:.2f} ms; loss-free up '
-                  f'to {rates[name].median:,.0f} Hz ({limit})', ratio, '', '')
-    chain_p50, chain_p99 = latency[CHAIN]
-    table.add('Node: pose -> FK pose', CHAIN,
-              f'p50 {chain_p50.median * 1e3:.2f} ms, p99 {chain_p99.median * 1e3:.2f} ms',
-              'latency p50 ' + Series([a / b for a, b in zip(chain_p50.values,
-                                                             echo_p50.values)]).text('.2f')
-              + ' echo', '', '')
-    for name, target in (('ik_node', TARGETS[7]), ('fk_node', TARGETS[8])):
-        fraction = Series([100.0 * a / b for a, b in zip(rates[name].values, echo_rate.values)])
-        note = ' (echo never lost a message: a lower bound)' if ceiling else ''
-        table.target(target, fraction.median >= 80.0,
-                     f'{rates[name].median:,.0f} Hz vs {echo_rate.median:,.0f} Hz: '
-                     f'{fraction.text(".0f", " %")}{note}')
+            math.isinf(value) for value in first_loss[name, executor].values)
+            else f'first loss at {first_loss[name, executor].median:,.0f} Hz')
+        against = '; '.join(f'{ratio(rate, echo[other]).text(".2f")} echo {other}'
+                            for other in NODE_EXECUTORS if (name, executor) != (ECHO, other))
+        table.add('Node: publish -> receive', f'{name}, {executor} executor',
+                  f'at {LATENCY_RATE:,.0f} Hz: p50 {p50.median * 1e3:.2f} ms, p99 '
+                  f'{p99.median * 1e3:.2f} ms, {cpu[name, executor].median * 1e6:.0f} us of '
+                  f'processor per message; loss-free up to {rate.median:,.0f} Hz ({limit})',
+                  f'rate {against}' if against else '1.00', '', '')
+    chain_p50, chain_p99 = latency[CHAIN, 'events']
+    table.add('Node: pose -> FK pose', f'{CHAIN}, events executor',
+              f'at {LATENCY_RATE:,.0f} Hz: p50 {chain_p50.median * 1e3:.2f} ms, p99 '
+              f'{chain_p99.median * 1e3:.2f} ms',
+              'latency p50 ' + ratio(chain_p50, latency[ECHO, 'events'][0]).text('.2f')
+              + ' echo (events)', '', '')
+    loads = f'load average {min(load):.2f}-{max(load):.2f}'
+    for target, (name, executor, needed) in zip(TARGETS[7:11], NODE_TARGETS):
+        fraction = ratio(rates[name, 'events'], echo[executor])
+        note = ' (echo never lost a message: a bound)' if ceiling[executor] else ''
+        table.target(target, fraction.median >= needed,
+                     f'{rates[name, "events"].median:,.0f} Hz vs {echo[executor].median:,.0f} '
+                     f'Hz: {fraction.text(".2f")}{note}; {loads}')
+    p99 = {name: latency[name, 'events'][1] for name in ('ik_node', 'fk_node')}
+    table.target(TARGETS[11], all(series.median < LATENCY_TARGET for series in p99.values()),
+                 '; '.join(f'{name} {series.median * 1e3:.2f} ms ({min(series.values) * 1e3:.2f}'
+                           f'-{max(series.values) * 1e3:.2f})' for name, series in p99.items())
+                 + f'; {loads}')
 
 
 def main(argv=None) -> int:
@@ -840,18 +914,26 @@ def main(argv=None) -> int:
     parser.add_argument('--rounds', type=int, default=ROUNDS,
                         help=f'rounds of every ratio benchmark (default {ROUNDS})')
     parser.add_argument('--no-nodes', action='store_true', help='skip the node benchmarks')
+    parser.add_argument('--nodes-only', action='store_true',
+                        help='only the node benchmarks (the other targets: not measured)')
     parser.add_argument('--output', type=Path, default=RESULTS_FILE,
                         help='where to write the tables (default benchmarks/results.md)')
     args = parser.parse_args(argv)
     start = time.monotonic()
     geometry = load_geometry(PLATFORM_FILE)
     table = Table(args.rounds)
-    ramp = kinematics_benchmarks(table, geometry, args.random_poses, args.batch, args.rounds)
+    load = os.getloadavg()[0]
+    if args.nodes_only:
+        ramp = table3_ramp()
+    else:
+        ramp = kinematics_benchmarks(table, geometry, args.random_poses, args.batch,
+                                     args.rounds)
     if not args.no_nodes:
         node_benchmarks(table, geometry, ramp, args.rounds)
     machine = (f'{platform.processor() or platform.machine()}, {platform.python_implementation()} '
                f'{platform.python_version()}, numpy {np.__version__}; {args.rounds} rounds in '
-               f'{time.monotonic() - start:.0f} s')
+               f'{time.monotonic() - start:.0f} s; load average (1 min) {load:.2f} at the '
+               f'start, {os.getloadavg()[0]:.2f} at the end')
     text = (block('machine', machine) + '\n' + block('results', table.results_markdown())
             + '\n' + block('targets', table.targets_markdown()))
     print(text)

@@ -19,6 +19,12 @@ Shared fixtures; every test session runs on a private ROS domain, on this machin
 reserved free ``ROS_DOMAIN_ID`` before any test starts rclpy, so neither in-process nodes nor
 the node processes the tests start can reach the network or another run.
 
+The executor: ``STEWART_EXECUTOR`` (``events``, the default, or ``single_threaded``) chooses
+it for the whole session, as it does for a user's nodes: the node processes inherit it, and
+the in-process tests spin on ``create_executor()``, which reads it. So the one suite runs on
+either executor (``STEWART_EXECUTOR=single_threaded scripts/run_tests.sh``); the session's
+header says which, and an unknown name stops the session before any test.
+
 The multi-process tests share ``start_node`` (console scripts as child processes, stopped at the
 end of the test) and ``client`` (the test's own rclpy node, with waits that fail with the
 nodes' output).
@@ -30,6 +36,7 @@ import time
 
 import pytest
 
+from stewart_kinematics.ros.node_main import create_executor, executor_name
 from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
@@ -43,8 +50,17 @@ _environment = contextlib.ExitStack()
 
 
 def pytest_configure(config):
-    """Isolate ROS before any test runs."""
+    """Isolate ROS before any test runs; refuse an unknown STEWART_EXECUTOR."""
+    try:
+        executor_name()
+    except ValueError as error:
+        raise pytest.UsageError(str(error))
     _environment.enter_context(isolated_ros_environment())
+
+
+def pytest_report_header(config):
+    """Say which executor the nodes of this session spin on."""
+    return f'executor: {executor_name()} (STEWART_EXECUTOR)'
 
 
 def pytest_collection_modifyitems(config, items):
@@ -135,9 +151,8 @@ class TopicClient:
 @pytest.fixture
 def client(ros, spin_until):
     """Create a TopicClient with a fresh node on the session's private domain."""
-    from rclpy.executors import SingleThreadedExecutor
     node = ros.create_node('stewart_test_client')
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
     executor.add_node(node)
     yield TopicClient(node, executor, spin_until)
     executor.shutdown()

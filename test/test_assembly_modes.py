@@ -335,12 +335,13 @@ def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
         'doc/assembly_modes.md is out of date: run python scripts/figures/assembly_modes.py')
 
 
-def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper):
+@pytest.mark.parametrize('worker', ['thread', 'process'])
+def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper, worker):
     from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
     lengths = reference.leg_lengths_of_matrix(
         end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
-    monitor = AssemblyModeMarginMonitor(paper, warning_distance=0.5)
+    monitor = AssemblyModeMarginMonitor(paper, warning_distance=0.5, worker=worker)
     try:
         assert monitor.latest is None and monitor.warning() == ''
         assert not monitor.request(end, None)
@@ -354,5 +355,29 @@ def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper
         assert '0.2385 m and 135.3 deg' in monitor.warning()
         monitor.warning_distance = 0.1
         assert monitor.warning() == ''
+    finally:
+        monitor.close()
+
+
+def test_margin_monitor_refuses_an_unknown_worker_and_outlives_its_process(paper):
+    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
+    with pytest.raises(ValueError, match="worker must be one of .'thread', 'process'., got 'x'"):
+        AssemblyModeMarginMonitor(paper, worker='x')
+    monitor = AssemblyModeMarginMonitor(paper, worker='process')
+    try:
+        monitor._warm_up.result(timeout=30.0)
+        for process in list(monitor._pool._processes.values()):
+            process.kill()
+            process.join()
+        # The dead worker is noticed, and the next request gets a new one.
+        end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
+        lengths = reference.leg_lengths_of_matrix(
+            end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
+        for _ in range(3):
+            monitor.request(end, lengths)
+            monitor.wait(timeout=30.0)
+            if monitor.latest is not None:
+                break
+        assert monitor.latest.position == pytest.approx(0.2385, abs=1e-3)
     finally:
         monitor.close()

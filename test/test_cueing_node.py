@@ -27,13 +27,13 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from rclpy.exceptions import ParameterException
-from rclpy.executors import SingleThreadedExecutor
 from reference import quaternion_from_euler
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Trigger
 
 from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE, PUBLISHER, SERVICE, SUBSCRIPTION
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
+from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
@@ -64,7 +64,7 @@ class Rig:
     def __init__(self, ros, spin_until, arguments):
         self.node = MotionCueingNode(cli_args=arguments)
         self.client = ros.create_node('cueing_test_client')
-        self.executor = SingleThreadedExecutor()
+        self.executor = create_executor()
         self.executor.add_node(self.node)
         self.executor.add_node(self.client)
         self.spin_until = spin_until

@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-In-process tests of the FK node: real rclpy, a probe node, one SingleThreadedExecutor.
+In-process tests of the FK node: real rclpy, a probe node, one executor.
+
+STEWART_EXECUTOR chooses the executor, as for the nodes (test/conftest.py).
 
 The input lengths of the paper's Table 3 rows come from the package's closed-form inverse
 kinematics; the output is checked against the rows typed here in millimetres and degrees, with
@@ -28,7 +30,6 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from reference import quaternion_from_euler, TABLE_3
@@ -39,6 +40,7 @@ from stewart_kinematics import forward_kinematics, inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros import fk_node
 from stewart_kinematics.ros.fk_node import FkNode
+from stewart_kinematics.ros.node_main import create_executor
 import yaml
 
 pytestmark = pytest.mark.node
@@ -101,7 +103,7 @@ def start(ros, spin_until):
     ``(node, probe, executor)``.
     """
     created = []
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
 
     def start_nodes(**node_kwargs):
         node_kwargs.setdefault('cli_args', KINEMATICS_ARGS)

@@ -25,13 +25,13 @@ from pathlib import Path
 
 from geometry_msgs.msg import Pose, Twist
 import pytest
-from rclpy.executors import SingleThreadedExecutor
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.fk_node import FkNode
+from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
@@ -56,7 +56,7 @@ def fk(ros, spin_until):
     publishers = {'joint_states': probe.create_publisher(JointState, 'joint_states', 100),
                   'leg_velocities': probe.create_publisher(
                       Float64MultiArray, 'leg_velocities', 100)}
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
     executor.add_node(node)
     executor.add_node(probe)
     assert spin_until(executor, lambda: all(

@@ -190,3 +190,36 @@ def test_pose_error_bound_definition(geometry):
     h = eta * curvature / sigma
     expected = 2.0 * eta / (1.0 + math.sqrt(1.0 - 2.0 * h)) * max(1.0, 1.0 / rho)
     assert result.pose_error_bound == pytest.approx(expected, rel=1e-6)
+
+
+def test_one_solve_figures_equal_the_batch_ones(geometry):
+    # One solve takes a float path (fk_node pays for it on every message); a batch of one the
+    # array path: the same condition numbers and bounds, also near and at the singularity.
+    singular = np.array(HOME[:5] + (singular_yaw(),))
+    poses = np.concatenate([random_poses(50, seed=9), [singular + [0, 0, 0, 0, 0, 1e-6]]])
+    lengths = inverse_kinematics(geometry, poses)
+    for pose, legs in zip(poses, lengths):
+        single = forward_kinematics(geometry, legs, pose)
+        batch = forward_kinematics(geometry, legs[None, :], pose[None, :])
+        np.testing.assert_array_equal(single.pose, batch.pose[0])
+        assert single.condition == pytest.approx(batch.condition[0], rel=1e-9)
+        assert single.pose_error_bound == pytest.approx(batch.pose_error_bound[0], rel=1e-9)
+    assert single.condition > 1e5
+
+
+def test_one_solve_figures_at_exact_singularities(geometry):
+    # A leg of zero length (its platform joint on its base joint): a zero row, condition and
+    # bound infinite on both paths; a failed solve: bound infinite.
+    from reference import BASE_JOINTS, paper_geometry
+    platform_joints = np.array(PLATFORM_JOINTS, dtype=float)
+    platform_joints[0] = BASE_JOINTS[0]
+    touching = paper_geometry(platform_joints=platform_joints)
+    pose = np.zeros(6)  # leg 1's joints coincide: its vector is exactly zero
+    single = kinematics._single_singular_values(touching, pose.tolist())
+    batch = kinematics._dimensionless_singular_values(touching, pose[None, :3], np.eye(3)[None])
+    assert single[-1] == 0.0 == batch[0, -1]
+    np.testing.assert_allclose(single[:-1], batch[0, :-1], rtol=1e-12)
+    home = list(HOME)
+    for converged, values in ((True, single), (False, [1.0, 0.5])):
+        assert kinematics._single_pose_error_bound(
+            touching, home, [0.7] * 6, 0.0, converged, values) == math.inf

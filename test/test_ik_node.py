@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-In-process tests of the IK node: real rclpy, a probe node, one SingleThreadedExecutor.
+In-process tests of the IK node: real rclpy, a probe node, one executor.
+
+STEWART_EXECUTOR chooses the executor, as for the nodes (test/conftest.py).
 
 Expected leg lengths are computed here with the paper's equation 1 written out in plain Python
 (``|t + R p_i - b_i|``, ``R`` from the paper's r11..r33), from the joints read with
@@ -27,7 +29,6 @@ from geometry_msgs.msg import Pose
 from numpy.testing import assert_allclose
 import pytest
 import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from reference import leg_lengths as expected_lengths, quaternion_from_euler
@@ -35,6 +36,7 @@ from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros import ik_node
 from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.node_main import create_executor
 import yaml
 
 pytestmark = pytest.mark.node
@@ -108,7 +110,7 @@ def start(ros, spin_until):
     probe's target topic, and returns ``(node, probe, executor)``.
     """
     created = []
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
 
     def start_nodes(target_topic='target_pose', **node_kwargs):
         node_kwargs.setdefault('cli_args', KINEMATICS_ARGS)

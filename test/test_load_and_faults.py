@@ -51,12 +51,12 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
-from rclpy.executors import SingleThreadedExecutor
 from reference import quaternion_angle as rotation_angle, quaternion_from_euler as quaternion
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.model.kinematics import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
+from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.tools.node_processes import NodeProcess
 
 pytestmark = pytest.mark.process
@@ -250,7 +250,7 @@ class SpinningClient:
     def __init__(self, node):
         """Spin ``node`` in a background thread until :meth:`close`."""
         self.node = node
-        self.executor = SingleThreadedExecutor()
+        self.executor = create_executor()
         self.executor.add_node(node)
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._spin, name='client_spin', daemon=True)

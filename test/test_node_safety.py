@@ -38,7 +38,6 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from reference import leg_lengths as plain_lengths, quaternion_from_euler
@@ -49,6 +48,7 @@ from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros import trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
 
@@ -194,7 +194,7 @@ def start(ros, spin_until):
     ``(node, probe, executor)``; ``overrides`` maps parameter names to values.
     """
     created = []
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
 
     def start_nodes(node_class, cli_args, overrides, input_type, input_topic, outputs):
         parameters = [Parameter(name, value=value) for name, value in overrides.items()]
@@ -624,7 +624,7 @@ def assert_refusal_lists(message, failing, times, samples):
 @pytest.fixture
 def ramp_probe(ros):
     """Return a probe node recording target_pose, on its own executor."""
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
     probe = Probe(outputs=[('target_pose', Pose)])
     executor.add_node(probe.node)
     yield probe, executor

@@ -25,10 +25,21 @@ import math
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from reference import HOME, leg_lengths, paper_geometry, singular_yaw, TABLE_3
+from reference import (
+    HOME,
+    leg_lengths,
+    paper_geometry,
+    rotation_angle,
+    rotation_zyx,
+    singular_yaw,
+    TABLE_3,
+)
 
 from stewart_kinematics import forward_kinematics, platform_twist, PoseTracker
-from stewart_kinematics.decisions.pose_tracker import assembly_mode_jump
+from stewart_kinematics.decisions.pose_tracker import (
+    assembly_mode_jump,
+    euler_angle_change_bound,
+)
 from stewart_kinematics.parameters import SolverSettings
 
 pytestmark = pytest.mark.core
@@ -178,6 +189,36 @@ def test_the_assembly_mode_guard_compares_with_the_last_solution():
     # Lengths changed by more than assembly_guard_length_change (5 mm): a motion.
     assert assembly_mode_jump(settings, HOME, home_lengths, other.pose,
                               home_lengths + 0.006) is None
+
+
+def test_the_euler_bound_never_changes_the_guard_decision():
+    """
+    The cheap bound is at least the rotation angle, so the guard decides as on the angle.
+
+    Pairs of poses with the second's angles off by up to 30 degrees each (wrapping through
+    pi included), against the angle from the textbook matrices (test/reference.py), at
+    thresholds around each pair's own angle.
+    """
+    rng = np.random.default_rng(22)
+    settings = SolverSettings()
+    lengths = lengths_of(HOME)
+    for _ in range(500):
+        first = HOME + np.concatenate([rng.uniform(-0.05, 0.05, 3),
+                                       rng.uniform(-math.pi, math.pi, 3)])
+        second = first + np.concatenate([rng.uniform(-0.01, 0.01, 3),
+                                         rng.uniform(-0.5, 0.5, 3)])
+        angle = rotation_angle(rotation_zyx(*first[3:]), rotation_zyx(*second[3:]))
+        assert euler_angle_change_bound(first[3:], second[3:]) >= angle - 1e-12
+        for factor in (0.5, 0.999999, 1.000001, 2.0):
+            threshold = math.degrees(angle) * factor
+            guard = settings.replace(assembly_guard_angle_change_deg=threshold,
+                                     assembly_guard_position_change=1.0)
+            jump = assembly_mode_jump(guard, first, lengths, second, lengths)
+            assert (jump is None) == (factor > 1.0), (first, second, factor)
+    # Differences that wrap: 350 degrees apart is 10 degrees.
+    assert euler_angle_change_bound([math.radians(175.0), 0.0, 0.0],
+                                    [math.radians(-175.0), 0.0, 0.0]) == pytest.approx(
+        math.radians(10.0))
 
 
 def test_the_tracker_refuses_a_jump_and_keeps_its_last_solution():

@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-In-process tests of the trajectory node: real rclpy, a probe node, one SingleThreadedExecutor.
+In-process tests of the trajectory node: real rclpy, a probe node, one executor.
+
+STEWART_EXECUTOR chooses the executor, as for the nodes (test/conftest.py).
 
 The node plays config/table3_ramp.yaml, with a short row period or duration given as
 parameter overrides; the received poses are compared with the paper's Table 3 typed here in
@@ -27,12 +29,12 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from reference import quaternion_from_euler, TABLE_3
 
 from stewart_kinematics.ros import trajectory_node
+from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
 
@@ -91,7 +93,7 @@ def start(ros):
     the probe subscribes at once, and returns ``(node, probe, executor)``.
     """
     created = []
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
 
     def start_nodes(overrides, subscribe=True):
         probe = Probe(subscribe)

@@ -28,11 +28,11 @@ from geometry_msgs.msg import Transform, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 import reference
 
+from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 from trajectory_msgs.msg import (
     JointTrajectory,
@@ -79,7 +79,7 @@ def trajectory_message(times, poses, joints=('platform',), quaternions=None):
 @pytest.fixture
 def start(ros, spin_until):
     """Return a starter of trajectory_nodes (by namespace and overrides) with one probe."""
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
     probe = Node('planning_probe')
     executor.add_node(probe)
     created = [probe]

@@ -28,7 +28,6 @@ from geometry_msgs.msg import Pose, Twist
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 import reference
@@ -37,6 +36,7 @@ from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
@@ -108,7 +108,7 @@ def nodes(ros, spin_until):
     publishers = {topic: probe.create_publisher(message_type, topic, 10) for topic, message_type
                   in (('target_pose', Pose), ('target_twist', Twist),
                       ('joint_states', JointState))}
-    executor = SingleThreadedExecutor()
+    executor = create_executor()
     for node in (ik, fk, probe):
         executor.add_node(node)
     assert spin_until(executor, lambda: all(

@@ -33,14 +33,20 @@ as such.
 The assembly-mode margin (:func:`assembly_mode_margin`) is the distance from a pose to the
 nearest other real mode within the limits: how far a solver would have to be thrown to land in
 another mode, and how sure a start from a remembered pose can be (:func:`start_ambiguity`);
-:class:`AssemblyModeMarginMonitor` computes it in a worker thread for fk_node.
+:class:`AssemblyModeMarginMonitor` computes it in a worker thread, or process (fk_node's).
 
 Units are metres and radians, frames and the rotation convention those of
 :mod:`stewart_kinematics.model.geometry`. Nothing here imports ROS.
 """
 
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 import math
+import multiprocessing
+import os
+import signal
+import time
 from typing import Optional, Tuple
 
 import numpy as np
@@ -368,28 +374,50 @@ class AssemblyModeMarginMonitor:
     """
     The assembly-mode margin of a tracker's latest solution, computed in the background.
 
-    Finding every mode takes tens of milliseconds, too long for a message callback: fk_node
-    calls :meth:`request` at its status rate with the last solution, which starts one
-    computation in a worker thread unless one is running or the lengths have not changed, and
-    reads :attr:`latest` when it reports. The solutions keep flowing meanwhile.
+    Finding every mode takes milliseconds to tens of them, too long for a message callback:
+    fk_node calls :meth:`request` at its status rate with the last solution, which starts one
+    computation in the worker unless one is running or the lengths have not changed, and reads
+    :attr:`latest` when it reports. The solutions keep flowing meanwhile.
+
+    The worker is a thread, or with ``worker='process'`` a process of its own (started by
+    ``forkserver``, at a lower priority, ignoring SIGINT: its owner stops it). fk_node takes the
+    process: a computing thread holds the interpreter lock, and the thread that runs the
+    message callbacks then waits for it at each hand-over, up to the interpreter's switch
+    interval (5 ms): measured here, its wake-ups were late by 3.6 ms at the 99th percentile
+    (0.16 ms without the thread) while margins were computed.
 
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param warning_distance: a margin (the combined distance of :func:`pose_distance`)
         below this, metres, is worth a warning; 0 for none.
+    :param worker: ``'thread'`` or ``'process'`` (:data:`MARGIN_WORKERS`).
+    :raises ValueError: for another ``worker``.
     """
 
-    def __init__(self, geometry, warning_distance=0.0):
-        from concurrent.futures import ThreadPoolExecutor
+    def __init__(self, geometry, warning_distance=0.0, worker='thread'):
+        if worker not in MARGIN_WORKERS:
+            raise ValueError(f'worker must be one of {MARGIN_WORKERS}, got {worker!r}')
         self.geometry = geometry
         self.warning_distance = float(warning_distance)
+        self.worker = worker
         #: The last margin computed, or None; with the lengths it is for and its cost, seconds.
         self.latest: Optional[AssemblyModeMargin] = None
         self.latest_lengths = None
         self.latest_seconds = None
-        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
-        # Build the start systems now, in the background (under a second, once per process).
-        self._warm_up = self._pool.submit(geometry_start_system, geometry)
         self._running = None
+        self._start_worker()
+
+    def _start_worker(self):
+        """Start the worker; it builds the geometry's start systems at once (under a second)."""
+        if self.worker == 'thread':
+            self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
+            self._warm_up = self._pool.submit(geometry_start_system, self.geometry)
+        else:
+            # The process keeps the geometry (its start systems are cached by the object):
+            # each request sends only a pose and lengths.
+            self._pool = ProcessPoolExecutor(
+                max_workers=1, mp_context=multiprocessing.get_context('forkserver'),
+                initializer=_start_margin_worker, initargs=(self.geometry,))
+            self._warm_up = self._pool.submit(int)
 
     def request(self, pose, lengths) -> bool:
         """
@@ -403,7 +431,13 @@ class AssemblyModeMarginMonitor:
         lengths = np.array(lengths, dtype=float)
         if self.latest_lengths is not None and np.array_equal(lengths, self.latest_lengths):
             return False
-        self._running = self._pool.submit(self._compute, np.array(pose, dtype=float), lengths)
+        geometry = self.geometry if self.worker == 'thread' else None
+        try:
+            self._running = self._pool.submit(
+                _timed_margin, geometry, np.array(pose, dtype=float), lengths)
+        except BrokenProcessPool:   # the worker process died: a new one for the next request
+            self._start_worker()
+            return False
         return True
 
     def warning(self) -> str:
@@ -420,20 +454,51 @@ class AssemblyModeMarginMonitor:
     def wait(self, timeout=None):
         """Wait for the running computation, if any (for tests and shutdown)."""
         if self._running is not None:
-            self._running.result(timeout)
+            try:
+                self._running.result(timeout)
+            except BrokenProcessPool:
+                pass
         self._collect()
 
     def close(self):
-        """Stop the worker thread (a running computation finishes first)."""
-        self._pool.shutdown(wait=True)
-
-    def _compute(self, pose, lengths):
-        import time
-        start = time.perf_counter()
-        margin = assembly_mode_margin(self.geometry, pose, lengths)
-        return margin, lengths, time.perf_counter() - start
+        """Stop the worker (a running computation finishes first)."""
+        self._pool.shutdown(wait=True, cancel_futures=True)
 
     def _collect(self):
         if self._running is not None and self._running.done():
             future, self._running = self._running, None
-            self.latest, self.latest_lengths, self.latest_seconds = future.result()
+            try:
+                self.latest, self.latest_lengths, self.latest_seconds = future.result()
+            except BrokenProcessPool:   # the worker process died: a new one for the next
+                self._start_worker()
+
+
+#: Where :class:`AssemblyModeMarginMonitor` computes.
+MARGIN_WORKERS = ('thread', 'process')
+#: Scheduling priority of a margin worker process below its owner's (a nice(2) increment):
+#: on a busy machine the owner's message callbacks run first.
+MARGIN_WORKER_NICENESS = 10
+#: In a margin worker process, the geometry it computes for (see _start_margin_worker).
+_worker_geometry = None
+
+
+def _start_margin_worker(geometry):
+    """Set up a margin worker process: lower priority, no Ctrl-C, its geometry's start systems."""
+    global _worker_geometry
+    os.nice(MARGIN_WORKER_NICENESS)
+    # A Ctrl-C in a terminal reaches the whole process group: the owner stops the worker.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _worker_geometry = geometry
+    geometry_start_system(geometry)
+
+
+def _timed_margin(geometry, pose, lengths):
+    """
+    Return :func:`assembly_mode_margin`, ``lengths`` and the seconds it took.
+
+    :param geometry: the geometry, or None in a margin worker process: the process's own.
+    """
+    geometry = _worker_geometry if geometry is None else geometry
+    start = time.perf_counter()
+    margin = assembly_mode_margin(geometry, pose, lengths)
+    return margin, lengths, time.perf_counter() - start

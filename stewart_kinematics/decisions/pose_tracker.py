@@ -343,7 +343,12 @@ def assembly_mode_jump(settings: SolverSettings, last_pose, last_lengths, pose,
     length_change = max(map(abs, (np.asarray(lengths) - last_lengths).tolist()))
     if length_change > settings.assembly_guard_length_change:
         return None
-    position_change = math.dist(pose[:3].tolist(), last_pose[:3].tolist())
+    pose, last_pose = np.asarray(pose).tolist(), np.asarray(last_pose).tolist()
+    position_change = math.dist(pose[:3], last_pose[:3])
+    if (position_change <= settings.assembly_guard_position_change
+            and euler_angle_change_bound(last_pose[3:], pose[3:])
+            <= math.radians(settings.assembly_guard_angle_change_deg) * ANGLE_BOUND_MARGIN):
+        return None   # the rotation angle is at most the bound: no need to compute it
     angle_change = math.degrees(float(rotation_angle_between(
         euler_zyx_to_matrix(last_pose[3:]), euler_zyx_to_matrix(pose[3:]))))
     if (position_change <= settings.assembly_guard_position_change
@@ -357,6 +362,31 @@ def assembly_mode_jump(settings: SolverSettings, last_pose, last_lengths, pose,
         (('position_change_m', f'{position_change:.4g}'),
          ('angle_change_deg', f'{angle_change:.4g}'),
          ('length_change_m', f'{length_change:.4g}')))
+
+
+#: :func:`euler_angle_change_bound` decides alone only this far below the threshold: far
+#: beyond the rounding of either figure (about 1e-15 relative).
+ANGLE_BOUND_MARGIN = 1.0 - 1e-9
+
+
+def euler_angle_change_bound(angles_a, angles_b) -> float:
+    """
+    Bound from above the rotation angle between two Z-Y-X Euler rotations, radians.
+
+    The rotation angle between two rotations is a distance invariant under rotating both
+    (bi-invariant), so for ``R = Rz(alpha) Ry(beta) Rx(gamma)`` the triangle inequality gives
+    ``angle(R_a, R_b) <= |alpha_a - alpha_b| + |beta_a - beta_b| + |gamma_a - gamma_b|``, each
+    difference taken modulo 2 pi into [0, pi]. Three subtractions instead of two rotation
+    matrices and a quaternion: :func:`assembly_mode_jump` computes the angle only when this
+    bound exceeds its threshold, so its decision is the same.
+
+    :param angles_a: ``(alpha, beta, gamma)``, radians; ``angles_b`` likewise.
+    """
+    bound = 0.0
+    for a, b in zip(angles_a, angles_b):
+        difference = abs(a - b) % (2.0 * math.pi)
+        bound += min(difference, 2.0 * math.pi - difference)
+    return bound
 
 
 @dataclass(frozen=True)

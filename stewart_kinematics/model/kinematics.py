@@ -106,6 +106,12 @@ def as_leg_lengths(lengths, name='leg lengths') -> np.ndarray:
     :returns: a float array of the same shape.
     :raises ValueError: if the shape is wrong or a length is not finite and positive.
     """
+    if isinstance(lengths, np.ndarray) and lengths.shape == (6,) and lengths.dtype == _FLOAT:
+        # One set of six floats (fk_node's per message): checked in floats; a sum of finite
+        # numbers can overflow, and then the full checks below decide.
+        values = lengths.tolist()
+        if math.isfinite(sum(values)) and min(values) > 0.0:
+            return lengths
     lengths = _as_rows(lengths, name)
     allowed = _valid_lengths(lengths)
     if not np.all(allowed):
@@ -210,6 +216,19 @@ def _euler_step(pose, twist, cos_beta, sin_beta, cos_gamma, sin_gamma):
             gamma - (wz + sin_beta * d_alpha))
 
 
+@dataclass(frozen=True)
+class _ErrorBoundTerms:
+    """
+    The per-leg figures of :attr:`ForwardKinematicsResult.pose_error_bound`, as floats.
+
+    ``arms`` |p_i|, ``base_norms`` |b_i|, ``reaches`` c_i = sqrt(1 + |p_i|^2 / rho^2).
+    """
+
+    arms: list
+    base_norms: list
+    reaches: list
+
+
 class _GeometryConstants:
     """Arrays derived once from a geometry, reused by every call (see :func:`_constants`)."""
 
@@ -227,6 +246,15 @@ class _GeometryConstants:
         self.home_jacobian_inverse = _float_inverse(_float_twist_rows(
             _single_euler_legs(self, self.home_pose)))
         self._geometry = weakref.ref(geometry)  # a strong one would keep the geometry alive
+
+    @cached_property
+    def error_bound_terms(self):
+        """Per leg, as floats, for the pose error bound of one solve (see pose_error_bound)."""
+        geometry = self._geometry()
+        arms = np.linalg.norm(geometry.platform_joints, axis=-1)
+        return _ErrorBoundTerms(
+            arms.tolist(), np.linalg.norm(geometry.base_joints, axis=-1).tolist(),
+            np.sqrt(1.0 + (arms / geometry.platform_radius) ** 2).tolist())
 
     @cached_property
     def start_table(self):
@@ -700,6 +728,8 @@ class ForwardKinematicsResult:
     @cached_property
     def _singular_values(self):
         pose = self.pose
+        if pose.ndim == 1:
+            return _single_singular_values(self._solve[0], pose.tolist())
         return _dimensionless_singular_values(
             self._solve[0], pose[..., :3], euler_zyx_to_matrix(pose[..., 3:]))
 
@@ -712,8 +742,12 @@ class ForwardKinematicsResult:
         growing without bound towards a singularity, ``inf`` at one. A float for one solve, an
         array (N,) for a batch.
         """
-        condition = _condition_number(self._singular_values)
-        return float(condition) if condition.ndim == 0 else condition
+        if self.pose.ndim == 1:
+            largest, smallest = self._singular_values[0], self._singular_values[-1]
+            if smallest == 0.0:
+                return math.inf if largest else math.nan
+            return largest / smallest
+        return _condition_number(self._singular_values)
 
     @cached_property
     def pose_error_bound(self) -> Union[float, np.ndarray]:
@@ -752,6 +786,10 @@ class ForwardKinematicsResult:
         (N,) for a batch.
         """
         geometry, lengths, _ = self._solve
+        if self.pose.ndim == 1:
+            return _single_pose_error_bound(
+                geometry, self.pose.tolist(), np.asarray(lengths, dtype=float).tolist(),
+                float(self.residual), bool(self.converged), self._singular_values)
         lengths = np.asarray(lengths, dtype=float)
         pose = np.asarray(self.pose, dtype=float)
         rho = geometry.platform_radius
@@ -777,6 +815,61 @@ class ForwardKinematicsResult:
                       & np.all(shortest > 0.0, axis=-1) & (radius >= 0.0))
             bound = np.where(proven, radius * max(1.0, 1.0 / rho), np.inf)
         return float(bound) if bound.ndim == 0 else bound
+
+
+def _single_singular_values(geometry, pose):
+    """
+    :func:`_dimensionless_singular_values` of one pose, six floats: a list, largest first.
+
+    The Jacobian's rows in floats from the legs (:func:`_single_euler_legs`), then one SVD:
+    a fifth of the time of the array path on one pose (12 us against 50 us, with
+    :attr:`ForwardKinematicsResult.pose_error_bound`), which fk_node pays for every message.
+    test_kinematics.py proves the two equal, singular poses and zero rows included.
+    """
+    rows = _float_twist_rows(_single_euler_legs(_constants(geometry), pose))
+    jacobian = np.array(rows).reshape(6, 6)
+    jacobian[:, 3:] /= geometry.platform_radius
+    values = np.linalg.svd(jacobian, compute_uv=False).tolist()
+    # A zero row (a leg of zero length) is an exact singularity, whatever rounding says.
+    if any(not any(rows[start:start + 6]) for start in range(0, 36, 6)):
+        values[-1] = 0.0
+    return values
+
+
+def _single_pose_error_bound(geometry, pose, lengths, residual, converged, singular_values):
+    """
+    :attr:`ForwardKinematicsResult.pose_error_bound` of one solve, the same proof in floats.
+
+    :param pose: the solution, six floats; ``lengths``: the six lengths solved for.
+    :param singular_values: :func:`_single_singular_values` at the pose.
+    """
+    if not converged:
+        return math.inf
+    terms = _constants(geometry).error_bound_terms
+    rho = geometry.platform_radius
+    sigma = singular_values[-1] - SINGULAR_VALUE_ROUNDING_ULPS * _EPSILON * singular_values[0]
+    if not sigma > 0.0:
+        return math.inf
+    offset = math.hypot(*pose[:3])
+    error = residual + LENGTH_ROUNDING_ULPS * _EPSILON * max(
+        offset + arm + base for arm, base in zip(terms.arms, terms.base_norms))
+    eta = math.sqrt(6.0) * error / sigma
+    # The legs' shortest lengths within the largest ball considered, 2 eta.
+    shortest = [length - residual - 2.0 * eta * reach
+                for length, reach in zip(lengths, terms.reaches)]
+    if not min(shortest) > 0.0:
+        return math.inf
+    curvature = math.sqrt(sum((reach * reach / length + arm / (rho * rho)) ** 2
+                              for reach, length, arm in zip(terms.reaches, shortest, terms.arms)))
+    h = eta * curvature / sigma
+    if not h <= 0.5:
+        return math.inf
+    radius = 2.0 * eta / (1.0 + math.sqrt(max(1.0 - 2.0 * h, 0.0)))
+    return radius * max(1.0, 1.0 / rho) if radius >= 0.0 else math.inf
+
+
+#: The machine epsilon of a float.
+_EPSILON = float(np.finfo(float).eps)
 
 
 def _hashable(value, dtype=float):

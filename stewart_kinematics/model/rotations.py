@@ -174,10 +174,11 @@ def quaternion_to_matrix(quaternion):
     :returns: rotation matrix, shape (3, 3) or (..., 3, 3).
     :raises ValueError: if a quaternion is not finite or has (nearly) zero norm.
     """
-    x, y, z, w = np.moveaxis(normalize_quaternion(quaternion), -1, 0)
-    if np.ndim(x) == 0:
+    unit = normalize_quaternion(quaternion)
+    if unit.shape == (4,):
         # One quaternion (the nodes' case): floats cost less than numpy's per-call overhead.
-        return np.array(_quaternion_entries(float(x), float(y), float(z), float(w))).reshape(3, 3)
+        return np.array(_quaternion_entries(*unit.tolist())).reshape(3, 3)
+    x, y, z, w = np.moveaxis(unit, -1, 0)
     return np.stack(_quaternion_entries(x, y, z, w), axis=-1).reshape(np.shape(x) + (3, 3))
 
 

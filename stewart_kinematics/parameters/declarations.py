@@ -200,7 +200,7 @@ ASSEMBLY_MODE_PARAMETERS = (
         'assembly_mode_margin_period', DOUBLE,
         'Time between two computations of the assembly-mode margin of the last solution '
         '(the distance to the nearest other real mode within the limits, on /diagnostics), '
-        'seconds; each runs in a worker thread, and only when the lengths changed; 0.0 turns '
+        'seconds; each runs in a worker process, and only when the lengths changed; 0.0 turns '
         'the margin off',
         default=1.0, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
         constraints='in [0, 3600]'),

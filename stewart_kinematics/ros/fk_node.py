@@ -20,8 +20,8 @@ Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), `
 (Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
 the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
 in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
-arrival), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at the
-last pose; the velocity of the tool frame's origin and the angular velocity, like every pose
+the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at
+the last pose; the velocity of the tool frame's origin and the angular velocity, like every pose
 topic about the tool frame's point), the platform frame on ``/tf`` (with the same stamp) and the
 user and tool frames on ``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve
 starts from the last good solution, since a platform moves continuously, and falls back to the home
@@ -33,7 +33,8 @@ assembly mode); the node converts the messages, publishes, and counts each refus
 (near a singularity) with the core's reason on the log and ``/diagnostics``.
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
-nearest other real assembly mode within the limits is computed in a worker thread
+nearest other real assembly mode within the limits is computed in a worker process (a thread
+would hold up the message callbacks: it shares the interpreter lock)
 (:class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`, only when the
 lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
@@ -125,7 +126,7 @@ class FkNode(Node):
         if margin.assembly_mode_margin_period > 0.0:
             self.margin = AssemblyModeMarginReport(
                 self, diagnostics, AssemblyModeMarginMonitor(
-                    self.geometry, margin.assembly_mode_margin_warning))
+                    self.geometry, margin.assembly_mode_margin_warning, worker='process'))
             diagnostics.reporters.append(self.margin)   # with the inputs, once a second
             self.create_timer(margin.assembly_mode_margin_period, self.on_margin_timer)
         self.get_logger().info(
@@ -153,7 +154,7 @@ class FkNode(Node):
         self.margin.monitor.request(self.tracker.last_pose, self.tracker.last_lengths)
 
     def destroy_node(self):
-        """Stop the margin's worker thread, then the node."""
+        """Stop the margin's worker process, then the node."""
         if self.margin is not None:
             self.margin.monitor.close()
         return super().destroy_node()
@@ -166,8 +167,8 @@ class FkNode(Node):
         except ValueError as error:
             self.accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
-        header = Header(stamp=self.get_clock().now().to_msg())
-        self.estimate(lengths, header, self.accounting)
+        # Stamped with the time of the estimate, read only for an output that carries it.
+        self.estimate(lengths, None, self.accounting)
 
     def on_joint_states(self, message: JointState):
         """
@@ -218,7 +219,8 @@ class FkNode(Node):
         """
         Publish the tracker's pose of six leg lengths, or reject them with its reason.
 
-        :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``.
+        :param header: stamp to carry to ``estimated_pose_stamped`` and ``/tf``, or ``None``
+            for the time now (read only when one of them has a subscriber).
         :param velocities: the leg velocities of a joint state, or ``None``.
         :returns: the tracker's :class:`~stewart_kinematics.PoseEstimate` (with the twist of
             the velocities, if any, for the caller to publish).
@@ -233,14 +235,19 @@ class FkNode(Node):
         accounting.publish(self.pose_publisher,
                            pose_to_message(frames.tool_pose_vector(estimate.pose)))
         # The other forms only for a subscriber, as ik_node's.
-        if self.stamped_publisher.get_subscription_count():
-            stamped_header = Header(stamp=header.stamp, frame_id=self.estimated_pose_frame)
+        stamped = self.stamped_publisher.get_subscription_count() > 0
+        broadcast = self.tf is not None and self.tf.has_listeners()
+        if not (stamped or broadcast):
+            return estimate
+        stamp = header.stamp if header is not None else self.get_clock().now().to_msg()
+        if stamped:
             self.stamped_publisher.publish(PoseStamped(
-                header=stamped_header, pose=pose_to_message(
+                header=Header(stamp=stamp, frame_id=self.estimated_pose_frame),
+                pose=pose_to_message(
                     frames.tool_pose_vector(estimate.pose, self.estimated_pose_frame))))
-        if self.tf is not None and self.tf.has_listeners():
+        if broadcast:
             self.tf.send(frames.base_frame, frames.platform_frame,
-                         Transform.from_pose(estimate.pose), header.stamp)
+                         Transform.from_pose(estimate.pose), stamp)
         return estimate
 
 

@@ -152,10 +152,10 @@ class IkNode(Node):
         return super().destroy_node()
 
     def on_target_pose(self, message: Pose):
-        """Turn a pose into leg lengths; the outputs are stamped with the time of arrival."""
+        """Turn a pose into leg lengths; the outputs are stamped with the time of the answer."""
         self.accounting.receive()
-        header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-        self.command(message, header, self.accounting, self.frames)
+        # The base frame; the clock is read only for an output that carries a stamp.
+        self.command(message, None, self.accounting, self.frames)
 
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
@@ -167,12 +167,15 @@ class IkNode(Node):
         Publish the leg lengths, extensions and joint states of a pose, or reject it.
 
         :param pose: the tool frame's pose, in ``header.frame_id`` (base or user frame).
+        :param header: the stamped pose's header, or ``None`` for the base frame and the time
+            now, read when an output needs it.
         :param frames: the frame tree to apply, the same for the whole message.
         """
         point, orientation = pose.position, pose.orientation
         command = self.check.tool_pose(
             (point.x, point.y, point.z), (orientation.x, orientation.y, orientation.z,
-                                          orientation.w), frames, header.frame_id)
+                                          orientation.w), frames,
+            self.base_frame if header is None else header.frame_id)
         for warning in command.warnings:
             accounting.warn(warning)
         if command.violations or command.accepted:
@@ -194,11 +197,19 @@ class IkNode(Node):
                 self.stream_accounting.warn(refusal)
             self.streaming = True
         elif self.joint_command_publisher.get_subscription_count():
+            header = self.header_now(header)
             self.joint_command_publisher.publish(
                 joint_state_message(header, lengths, actuators=self.actuators))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
-                         Transform(command.position, command.rotation), header.stamp)
+                         Transform(command.position, command.rotation),
+                         self.header_now(header).stamp)
+
+    def header_now(self, header) -> Header:
+        """Return ``header``, or for ``None`` a header of the base frame stamped now."""
+        if header is not None:
+            return header
+        return Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
 
     def publish_streamed_command(self):
         """
@@ -236,8 +247,8 @@ class IkNode(Node):
             return
         self.last_marker_ns = now_ns
         self.marker_publisher.publish(platform_markers(
-            Header(stamp=header.stamp, frame_id=self.base_frame), self.geometry, position,
-            rotation, legs_at_fault,
+            Header(stamp=self.header_now(header).stamp, frame_id=self.base_frame),
+            self.geometry, position, rotation, legs_at_fault,
             self.get_namespace().strip('/') or 'stewart_platform'))
 
     def on_target_twist(self, message: Twist):

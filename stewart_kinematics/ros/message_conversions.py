@@ -114,7 +114,13 @@ def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
     :raises ValueError: if there are not exactly six values after the offset, or a value is
         not finite and positive.
     """
-    data = np.asarray(message.data, dtype=float)[message.layout.data_offset:]
+    data = message.data
+    if not message.layout.data_offset and len(data) == 6:
+        # The common case, checked in floats (a sum is finite only when each term is).
+        values = list(data)
+        if math.isfinite(sum(values)) and min(values) > 0.0:
+            return np.array(values)
+    data = np.asarray(data, dtype=float)[message.layout.data_offset:]
     if data.shape != (6,):
         raise ValueError(
             f'expected 6 leg lengths (leg 1..6, metres), got {data.size}: {data.tolist()}')

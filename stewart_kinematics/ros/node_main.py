@@ -15,13 +15,23 @@
 """
 What the nodes share: ``main()`` (start-up, spinning, a clean stop), publishers, subscriptions.
 
+Every node process spins on rclpy's ``EventsExecutor`` (``rclpy.experimental``, rclpy 7.1.6)
+unless told otherwise, before ``--ros-args`` or in the environment (the argument wins)::
+
+    ik_node --executor single_threaded --ros-args ...
+    STEWART_EXECUTOR=single_threaded ros2 launch stewart_kinematics ...
+
+An executor exists before any node, so a ROS parameter cannot choose it. See :data:`EXECUTORS`.
+
 Every publisher, subscription and service of the package is created here, from its declaration
 in :mod:`stewart_kinematics.ros.interfaces`; publishers and subscriptions with
 ``QoSOverridingOptions.with_default_policies()``: the standard ``qos_overrides.<topic>.
 <publisher|subscription>.<reliability|history|depth>`` parameters then apply to them.
 """
 
+import os
 import signal
+import sys
 
 import rclpy
 # rclpy exposes these two only from its C extension.
@@ -29,9 +39,10 @@ from rclpy._rclpy_pybind11 import RCLError, UnknownROSArgsError
 from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.experimental import EventsExecutor
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
-from rclpy.utilities import get_default_context
+from rclpy.utilities import get_default_context, remove_ros_args
 
 from stewart_kinematics.ros.ros_parameters import remember_process_arguments
 
@@ -41,6 +52,70 @@ EXIT_START_FAILED = 1
 SPIN_SLICE = 0.1
 #: The signals that stop a node cleanly: Ctrl-C and what a supervisor sends.
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+#: The executors a node process can spin on, by the name that chooses them.
+EXECUTORS = {
+    # Callbacks run as rmw reports events, without rebuilding a wait set for each message:
+    # under half the processor time per message of the single-threaded executor
+    # (doc/benchmarks.md).
+    'events': EventsExecutor,
+    # rclpy's default executor; it also supports guard conditions.
+    'single_threaded': SingleThreadedExecutor,
+}
+DEFAULT_EXECUTOR = 'events'
+#: The environment variable that chooses the executor of every node process it reaches.
+EXECUTOR_VARIABLE = 'STEWART_EXECUTOR'
+#: The command-line option, before ``--ros-args``, that chooses it for one process.
+EXECUTOR_OPTION = '--executor'
+
+
+def executor_name(arguments=(), environment=None) -> str:
+    """
+    Return the name of the executor chosen: by ``--executor``, else the environment, else events.
+
+    :param arguments: the process's arguments without the ROS ones (``remove_ros_args``):
+        ``--executor NAME`` or ``--executor=NAME``.
+    :param environment: where :data:`EXECUTOR_VARIABLE` is read; default ``os.environ``.
+    :raises ValueError: for a name not in :data:`EXECUTORS`, naming the allowed ones.
+    """
+    environment = os.environ if environment is None else environment
+    name, source = environment.get(EXECUTOR_VARIABLE, ''), EXECUTOR_VARIABLE
+    if not name:
+        name, source = DEFAULT_EXECUTOR, 'default'
+    arguments = list(arguments)
+    for index, argument in enumerate(arguments):
+        if argument == EXECUTOR_OPTION:
+            if index + 1 == len(arguments):
+                raise ValueError(f'{EXECUTOR_OPTION} needs a value: one of '
+                                 f'{", ".join(EXECUTORS)}')
+            name, source = arguments[index + 1], EXECUTOR_OPTION
+        elif argument.startswith(EXECUTOR_OPTION + '='):
+            name, source = argument.partition('=')[2], EXECUTOR_OPTION
+    if name not in EXECUTORS:
+        raise ValueError(f'unknown executor {name!r} (from {source}): allowed are '
+                         f'{", ".join(EXECUTORS)}')
+    return name
+
+
+def create_executor(name=None, context=None):
+    """
+    Create an executor by name; ``None`` takes the one the environment chooses.
+
+    The Python signal handlers in place stay in place: the EventsExecutor leaves them alone
+    (checked on rclpy 7.1.6), and this keeps it so whatever a later rclpy does.
+
+    :param name: a key of :data:`EXECUTORS`, or ``None`` for :func:`executor_name` ``()``.
+    :param context: the rclpy context; default the default one.
+    :raises ValueError: as :func:`executor_name`.
+    """
+    name = executor_name() if name is None else name
+    if name not in EXECUTORS:
+        raise ValueError(f'unknown executor {name!r}: allowed are {", ".join(EXECUTORS)}')
+    handlers = {number: signal.getsignal(number) for number in STOP_SIGNALS}
+    executor = EXECUTORS[name](context=context)
+    for number, handler in handlers.items():
+        if handler is not None and signal.getsignal(number) is not handler:
+            signal.signal(number, handler)
+    return executor
 
 
 def run_node(node_class, name: str, args=None) -> int:
@@ -59,15 +134,17 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     """
     Initialise rclpy, build nodes and spin them in one executor until SIGINT or SIGTERM.
 
-    The signals only set a flag, checked between two slices of spinning: neither a
-    KeyboardInterrupt nor a context shut down from rclpy's signal thread can land in the
-    middle of a callback, of a take or of the clean-up.
+    The executor is the one :func:`executor_name` chooses (``--executor`` before
+    ``--ros-args``, else ``STEWART_EXECUTOR``, else events). It spins in slices of
+    :data:`SPIN_SLICE` in this thread: the signals only set a flag, checked between two
+    slices, so neither a KeyboardInterrupt nor a context shut down from rclpy's signal thread
+    can land in the middle of a callback, of a take or of the clean-up, on either executor.
 
     :param node_classes: the nodes' classes, each constructed without arguments, in order.
     :param name: the process's name, for the log of a failed start.
     :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
     :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a node could not be
-        built, with a fatal log that says why.
+        built or the executor is unknown, with a fatal log that says why.
     """
     stop_requests = []
     previous = {number: signal.signal(number, lambda number, frame: stop_requests.append(number))
@@ -79,6 +156,13 @@ def run_nodes(node_classes, name: str, args=None) -> int:
         except (RCLError, UnknownROSArgsError) as error:
             rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
             return EXIT_START_FAILED
+        try:
+            # After rclpy.init, which has said what is wrong with the ROS arguments, if anything.
+            executor_kind = executor_name(remove_ros_args(sys.argv if args is None else args))
+        except ValueError as error:
+            rclpy.logging.get_logger(name).fatal(f'cannot start: {error}')
+            rclpy.try_shutdown()
+            return EXIT_START_FAILED
         nodes = []
         try:
             for node_class in node_classes:
@@ -89,15 +173,21 @@ def run_nodes(node_classes, name: str, args=None) -> int:
                 node.destroy_node()
             rclpy.try_shutdown()
             return EXIT_START_FAILED
+        executor = None
         try:
-            executor = SingleThreadedExecutor()
+            executor = create_executor(executor_kind)
             for node in nodes:
                 executor.add_node(node)
+            rclpy.logging.get_logger(name).info(f'spinning on the {executor_kind} executor')
             while not stop_requests and rclpy.ok():
                 executor.spin_once(timeout_sec=SPIN_SLICE)
         except ExternalShutdownException:
             pass
         finally:
+            # The executor first: the EventsExecutor unhooks its callbacks from the entities,
+            # which must still exist.
+            if executor is not None:
+                executor.shutdown()
             for node in nodes:
                 node.destroy_node()
             rclpy.try_shutdown()
@@ -105,6 +195,24 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler)
+
+
+def hand_to_executor(node, callback) -> bool:
+    """
+    Have ``callback()`` called by the executor that spins ``node``; safe from any thread.
+
+    The worker threads' way back to the executor (ik_node's workspace results, trajectory_node's
+    plans): ``executor.create_task``, which both executors take from another thread and which
+    wakes them. The EventsExecutor supports no guard condition, the usual way.
+
+    :returns: whether it was handed over: not while the node is in no executor (the caller
+        keeps what it had to deliver and tries again later).
+    """
+    executor = node.executor
+    if executor is None:
+        return False
+    executor.create_task(callback)
+    return True
 
 
 def create_output_publisher(node, endpoint, qos):

@@ -23,6 +23,9 @@ process, as they do in a container: ``--params-file`` files give each node its o
 
     stewart_platform --play-ramp true --ros-args --params-file config/paper_platform.yaml \\
         --params-file config/solver.yaml --params-file config/table3_ramp.yaml
+
+``--executor single_threaded`` (before ``--ros-args``) spins them on rclpy's default executor
+instead of the EventsExecutor, as for every node (:mod:`stewart_kinematics.ros.node_main`).
 """
 
 import argparse
@@ -32,7 +35,13 @@ from rclpy.utilities import remove_ros_args
 
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
-from stewart_kinematics.ros.node_main import run_nodes
+from stewart_kinematics.ros.node_main import (
+    DEFAULT_EXECUTOR,
+    EXECUTOR_OPTION,
+    EXECUTOR_VARIABLE,
+    EXECUTORS,
+    run_nodes,
+)
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 
 
@@ -41,6 +50,10 @@ def parse_arguments(argv):
     parser = argparse.ArgumentParser(prog='stewart_platform', description=__doc__.split('\n')[1])
     parser.add_argument('--play-ramp', choices=('true', 'false'), default='false',
                         help='also run trajectory_node, which plays its ramp (default false)')
+    # Checked by run_nodes, as for the other nodes: an unknown name exits with code 1.
+    parser.add_argument(EXECUTOR_OPTION, metavar='|'.join(EXECUTORS),
+                        help=f'the executor (default: ${EXECUTOR_VARIABLE}, else '
+                        f'{DEFAULT_EXECUTOR})')
     return parser.parse_args(argv)
 
 

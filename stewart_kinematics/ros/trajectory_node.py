@@ -78,6 +78,7 @@ from stewart_kinematics.ros.message_conversions import (
 from stewart_kinematics.ros.node_main import (
     create_input_subscription,
     create_output_publisher,
+    hand_to_executor,
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
@@ -349,11 +350,13 @@ class PlanningWorker:
 
     :meth:`submit` (executor thread) makes a job the next one: a job still waiting is answered
     ``superseded`` at once, and the one running is cancelled (its work stops at its next step
-    and it is answered ``superseded`` too). Each answer goes back to the executor through a
-    guard condition, which calls ``on_done(job, outcome)`` there, so that all publishing and
-    counting happens on the executor. An unexpected error in the work (a bug) is answered with
-    ``planning_error`` and the thread goes on. :meth:`close` cancels the work and waits at
-    most :data:`WORKER_STOP_TIMEOUT` for the thread (a daemon, so it never holds up the exit).
+    and it is answered ``superseded`` too). Each answer goes back to the node's executor as a
+    task (:func:`~stewart_kinematics.ros.node_main.hand_to_executor`; the EventsExecutor
+    supports no guard condition), which calls ``on_done(job, outcome)`` there, so that all
+    publishing and counting happens on the executor. An unexpected error in the work (a bug)
+    is answered with ``planning_error`` and the thread goes on. :meth:`close` cancels the work
+    and waits at most :data:`WORKER_STOP_TIMEOUT` for the thread (a daemon, so it never holds
+    up the exit).
 
     :param node: the node whose executor gets the answers.
     :param on_done: ``on_done(job, outcome)``, outcome a :class:`PlannedTrajectory` or a
@@ -368,7 +371,6 @@ class PlanningWorker:
         self._running = None
         self._answers = []
         self._closed = False
-        self._handoff = node.create_guard_condition(self._deliver)
         self._thread = threading.Thread(target=self._serve, name='trajectory planning',
                                         daemon=True)
         self._thread.start()
@@ -410,18 +412,20 @@ class PlanningWorker:
                 if self._closed:
                     return
                 self._answers.append((job, outcome))
-                # Under the lock: close() destroys the guard condition only after it.
-                self._handoff.trigger()
+                # Under the lock: close() marks the worker closed only after it.
+                hand_to_executor(self.node, self._deliver)
 
     def _deliver(self):
         """Hand the finished answers to ``on_done`` (executor thread)."""
         with self._condition:
+            if self._closed:   # a task queued before the node was destroyed
+                return
             answers, self._answers = self._answers, []
         for job, outcome in answers:
             self.on_done(job, outcome)
 
     def close(self) -> None:
-        """Cancel the work under way, stop the thread, free the guard condition."""
+        """Cancel the work under way and stop the thread."""
         with self._condition:
             self._closed = True
             if self._running is not None:
@@ -429,7 +433,6 @@ class PlanningWorker:
                 self.node.get_logger().info(
                     f'{self._running.accounting.topic}: planning cancelled, the node stops')
             self._condition.notify()
-            self.node.destroy_guard_condition(self._handoff)
         self._thread.join(WORKER_STOP_TIMEOUT)
 
 

@@ -18,11 +18,12 @@ ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off th
 
 The core's :mod:`stewart_kinematics.analysis.workspace` does the work in a worker process of its
 own (:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
-measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. A
-guard condition hands each result back to the executor, whose callback only converts and
-publishes. So a 3 s workspace computation or a 0.2 s travel range never holds up a pose in the
-command stream, and at most one job of each kind is in flight: a travel range due while the
-last one is still running is skipped.
+measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. Each
+result is handed back to the node's executor as a task
+(:func:`~stewart_kinematics.ros.node_main.hand_to_executor`; the EventsExecutor supports no
+guard condition), which only converts and publishes. So a 3 s workspace computation or a 0.2 s
+travel range never holds up a pose in the command stream, and at most one job of each kind is
+in flight: a travel range due while the last one is still running is skipped.
 """
 
 import multiprocessing
@@ -38,7 +39,7 @@ from stewart_kinematics.analysis import workspace
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
-from stewart_kinematics.ros.node_main import create_output_publisher
+from stewart_kinematics.ros.node_main import create_output_publisher, hand_to_executor
 
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
@@ -94,13 +95,14 @@ class WorkspaceReporter:
         self.worker = None
         #: Results waiting for the executor: kind -> (generation, value or exception).
         self.results = {}
+        #: Set by :meth:`shutdown`: a result that arrives later is dropped.
+        self.closed = False
         self.busy = set()
         self.marker_generation = 0
         self.resolution = resolution
         self.markers_due = False
         #: The last travel range message and the pose it was computed from.
         self.travel = None
-        self.handoff = node.create_guard_condition(self.publish_results)
         latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # Without rclpy's default QoS event handlers, and one timer for both outputs: every
@@ -116,6 +118,8 @@ class WorkspaceReporter:
 
     def on_timer(self):
         """Start what is due: the markers for a first subscriber, a travel range."""
+        # A result that came while the node had no executor yet waits for this tick.
+        self.publish_results()
         self.request_markers()
         if self.travel_rate > 0.0:
             self.request_travel_ranges()
@@ -158,15 +162,20 @@ class WorkspaceReporter:
         self.worker.submit((kind, tag), function, *args, **kwargs)
 
     def _on_result(self, tag, value):
-        """Keep a finished result and wake the executor (the worker's reader thread)."""
+        """Keep a finished result and hand it to the node's executor (the reader thread)."""
         kind, generation = tag
         with self.lock:
+            if self.closed:
+                return
             self.results[kind] = (generation, value)
-        self.handoff.trigger()
+            # Under the lock: shutdown() cannot free the node meanwhile.
+            hand_to_executor(self.node, self.publish_results)
 
     def publish_results(self):
         """Publish the results the worker has finished (executor thread)."""
         with self.lock:
+            if self.closed:   # a task queued before the node was destroyed
+                return
             results, self.results = self.results, {}
         for kind, (tag, value) in results.items():
             self.busy.discard(kind)
@@ -187,13 +196,14 @@ class WorkspaceReporter:
 
     def shutdown(self):
         """Stop the worker process (a computation under way is dropped); free the entities."""
+        with self.lock:
+            self.closed = True
         if self.worker is not None:
             self.worker.close()
             self.worker = None
         self.node.destroy_timer(self.timer)
-        self.node.destroy_guard_condition(self.handoff)
         # No cycle through the node is left for the garbage collector.
-        self.last_pose = self.handoff = self.timer = None
+        self.last_pose = self.timer = None
 
 
 class WorkspaceWorker:
