@@ -17,7 +17,7 @@ Soak with faults: every node under a steady stream for minutes, while things go 
 
 Starts every node of :data:`stewart_kinematics.ros.interfaces.NODE_INTERFACES` from its
 console script with the shipped parameter files (as the fuzzer does:
-:func:`stewart_kinematics.tools.node_fuzzer.parameter_files`), trajectory_node looping the
+:func:`fuzzing.node_fuzzer.parameter_files`), trajectory_node looping the
 Table 3 ramp into ik_node, whose leg lengths feed fk_node. Then, for ``--minutes`` (10 by
 default):
 
@@ -35,7 +35,7 @@ default):
   11.6 days, back to the start), and now and then carries a hostile time (negative seconds,
   nanoseconds beyond a second).
 
-Every message the nodes publish is checked (:mod:`stewart_kinematics.tools.output_invariants`:
+Every message the nodes publish is checked (:mod:`fuzzing.output_invariants`:
 finite, unit quaternions, within the limits), every node's /diagnostics counted, and each
 node's resident memory sampled every ``--rss-every`` seconds. The report gives messages in and
 out per node, refusals by reason, crashes (a node that exits, or prints a traceback, when not
@@ -71,23 +71,26 @@ from rosidl_parser import definition
 
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
-from stewart_kinematics.tools.fuzz_client import (
+from stewart_kinematics.tools.node_processes import (
+    find_executable,
+    isolated_ros_environment,
+    NodeProcess,
+)
+
+# fuzzing/ is the test suite's harness, not installed: import it from the repository root.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from fuzzing.fuzz_client import (  # noqa: E402, I100 (after the path)
     alive,
     descendants,
     DiagnosticsLog,
     resident_kb,
     SpinningClient,
 )
-from stewart_kinematics.tools.fuzz_messages import message_class, MessageFuzzer
-from stewart_kinematics.tools.fuzz_parameters import EITHER
-from stewart_kinematics.tools.fuzz_targets import parameter_files, plausible_hints
-from stewart_kinematics.tools.node_processes import (
-    find_executable,
-    isolated_ros_environment,
-    NodeProcess,
-)
-from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
-from stewart_kinematics.tools.parameter_requests import (
+from fuzzing.fuzz_messages import message_class, MessageFuzzer  # noqa: E402
+from fuzzing.fuzz_parameters import EITHER  # noqa: E402
+from fuzzing.fuzz_targets import parameter_files, plausible_hints  # noqa: E402
+from fuzzing.output_invariants import numbers_problems, OutputInvariants  # noqa: E402
+from fuzzing.parameter_requests import (  # noqa: E402
     FRAME_NAMES,
     parameter_clients,
     parameter_fuzzer_of,

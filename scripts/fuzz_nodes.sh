@@ -4,7 +4,7 @@
 #
 # The long run of the node fuzzer: set up .venv/ if needed, then fuzz every declared node as a
 # process, round after round (a new seed each round), for --minutes (e.g. 10). Arguments go to
-# `python -m stewart_kinematics.tools.node_fuzzer` (try --help): --minutes, --node NAME, --seed,
+# `python -m fuzzing.node_fuzzer` (try --help): --minutes, --node NAME, --seed,
 # --messages, --rate, --huge. Each failed round prints its problems, the last messages sent and
 # the options that replay it; exits 1 if a round failed. Runs on its own isolated ROS domain.
 
@@ -15,4 +15,4 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # shellcheck source=scripts/ros_env.sh
 source "${root}/scripts/ros_env.sh"
 cd "${root}"
-exec "${root}/.venv/bin/python" -m stewart_kinematics.tools.node_fuzzer "$@"
+exec "${root}/.venv/bin/python" -m fuzzing.node_fuzzer "$@"

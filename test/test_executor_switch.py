@@ -175,6 +175,19 @@ def test_the_default_executor_is_events(client, start_node, config_directory):
     assert 'spinning on the events executor' in node.output()
 
 
+def test_a_node_on_simulated_time_spins_on_the_single_threaded_executor(
+        client, start_node, config_directory):
+    """use_sim_time with events asked for: single_threaded, and the log says why."""
+    node = start_node('ik_node', [*kinematics_arguments(config_directory, 'events'),
+                                  '-p', 'use_sim_time:=true'])
+    client.wait(lambda: 'spinning on the' in node.output(), 'the executor in the log', [node])
+
+    assert ('use_sim_time: spinning on the single_threaded executor, not events'
+            in node.output())
+    assert 'spinning on the single_threaded executor' in node.output()
+    assert 'spinning on the events executor' not in node.output()
+
+
 @pytest.mark.parametrize('executable, chosen_by', [
     ('ik_node', 'option'), ('ik_node', 'environment'), ('fk_node', 'option'),
     ('trajectory_node', 'option'), ('stewart_platform', 'option'),

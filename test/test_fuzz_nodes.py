@@ -16,7 +16,7 @@
 The message fuzzer against every declared node, as a process: a bounded run of each.
 
 Every node of :data:`stewart_kinematics.ros.interfaces.NODE_INTERFACES` is started from its
-console script and fuzzed by :func:`stewart_kinematics.tools.node_fuzzer.fuzz_node`: hostile
+console script and fuzzed by :func:`fuzzing.node_fuzzer.fuzz_node`: hostile
 messages on every subscription, up to 1 kHz, with parameter changes through its parameter
 services; then the invariants (alive and answering, every output finite and within the limits,
 parameter refusals, /diagnostics once a second with counts that add up). A node added to the
@@ -31,10 +31,10 @@ Run with ``-s`` to see the figures (lines starting ``FUZZ``).
 import os
 import random
 
+from fuzzing.node_fuzzer import fuzz_node, FuzzSettings
 import pytest
 
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES
-from stewart_kinematics.tools.node_fuzzer import fuzz_node, FuzzSettings
 
 pytestmark = pytest.mark.process
 

@@ -26,6 +26,15 @@ import math
 from pathlib import Path
 import random
 
+from fuzzing.fuzz_messages import MessageFuzzer, Plausible
+from fuzzing.fuzz_parameters import (
+    argument,
+    ParameterFuzzer,
+    REFUSED,
+    start_variant,
+)
+from fuzzing.fuzz_targets import parameter_files
+from fuzzing.output_invariants import numbers_problems, OutputInvariants
 from geometry_msgs.msg import Pose, PoseStamped
 from hypothesis import given, strategies as st
 import numpy as np
@@ -38,15 +47,6 @@ from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.parameters import all_specs
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, SUBSCRIPTION
-from stewart_kinematics.tools.fuzz_messages import MessageFuzzer, Plausible
-from stewart_kinematics.tools.fuzz_parameters import (
-    argument,
-    ParameterFuzzer,
-    REFUSED,
-    start_variant,
-)
-from stewart_kinematics.tools.fuzz_targets import parameter_files
-from stewart_kinematics.tools.output_invariants import numbers_problems, OutputInvariants
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 pytestmark = pytest.mark.node

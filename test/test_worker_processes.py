@@ -18,9 +18,11 @@ A node killed with SIGKILL leaves no process of its own behind.
 Found by the soak (benchmarks/soak.py): ik_node computes its workspace in a worker process
 (started through multiprocessing's forkserver, with a resource tracker); when ik_node was
 killed, the worker waited for jobs forever, and it, the forkserver and the tracker were still
-running twenty minutes later, three processes more for every kill. The node runs as a process
-with a workspace_markers subscriber (which starts the worker); its descendants are read from
-/proc before the kill and must all be gone within the deadline after it.
+running twenty minutes later, three processes more for every kill. fk_node's assembly-mode
+margin worker (a process pool through the same forkserver) did the same. Each node runs as a
+process with its worker started (ik_node: a workspace_markers subscriber; fk_node: its margin
+period); its descendants are read from /proc before the kill and must all be gone within the
+deadline after it.
 """
 
 import os
@@ -28,9 +30,9 @@ from pathlib import Path
 import signal
 import time
 
+from fuzzing.fuzz_client import alive, descendants
 import pytest
 
-from stewart_kinematics.tools.fuzz_client import alive, descendants
 from stewart_kinematics.tools.node_processes import NodeProcess
 from visualization_msgs.msg import MarkerArray
 
@@ -63,6 +65,31 @@ def test_a_killed_ik_node_leaves_no_worker_process_behind(client):
         commands = {pid: Path(f'/proc/{pid}/cmdline').read_bytes().replace(b'\0', b' ')[:120]
                     for pid in left if alive(pid)}
         assert not left, f'{len(left)} of {len(started)} processes left behind: {commands}'
+    finally:
+        for pid in left:
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+        node.__exit__(None, None, None)
+
+
+def test_a_killed_fk_node_leaves_no_margin_worker_behind(client):
+    """SIGKILL fk_node once its assembly-mode margin worker runs: the worker exits too."""
+    node = NodeProcess('fk_node', ['--ros-args', '--params-file',
+                                   str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
+                                   '-p', 'assembly_mode_margin_period:=0.5'])
+    left = []
+    try:
+        # The worker starts with the node: resource tracker, forkserver, worker.
+        client.wait(lambda: len(descendants(node.process.pid)) >= 3,
+                    'the margin worker process', [node])
+        started = descendants(node.process.pid)
+        node.process.kill()
+        assert node.process.wait(DEADLINE) == -signal.SIGKILL
+        deadline = time.monotonic() + DEADLINE
+        while time.monotonic() < deadline and any(alive(pid) for pid in started):
+            time.sleep(0.1)
+        left = [pid for pid in started if alive(pid)]
+        assert not left, f'{len(left)} of {len(started)} processes left behind'
     finally:
         for pid in left:
             if alive(pid):

@@ -59,6 +59,7 @@ from stewart_kinematics.analysis.homotopy import (  # noqa: F401 (re-exported)
     start_system,
     StartSystem,
 )
+from stewart_kinematics.analysis.worker_processes import exit_with_owner
 from stewart_kinematics.model.kinematics import (
     as_leg_lengths,
     as_poses,
@@ -416,7 +417,7 @@ class AssemblyModeMarginMonitor:
             # each request sends only a pose and lengths.
             self._pool = ProcessPoolExecutor(
                 max_workers=1, mp_context=multiprocessing.get_context('forkserver'),
-                initializer=_start_margin_worker, initargs=(self.geometry,))
+                initializer=_start_margin_worker, initargs=(self.geometry, os.getpid()))
             self._warm_up = self._pool.submit(int)
 
     def request(self, pose, lengths) -> bool:
@@ -482,9 +483,14 @@ MARGIN_WORKER_NICENESS = 10
 _worker_geometry = None
 
 
-def _start_margin_worker(geometry):
-    """Set up a margin worker process: lower priority, no Ctrl-C, its geometry's start systems."""
+def _start_margin_worker(geometry, owner_pid):
+    """
+    Set up a margin worker process: lower priority, no Ctrl-C, its geometry's start systems.
+
+    :param owner_pid: the monitor's process: once it is gone (SIGKILL), the worker exits.
+    """
     global _worker_geometry
+    exit_with_owner(owner_pid)
     os.nice(MARGIN_WORKER_NICENESS)
     # A Ctrl-C in a terminal reaches the whole process group: the owner stops the worker.
     signal.signal(signal.SIGINT, signal.SIG_IGN)

@@ -22,6 +22,9 @@ unless told otherwise, before ``--ros-args`` or in the environment (the argument
     STEWART_EXECUTOR=single_threaded ros2 launch stewart_kinematics ...
 
 An executor exists before any node, so a ROS parameter cannot choose it. See :data:`EXECUTORS`.
+A process whose nodes start with ``use_sim_time`` spins on the single-threaded executor
+whatever was asked (:func:`executor_for_nodes`): the events executor's timers do not keep to a
+simulated clock.
 
 Every publisher, subscription and service of the package is created here, from its declaration
 in :mod:`stewart_kinematics.ros.interfaces`; publishers and subscriptions with
@@ -66,6 +69,13 @@ DEFAULT_EXECUTOR = 'events'
 EXECUTOR_VARIABLE = 'STEWART_EXECUTOR'
 #: The command-line option, before ``--ros-args``, that chooses it for one process.
 EXECUTOR_OPTION = '--executor'
+#: The executor of a process whose nodes run on a simulated clock (``use_sim_time``). rclpy's
+#: EventsExecutor drives timers from its own timer manager, which does not follow a simulated
+#: clock (rclcpp's has the same limit, ros2/rclcpp#2457): under processor load, a timer of the
+#: simulated clock fired once too often and then skipped the next tick, so trajectory_node
+#: published a sample twice and not the next one (test/test_sim_time.py failed 5 of 14 runs
+#: with two busy processes beside it, and none of 8 on this executor).
+SIM_TIME_EXECUTOR = 'single_threaded'
 
 
 def executor_name(arguments=(), environment=None) -> str:
@@ -130,6 +140,22 @@ def run_node(node_class, name: str, args=None) -> int:
     return run_nodes([node_class], name, args)
 
 
+def executor_for_nodes(name: str, nodes):
+    """
+    Return the executor the nodes spin on, and why it is not ``name`` (or ``''``).
+
+    :param name: the executor asked for (:func:`executor_name`).
+    :param nodes: the process's nodes, built: a node with ``use_sim_time`` set takes
+        :data:`SIM_TIME_EXECUTOR`.
+    """
+    if name == SIM_TIME_EXECUTOR or not any(
+            node.get_parameter('use_sim_time').value for node in nodes):
+        return name, ''
+    return SIM_TIME_EXECUTOR, (
+        f'use_sim_time: spinning on the {SIM_TIME_EXECUTOR} executor, not {name} (its timers '
+        'do not keep to a simulated clock)')
+
+
 def run_nodes(node_classes, name: str, args=None) -> int:
     """
     Initialise rclpy, build nodes and spin them in one executor until SIGINT or SIGTERM.
@@ -175,6 +201,9 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             return EXIT_START_FAILED
         executor = None
         try:
+            executor_kind, reason = executor_for_nodes(executor_kind, nodes)
+            if reason:
+                rclpy.logging.get_logger(name).info(reason)
             executor = create_executor(executor_kind)
             for node in nodes:
                 executor.add_node(node)

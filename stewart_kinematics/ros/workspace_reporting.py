@@ -36,6 +36,7 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
+from stewart_kinematics.analysis.worker_processes import OWNER_CHECK_PERIOD, process_running
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
@@ -44,9 +45,6 @@ from stewart_kinematics.ros.node_main import create_output_publisher, hand_to_ex
 #: Scheduling priority of the worker process below the node's (nice(2) increment): on a
 #: busy machine the operating system runs the command path first.
 WORKER_NICENESS = 10
-#: Seconds between two looks of an idle worker process at whether its node still runs: a node
-#: killed with SIGKILL cannot stop it, and it would wait for jobs forever.
-PARENT_CHECK_PERIOD = 1.0
 #: How often ik_node looks for a first subscriber of workspace_markers without travel
 #: ranges, seconds (with them, at each travel range).
 MARKER_CHECK_PERIOD = 1.0
@@ -215,8 +213,9 @@ class WorkspaceWorker:
     each result, or the exception as a ``RuntimeError``, goes to ``on_result(tag, value)``,
     called in a reader thread. Closing terminates the process at once, so a node never waits
     for a computation to exit. A node that dies without closing it (SIGKILL) leaves it idle:
-    it then exits by itself within :data:`PARENT_CHECK_PERIOD`, and multiprocessing's
-    forkserver and resource tracker after it.
+    it then exits by itself within ``OWNER_CHECK_PERIOD``
+    (:mod:`stewart_kinematics.analysis.worker_processes`), and multiprocessing's forkserver and
+    resource tracker after it.
 
     :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
     :param on_result: called with each job's tag and result.
@@ -272,9 +271,9 @@ def _serve(geometry, jobs, results, node_pid):
     os.nice(WORKER_NICENESS)
     while True:
         try:
-            tag, function, args, kwargs = jobs.get(timeout=PARENT_CHECK_PERIOD)
+            tag, function, args, kwargs = jobs.get(timeout=OWNER_CHECK_PERIOD)
         except queue.Empty:
-            if not _running(node_pid):
+            if not process_running(node_pid):
                 return
             continue
         try:
@@ -282,18 +281,3 @@ def _serve(geometry, jobs, results, node_pid):
         except Exception as error:   # sent back as text: any exception pickles as this one
             value = RuntimeError(f'{type(error).__name__}: {error}')
         results.put((tag, value))
-
-
-def _running(pid) -> bool:
-    """Whether a process exists (a zombie counts as gone where /proc tells)."""
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    try:
-        with open(f'/proc/{pid}/stat') as stat:
-            return stat.read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except OSError:
-        return True

@@ -40,6 +40,7 @@ import math
 import threading
 from typing import Dict, List, Sequence
 
+from fuzzing.fuzz_messages import fields_of, type_name
 import numpy as np
 from rosidl_parser import definition
 
@@ -55,7 +56,6 @@ from stewart_kinematics.parameters import (
     GeometrySettings,
     read_parameter_files,
 )
-from stewart_kinematics.tools.fuzz_messages import fields_of, type_name
 
 #: Relative slack on every limit (and absolute, in the limit's unit, near zero).
 TOLERANCE = 1e-9

@@ -36,10 +36,10 @@ import math
 import random
 from typing import Dict, List, Optional
 
+from fuzzing.fuzz_messages import HOSTILE_DOUBLES, HOSTILE_STRINGS
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 
 from stewart_kinematics import parameters
-from stewart_kinematics.tools.fuzz_messages import HOSTILE_DOUBLES, HOSTILE_STRINGS
 
 #: The field of rcl_interfaces/msg/ParameterValue that holds each type's value.
 VALUE_FIELDS = {

@@ -24,6 +24,7 @@ and leg lengths, joint and frame names).
 from pathlib import Path
 from typing import List, Optional
 
+from fuzzing.fuzz_messages import Plausible
 import rclpy
 
 from stewart_kinematics.parameters import (
@@ -32,7 +33,6 @@ from stewart_kinematics.parameters import (
     read_parameter_files,
 )
 from stewart_kinematics.parameters.files import read_parameter_sections
-from stewart_kinematics.tools.fuzz_messages import Plausible
 
 #: The geometry and limits every node is fuzzed with, from the package's config/ folder.
 GEOMETRY_FILES = ('paper_platform.yaml', 'example_limits.yaml')

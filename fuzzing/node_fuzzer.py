@@ -18,21 +18,21 @@ Fuzz a node as a process: hostile messages on every input, parameter changes, th
 :func:`fuzz_node` starts a node's console script with the shipped parameter files, subscribes
 to every topic it publishes, and floods every topic it subscribes to (all read from its
 declaration in :data:`stewart_kinematics.ros.interfaces.NODE_INTERFACES`) with messages from
-:mod:`~stewart_kinematics.tools.fuzz_messages`, up to 1 kHz, mixing in run-time parameter
-changes from :mod:`~stewart_kinematics.tools.fuzz_parameters` through the node's parameter
+:mod:`~fuzzing.fuzz_messages`, up to 1 kHz, mixing in run-time parameter
+changes from :mod:`~fuzzing.fuzz_parameters` through the node's parameter
 services. It then checks the invariants:
 
 - the node keeps running, answers a parameter request and each declared service within a
   deadline after the flood, and stops cleanly on SIGINT (exit 0, no traceback);
 - every message it published is finite, with unit quaternions, and within the limits
-  (:mod:`~stewart_kinematics.tools.output_invariants`);
+  (:mod:`~fuzzing.output_invariants`);
 - every parameter change that must be refused is, with a reason (naming the parameter when
   the spec refuses the value), and the node then holds exactly the values it accepted;
 - its /diagnostics reports come about once a second and add up: received = published +
   rejected per input, rejections by code summing to the rejections, every code registered,
   never more received than sent.
 
-``python -m stewart_kinematics.tools.node_fuzzer --minutes 10`` (``scripts/fuzz_nodes.sh``)
+``python -m fuzzing.node_fuzzer --minutes 10`` (``scripts/fuzz_nodes.sh``)
 runs rounds over every declared node for longer; each round prints its seed, and ``--node
 NAME --seed S --messages N`` replays one.
 """
@@ -46,6 +46,17 @@ import sys
 import time
 from typing import Dict, List, Optional, Sequence
 
+from fuzzing.fuzz_client import DiagnosticsLog, paced, SpinningClient
+from fuzzing.fuzz_messages import choose_kind, MessageFuzzer, summarize
+from fuzzing.fuzz_parameters import argument, start_variant
+from fuzzing.fuzz_targets import parameter_files, plausible_hints
+from fuzzing.output_invariants import OutputInvariants, OutputLog
+from fuzzing.parameter_requests import (
+    held_value_problems,
+    parameter_clients,
+    parameter_fuzzer_of,
+    ParameterRequests,
+)
 from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomically
 import rclpy
 from rosidl_parser import definition
@@ -58,21 +69,10 @@ from stewart_kinematics.ros.interfaces import (
 )
 from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
-from stewart_kinematics.tools.fuzz_client import DiagnosticsLog, paced, SpinningClient
-from stewart_kinematics.tools.fuzz_messages import choose_kind, MessageFuzzer, summarize
-from stewart_kinematics.tools.fuzz_parameters import argument, start_variant
-from stewart_kinematics.tools.fuzz_targets import parameter_files, plausible_hints
 from stewart_kinematics.tools.node_processes import (
     find_executable,
     isolated_ros_environment,
     NodeProcess,
-)
-from stewart_kinematics.tools.output_invariants import OutputInvariants, OutputLog
-from stewart_kinematics.tools.parameter_requests import (
-    held_value_problems,
-    parameter_clients,
-    parameter_fuzzer_of,
-    ParameterRequests,
 )
 
 #: Seconds to wait for discovery, an answer, or the node's first report.
@@ -99,7 +99,7 @@ class FuzzSettings:
     :param huge: messages with a sequence of 10^5 elements among them.
     :param files: parameter files (default: :func:`parameter_files`).
     :param arguments: more ``--ros-args`` arguments for the node.
-    :param variant: start the node with a :func:`~stewart_kinematics.tools.fuzz_parameters.
+    :param variant: start the node with a :func:`~fuzzing.fuzz_parameters.
         start_variant` of its read-only parameters, drawn from the seed (a variant the node
         refuses to start with, saying why, is reported and the run made without it).
     """
@@ -167,7 +167,7 @@ class FuzzReport:
         """Return the problems, how to replay them and what was sent last, for a failure."""
         lines = [f'{len(self.problems)} problem(s) fuzzing {self.settings.node}:']
         lines += [f'  - {problem}' for problem in self.problems]
-        lines.append('Replay: python -m stewart_kinematics.tools.node_fuzzer '
+        lines.append('Replay: python -m fuzzing.node_fuzzer '
                      + self.settings.replay_options()
                      + f' (or STEWART_FUZZ_SEED={self.settings.seed} for the test)')
         for topic, recent in sorted(self.recent.items()):
@@ -427,7 +427,7 @@ def main(argv=None) -> int:
         finally:
             rclpy.try_shutdown()
     for options in failures:
-        print(f'FAILED: replay with python -m stewart_kinematics.tools.node_fuzzer {options}')
+        print(f'FAILED: replay with python -m fuzzing.node_fuzzer {options}')
     print(f'{len(failures)} failed round(s)')
     return 1 if failures else 0
 

@@ -17,7 +17,7 @@ Parameter requests to a running node, and whether its answers are right.
 
 :func:`parameter_clients` and :func:`parameter_fuzzer_of` read what a node lists, describes and
 holds through its parameter services; :class:`ParameterRequests` sends the changes a
-:class:`~stewart_kinematics.tools.fuzz_parameters.ParameterFuzzer` draws and checks each answer
+:class:`~fuzzing.fuzz_parameters.ParameterFuzzer` draws and checks each answer
 as it arrives (a change that must be refused is, with a reason; an accepted frame change gives
 the output checks its frame tree); :func:`held_value_problems` checks at the end that the node
 holds the last values it accepted. Shared by the node fuzzer and the soak.
@@ -27,6 +27,13 @@ import math
 import threading
 from typing import Dict, List, Optional
 
+from fuzzing.fuzz_parameters import (
+    EITHER,
+    ParameterFuzzer,
+    python_value,
+    REFUSED,
+)
+from fuzzing.output_invariants import OutputInvariants
 from rcl_interfaces.srv import (
     DescribeParameters,
     GetParameters,
@@ -36,13 +43,6 @@ from rcl_interfaces.srv import (
 )
 
 from stewart_kinematics.parameters import FRAME_PARAMETERS
-from stewart_kinematics.tools.fuzz_parameters import (
-    EITHER,
-    ParameterFuzzer,
-    python_value,
-    REFUSED,
-)
-from stewart_kinematics.tools.output_invariants import OutputInvariants
 
 #: Names of the frame parameters: an accepted change gives the output checks a frame tree.
 FRAME_NAMES = frozenset(spec.name for spec in FRAME_PARAMETERS)
