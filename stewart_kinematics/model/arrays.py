@@ -36,6 +36,10 @@ def preview(values) -> str:
     return text if len(text) <= _PREVIEW_LENGTH else text[:_PREVIEW_LENGTH - 3] + '...'
 
 
+#: The dtype of the arrays the core computes with.
+_FLOAT = np.dtype(float)
+
+
 def as_float_array(values, name: str) -> np.ndarray:
     """
     Return ``values`` as a float array, or refuse them naming the argument.
@@ -45,8 +49,11 @@ def as_float_array(values, name: str) -> np.ndarray:
     :raises ValueError: for strings, booleans, complex numbers, ``None``, ragged lists and
         anything else that is not numbers, or numbers beyond the float range.
     """
-    if isinstance(values, np.ndarray) and values.dtype.kind in _NUMBER_KINDS:
-        return values.astype(float, copy=False)
+    if isinstance(values, np.ndarray):
+        if values.dtype == _FLOAT:   # the common case, first: no conversion to make
+            return values
+        if values.dtype.kind in _NUMBER_KINDS:
+            return values.astype(float)
     try:
         array = np.asarray(values)
     except (TypeError, ValueError, OverflowError):

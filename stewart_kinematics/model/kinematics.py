@@ -489,7 +489,9 @@ def inverse_kinematics(geometry, poses) -> np.ndarray:
         values = poses.tolist()
         if all(map(math.isfinite, values)):
             lengths = _single_euler_legs(constants, values, with_vectors=False)
-            if all(map(math.isfinite, lengths)):
+            # One test for six: a sum of lengths is finite only if each is (an overflow
+            # beyond that, near 1e307 m, takes the batch path, which names it).
+            if math.isfinite(sum(lengths)):
                 return np.array(lengths)
     poses = as_poses(poses)
     batch = np.atleast_2d(poses)
