@@ -43,19 +43,16 @@ CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
 DEADLINE = 20.0
 
 
-def test_a_killed_ik_node_leaves_no_worker_process_behind(client):
-    """SIGKILL ik_node while its workspace worker runs: every process it started exits too."""
-    node = NodeProcess('ik_node', ['--ros-args', '--params-file',
-                                   str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
-                                   '--params-file', str(CONFIG_DIRECTORY / 'example_limits.yaml')])
-    left = []
+def assert_kill_leaves_nothing(node):
+    """
+    SIGKILL a node process and assert that every process it started exits within DEADLINE.
+
+    Whatever it started and is still running at the end is killed, so that a failure leaves
+    nothing behind either.
+    """
+    started = descendants(node.process.pid)
+    assert started, f'{node.name} started no worker process'
     try:
-        markers = []
-        client.node.create_subscription(MarkerArray, 'workspace_markers', markers.append, 10)
-        # The worker starts once workspace_markers has a subscriber; the markers prove it ran.
-        client.wait(lambda: markers, 'workspace_markers from the worker', [node])
-        started = descendants(node.process.pid)
-        assert started, 'ik_node started no worker process'
         node.process.kill()
         assert node.process.wait(DEADLINE) == -signal.SIGKILL
         deadline = time.monotonic() + DEADLINE
@@ -66,9 +63,23 @@ def test_a_killed_ik_node_leaves_no_worker_process_behind(client):
                     for pid in left if alive(pid)}
         assert not left, f'{len(left)} of {len(started)} processes left behind: {commands}'
     finally:
-        for pid in left:
+        for pid in started:
             if alive(pid):
                 os.kill(pid, signal.SIGKILL)
+
+
+def test_a_killed_ik_node_leaves_no_worker_process_behind(client):
+    """SIGKILL ik_node while its workspace worker runs: every process it started exits too."""
+    node = NodeProcess('ik_node', ['--ros-args', '--params-file',
+                                   str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
+                                   '--params-file', str(CONFIG_DIRECTORY / 'example_limits.yaml')])
+    try:
+        markers = []
+        client.node.create_subscription(MarkerArray, 'workspace_markers', markers.append, 10)
+        # The worker starts once workspace_markers has a subscriber; the markers prove it ran.
+        client.wait(lambda: markers, 'workspace_markers from the worker', [node])
+        assert_kill_leaves_nothing(node)
+    finally:
         node.__exit__(None, None, None)
 
 
@@ -77,21 +88,10 @@ def test_a_killed_fk_node_leaves_no_margin_worker_behind(client):
     node = NodeProcess('fk_node', ['--ros-args', '--params-file',
                                    str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
                                    '-p', 'assembly_mode_margin_period:=0.5'])
-    left = []
     try:
         # The worker starts with the node: resource tracker, forkserver, worker.
         client.wait(lambda: len(descendants(node.process.pid)) >= 3,
                     'the margin worker process', [node])
-        started = descendants(node.process.pid)
-        node.process.kill()
-        assert node.process.wait(DEADLINE) == -signal.SIGKILL
-        deadline = time.monotonic() + DEADLINE
-        while time.monotonic() < deadline and any(alive(pid) for pid in started):
-            time.sleep(0.1)
-        left = [pid for pid in started if alive(pid)]
-        assert not left, f'{len(left)} of {len(started)} processes left behind'
+        assert_kill_leaves_nothing(node)
     finally:
-        for pid in left:
-            if alive(pid):
-                os.kill(pid, signal.SIGKILL)
         node.__exit__(None, None, None)
