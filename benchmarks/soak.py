@@ -69,6 +69,7 @@ import rclpy
 from rosgraph_msgs.msg import Clock
 from rosidl_parser import definition
 
+from stewart_kinematics.analysis.worker_processes import process_running
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.node_processes import (
@@ -80,7 +81,6 @@ from stewart_kinematics.tools.node_processes import (
 # fuzzing/ is the test suite's harness, not installed: import it from the repository root.
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from fuzzing.fuzz_client import (  # noqa: E402, I100 (after the path)
-    alive,
     descendants,
     DiagnosticsLog,
     resident_kb,
@@ -389,7 +389,7 @@ class Soak:
         client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
         for slot in self.slots.values():
             self.stop(slot, signal.SIGINT)
-        client.wait(lambda: not any(alive(pid) for check in self.orphan_checks
+        client.wait(lambda: not any(process_running(pid) for check in self.orphan_checks
                                     for pid in check[3]), ORPHAN_GRACE)
         self.check_orphans(math.inf)
         for name in self.slots:
@@ -463,7 +463,7 @@ class Soak:
         self.orphan_checks = [check for check in self.orphan_checks if check[0] > now]
         for _, name, number, children in due:
             for pid in children:
-                if alive(pid):
+                if process_running(pid):
                     try:
                         command = Path(f'/proc/{pid}/cmdline').read_bytes().replace(
                             b'\0', b' ').decode(errors='replace')[:100]

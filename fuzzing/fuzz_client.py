@@ -20,8 +20,9 @@ on a schedule and waits for answers with a deadline. :class:`DiagnosticsLog` kee
 the DiagnosticArrays it published and the counters of each of its statuses
 (:mod:`stewart_kinematics.ros.message_accounting`), and checks them: counts that add up, codes
 from the registry, about one array a second. :func:`paced` yields on a monotonic schedule,
-:func:`resident_kb` reads a process's resident memory, and :func:`descendants` and
-:func:`alive` find the processes a node started (a worker must not outlive its node).
+:func:`resident_kb` reads a process's resident memory, and :func:`descendants` finds the
+processes a node started (a worker must not outlive its node; whether one still runs is the
+core's :func:`~stewart_kinematics.analysis.worker_processes.process_running`).
 """
 
 from dataclasses import dataclass, field
@@ -87,15 +88,6 @@ def descendants(pid: int) -> List[int]:
             found.append(child)
             stack.append(child)
     return found
-
-
-def alive(pid: int) -> bool:
-    """Whether a process exists and is not a zombie."""
-    try:
-        state = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()[0]
-    except OSError:
-        return False
-    return state != 'Z'
 
 
 class SpinningClient:

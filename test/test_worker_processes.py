@@ -30,9 +30,10 @@ from pathlib import Path
 import signal
 import time
 
-from fuzzing.fuzz_client import alive, descendants
+from fuzzing.fuzz_client import descendants
 import pytest
 
+from stewart_kinematics.analysis.worker_processes import process_running
 from stewart_kinematics.tools.node_processes import NodeProcess
 from visualization_msgs.msg import MarkerArray
 
@@ -56,15 +57,15 @@ def assert_kill_leaves_nothing(node):
         node.process.kill()
         assert node.process.wait(DEADLINE) == -signal.SIGKILL
         deadline = time.monotonic() + DEADLINE
-        while time.monotonic() < deadline and any(alive(pid) for pid in started):
+        while time.monotonic() < deadline and any(process_running(pid) for pid in started):
             time.sleep(0.1)
-        left = [pid for pid in started if alive(pid)]
+        left = [pid for pid in started if process_running(pid)]
         commands = {pid: Path(f'/proc/{pid}/cmdline').read_bytes().replace(b'\0', b' ')[:120]
-                    for pid in left if alive(pid)}
+                    for pid in left if process_running(pid)}
         assert not left, f'{len(left)} of {len(started)} processes left behind: {commands}'
     finally:
         for pid in started:
-            if alive(pid):
+            if process_running(pid):
                 os.kill(pid, signal.SIGKILL)
 
 

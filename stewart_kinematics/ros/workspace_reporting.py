@@ -28,7 +28,6 @@ in flight: a travel range due while the last one is still running is skipped.
 
 import multiprocessing
 import os
-import queue
 import threading
 
 import numpy as np
@@ -36,7 +35,7 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
-from stewart_kinematics.analysis.worker_processes import OWNER_CHECK_PERIOD, process_running
+from stewart_kinematics.analysis.worker_processes import exit_with_owner
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
@@ -269,13 +268,9 @@ def _serve(geometry, jobs, results, node_pid):
     """
     # Below the node on a busy machine: the command path comes first.
     os.nice(WORKER_NICENESS)
+    exit_with_owner(node_pid)
     while True:
-        try:
-            tag, function, args, kwargs = jobs.get(timeout=OWNER_CHECK_PERIOD)
-        except queue.Empty:
-            if not process_running(node_pid):
-                return
-            continue
+        tag, function, args, kwargs = jobs.get()
         try:
             value = function(geometry, *args, **kwargs)
         except Exception as error:   # sent back as text: any exception pickles as this one
