@@ -112,6 +112,32 @@ TWIST_SCALED = _register(
     'A twist whose leg velocities exceeded `leg_velocity_max`, scaled down uniformly until '
     'the fastest leg is at the limit; the factor is in the details.')
 
+# Every command as it is sent (the command gate, every node that commands actuators) -------
+
+COMMAND_BRAKING = _register(
+    'command_braking', 'refusal',
+    '`CommandGate.brake` (ik_node with `command_rate`, trajectory_node playing a trajectory, '
+    'motion_cueing_node), `MotionCueing`',
+    'The command a motion asked for broke a limit as it would have been sent, or none within '
+    'every limit could be computed: a braking command is sent instead, every leg slowing at '
+    '`leg_acceleration_max` (within `leg_velocity_max`; `leg_jerk_max` may be exceeded), never '
+    'one step to rest; the details name the command it replaced and anything the braking '
+    'command itself breaks (a leg stopped at the end of its stroke).')
+CLOCK_NOT_ADVANCING = _register(
+    'clock_not_advancing', 'refusal',
+    '`CommandGate` (every node that commands actuators as a motion)',
+    "A command of a motion at a time that does not come after the last command's (the node's "
+    'clock, wall or simulated, paused or moved back): no time passed, so no motion may be '
+    'commanded; nothing is sent, the last command stands.')
+
+RETURNING_TO_LIMITS = _register(
+    'returning_to_limits', 'warning',
+    '`CommandGate` (ik_node with `command_rate`, motion_cueing_node)',
+    'After a braking command that could not keep every pose limit (a leg stopped at the end of '
+    'its stroke, a joint cone passed while braking), a command that breaks only those limits, '
+    'by no more than the last command did: the platform comes back within its limits, never '
+    'further out.')
+
 # Streamed commands (ik_node with command_rate) ----------------------------------------------
 
 STREAM_BRAKING = _register(
@@ -230,11 +256,6 @@ ACTUATOR_LIMITED = _register(
     '`MotionCueing` (motion_cueing_node)',
     'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
     'followed as closely as they allow (or braked, or headed home).')
-LIMITS_HELD = _register(
-    'limits_held', 'warning',
-    '`MotionCueing` (motion_cueing_node)',
-    'Every next pose would have left the limits: the pose was held (not expected; the '
-    'margins prevent it).')
 
 
 def codes_table() -> str:

@@ -28,6 +28,7 @@ from numpy.testing import assert_allclose
 import pytest
 from rclpy.exceptions import ParameterException
 from reference import quaternion_from_euler
+from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Trigger
 
@@ -51,7 +52,7 @@ def imu(stamp_ns, force=(0.0, 0.0, G), rate=(0.0, 0.0, 0.0)):
     """sensor_msgs/msg/Imu with a stamp in nanoseconds, a specific force and a rate."""
     message = Imu()
     message.header.stamp.sec, message.header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
-    message.header.frame_id = 'vehicle'
+    message.header.frame_id = 'base_link'
     acceleration, velocity = message.linear_acceleration, message.angular_velocity
     acceleration.x, acceleration.y, acceleration.z = force
     velocity.x, velocity.y, velocity.z = rate
@@ -59,9 +60,19 @@ def imu(stamp_ns, force=(0.0, 0.0, G), rate=(0.0, 0.0, 0.0)):
 
 
 class Rig:
-    """The node, a client node and one executor, with the client's publisher and inboxes."""
+    """
+    The node, a client node and one executor, with the client's publisher and inboxes.
 
-    def __init__(self, ros, spin_until, arguments):
+    With ``simulated_time`` the node runs on ``/clock``, which the rig sets to each message's
+    stamp before sending it: the platform is paced by the node's clock (the times its commands
+    are sent), so a burst of messages is the vehicle's motion in the stamps' time, not in the
+    few milliseconds the burst takes.
+    """
+
+    def __init__(self, ros, spin_until, arguments, simulated_time=True):
+        self.simulated_time = simulated_time
+        if simulated_time:
+            arguments = arguments + ['-p', 'use_sim_time:=true']
         self.node = MotionCueingNode(cli_args=arguments)
         self.client = ros.create_node('cueing_test_client')
         self.executor = create_executor()
@@ -69,6 +80,7 @@ class Rig:
         self.executor.add_node(self.client)
         self.spin_until = spin_until
         self.publisher = self.client.create_publisher(Imu, 'vehicle_imu', DEPTH)
+        self.clock = self.client.create_publisher(Clock, '/clock', DEPTH)
         self.inbox = {'target_pose': [], 'cue_pose': [], 'perceived_accel': []}
         for topic, kind in (('target_pose', Pose), ('cue_pose', PoseStamped),
                             ('perceived_accel', AccelStamped)):
@@ -81,8 +93,22 @@ class Rig:
         """
         Publish in batches that fit the queues, waiting after each for its target poses.
 
+        On simulated time, one message at a time, each after ``/clock`` reached its stamp.
+
         :param wait_for: target poses expected for the whole list (default: one per message).
         """
+        if self.simulated_time:
+            accounting = self.node.accounting
+            for message in messages:
+                stamp = message.header.stamp
+                self.clock.publish(Clock(clock=stamp))
+                target = stamp.sec * 1_000_000_000 + stamp.nanosec
+                assert self.spin_until(self.executor, lambda: (
+                    self.node.get_clock().now().nanoseconds == target))
+                received = accounting.received
+                self.publisher.publish(message)
+                assert self.spin_until(self.executor, lambda: accounting.received > received)
+            return
         if wait_for is not None:
             start = len(self.inbox['target_pose'])
             for message in messages:
@@ -121,8 +147,9 @@ def test_node_offers_exactly_its_declared_interface(rig):
         module = message_type.__module__.split('.')[0]
         return f'{module}/{"srv" if kind == SERVICE else "msg"}/{message_type.__name__}'
 
+    # /clock: the time source's on simulated time (the rig's), not one of the node's own.
     offered = {(SUBSCRIPTION, s.topic_name.lstrip('/'), type_name(SUBSCRIPTION, s.msg_type))
-               for s in node.subscriptions}
+               for s in node.subscriptions if s.topic_name != '/clock'}
     offered |= {(PUBLISHER, p.topic_name.lstrip('/'), type_name(PUBLISHER, p.msg_type))
                 for p in node.publishers if p.topic_name not in ('/rosout', '/parameter_events')}
     offered |= {(SERVICE, s.srv_name.lstrip('/'), type_name(SERVICE, s.srv_type))
@@ -198,7 +225,7 @@ def test_reset_service_washes_out_to_neutral(rig):
 
 def test_watchdog_eases_home_when_the_input_stops(ros, spin_until):
     """input_timeout 0.2 s: after the stream stops, poses keep coming until the platform rests."""
-    made = Rig(ros, spin_until, ARGUMENTS + ['-p', 'input_timeout:=0.2'])
+    made = Rig(ros, spin_until, ARGUMENTS + ['-p', 'input_timeout:=0.2'], simulated_time=False)
     try:
         made.send([imu(k * 10_000_000, force=(0.0, 4.0, G)) for k in range(300)])
         count = len(made.inbox['target_pose'])
@@ -244,7 +271,15 @@ def test_bad_parameters_stop_the_start(ros, override, name):
         MotionCueingNode(cli_args=ARGUMENTS[:5] + ['-p', override])
 
 
-def test_one_stamp_far_in_the_future_does_not_freeze_the_node(rig):
+@pytest.fixture
+def wall_clock_rig(ros, spin_until):
+    """Make a node on the wall clock (its watchdog's time passes by itself), and its client."""
+    made = Rig(ros, spin_until, ARGUMENTS, simulated_time=False)
+    yield made
+    made.close()
+
+
+def test_one_stamp_far_in_the_future_does_not_freeze_the_node(wall_clock_rig):
     """
     A message stamped 2**31 - 1 s, then the stream as before: cued again after input_timeout.
 
@@ -255,22 +290,22 @@ def test_one_stamp_far_in_the_future_does_not_freeze_the_node(rig):
     and the next message starts a new time line.
     """
     start_ns = 1_000 * 1_000_000_000
-    rig.send([imu(start_ns + index * 10_000_000) for index in range(5)])
-    accounting = rig.node.accounting
+    wall_clock_rig.send([imu(start_ns + index * 10_000_000) for index in range(5)])
+    accounting = wall_clock_rig.node.accounting
     published = accounting.published
-    rig.publisher.publish(imu((2 ** 31 - 1) * 1_000_000_000 + 999_999_999))
-    assert rig.spin_until(rig.executor, lambda: accounting.received == 6)
+    wall_clock_rig.publisher.publish(imu((2 ** 31 - 1) * 1_000_000_000 + 999_999_999))
+    assert wall_clock_rig.spin_until(wall_clock_rig.executor, lambda: accounting.received == 6)
 
     def stream_cued_again():
         stamp = start_ns + int(stream_cued_again.index * 10_000_000)
         stream_cued_again.index += 1
-        rig.publisher.publish(imu(stamp))
-        rig.executor.spin_once(timeout_sec=0.01)
+        wall_clock_rig.publisher.publish(imu(stamp))
+        wall_clock_rig.executor.spin_once(timeout_sec=0.01)
         return accounting.published > published + 1
 
     stream_cued_again.index = 5
-    timeout = rig.node.input_timeout
-    assert rig.spin_until(rig.executor, stream_cued_again, 5.0 + 4 * timeout), (
+    timeout = wall_clock_rig.node.input_timeout
+    assert wall_clock_rig.spin_until(wall_clock_rig.executor, stream_cued_again, 5.0 + 4 * timeout), (
         f'still refused after {stream_cued_again.index} messages: '
         f'{accounting.rejections_by_code}')
     assert accounting.rejections_by_code.get('time_not_increasing', 0) >= 1

@@ -35,8 +35,12 @@ Two stages, each reported in the result:
    never with a jump and never frozen.
 
 The output pose is judged by the limits model (:mod:`.limit_check`): when it equals the cue's
-pose, that pose already passed the narrower limits; otherwise it is checked again. Nothing here
-imports ROS.
+pose, that pose already passed the narrower limits; otherwise it is checked again. When no next
+pose keeps every limit, the legs brake at their limits (``command_braking``), never one step to
+rest; at rest, the platform stays. Nothing here imports ROS.
+
+``dt`` is the time between two commands as they are sent (the node's clock), not the input's:
+the legs' rates are those the actuators see.
 """
 
 import dataclasses
@@ -47,7 +51,7 @@ from typing import Tuple
 import numpy as np
 
 from stewart_kinematics.cueing.limit_check import limit_margins, pose_violations, with_margins
-from stewart_kinematics.findings import ACTUATOR_LIMITED, CUE_SCALED, Finding, LIMITS_HELD
+from stewart_kinematics.findings import ACTUATOR_LIMITED, COMMAND_BRAKING, CUE_SCALED, Finding
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.kinematics import (
     forward_kinematics,
@@ -76,9 +80,10 @@ class LimitedPose:
     One step of :class:`CueLimiter`.
 
     :param pose: the platform pose to command, ``[X, Y, Z, alpha, beta, gamma]``, base frame,
-        metres and radians, shape (6,).
+        metres and radians, shape (6,); ``None`` when no pose could be found (the command gate
+        then brakes from the last command).
     :param target: the scaled cue's pose, shape (6,).
-    :param lengths: the leg lengths of ``pose``, metres, shape (6,).
+    :param lengths: the leg lengths of ``pose``, metres, shape (6,), or ``None``.
     :param workspace_scale: ``sigma``, the share of the displacement and of the rotational
         channel kept to stay inside the limits.
     :param tilt_scale: the share of the tilt kept (below 1 only when the tilt alone would
@@ -224,23 +229,42 @@ class CueLimiter:
         wanted = (target_velocity - self._target_velocity + dt * (
             gain * gain * (self._target - self.pose)
             + 2.0 * gain * (self._target_velocity - self.velocity)))
-        share, pose, lengths = self._follow(self.pose + dt * (self.velocity + wanted), dt)
-        on_cue = bool(np.all(np.abs(pose - target) <= ON_CUE_TOLERANCE))
-        if not on_cue and not self._keeps_limits(pose, lengths, dt):
-            share, pose, lengths = self._retreat(dt, findings)
+        followed = self._follow(self.pose + dt * (self.velocity + wanted), dt)
+        on_cue = followed is not None and bool(
+            np.all(np.abs(followed[1] - target) <= ON_CUE_TOLERANCE))
+        if followed is None or not on_cue and not self._keeps_limits(followed[1], followed[2],
+                                                                     dt):
+            followed = self._retreat(dt, findings)
+        share, pose, lengths = followed
         if share < 1.0:
             findings.append(Finding(
                 ACTUATOR_LIMITED, f'the cue asks more than the legs can do; followed at '
                 f'{share:.3f} of the change asked', (('acceleration_scale', f'{share:.6g}'),)))
-        self.leg_velocities = (lengths - self.lengths) / dt
-        self.velocity = (pose - self.pose) / dt
-        self.pose, self.lengths = pose, lengths
+        if pose is not None:   # None: no pose found, the command gate brakes instead
+            self._commit(pose, lengths, dt)
         self.scale, self.tilt_scale = scale, tilt_scale
         self._target, self._target_velocity = target, target_velocity
-        self._last_dt = dt
         return LimitedPose(pose=pose, target=target, lengths=lengths, workspace_scale=scale,
                            tilt_scale=tilt_scale, acceleration_scale=share, on_cue=on_cue,
                            findings=tuple(findings))
+
+    def _commit(self, pose, lengths, dt) -> None:
+        """Make ``pose`` (its ``lengths``), ``dt`` after the last one, the platform's."""
+        self.leg_velocities = (lengths - self.lengths) / dt
+        self.velocity = (pose - self.pose) / dt
+        self.pose, self.lengths = np.array(pose, dtype=float), np.array(lengths, dtype=float)
+        self._last_dt = dt
+
+    def take_sent(self, pose, lengths, dt, previous) -> None:
+        """
+        Follow on from what was sent instead of the last step (the gate braked instead).
+
+        :param pose: the pose sent, shape (6,); ``lengths`` its leg lengths.
+        :param dt: seconds since the command before it.
+        :param previous: ``(pose, lengths)`` of the command before it.
+        """
+        self.pose, self.lengths = (np.array(value, dtype=float) for value in previous)
+        self._commit(pose, lengths, dt)
 
     def _leg_bounds(self, dt, stroke=True):
         """
@@ -289,6 +313,8 @@ class CueLimiter:
         lengths = inverse_kinematics(self.geometry, wanted_pose)
         if not self.limits_speed:
             return 1.0, wanted_pose, lengths
+        if not np.all(np.isfinite(lengths)):
+            return None
         wanted = (lengths - self.lengths) / dt
         lower, upper = self._leg_bounds(dt)
         if all(low <= value <= high for value, low, high in zip(wanted.tolist(), lower, upper)):
@@ -318,7 +344,7 @@ class CueLimiter:
         Slow the legs down as fast as their bounds allow; return ``(0, pose, lengths)``.
 
         The feasible leg velocities nearest to rest in the twist metric (stroke braking curves
-        included).
+        included); ``None`` when the pose of those lengths cannot be found.
         """
         lower, upper = self._leg_bounds(dt)
         velocities = box_least_squares(self._twist_metric(), np.zeros(6), np.array(lower),
@@ -326,51 +352,76 @@ class CueLimiter:
         return self._pose_of(self.lengths + dt * velocities, guess, 0.0)
 
     def _pose_of(self, lengths, guess, share):
-        """Return ``(share, pose, lengths)`` for leg lengths, by forward kinematics."""
-        result = forward_kinematics(self.geometry, lengths, initial_guess=guess)
-        if not result.converged:
-            # Not expected this close to a known pose: stay where the platform is.
-            return 0.0, self.pose.copy(), self.lengths.copy()
-        return share, np.asarray(result.pose, dtype=float), lengths
+        """
+        Return ``(share, pose, lengths)`` for leg lengths, by forward kinematics, or ``None``.
+
+        From ``guess``, then from the platform's pose (``None`` when neither converges: the
+        caller brakes; staying where the platform is would stop it in one step).
+        """
+        for start in (guess, self.pose):
+            result = forward_kinematics(self.geometry, lengths, initial_guess=start)
+            if result.converged:
+                return share, np.asarray(result.pose, dtype=float), lengths
+        return None
 
     def _keeps_limits(self, pose, lengths, dt) -> bool:
         """
         Whether ``pose`` and the pose where the platform would stop from it keep the limits.
 
         A pose inside the narrowed limits passes at once: the margins cover the braking
-        distance. Otherwise braking at the legs' acceleration limit takes
-        ``T = max |v_leg| / a`` and stops about ``velocity T / 2`` further on; a follower that
-        can always still stop inside the limits never has to leave them.
+        distance. Otherwise the legs brake from it, each at the planned acceleration to rest
+        (``l + v |v| / (2 a)``, as the command gate brakes them), and the pose of those lengths
+        must keep the limits too (the stroke is kept leg by leg by the braking curves). A
+        platform already outside a limit (after braking that could not stay inside) may only
+        come back: no limit broken further than the current pose breaks it.
         """
         rotation = euler_zyx_to_matrix(pose[3:])
         if not pose_violations(self.cue_geometry, pose[:3], rotation):
             # Inside the narrowed limits: the margins cover the braking distance.
             return True
-        if pose_violations(self.geometry, pose[:3], rotation):
+        if not self._no_further_out(pose_violations(self.geometry, pose[:3], rotation)):
             return False
         acceleration = self._acceleration_plan
-        speed = float(np.max(np.abs(lengths - self.lengths))) / dt
-        if not math.isfinite(acceleration) or speed == 0.0:
+        velocities = (np.asarray(lengths) - self.lengths) / dt
+        if not math.isfinite(acceleration) or not np.any(velocities):
             return True
-        # The stroke is kept leg by leg by the braking curves; the stop estimate is for the
-        # joint cones and the singularity margin.
-        stop = pose + (pose - self.pose) / dt * (0.5 * speed / acceleration)
-        return not pose_violations(self._stop_geometry, stop[:3], euler_zyx_to_matrix(stop[3:]))
+        stop = self._pose_of(lengths + velocities * np.abs(velocities) / (2.0 * acceleration),
+                             pose, 0.0)
+        if stop is None:
+            return False
+        stop_pose = stop[1]
+        return self._no_further_out(pose_violations(
+            self._stop_geometry, stop_pose[:3], euler_zyx_to_matrix(stop_pose[3:])))
+
+    def _no_further_out(self, violations) -> bool:
+        """Whether ``violations`` break no limit further than the platform's pose now does."""
+        if not violations:
+            return True
+        now = {(violation.limit, violation.leg, violation.other_leg): violation.excess
+               for violation in pose_violations(self.geometry, self.pose[:3],
+                                                euler_zyx_to_matrix(self.pose[3:]))}
+        return all(violation.excess <= now.get(
+            (violation.limit, violation.leg, violation.other_leg), -1.0)
+            for violation in violations)
 
     def _retreat(self, dt, findings):
         """
         Return the next pose when following the cue would leave the limits: brake, or go home.
 
         A moving platform brakes each leg as hard as it may; one at rest moves toward the
-        home pose (always inside the limits) with the follower's dynamics; if neither keeps
-        the limits, the pose holds (``limits_held``, not expected).
+        home pose (always inside the limits) with the follower's dynamics. If neither keeps
+        the limits, a moving platform brakes all the same (``command_braking``: no command
+        within every limit exists; never a stop in one step) and one at rest stays.
         """
-        candidates = []
-        if np.any(self.leg_velocities != 0.0) and self.limits_speed:
-            candidates.append(self._brake(dt, self.pose + dt * self.velocity))
+        moving = bool(np.any(self.leg_velocities != 0.0))
+        braking = None
+        if moving and self.limits_speed:
+            braking = self._brake(dt, self.pose + dt * self.velocity)
         gain = min(self.settings.follower_frequency, 0.5 / dt)
         homeward = dt * (gain * gain * (self.home_pose - self.pose) - 2.0 * gain * self.velocity)
-        candidates.append(self._follow(self.pose + dt * (self.velocity + homeward), dt))
+        candidates = [candidate for candidate in (
+            braking, self._follow(self.pose + dt * (self.velocity + homeward), dt))
+            if candidate is not None]
         for _, pose, lengths in candidates:
             if self._keeps_limits(pose, lengths, dt):
                 findings.append(Finding(ACTUATOR_LIMITED, 'following the cue would have left the '
@@ -382,8 +433,17 @@ class CueLimiter:
                 findings.append(Finding(ACTUATOR_LIMITED, 'braking hard: the platform may not '
                                         'stop inside the cue margins'))
                 return 0.0, pose, lengths
-        findings.append(Finding(LIMITS_HELD, 'every next pose would have left the limits; pose '
-                                'held'))
+        if braking is not None:
+            findings.append(Finding(COMMAND_BRAKING, 'every next pose would leave the limits: '
+                                    'braking at the leg limits all the same'))
+            return braking
+        if moving and self.limits_speed:
+            # The braking pose cannot be found: the command gate brakes from the last command.
+            findings.append(Finding(COMMAND_BRAKING, 'every next pose would leave the limits, '
+                                    'and the pose of a braking command cannot be found'))
+            return 0.0, None, None
+        findings.append(Finding(ACTUATOR_LIMITED, 'every next pose would leave the limits: the '
+                                'platform rests where it is'))
         return 0.0, self.pose.copy(), self.lengths.copy()
 
 

@@ -21,11 +21,24 @@ washout (:mod:`.washout`) turns the sample into a cue, :class:`~.limiting.CueLim
 into the limits and follows it within the actuators' speed, and the specific force felt at the
 head is estimated as the poses stream (:mod:`.perception`).
 
-Time: each sample's time (seconds, such as a message stamp) sets the step, ``dt`` = this time
-minus the previous sample's, so the filters run on the input's own clock whatever its jitter.
-A time that does not come after the previous one is refused and nothing moves (the pose
-holds). A gap longer than ``max_input_gap`` counts as ``max_input_gap``: the washout's clock
-pauses, the cue carries on from where it was, with an ``input_gap`` warning.
+Time: each sample's time (seconds, such as a message stamp) sets the washout's step, ``dt`` =
+this time minus the previous sample's, so the filters run on the input's own clock whatever
+its jitter. A time that does not come after the previous one is refused and nothing moves (the
+pose holds). A gap longer than ``max_input_gap`` counts as ``max_input_gap``: the washout's
+clock pauses, the cue carries on from where it was, with an ``input_gap`` warning. The platform
+is paced by the times its commands are sent (``command_time``: the node's clock, wall or
+simulated), not by the input's stamps: a recording played ten times fast gives the cue ten times
+fast, and the actuators follow it within their limits, in real time. Without a command time
+(an offline run) the commands are sent on the input's clock.
+
+Every command comes with the command gate's verdict (:class:`~stewart_kinematics.limits.
+CommandGate`, a motion: every pose limit and the leg velocity and acceleration between
+consecutive commands, on the very numbers of the ``target_pose`` message, tool frame
+included); a command the gate refuses is replaced by its braking command (``command_braking``).
+
+The vehicle's frame: samples are in the vehicle frame (x forward, y left, z up); with a
+``frame_id``, one in ``imu_frame`` is turned into the vehicle frame by
+``imu_orientation_rpy``, and one in a frame it cannot place is refused (``wrong_frame``).
 
 Refusals: :meth:`MotionCueing.cue` (the decision, as a node uses it) never raises for what it
 is given: a malformed, non-finite or absurd sample (beyond ``max_specific_force`` or
@@ -56,13 +69,17 @@ from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout
 from stewart_kinematics.findings import (
+    COMMAND_BRAKING,
     Decision,
     Finding,
     INPUT_GAP,
     INVALID_VEHICLE_MOTION,
     TIME_NOT_INCREASING,
+    WRONG_FRAME,
 )
+from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
     check_values,
@@ -96,7 +113,9 @@ class CueStep(Decision):
         (platform frame, m/s^2), or ``None`` before three samples.
     :param refusal: why the sample was refused (its step was taken at rest), or ``None``.
     :param warnings: findings about the step: an input gap, the cue scaled, the actuators
-        limiting.
+        limiting, a braking command (``command_braking``, of the refusal class).
+    :param command: the command gate's verdict on the ``target_pose`` message of ``pose`` (the
+        tool frame's numbers), sent at its time; ``None`` for a refused time.
     """
 
     time: float
@@ -113,6 +132,7 @@ class CueStep(Decision):
     perceived: Optional[Tuple[float, np.ndarray]] = None
     refusal: Optional[Finding] = None
     warnings: Tuple[Finding, ...] = ()
+    command: Optional[LegCommand] = None
 
 
 class MotionCueing:
@@ -123,25 +143,35 @@ class MotionCueing:
     :param settings: a :class:`~stewart_kinematics.cueing.CueingSettings` (default: the
         literature's).
     :param actuator_limits: leg velocity and acceleration limits (default: none).
+    :param frames: the :class:`stewart_kinematics.FrameTree` of the ``target_pose`` messages
+        (their tool frame), or ``None``: the platform frame.
     :raises ValueError: if the margins leave no room around the home pose.
     """
 
     def __init__(self, geometry, settings: Optional[CueingSettings] = None,
-                 actuator_limits: Optional[ActuatorLimits] = None):
+                 actuator_limits: Optional[ActuatorLimits] = None, frames=None):
         self.geometry = geometry
         self.settings = settings if settings is not None else CueingSettings()
         self.actuator_limits = (actuator_limits if actuator_limits is not None
                                 else ActuatorLimits())
+        self.frames = frames
         self.washout = ClassicalWashout(self.settings)
         self.limiter = CueLimiter(geometry, self.actuator_limits, self.settings)
+        #: The last check of every command, as sent: a motion (leg rates by the send times).
+        self.gate = CommandGate(geometry, self.actuator_limits, timing=MOTION, frames=frames)
+        #: The IMU frame's orientation in the vehicle frame (vectors from one to the other).
+        self._imu_rotation = euler_zyx_to_matrix(np.array(self.settings.imu_orientation_rpy))
         self.perception = PerceptionEstimator(self.settings.head_position, self.settings.gravity)
         self._rest_force = np.array([0.0, 0.0, self.settings.gravity])
         self.time = None
-        #: Seconds of motion so far (input steps and rest steps): the perception's clock.
+        #: Seconds of the input's motion so far (input steps and rest steps): the clock the
+        #: commands are sent on in an offline run.
         self._clock = None
+        #: Seconds of commands so far: the perception's clock.
+        self._felt_clock = None
 
     @classmethod
-    def from_parameters(cls, values: dict) -> 'MotionCueing':
+    def from_parameters(cls, values: dict, frames=None) -> 'MotionCueing':
         """
         Build it from ROS parameter values, as motion_cueing_node declares them.
 
@@ -157,7 +187,7 @@ class MotionCueing:
         check_values(MOTION_CUEING_PARAMETERS, merged)
         geometry = GeometrySettings.from_values(values)
         return cls(geometry_from_settings(geometry), CueingSettings.from_parameters(merged),
-                   actuator_limits_from_settings(geometry))
+                   actuator_limits_from_settings(geometry), frames)
 
     @property
     def pose(self) -> np.ndarray:
@@ -235,23 +265,47 @@ class MotionCueing:
                     'absurd for a vehicle', ((name, str(vector.tolist())),))
         return None
 
-    def cue(self, time, specific_force, angular_velocity) -> CueStep:
+    def vehicle_frame_refusal(self, frame_id: str) -> Optional[Finding]:
+        """Say why a sample's frame cannot be placed in the vehicle frame, or return ``None``."""
+        settings = self.settings
+        known = ['', settings.vehicle_frame] + ([settings.imu_frame] if settings.imu_frame else [])
+        if frame_id in known:
+            return None
+        return Finding(WRONG_FRAME, (
+            f'the sample is in frame {frame_id[:100]!r}, which cannot be placed in the vehicle '
+            f'frame: known are {known[1:]!r} (and an empty frame_id, the vehicle frame); set '
+            'vehicle_frame, or imu_frame and imu_orientation_rpy_deg'))
+
+    def cue(self, time, specific_force, angular_velocity, command_time: Optional[float] = None,
+            frame_id: Optional[str] = None) -> CueStep:
         """
         Decide on one sample: cue it, or refuse it and ease toward neutral.
 
         :param time: the sample's time, seconds (a message stamp).
-        :param specific_force: m/s^2, vehicle frame at the head, shape (3,).
-        :param angular_velocity: rad/s, vehicle frame, shape (3,).
+        :param specific_force: m/s^2, at the head, shape (3,), in the vehicle frame (or in
+            ``frame_id``).
+        :param angular_velocity: rad/s, shape (3,), likewise.
+        :param command_time: when the command is sent, seconds (the node's clock); ``None``:
+            on the input's clock (an offline run).
+        :param frame_id: the sample's frame (a message's ``header.frame_id``), or ``None``:
+            the vehicle frame.
         :returns: a :class:`CueStep`; never raises for bad input.
         """
         refusal = self.refusal(time, specific_force, angular_velocity)
         if refusal is not None and refusal.code == TIME_NOT_INCREASING:
             return CueStep(time=self.time, pose=None, refusal=refusal)
+        if refusal is None and frame_id is not None:
+            refusal = self.vehicle_frame_refusal(frame_id)
+            if refusal is None and frame_id and frame_id == self.settings.imu_frame:
+                specific_force = self._imu_rotation @ np.asarray(specific_force, dtype=float)
+                angular_velocity = self._imu_rotation @ np.asarray(angular_velocity, dtype=float)
         if refusal is not None:
             specific_force, angular_velocity = self._rest_force, np.zeros(3)
-        return self._advance(float(time), specific_force, angular_velocity, refusal)
+        return self._advance(float(time), specific_force, angular_velocity, refusal,
+                             command_time)
 
-    def step(self, time, specific_force, angular_velocity) -> CueStep:
+    def step(self, time, specific_force, angular_velocity,
+             command_time: Optional[float] = None) -> CueStep:
         """
         Cue one sample, or raise: :meth:`cue` for a loop that wants exceptions.
 
@@ -261,24 +315,29 @@ class MotionCueing:
         refusal = self.refusal(time, specific_force, angular_velocity)
         if refusal is not None:
             raise ValueError(refusal.message)
-        return self._advance(float(time), specific_force, angular_velocity, None)
+        return self._advance(float(time), specific_force, angular_velocity, None, command_time)
 
-    def rest(self, dt: float) -> CueStep:
+    def rest(self, dt: float, command_time: Optional[float] = None) -> CueStep:
         """
         Advance ``dt`` seconds as if the vehicle were at rest: no input came (a watchdog).
 
         The sample time stays the last one received; the next sample's step then covers the
         pause (as an input gap when longer than ``max_input_gap``).
 
+        :param command_time: when the command is sent, seconds (the node's clock); ``None``:
+            ``dt`` after the last command.
         :raises ValueError: if ``dt`` is not a positive, finite number of seconds.
         """
         if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0):
             raise ValueError(f'dt must be a positive, finite number of seconds, got {dt!r}')
         time = (self.time or 0.0)
+        if command_time is None and self.gate.last_time is not None:
+            command_time = self.gate.last_time + dt
         return self._move(time, min(dt, self.settings.max_input_gap), self._rest_force,
-                          np.zeros(3), None, [])
+                          np.zeros(3), None, [], command_time)
 
-    def _advance(self, time, specific_force, angular_velocity, refusal) -> CueStep:
+    def _advance(self, time, specific_force, angular_velocity, refusal,
+                 command_time) -> CueStep:
         warnings = []
         if self.time is None:
             dt = 0.0
@@ -291,28 +350,60 @@ class MotionCueing:
                     (('gap', f'{dt:.6g} s'),)))
                 dt = self.settings.max_input_gap
         self.time = time
-        return self._move(time, dt, specific_force, angular_velocity, refusal, warnings)
+        return self._move(time, dt, specific_force, angular_velocity, refusal, warnings,
+                          command_time)
 
-    def _move(self, time, dt, specific_force, angular_velocity, refusal, warnings) -> CueStep:
+    def _move(self, time, dt, specific_force, angular_velocity, refusal, warnings,
+              command_time) -> CueStep:
         washout = self.washout.step_checked(specific_force, angular_velocity, dt)
-        if dt > 0.0:
-            limited = self.limiter.step(washout.displacement, washout.rotation, washout.tilt, dt)
+        if self._clock is None or dt > 0.0:
+            self._clock = 0.0 if self._clock is None else self._clock + dt
+        # Offline, commands are sent on the motion's own clock (the input's, gaps capped).
+        command_time = self._clock if command_time is None else float(command_time)
+        limiter = self.limiter
+        previous = (limiter.pose.copy(), limiter.lengths.copy())
+        interval = self.gate.elapsed(command_time)
+        target = None
+        workspace_scale, tilt_scale = limiter.scale, limiter.tilt_scale
+        acceleration_scale = 1.0
+        if interval is not None:
+            limited = limiter.step(washout.displacement, washout.rotation, washout.tilt,
+                                   interval)
             warnings.extend(limited.findings)
-            pose, lengths, target = limited.pose, limited.lengths, limited.target
+            pose, target = limited.pose, limited.target
             workspace_scale, tilt_scale = limited.workspace_scale, limited.tilt_scale
             acceleration_scale = limited.acceleration_scale
         else:
-            limiter = self.limiter
-            pose, lengths, target = limiter.pose.copy(), limiter.lengths.copy(), None
-            workspace_scale, tilt_scale = limiter.scale, limiter.tilt_scale
-            acceleration_scale = 1.0
+            # No time passed since the last command: the platform stays where it is.
+            pose = limiter.pose.copy()
+        command = None if pose is None else self.gate.pose_vector(self._tool_pose(pose),
+                                                                  command_time)
+        if command is None or not command.accepted:
+            replaced = command.refusal if command is not None else Finding(
+                COMMAND_BRAKING, 'no pose of the next command could be found')
+            command = self.gate.brake(command_time, replaced=replaced)
+            if command.accepted:
+                pose = command.pose
+                limiter.take_sent(pose, command.lengths, interval, previous)
+                warnings = [warning for warning in warnings if warning.code != COMMAND_BRAKING]
+                warnings.extend(command.warnings)
+            else:
+                # Nothing can be sent: the last command stands, and the motion with it.
+                pose = None
+                limiter.take_sent(*previous, interval or 1.0, previous)
         perceived = None
-        if self._clock is None or dt > 0.0:
-            self._clock = 0.0 if self._clock is None else self._clock + dt
-            perceived = self.perception.update(self._clock, pose, time)
+        if pose is not None and (self._felt_clock is None or interval is not None):
+            # Felt in the time the commands take: the perception's clock is theirs.
+            self._felt_clock = (0.0 if self._felt_clock is None
+                                else self._felt_clock + (interval or 0.0))
+            perceived = self.perception.update(self._felt_clock, pose, time)
         return CueStep(
-            time=time, pose=pose, lengths=lengths, target=target,
-            displacement=washout.displacement, angles=washout.angles, tilt=washout.tilt,
-            tilt_rate=washout.tilt_rate, workspace_scale=workspace_scale, tilt_scale=tilt_scale,
-            acceleration_scale=acceleration_scale, perceived=perceived, refusal=refusal,
-            warnings=tuple(warnings))
+            time=time, pose=pose, lengths=None if pose is None else command.lengths,
+            target=target, displacement=washout.displacement, angles=washout.angles,
+            tilt=washout.tilt, tilt_rate=washout.tilt_rate, workspace_scale=workspace_scale,
+            tilt_scale=tilt_scale, acceleration_scale=acceleration_scale, perceived=perceived,
+            refusal=refusal, warnings=tuple(warnings), command=command)
+
+    def _tool_pose(self, pose) -> np.ndarray:
+        """Return the pose of the ``target_pose`` message's frame (the tool frame's)."""
+        return pose if self.frames is None else self.frames.tool_pose_vector(pose)

@@ -41,9 +41,13 @@ _VECTORS = {
     'translation_scale': 3, 'translation_frequency': 3, 'translation_damping': 3,
     'translation_break_frequency': 3, 'tilt_scale': 2, 'rotation_scale': 3,
     'rotation_frequency': 3, 'rotation_damping': 3, 'head_position': 3,
+    'imu_orientation_rpy': 3,
 }
 #: Fields in radians here and in degrees as parameters (``<name>_deg``).
-DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_angle_margin')
+DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_angle_margin',
+                 'imu_orientation_rpy')
+#: Fields that are names.
+_NAMES = ('vehicle_frame', 'imu_frame')
 
 
 @dataclass(frozen=True)
@@ -93,6 +97,10 @@ class CueingSettings:
     :param max_specific_force: larger specific forces are refused as absurd, m/s^2.
     :param max_angular_velocity: larger angular velocities are refused as absurd, rad/s.
     :param gravity: g, m/s^2.
+    :param vehicle_frame: the name of the vehicle's body frame (x forward, y left, z up).
+    :param imu_frame: the name of another frame samples may come in, or ``''``.
+    :param imu_orientation_rpy: the orientation of ``imu_frame`` in ``vehicle_frame``, roll,
+        pitch, yaw about fixed axes (``R = Rz Ry Rx``), radians.
     :raises ValueError: naming the setting, for a value out of its range or of the wrong size.
     """
 
@@ -124,6 +132,9 @@ class CueingSettings:
     max_specific_force: float = 100.0
     max_angular_velocity: float = 20.0
     gravity: float = STANDARD_GRAVITY
+    vehicle_frame: str = 'base_link'
+    imu_frame: str = ''
+    imu_orientation_rpy: Tuple[float, ...] = (0.0, 0.0, 0.0)
 
     def __post_init__(self):
         for item in fields(self):
@@ -137,6 +148,9 @@ class CueingSettings:
                 if len(value) != _VECTORS[item.name] or not all(map(math.isfinite, value)):
                     raise ValueError(f'{item.name} must be {_VECTORS[item.name]} finite '
                                      f'numbers, got {list(value)!r}')
+            elif item.name in _NAMES:
+                if not isinstance(value, str):
+                    raise ValueError(f'{item.name} must be a frame name, got {value!r}')
             elif item.name == 'tilt_complementary':
                 if not isinstance(value, bool):
                     raise ValueError(f'{item.name} must be true or false, got {value!r}')
@@ -194,7 +208,9 @@ class CueingSettings:
         for item in fields(cls):
             if item.name in DEGREE_FIELDS:
                 if item.name + '_deg' in values:
-                    arguments[item.name] = math.radians(values[item.name + '_deg'])
+                    value = values[item.name + '_deg']
+                    arguments[item.name] = (tuple(math.radians(entry) for entry in value)
+                                            if item.name in _VECTORS else math.radians(value))
             elif item.name in values:
                 value = values[item.name]
                 arguments[item.name] = tuple(value) if item.name in _VECTORS else value

@@ -40,22 +40,28 @@ with a :class:`~stewart_kinematics.findings.Finding`. Nothing is clamped. Nothin
 ROS.
 """
 
-from dataclasses import dataclass
+import dataclasses
 import math
-from typing import Optional, Tuple
+from typing import Optional
 
 import numpy as np
 
 from stewart_kinematics import findings
-from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.limits import LimitModel, Violation
+from stewart_kinematics.findings import Finding
+from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits.command_gate import (
+    CommandGate,
+    LegCommand,
+    LegVelocityCommand,
+    platform_of_tool_message,
+    SETPOINT,
+)
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     normalize_quaternion,
-    quaternion_to_matrix,
 )
 
 #: Largest deviation of ``R^T R`` from the identity accepted for a rotation matrix.
@@ -67,55 +73,6 @@ QUATERNION_NORM_TOLERANCE = 1e-6
 TWIST_COMPONENT_MAX = 1e3
 #: What :meth:`CommandCheck.twist` does with a twist beyond the leg velocity limit.
 TWIST_POLICIES = ('refuse', 'scale')
-
-
-@dataclass(frozen=True, eq=False)
-class LegCommand(Decision):
-    """
-    The answer to a commanded pose: leg lengths to command, or why not.
-
-    :param lengths: leg lengths l_1..l_6 in metres, shape (6,), finite and positive; ``None``
-        when refused.
-    :param violations: every limit the pose breaks (:class:`~stewart_kinematics.limits.Violation`),
-        also for a refused pose, so that a display can show which legs are at fault; empty
-        when the pose could not be evaluated at all.
-    :param refusal: why the pose was refused, or ``None`` when accepted.
-    :param warnings: findings about the input (a quaternion that was not unit).
-    :param position: the platform frame's origin in the base frame, metres, shape (3,), where
-        the pose was evaluated (after the tool and user frames); ``None`` when it was not.
-    :param rotation: the platform-to-base rotation there, shape (3, 3), or ``None``.
-    """
-
-    lengths: Optional[np.ndarray]
-    violations: Tuple[Violation, ...] = ()
-    refusal: Optional[Finding] = None
-    warnings: Tuple[Finding, ...] = ()
-    position: Optional[np.ndarray] = None
-    rotation: Optional[np.ndarray] = None
-
-    @property
-    def legs_at_fault(self) -> Tuple[Optional[int], ...]:
-        """Return the legs that break a limit (``None`` for the whole platform), each once."""
-        return tuple(dict.fromkeys(leg for violation in self.violations
-                                   for leg in violation.legs))
-
-
-@dataclass(frozen=True, eq=False)
-class LegVelocityCommand(Decision):
-    """
-    The answer to a commanded platform twist: leg velocities, or why not.
-
-    :param velocities: rates of change of the leg lengths, metres per second, shape (6,),
-        within ``leg_velocity_max``; ``None`` when refused.
-    :param refusal: why the twist was refused, or ``None`` when accepted.
-    :param warnings: a ``twist_scaled`` finding when the twist was scaled down to the limit.
-    :param scale: the factor the twist was scaled by, in (0, 1]; 1.0 when it was not.
-    """
-
-    velocities: Optional[np.ndarray]
-    refusal: Optional[Finding] = None
-    warnings: Tuple[Finding, ...] = ()
-    scale: float = 1.0
 
 
 class CommandCheck:
@@ -139,9 +96,13 @@ class CommandCheck:
         self.geometry = geometry
         #: Every limit a command must keep: the geometry's and the actuators'.
         self.limits = LimitModel(geometry, actuator_limits)
+        #: The last check of what is sent: the leg lengths of each pose, as setpoints.
+        self.gate = CommandGate(geometry, actuator_limits, timing=SETPOINT)
         self.twist_over_limit = twist_over_limit
         #: ``(position (3,), rotation (3, 3))`` of the last accepted pose, or ``None``.
         self.last_pose = None
+        #: The leg lengths of the last accepted pose, metres, or ``None``.
+        self.last_lengths = None
 
     def pose(self, position, rotation) -> LegCommand:
         """
@@ -218,17 +179,17 @@ class CommandCheck:
             warnings = (Finding(findings.QUATERNION_NOT_UNIT,
                                 f'orientation has norm {norm:.9g}, not 1: normalised',
                                 (('quaternion_norm', f'{norm:.9g}'),)),)
-        rotation = quaternion_to_matrix(unit)
-        if frames is not None:
-            try:
-                position, rotation = frames.platform_in_base(position, rotation, frame_id)
-            except ValueError as error:
-                return LegCommand(None, refusal=Finding(findings.WRONG_FRAME, str(error)),
-                                  warnings=warnings)
+        try:
+            # As the gate reads a pose message: the same conversion for what is received and
+            # for what a node sends on (a cue pose, a played trajectory).
+            position, rotation = platform_of_tool_message(position, quaternion, frames,
+                                                          frame_id)
+        except ValueError as error:
+            return LegCommand(None, refusal=Finding(findings.WRONG_FRAME, str(error)),
+                              warnings=warnings)
         command = self._command(position, rotation)
         if warnings:
-            command = LegCommand(command.lengths, command.violations, command.refusal,
-                                 warnings, command.position, command.rotation)
+            command = dataclasses.replace(command, warnings=warnings + command.warnings)
         return command
 
     def pose_vector(self, pose) -> LegCommand:
@@ -249,24 +210,12 @@ class CommandCheck:
         return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
 
     def _command(self, position, rotation) -> LegCommand:
-        """Decide on a valid position (3,) and rotation matrix (3, 3)."""
-        # The lengths first: a leg of length zero (a platform joint on its base joint) has no
-        # direction, so the joint angles and the Jacobian of the limits do not exist there.
-        with np.errstate(over='ignore', invalid='ignore'):
-            legs = self.limits.pose_legs(position, rotation)
-        lengths = legs.lengths[:, 0]
-        if not all(0.0 < length < math.inf for length in lengths.tolist()):
-            return LegCommand(None, refusal=Finding(
-                findings.UNREACHABLE,
-                f'its leg lengths must be finite and positive (metres), got {lengths.tolist()}: '
-                'a platform joint on its base joint, or a pose beyond any reach'),
-                position=position, rotation=rotation)
-        violations = tuple(self.limits.violations_of(legs))
-        if violations:
-            return LegCommand(None, violations, findings.out_of_limits('the pose is', violations),
-                              position=position, rotation=rotation)
-        self.last_pose = position, rotation
-        return LegCommand(lengths.copy(), position=position, rotation=rotation)
+        """Decide on a valid position (3,) and rotation matrix (3, 3): the gate's verdict."""
+        command = self.gate.pose(position, rotation)
+        if command.accepted:
+            self.last_pose = position, rotation
+            self.last_lengths = command.lengths
+        return command
 
     def twist(self, twist) -> LegVelocityCommand:
         """
@@ -302,7 +251,7 @@ class CommandCheck:
         velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
         scale = self.limits.leg_velocity_scale(velocities)
         if scale == 1.0:
-            return LegVelocityCommand(velocities)
+            return self.gate.leg_velocities(velocities, self.last_lengths)
         violations = self.limits.leg_state_violations(velocities=velocities)
         if self.twist_over_limit == 'refuse':
             return LegVelocityCommand(None, Finding(
@@ -315,7 +264,7 @@ class CommandCheck:
             f'the twist was scaled by {scale:.6g} to keep leg_velocity_max: '
             + '; '.join(map(str, violations)),
             (('scale', f'{scale:.6g}'),) + findings.violation_details(violations))
-        return LegVelocityCommand(velocities * scale, warnings=(warning,), scale=scale)
+        return self.gate.leg_velocities(velocities * scale, self.last_lengths, scale, (warning,))
 
 
 def _invalid_pose(position, rotation) -> str:

@@ -26,8 +26,10 @@ rotation entries of :mod:`stewart_kinematics.model.rotations`):
 - :mod:`.leg_rates`: ``leg_velocity_max``, ``leg_acceleration_max``, ``leg_jerk_max``.
 
 :class:`~.model.LimitModel` composes those that are set and gives every check: one pose, a
-batch, leg states (trajectories, streams, twists). :mod:`.checks` has the same as functions of
-a geometry. :mod:`.base` holds what the evaluators share, :mod:`.violation` what they report.
+batch, leg states (trajectories, streams, twists). :class:`~.command_gate.CommandGate` applies
+it to every command as it is sent to the actuators, and gives the verdict a node publishes.
+:mod:`.checks` has the same as functions of a geometry. :mod:`.base` holds what the
+evaluators share, :mod:`.violation` what they report.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
 Nothing here imports ROS.
@@ -41,6 +43,15 @@ from stewart_kinematics.limits.checks import (
     check_samples,
     joint_angles,
     leg_length_violations,
+)
+from stewart_kinematics.limits.command_gate import (
+    CommandGate,
+    LegCommand,
+    LegVelocityCommand,
+    MOTION,
+    SETPOINT,
+    TrajectoryCommand,
+    Verdict,
 )
 from stewart_kinematics.limits.joint_cones import JointCones
 from stewart_kinematics.limits.leg_collision import LegCollision, segment_distances
@@ -61,21 +72,28 @@ __all__ = [
     'check_poses',
     'check_poses_array',
     'check_samples',
+    'CommandGate',
     'joint_angles',
     'JointCones',
     'LEG_PAIRS',
     'LEG_STATE_LIMIT_NAMES',
     'LegCollision',
+    'LegCommand',
     'LegRate',
     'LegSamples',
+    'LegVelocityCommand',
     'leg_length_violations',
     'Limit',
     'LIMIT_NAMES',
     'LimitChecks',
     'LimitModel',
+    'MOTION',
     'PoseLegs',
     'segment_distances',
+    'SETPOINT',
     'SingularityMargin',
     'Stroke',
+    'TrajectoryCommand',
+    'Verdict',
     'Violation',
 ]

@@ -21,12 +21,13 @@ joint_trajectory_controller: actuator positions, velocities and accelerations at
 Units: metres, seconds. Nothing here imports ROS.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Tuple
 
 import numpy as np
 
 from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.model.velocities import leg_states
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
 
 #: Most points of a leg trajectory (a JointTrajectory of 100,000 points is about 20 MB).
@@ -43,6 +44,8 @@ class LegTrajectory:
     :param positions: actuator positions (leg length minus offset), metres, shape (M, 6).
     :param velocities: m/s, shape (M, 6).
     :param accelerations: m/s^2, shape (M, 6).
+    :param offsets: each actuator's zero as a leg length, metres, shape (6,): the positions
+        are the leg lengths minus these (:class:`~stewart_kinematics.ActuatorInterface`).
     """
 
     joint_names: Tuple[str, ...]
@@ -50,6 +53,12 @@ class LegTrajectory:
     positions: np.ndarray
     velocities: np.ndarray
     accelerations: np.ndarray
+    offsets: np.ndarray = field(default_factory=lambda: np.zeros(6))
+
+    @property
+    def lengths(self) -> np.ndarray:
+        """Return the leg lengths the points command, as a driver reads them, metres, (M, 6)."""
+        return self.positions + self.offsets
 
 
 def leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInterface,
@@ -66,7 +75,21 @@ def leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInt
 
     :param rate: points per second, hertz.
     """
+    return sampled_leg_trajectory(trajectory, geometry, actuators, rate, max_points)[0]
+
+
+def sampled_leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInterface,
+                           rate: float, max_points: int = MAX_POINTS):
+    """
+    :func:`leg_trajectory`, with the platform poses its points are the legs of.
+
+    :returns: ``(points, poses)``: the :class:`LegTrajectory` and the
+        :class:`~stewart_kinematics.model.velocities.PoseSamples` at its times, for the
+        command gate to check what is sent
+        (:meth:`~stewart_kinematics.decisions.command_gate.CommandGate.trajectory`).
+    """
     times = trajectory.sample_times(rate, max_samples=max_points)
-    legs = trajectory.legs(geometry, times)
+    poses = trajectory.sample(times)
+    legs = leg_states(geometry, poses)
     return LegTrajectory(actuators.joint_names, times, actuators.positions(legs.lengths),
-                         legs.velocities, legs.accelerations)
+                         legs.velocities, legs.accelerations, actuators.offsets), poses

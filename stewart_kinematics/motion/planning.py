@@ -26,6 +26,7 @@ Python user's own loop can call.
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 from typing import Optional, Tuple
@@ -34,10 +35,12 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding, violation_details
-from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.limits import CommandGate, TrajectoryCommand
+from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.frames import FrameTree
 from stewart_kinematics.model.rotations import quaternion_to_matrix
+from stewart_kinematics.motion.leg_trajectory import sampled_leg_trajectory
 from stewart_kinematics.motion.pose_trajectory import (
     PoseTrajectory,
     SingularPathError,
@@ -69,6 +72,9 @@ class MotionPlan(Decision):
     :param check: the whole-trajectory check of the timing played (or refused), if made.
     :param retimed: True when the timing comes from :func:`retime`.
     :param warnings: findings about an accepted trajectory (none yet).
+    :param command: with a ``publish_rate``, the command gate's verdict on the leg trajectory
+        to send (every point as published, and the controller's interpolation between two);
+        ``None`` otherwise.
 
     ``accepted`` and ``reason`` come from :class:`~stewart_kinematics.findings.Decision`.
     """
@@ -78,11 +84,14 @@ class MotionPlan(Decision):
     check: Optional[TrajectoryCheck] = None
     retimed: bool = False
     warnings: Tuple[Finding, ...] = ()
+    command: Optional[TrajectoryCommand] = None
 
 
 def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[ActuatorLimits] = None,
                 *, retime_path: bool = False, speed_scale: float = 1.0,
-                validation_rate: float = DEFAULT_VALIDATION_RATE, cancel=None) -> MotionPlan:
+                validation_rate: float = DEFAULT_VALIDATION_RATE, cancel=None,
+                publish_rate: Optional[float] = None,
+                actuators: Optional[ActuatorInterface] = None) -> MotionPlan:
     """
     Decide whether, and how, to play a platform trajectory: checked whole, timed, or refused.
 
@@ -102,13 +111,28 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
         :func:`check_trajectory` for its bounds).
     :param cancel: ``None``, or an event: set, the work stops with
         :class:`~stewart_kinematics.motion.retiming.Cancelled` (raised, not a refusal).
+    :param publish_rate: points per second of the leg trajectory to send (see
+        :func:`~stewart_kinematics.motion.leg_trajectory.leg_trajectory`), or ``None``: none is
+        made. With one, every point sent is checked as sent by the command gate, whatever the
+        validation rate (:meth:`~stewart_kinematics.limits.CommandGate.trajectory`), and a
+        point the check's samples did not see that breaks a limit refuses the trajectory (a
+        retimed one that is only too fast there is stretched, as for the check).
+    :param actuators: joint names and offsets of the leg trajectory (default: leg_1..leg_6,
+        no offsets).
     """
     actuator_limits = actuator_limits or ActuatorLimits()
+    output = None if publish_rate is None else (
+        publish_rate, actuators if actuators is not None else ActuatorInterface())
     if not retime_path:
         trajectory = TimedTrajectory.as_given(path, speed_scale)
         check = check_trajectory(trajectory, geometry, actuator_limits,
                                  validation_rate=validation_rate, cancel=cancel)
-        return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check)
+        refusal, command = _check_refusal(check), None
+        if refusal is None and output is not None:
+            command = _gate(trajectory, geometry, actuator_limits, output)
+            refusal = command.refusal
+        return MotionPlan(refusal, trajectory if refusal is None else None, check,
+                          command=command)
     try:
         trajectory = retime(path, geometry, actuator_limits, speed_scale,
                             sample_rate=validation_rate, cancel=cancel)
@@ -125,13 +149,35 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     for _ in range(MAX_STRETCHES):
         check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate,
                                  cancel=cancel)
-        if check.accepted or not check.violations or not all(
-                violation.limit in SPEED_LIMITS for violation in check.violations):
+        refusal, violations, command = _check_refusal(check), check.violations, None
+        if refusal is None and output is not None:
+            command = _gate(trajectory, geometry, scaled, output)
+            refusal, violations = command.refusal, command.violations
+        if refusal is None or not violations or not all(
+                violation.limit in SPEED_LIMITS for violation in violations):
             break
-        # toppra's timing exceeds a leg limit between the samples of the stretch: stretch on.
+        # toppra's timing exceeds a leg limit between the samples of the check, or at a point
+        # sent: stretch on.
         trajectory = trajectory.stretched(max(_speed_excess(violation)
-                                              for violation in check.violations) * STRETCH_MARGIN)
-    return MotionPlan(_check_refusal(check), trajectory if check.accepted else None, check, True)
+                                              for violation in violations) * STRETCH_MARGIN)
+    return MotionPlan(refusal, trajectory if refusal is None else None, check, True,
+                      command=command)
+
+
+def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
+    """Return the command gate's verdict on the leg trajectory a timed trajectory is sent as."""
+    rate, actuators = output
+    points, poses = sampled_leg_trajectory(trajectory, geometry, actuators, rate)
+    gate = CommandGate(geometry, ActuatorLimits(actuator_limits.velocity_max,
+                                                actuator_limits.acceleration_max))
+    command = gate.trajectory(points, poses.positions, poses.rotations)
+    if command.accepted:
+        return command
+    # Every sample of the check kept the limits: the point sent lies between two of them.
+    refusal = command.refusal
+    return dataclasses.replace(command, refusal=Finding(
+        refusal.code, refusal.message + ' (between the samples of the check: raise '
+        'validation_rate, or publish more points)', refusal.details))
 
 
 def _speed_excess(violation) -> float:
@@ -179,17 +225,24 @@ class MotionPlanner:
     :param retime: retime timed trajectories too (paths always are).
     :param speed_scale: in (0, 1].
     :param validation_rate: hertz, see :func:`check_trajectory`.
+    :param publish_rate: points per second of the leg trajectory an accepted plan is sent as
+        (checked point by point by the command gate; see :func:`plan_motion`), or ``None``.
+    :param actuators: joint names and offsets of that leg trajectory.
     """
 
     def __init__(self, geometry, actuator_limits: ActuatorLimits, frames: FrameTree = None, *,
                  retime: bool = False, speed_scale: float = 1.0,
-                 validation_rate: float = DEFAULT_VALIDATION_RATE):
+                 validation_rate: float = DEFAULT_VALIDATION_RATE,
+                 publish_rate: Optional[float] = None,
+                 actuators: Optional[ActuatorInterface] = None):
         self.geometry = geometry
         self.actuator_limits = actuator_limits
         self.frames = frames if frames is not None else FrameTree()
         self.retime = retime
         self.speed_scale = speed_scale
         self.validation_rate = validation_rate
+        self.publish_rate = publish_rate
+        self.actuators = actuators
 
     def plan_trajectory(self, times, positions, quaternions, velocities=None,
                         angular_velocities=None, accelerations=None, angular_accelerations=None,
@@ -213,7 +266,8 @@ class MotionPlanner:
             return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)))
         return plan_motion(trajectory, self.geometry, self.actuator_limits,
                            retime_path=self.retime, speed_scale=self.speed_scale,
-                           validation_rate=self.validation_rate, cancel=cancel)
+                           validation_rate=self.validation_rate, cancel=cancel,
+                           publish_rate=self.publish_rate, actuators=self.actuators)
 
     def plan_path(self, positions, quaternions, frame_id: str = '', cancel=None) -> MotionPlan:
         """
@@ -235,7 +289,8 @@ class MotionPlanner:
             return MotionPlan(Finding(findings.INVALID_TRAJECTORY, str(error)), retimed=True)
         return plan_motion(path, self.geometry, self.actuator_limits, retime_path=True,
                            speed_scale=self.speed_scale,
-                           validation_rate=self.validation_rate, cancel=cancel)
+                           validation_rate=self.validation_rate, cancel=cancel,
+                           publish_rate=self.publish_rate, actuators=self.actuators)
 
 
 def _rows(name, values, width):

@@ -31,15 +31,22 @@ The filter is total: it never raises for a target or a step.
   through an aim point at that distance on the straight line toward it (ruckig cannot plan a
   motion of days, and need not: the aim moves on at every step).
 - A plan ruckig refuses, or whose motion would leave the stroke, is replaced by braking to
-  rest within the limits (``stream_braking``); if even that fails, no command is given that
-  period (``stream_held``): the last one, within every limit, stands.
+  rest within the limits (``stream_braking``); if even that fails, the step is ``held``
+  (``stream_held``): no step within every limit could be computed.
 - Every step is checked by the limits model
   (:meth:`~stewart_kinematics.limits.LimitModel.check_leg_states`: stroke, velocity,
-  acceleration, and jerk as the change of acceleration over the period) before it is given.
+  acceleration, and jerk as the change of acceleration over the step) before it is given.
+- :meth:`CommandFilter.send` is what a node publishes: the step at the time it is sent,
+  checked as sent by the command gate (:class:`~stewart_kinematics.limits.CommandGate`: the
+  pose the lengths put the platform at against every pose limit, and the leg rates between
+  consecutive commands, jerk included). A step held or refused there is replaced by the gate's
+  braking command (``command_braking``: every leg slowing at ``leg_acceleration_max``), never
+  by holding the last command (a stop within one step); the filter goes on from what was sent.
 
 Units: metres, seconds. Nothing here imports ROS.
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 from typing import Optional
@@ -48,7 +55,7 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits import CommandGate, LegCommand, LimitModel, MOTION
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array
@@ -71,7 +78,7 @@ class FilteredCommand:
     :param accelerations: m/s^2, shape (6,).
     :param settled: True when the command rests on the target.
     :param held: True when no new command could be computed: these are the last command's
-        values, not to be given again (the actuators hold the last one).
+        values, not to be given again (:meth:`CommandFilter.send` brakes instead).
     :param finding: why the step did not move as planned (``stream_braking``,
         ``stream_held``), or ``None``.
     """
@@ -93,7 +100,7 @@ class CommandFilter:
     :param period: seconds between two commands, positive.
     :param lengths: the legs' starting lengths, at rest, metres, shape (6,).
     :param geometry: the platform, whose stroke every target and every step must keep
-        (``None``: no stroke).
+        (``None``: no stroke, and no :meth:`send`, which checks each step's pose).
     :raises ValueError: if a limit that must be finite is not, the period is not positive, or
         the starting lengths are not six finite numbers within the stroke.
 
@@ -141,6 +148,9 @@ class CommandFilter:
         self.window = max(velocity * WINDOW_SECONDS, 2.0 * stopping)
         self._stroke = ((geometry.leg_length_min, geometry.leg_length_max) if geometry
                         else (-math.inf, math.inf))
+        #: The last check of each step as sent (:meth:`send`), or ``None`` without a geometry.
+        self.gate = (CommandGate(geometry, actuator_limits, timing=MOTION, jerk=True)
+                     if geometry is not None else None)
         refusal = self.reset(lengths)
         if refusal is not None:
             raise ValueError(refusal.message)
@@ -160,7 +170,58 @@ class CommandFilter:
         self._acceleration = [0.0] * 6
         self._target = np.array(self._position)
         self._following = None
+        self._started = False
         return None
+
+    def start(self, time: float) -> None:
+        """
+        Start sending at ``time`` (seconds, the node's clock): the command rests where it is.
+
+        Called once, when the first target is accepted; :meth:`send` then gives a step at
+        every call. A second call changes nothing.
+        """
+        if self.gate is None:
+            raise ValueError('sending needs the geometry: build the filter with it')
+        if not self._started:
+            self.gate.reset(self._position, time=time)
+            self._started = True
+
+    def send(self, time: float) -> LegCommand:
+        """
+        Give the command to send at ``time`` (seconds, the node's clock), checked as sent.
+
+        The step covers the time since the last command sent. It goes through the command
+        gate; a step that is held, or that the gate refuses, is replaced by the gate's braking
+        command (its ``command_braking`` finding, a refusal class, names the step it
+        replaces), from which the filter goes on. Never raises.
+
+        :returns: a :class:`~stewart_kinematics.limits.LegCommand` with the lengths,
+            velocities and accelerations to send; refused (nothing to send, the last command
+            stands) only when no time passed since the last command (``clock_not_advancing``)
+            or not even a braking command could be found.
+        """
+        self.start(time)
+        interval = self.gate.elapsed(time)
+        if interval is None:
+            return LegCommand(None, refusal=Finding(
+                findings.CLOCK_NOT_ADVANCING, 'no time passed since the last streamed command: '
+                'nothing sent this period'))
+        step = self.step(interval)
+        if step.held:
+            command = self.gate.brake(time, replaced=step.finding)
+        else:
+            command = self.gate.legs(step.lengths, time, step.velocities, step.accelerations)
+            if not command.accepted:
+                command = self.gate.brake(time, replaced=command.refusal)
+            elif step.finding is not None:
+                command = dataclasses.replace(command, warnings=(step.finding,))
+        if command.braking and command.accepted:
+            # Go on from what was sent: a new plan from the braking command's state.
+            self._position = command.lengths.tolist()
+            self._velocity = command.velocities.tolist()
+            self._acceleration = command.accelerations.tolist()
+            self._following = None
+        return command
 
     def set_target(self, lengths) -> Optional[Finding]:
         """
@@ -180,24 +241,28 @@ class CommandFilter:
         """Return the leg lengths aimed at, metres, shape (6,)."""
         return self._target.copy()
 
-    def step(self) -> FilteredCommand:
+    def step(self, interval: Optional[float] = None) -> FilteredCommand:
         """
-        Advance the command by one period toward the target; never raises.
+        Advance the command by ``interval`` seconds toward the target; never raises.
 
         The plan toward the target (ruckig's, from the command's state) is followed as long
         as the target and the aim stay; a new one is made when they change.
 
+        :param interval: seconds since the last step, positive (default: the period).
         :returns: the new command, within every limit; or, when no step within them could be
             computed, the last command with ``held`` set and the reason.
         """
+        interval = self.period if interval is None else interval
+        if not (isinstance(interval, (int, float)) and 0.0 < interval < math.inf):
+            return self._held(f'the step must cover a positive time (seconds), got {interval!r}')
         following = self._following
         if following is not None and following.aim is not None and not self._new_aim(following):
-            state = self._next_state(following)
+            state = self._next_state(following, interval)
             if state is not None:
                 return self._advance(state, following)
         plan = self._new_plan(self._aim())
         if plan is not None:
-            state = self._next_state(plan)
+            state = self._next_state(plan, interval)
             if state is not None:
                 self._following = plan
                 return self._advance(state, plan)
@@ -209,16 +274,18 @@ class CommandFilter:
                 findings.STREAM_BRAKING,
                 f'no motion toward the target {np.round(self._target, 6).tolist()} m within the '
                 'limits could be planned from the current command: braking to rest')
-        state = None if following is None else self._next_state(following)
+        state = None if following is None else self._next_state(following, interval)
         if state is not None:
             self._following = following
             return self._advance(state, following, finding)
         self._following = None
+        return self._held('no step within the limits could be computed')
+
+    def _held(self, reason) -> FilteredCommand:
+        """Return the last command, ``held``, with the reason no step was computed."""
         return FilteredCommand(np.array(self._position), np.array(self._velocity),
-                               np.array(self._acceleration), False, True, Finding(
-                                   findings.STREAM_HELD,
-                                   'no step within the limits could be computed: the last '
-                                   'command stands'))
+                               np.array(self._acceleration), False, True,
+                               Finding(findings.STREAM_HELD, reason))
 
     def _new_aim(self, plan) -> bool:
         """Whether the plan followed no longer aims right: a new target, or a near aim point."""
@@ -279,16 +346,16 @@ class CommandFilter:
             return None
         return _Plan(trajectory, aim, self._target)
 
-    def _next_state(self, plan):
-        """Return the state one period further along ``plan`` if every limit allows it, or None."""
-        time = min(plan.time + self.period, plan.trajectory.duration)
+    def _next_state(self, plan, interval):
+        """Return the state ``interval`` along ``plan`` if every limit allows it, or None."""
+        time = min(plan.time + interval, plan.trajectory.duration)
         try:
             position, velocity, acceleration = plan.trajectory.at_time(time)
         except (ValueError, RuntimeError, ArithmeticError):
             return None
         low, high = self._stroke
         position = [min(max(length, low), high) for length in position]
-        jerks = [(new - old) / self.period for new, old in zip(acceleration, self._acceleration)]
+        jerks = [(new - old) / interval for new, old in zip(acceleration, self._acceleration)]
         if not all(map(math.isfinite, position + velocity + acceleration)) or (
                 not self.model.leg_state_allowed(lengths=position, velocities=velocity,
                                                  accelerations=acceleration, jerks=jerks)):

@@ -605,6 +605,26 @@ MOTION_CUEING_PARAMETERS = (
         default=20.0, read_only=True,
         validators=(finite, in_range(0.0, 1e4, low_inclusive=False)), constraints='in (0, 10000]'),
     ParameterSpec(
+        'vehicle_frame', STRING,
+        "The vehicle's body frame (x forward, y left, z up, REP 103): vehicle_imu in this frame "
+        "(or with an empty frame_id) is cued as it is; a sample in a frame neither this nor "
+        'imu_frame is refused with the reason',
+        default='base_link', read_only=True, validators=(non_empty, frame_name),
+        constraints='a frame name'),
+    ParameterSpec(
+        'imu_frame', STRING,
+        "Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed "
+        "by imu_orientation_rpy_deg; '' for none",
+        default='', read_only=True, validators=(frame_name,), constraints="a frame name or ''"),
+    ParameterSpec(
+        'imu_orientation_rpy_deg', DOUBLE_ARRAY,
+        'Orientation of imu_frame in vehicle_frame: roll, pitch, yaw about the fixed x, y, z '
+        'axes (R = Rz Ry Rx), degrees; [180.0, 0.0, 0.0] for an IMU in NED axes (x forward, y '
+        'right, z down)',
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(fixed_length(3), finite, in_range(-360.0, 360.0)),
+        constraints='3 values in [-360, 360]'),
+    ParameterSpec(
         'input_timeout', DOUBLE,
         'When no vehicle_imu message came for this long, the platform eases to neutral as if '
         'the vehicle were at rest, seconds (node clock); 0.0 turns this off',

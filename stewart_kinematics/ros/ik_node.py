@@ -62,6 +62,7 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     IkNodeSettings,
 )
+from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import platform_markers
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
@@ -107,14 +108,23 @@ class IkNode(Node):
         self.marker_period_ns = 1e9 / marker_rate if marker_rate else None
         self.last_marker_ns = None
         depth = settings.queue.queue_depth
-        self.lengths_publisher = create_output_publisher(self, IK_NODE['leg_lengths'], depth)
+        home_lengths = self.geometry.home_leg_lengths
+        # Every command topic sends only the gate's verdicts, as messages of their numbers.
+        self.lengths_publisher = create_output_publisher(
+            self, IK_NODE['leg_lengths'], depth, lambda command: legs_to_message(command.lengths))
         self.extensions_publisher = create_output_publisher(
-            self, IK_NODE['leg_extensions'], depth)
+            self, IK_NODE['leg_extensions'], depth,
+            lambda command: legs_to_message(command.lengths - home_lengths))
         # Commands, not measurements: joint_states is left to the actuators' driver.
         self.joint_command_publisher = create_output_publisher(
-            self, IK_NODE['joint_commands'], depth)
+            self, IK_NODE['joint_commands'], depth, lambda command, header: joint_state_message(
+                header, command.lengths, command.velocities, actuators=self.actuators))
         self.velocities_publisher = create_output_publisher(
-            self, IK_NODE['leg_velocities'], depth)
+            self, IK_NODE['leg_velocities'], depth,
+            lambda command: legs_to_message(command.velocities))
+        #: The clock's origin of the stream's times, nanoseconds: seconds since it keep their
+        #: digits (seconds since 1970 would round to a quarter of a microsecond).
+        self.clock_origin_ns = self.get_clock().now().nanoseconds
         self.marker_publisher = create_output_publisher(self, IK_NODE['platform_markers'], depth)
         self.tf = TransformBroadcaster(self, dynamic=IK_NODE['/tf']) if (
             settings.ik_frames.publish_commanded_tf) else None
@@ -184,22 +194,20 @@ class IkNode(Node):
         if not command.accepted:
             accounting.reject(command.refusal)
             return
-        lengths = command.lengths
-        accounting.publish(self.lengths_publisher, legs_to_message(lengths))
+        accounting.publish(self.lengths_publisher, command)
         # The other forms only for a subscriber: in a 1 kHz command stream, messages that
         # nobody reads would cost the node a third of its rate.
         if self.extensions_publisher.get_subscription_count():
-            self.extensions_publisher.publish(
-                legs_to_message(lengths - self.geometry.home_leg_lengths))
+            self.extensions_publisher.publish(command)
         if self.command_filter is not None:
-            refusal = self.command_filter.set_target(lengths)
+            refusal = self.command_filter.set_target(command.lengths)
             if refusal is not None:
                 self.stream_accounting.warn(refusal)
-            self.streaming = True
+            if not self.streaming:
+                self.command_filter.start(self.stream_time())
+                self.streaming = True
         elif self.joint_command_publisher.get_subscription_count():
-            header = self.header_now(header)
-            self.joint_command_publisher.publish(
-                joint_state_message(header, lengths, actuators=self.actuators))
+            self.joint_command_publisher.publish(command, self.header_now(header))
         if self.tf is not None:
             self.tf.send(frames.base_frame, frames.platform_frame + COMMANDED_SUFFIX,
                          Transform(command.position, command.rotation),
@@ -211,26 +219,26 @@ class IkNode(Node):
             return header
         return Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
 
+    def stream_time(self, now=None) -> float:
+        """Return the seconds of the node's clock (now, by default) since its origin."""
+        now = self.get_clock().now() if now is None else now
+        return (now.nanoseconds - self.clock_origin_ns) * 1e-9
+
     def publish_streamed_command(self):
         """
         Publish the next filtered command (position, velocity), once a pose was accepted.
 
-        A step the filter could not compute within the limits (held) publishes nothing: the
-        last command stands. Its reason, and that of a step that brakes, is counted.
+        The filter's command for the time now, checked as sent by its gate; a step it could
+        not give within the limits is replaced by a braking command (counted as a rejection
+        with ``command_braking``), never by holding the last command.
         """
         if not self.streaming:
             return
-        accounting = self.stream_accounting
-        accounting.receive()
-        command = self.command_filter.step()
-        if command.held:
-            accounting.reject(command.finding)
-            return
-        if command.finding is not None:
-            accounting.warn(command.finding)
-        header = Header(stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame)
-        accounting.publish(self.joint_command_publisher, joint_state_message(
-            header, command.lengths, command.velocities, actuators=self.actuators))
+        self.stream_accounting.receive()
+        now = self.get_clock().now()
+        send_command(self.joint_command_publisher, self.stream_accounting,
+                     self.command_filter.send(self.stream_time(now)),
+                     Header(stamp=now.to_msg(), frame_id=self.base_frame))
 
     def publish_markers(self, header, position, rotation, legs_at_fault):
         """
@@ -259,14 +267,7 @@ class IkNode(Node):
         if self.check.last_pose is not None:
             # About the tool frame's origin, as every pose topic: moved to the platform's.
             twist = self.frames.platform_twist_from_tool(twist, self.check.last_pose[1])
-        command = self.check.twist(twist)
-        for warning in command.warnings:
-            self.twist_accounting.warn(warning)
-        if not command.accepted:
-            self.twist_accounting.reject(command.refusal)
-            return
-        self.twist_accounting.publish(
-            self.velocities_publisher, legs_to_message(command.velocities))
+        send_command(self.velocities_publisher, self.twist_accounting, self.check.twist(twist))
 
 
 def main(args=None) -> int:

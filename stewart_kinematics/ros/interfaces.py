@@ -56,6 +56,9 @@ class Endpoint:
     :param qos: the QoS, in words (see the constants of this module).
     :param meaning: what it carries, with units and frames.
     :param condition: when the node has it (a parameter that turns it on), ``''``: always.
+    :param commands: True for a publisher whose messages command actuators (directly, or
+        through a node that turns them into leg lengths): the node publishes on it only the
+        command gate's verdicts (:mod:`stewart_kinematics.ros.command_publishing`).
     """
 
     name: str
@@ -64,6 +67,7 @@ class Endpoint:
     qos: str
     meaning: str
     condition: str = ''
+    commands: bool = False
 
     @property
     def message_type(self):
@@ -116,19 +120,19 @@ IK_NODE = NodeInterface('ik_node', (
              'frame (about the same point as the poses), applied at the last accepted pose.'),
     Endpoint('leg_lengths', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
              'Six leg lengths of each accepted pose, metres, leg 1..6; layout: one dimension '
-             'labelled `leg`, size 6.'),
+             'labelled `leg`, size 6.', commands=True),
     Endpoint('leg_extensions', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
              "Each length minus its length at the home pose (the paper's q_i), metres, same "
-             'layout; built only while someone subscribes.'),
+             'layout; built only while someone subscribes.', commands=True),
     Endpoint('joint_commands', PUBLISHER, 'sensor_msgs/msg/JointState', QUEUE,
              'The legs as prismatic joints named `joint_names`, position = commanded length '
              'minus `actuator_offsets` (m), with the stamp of the stamped pose (or the time of '
              'arrival), for a ros2_control or actuator driver; built only while someone '
              'subscribes. With `command_rate` > 0: streamed at that rate through the '
-             'jerk-limited filter instead, with velocities.'),
+             'jerk-limited filter instead, with velocities.', commands=True),
     Endpoint('leg_velocities', PUBLISHER, 'std_msgs/msg/Float64MultiArray', QUEUE,
              'Rates of change of the leg lengths for each accepted `target_twist`, m/s, '
-             'through the analytic Jacobian.'),
+             'through the analytic Jacobian.', commands=True),
     Endpoint('platform_markers', PUBLISHER, 'visualization_msgs/msg/MarkerArray', QUEUE,
              'For RViz (fixed frame `base_frame`): base outline, platform outline and the six '
              'legs at the poses received, at most `marker_rate` times a second; a leg that '
@@ -206,13 +210,14 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
              'always retimed (repeated waypoints merged).'),
     Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
              "The ramp's poses (tool frame, base frame, metres, unit quaternion); with `play`, "
-             "the tool frame's poses of an accepted trajectory at `publish_rate`."),
+             "the tool frame's poses of an accepted trajectory at `publish_rate`.",
+             commands=True),
     Endpoint('leg_trajectory', PUBLISHER, 'trajectory_msgs/msg/JointTrajectory', QUEUE,
              'An accepted trajectory for the actuators: `joint_names`, and per point (every '
              '`1 / publish_rate` s or closer, at most 256 between two waypoints, and at every '
              'waypoint) the actuator positions (leg length '
              'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2) and '
-             '`time_from_start`, as joint_trajectory_controller takes it.'),
+             '`time_from_start`, as joint_trajectory_controller takes it.', commands=True),
     Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
              DIAGNOSTICS_TOPIC.meaning + ', with the time, segment and violated limits of a '
              'refused trajectory.'),
@@ -225,7 +230,7 @@ MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
              'z up); header.stamp sets the time step; the orientation is not used'),
     Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
              'The cue as the pose of the tool frame in the base frame, one per sample (and while '
-             'easing home after input_timeout), for ik_node'),
+             'easing home after input_timeout), for ik_node', commands=True),
     Endpoint('cue_pose', PUBLISHER, 'geometry_msgs/msg/PoseStamped', QUEUE,
              'The platform frame in base_frame, with the stamp of the sample: for VR motion '
              'compensation and RViz'),
@@ -255,7 +260,9 @@ def markdown_table(interface: NodeInterface) -> str:
              '| --- | --- | --- | --- | --- |']
     for endpoint in interface.endpoints:
         meaning = endpoint.meaning + (f' (with `{endpoint.condition}`)'
-                                      if endpoint.condition else '')
+                                      if endpoint.condition else '') + (
+            ' Commands actuators: every message is checked as sent by the command gate.'
+            if endpoint.commands else '')
         lines.append(f'| `{endpoint.name}` | {endpoint.kind} | `{endpoint.type_name}` | '
                      f'{endpoint.qos} | {meaning} |')
     return '\n'.join(lines)

@@ -104,9 +104,9 @@ class MessageAccounting:
         """Count a message received."""
         self.received += 1
 
-    def publish(self, publisher, message):
-        """Publish the output of a received message and count it."""
-        publisher.publish(message)
+    def publish(self, publisher, message, *extra):
+        """Publish the output of a received message and count it (``extra``: for a command)."""
+        publisher.publish(message, *extra)
         self.published += 1
 
     def reject(self, refusal: Finding):

@@ -314,6 +314,22 @@ def pose_message(position, rotation) -> Pose:
     return message
 
 
+def command_pose_message(command) -> Pose:
+    """
+    geometry_msgs/msg/Pose of a pose command the gate passed: the very numbers it checked.
+
+    :param command: a :class:`~stewart_kinematics.limits.LegCommand` with ``tool_pose``
+        (the tool frame's position, metres, and quaternion ``(x, y, z, w)``).
+    """
+    position, quaternion = command.tool_pose
+    message = Pose()
+    message.position.x, message.position.y, message.position.z = position.tolist()
+    x, y, z, w = quaternion.tolist()
+    message.orientation.x, message.orientation.y = x, y
+    message.orientation.z, message.orientation.w = z, w
+    return message
+
+
 def twist_from_message(message: Twist) -> np.ndarray:
     """
     ``[vx, vy, vz, wx, wy, wz]`` (m/s, rad/s) of a geometry_msgs/msg/Twist.

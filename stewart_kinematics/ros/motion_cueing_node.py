@@ -25,13 +25,18 @@ message's stamp, for VR motion compensation and RViz) and ``perceived_accel``
 behind, with that message's stamp). The ``reset`` service (std_srvs/srv/Trigger) washes out to
 neutral. Declared once in :data:`stewart_kinematics.ros.interfaces.MOTION_CUEING_NODE`.
 
-Everything is decided by :class:`stewart_kinematics.cueing.MotionCueing`: the time step is the
-difference of the stamps; a message with a non-finite or absurd value is refused with its
-reason and the platform takes the step at rest (bad input eases it back to neutral); a stamp
-that does not move forward is refused and nothing is published. When no message came for
-``input_timeout`` seconds, the node eases the platform home on its own clock until it rests
-(``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
-Refusals and warnings are counted on ``/diagnostics``.
+Everything is decided by :class:`stewart_kinematics.cueing.MotionCueing`: the washout's time
+step is the difference of the stamps, the platform's the time between two commands on the
+node's clock (wall or simulated), so a recording played fast never drives the legs faster than
+their limits; a message in a frame that cannot be placed in ``vehicle_frame`` (``imu_frame``
+turned by ``imu_orientation_rpy_deg`` can) or with a non-finite or absurd value is refused with
+its reason and the platform takes the step at rest (bad input eases it back to neutral); a
+stamp that does not move forward is refused and nothing is published. Every ``target_pose``
+is the command gate's verdict on its very numbers (every pose limit and the leg velocity and
+acceleration since the last command); one it refuses is replaced by a braking command
+(``command_braking``). When no message came for ``input_timeout`` seconds, the node eases the
+platform home on its own clock until it rests (``target_pose`` and ``cue_pose`` stamped now; no
+``perceived_accel`` then). Refusals and warnings are counted on ``/diagnostics``.
 """
 
 from geometry_msgs.msg import AccelStamped, PoseStamped
@@ -45,9 +50,10 @@ from stewart_kinematics.parameters import (
     frames_from_parameters,
     MotionCueingNodeSettings,
 )
+from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
-from stewart_kinematics.ros.message_conversions import pose_to_message
+from stewart_kinematics.ros.message_conversions import command_pose_message, pose_to_message
 from stewart_kinematics.ros.node_main import (
     create_declared_service,
     create_input_subscription,
@@ -68,11 +74,12 @@ class MotionCueingNode(Node):
         values = declare_parameters(self, MotionCueingNodeSettings.specs(),
                                     check=frame_parameters_reason)
         self.settings = MotionCueingNodeSettings.from_values(values)
-        self.cueing = MotionCueing.from_parameters(self.settings.as_values())
         self.frames = frames_from_parameters(values)
+        self.cueing = MotionCueing.from_parameters(self.settings.as_values(), self.frames)
         depth = self.settings.queue.queue_depth
         interface = MOTION_CUEING_NODE
-        self.target_publisher = create_output_publisher(self, interface['target_pose'], depth)
+        self.target_publisher = create_output_publisher(
+            self, interface['target_pose'], depth, command_pose_message)
         self.cue_publisher = create_output_publisher(self, interface['cue_pose'], depth)
         self.perceived_publisher = create_output_publisher(
             self, interface['perceived_accel'], depth)
@@ -81,6 +88,8 @@ class MotionCueingNode(Node):
         create_declared_service(self, interface['reset'], self.on_reset)
         #: The first stamp, nanoseconds: times are kept relative to it (float precision).
         self.origin_ns = None
+        #: The node clock's origin, nanoseconds: the commands' times are seconds since it.
+        self.clock_origin_ns = self.get_clock().now().nanoseconds
         self.last_input = None
         self.last_rest = None
         self.input_timeout = self.settings.cueing.input_timeout
@@ -104,21 +113,32 @@ class MotionCueingNode(Node):
         if self.origin_ns is None:
             self.origin_ns = stamp_ns
         force, rate = message.linear_acceleration, message.angular_velocity
+        now = self.get_clock().now()
         result = self.cueing.cue((stamp_ns - self.origin_ns) * 1e-9,
-                                 (force.x, force.y, force.z), (rate.x, rate.y, rate.z))
-        if result.refusal is not None:
+                                 (force.x, force.y, force.z), (rate.x, rate.y, rate.z),
+                                 self.command_time(now), message.header.frame_id)
+        if result.command is None:   # a refused time: nothing moved
             self.accounting.reject(result.refusal)
-        for warning in result.warnings:
-            self.accounting.warn(warning)
-        if result.pose is None:
             return
-        self.last_input = self.get_clock().now()
-        target = pose_to_message(self.frames.tool_pose_vector(result.pose))
-        if result.refusal is None:
-            self.accounting.publish(self.target_publisher, target)
+        self.last_input = now
+        if result.refusal is not None:
+            # The sample is refused; the step taken at rest (easing home) is still sent.
+            self.accounting.reject(result.refusal)
+            for finding in result.warnings:
+                self.accounting.warn(finding)
+            if result.command.accepted:
+                self.target_publisher.publish(result.command)
         else:
-            self.target_publisher.publish(target)
-        self.publish_extras(result, stamp)
+            for finding in result.warnings:
+                if finding not in result.command.warnings:
+                    self.accounting.warn(finding)
+            send_command(self.target_publisher, self.accounting, result.command)
+        if result.pose is not None:
+            self.publish_extras(result, stamp)
+
+    def command_time(self, now) -> float:
+        """Return the seconds of the node's clock ``now`` since its origin: a command's time."""
+        return (now.nanoseconds - self.clock_origin_ns) * 1e-9
 
     def publish_extras(self, result, stamp, perceived=True):
         """Publish cue_pose and (``perceived``) perceived_accel, each only to a subscriber."""
@@ -165,8 +185,10 @@ class MotionCueingNode(Node):
         self.last_rest = now
         if dt <= 0.0:
             return
-        result = self.cueing.rest(dt)
-        self.target_publisher.publish(pose_to_message(self.frames.tool_pose_vector(result.pose)))
+        result = self.cueing.rest(dt, self.command_time(now))
+        if not result.command.accepted:
+            return   # no time passed since the last command: nothing to send yet
+        self.target_publisher.publish(result.command)
         # No sample to stamp the felt force with: only the pose, stamped now.
         self.publish_extras(result, now.to_msg(), perceived=False)
 

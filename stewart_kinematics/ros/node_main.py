@@ -47,6 +47,7 @@ from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import get_default_context, remove_ros_args
 
+from stewart_kinematics.ros.command_publishing import CommandPublisher
 from stewart_kinematics.ros.ros_parameters import remember_process_arguments
 
 #: Exit code of a node that could not start (bad parameters, bad arguments).
@@ -244,7 +245,7 @@ def hand_to_executor(node, callback) -> bool:
     return True
 
 
-def create_output_publisher(node, endpoint, qos):
+def create_output_publisher(node, endpoint, qos, to_message=None):
     """
     Create a declared publisher (by default reliable, keep-last) without rclpy's event handlers.
 
@@ -254,13 +255,24 @@ def create_output_publisher(node, endpoint, qos):
     own side; the nodes' subscriptions keep their handlers, so a mismatched input is reported
     here. The ``qos_overrides`` parameters of the topic's publisher apply.
 
+    A topic declared to command actuators (``endpoint.commands``) gets a
+    :class:`~stewart_kinematics.ros.command_publishing.CommandPublisher`: it publishes only the
+    command gate's accepted verdicts, as messages built by ``to_message``.
+
     :param endpoint: the publisher's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     :param qos: queue depth (messages), or a QoSProfile.
+    :param to_message: for a command topic, ``to_message(verdict, *extra) -> message``; must
+        be ``None`` for any other.
+    :raises ValueError: for a command topic without ``to_message``, or another with one.
     """
-    return node.create_publisher(
+    if endpoint.commands != (to_message is not None):
+        raise ValueError(f'{endpoint.name}: a topic that commands actuators needs to_message '
+                         "to build its messages from the gate's verdicts, and no other takes one")
+    publisher = node.create_publisher(
         endpoint.message_type, endpoint.name, qos,
         event_callbacks=PublisherEventCallbacks(use_default_callbacks=False),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
+    return CommandPublisher(publisher, endpoint, to_message) if endpoint.commands else publisher
 
 
 def create_input_subscription(node, endpoint, callback, qos):

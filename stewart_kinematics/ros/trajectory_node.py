@@ -52,10 +52,10 @@ from rclpy.node import Node
 from std_msgs.msg import Header
 
 from stewart_kinematics.findings import Finding, INVALID_TRAJECTORY, PLANNING_ERROR, SUPERSEDED
+from stewart_kinematics.limits import CommandGate, SETPOINT
 from stewart_kinematics.model.actuators import ActuatorInterface
-from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.motion.leg_trajectory import leg_trajectory
 from stewart_kinematics.motion.planning import MotionPlanner
+from stewart_kinematics.motion.playback import TrajectoryPlayback
 from stewart_kinematics.motion.ramp import RampSchedule
 from stewart_kinematics.motion.retiming import Cancelled, load_retiming
 from stewart_kinematics.parameters import (
@@ -66,13 +66,13 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     TrajectoryNodeSettings,
 )
+from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import TRAJECTORY_NODE
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
+    command_pose_message,
     joint_trajectory_message,
     path_from_message,
-    pose_message,
-    pose_to_message,
     pose_trajectory_from_message,
 )
 from stewart_kinematics.ros.node_main import (
@@ -82,7 +82,7 @@ from stewart_kinematics.ros.node_main import (
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
-from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
+from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
 WAIT_PERIOD = 0.05
@@ -117,9 +117,11 @@ class TrajectoryNode(Node):
         # import to finish (Python's import lock).
         threading.Thread(target=load_retiming, name='load_retiming', daemon=True).start()
         depth = settings.queue.queue_depth
-        self.publisher = create_output_publisher(self, TRAJECTORY_NODE['target_pose'], depth)
+        self.publisher = create_output_publisher(
+            self, TRAJECTORY_NODE['target_pose'], depth, command_pose_message)
         self.leg_trajectory_publisher = create_output_publisher(
-            self, TRAJECTORY_NODE['leg_trajectory'], depth)
+            self, TRAJECTORY_NODE['leg_trajectory'], depth,
+            lambda command: joint_trajectory_message(Header(), command.trajectory))
         diagnostics = NodeDiagnostics(self)
         self.trajectory_accounting = diagnostics.accounting('pose_trajectory')
         self.path_accounting = diagnostics.accounting('pose_path')
@@ -128,12 +130,13 @@ class TrajectoryNode(Node):
             self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
         create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
         self.published = 0
+        #: The clock's origin of the playing's times, nanoseconds.
+        self.clock_origin_ns = self.get_clock().now().nanoseconds
         self.row_index = 0
         self.start_time = None
         self.timer = None
         self.wait_timer = None
         self.playing = None
-        self.play_start = None
         self.play_timer = None
         if self.schedule.plays:
             self.wait_timer = self.create_timer(WAIT_PERIOD, self.start_when_subscribed)
@@ -144,12 +147,14 @@ class TrajectoryNode(Node):
     def make_planner(self, settings) -> 'PlanSettings':
         """Build the planner and the output settings of ``settings``, as at start-up."""
         motion = settings.motion
+        frames = frames_from_settings(settings.frames)
         return PlanSettings(
-            MotionPlanner(self.geometry, self.actuator_limits,
-                          frames_from_settings(settings.frames), retime=motion.retime,
+            MotionPlanner(self.geometry, self.actuator_limits, frames, retime=motion.retime,
                           speed_scale=motion.speed_scale,
-                          validation_rate=motion.validation_rate),
-            self.actuators, settings.ramp.publish_rate, motion.play, settings.frames.base_frame)
+                          validation_rate=motion.validation_rate,
+                          publish_rate=settings.ramp.publish_rate, actuators=self.actuators),
+            self.actuators, settings.ramp.publish_rate, motion.play, settings.frames.base_frame,
+            CommandGate(self.geometry, timing=SETPOINT, frames=frames))
 
     def on_parameter_change(self, name, value):
         """Take a validated run-time change (the motion settings, the tool frame) from now on."""
@@ -202,8 +207,14 @@ class TrajectoryNode(Node):
             self.finish_pass()
 
     def publish(self, pose):
-        """Publish one pose on ``target_pose``."""
-        self.publisher.publish(pose_to_message(pose))
+        """Publish one pose of the ramp on ``target_pose``, as the gate passes it."""
+        command = self.planner.ramp_gate.pose_vector(pose)
+        if not command.accepted:
+            # Checked before playing; a tool frame changed since may move it out of the limits.
+            self.get_logger().warning(f'ramp pose not sent: {command.reason}',
+                                      throttle_duration_sec=1.0)
+            return
+        self.publisher.publish(command)
         self.published += 1
 
     def finish_pass(self):
@@ -219,7 +230,8 @@ class TrajectoryNode(Node):
         self.worker.submit(PlanningJob(
             self.trajectory_accounting, settings, len(message.points), lambda cancel: (
                 settings.planner.plan_trajectory(**pose_trajectory_from_message(message),
-                                                 cancel=cancel))))
+                                                 cancel=cancel)),
+            self.leg_trajectory_publisher.prepare))
 
     def on_pose_path(self, message: Path):
         """Hand a path of waypoints without timing to the worker: always retimed there."""
@@ -229,7 +241,8 @@ class TrajectoryNode(Node):
         def plan(cancel):
             positions, quaternions, frame_id = path_from_message(message)
             return settings.planner.plan_path(positions, quaternions, frame_id, cancel=cancel)
-        self.worker.submit(PlanningJob(self.path_accounting, settings, len(message.poses), plan))
+        self.worker.submit(PlanningJob(self.path_accounting, settings, len(message.poses), plan,
+                                       self.leg_trajectory_publisher.prepare))
 
     def on_planned(self, job: 'PlanningJob', outcome):
         """
@@ -246,10 +259,11 @@ class TrajectoryNode(Node):
         if not plan.accepted:
             accounting.reject(plan.refusal)
             return
-        message = outcome.message
-        message.header = Header(stamp=self.get_clock().now().to_msg(),
-                                frame_id=job.settings.base_frame)
-        accounting.publish(self.leg_trajectory_publisher, message)
+        prepared = outcome.message
+        prepared.message.header = Header(stamp=self.get_clock().now().to_msg(),
+                                         frame_id=job.settings.base_frame)
+        send_command(self.leg_trajectory_publisher, accounting, prepared)
+        message = prepared.message
         self.get_logger().info(
             f'{accounting.topic}: {job.waypoints} waypoints accepted, '
             + ('retimed to ' if plan.retimed else 'timed ')
@@ -263,21 +277,25 @@ class TrajectoryNode(Node):
         if self.play_timer is not None:
             self.play_timer.cancel()
             self.destroy_timer(self.play_timer)
-        self.playing = trajectory, settings.planner.frames
-        self.play_start = self.get_clock().now()
+        self.playing = TrajectoryPlayback(trajectory, self.geometry, settings.planner.frames,
+                                          self.clock_seconds())
         self.play_timer = self.create_timer(1.0 / settings.publish_rate, self.publish_playing)
         self.publish_playing()
 
+    def clock_seconds(self) -> float:
+        """Return the node's clock, seconds since its start (digits kept, unlike since 1970)."""
+        return (self.get_clock().now().nanoseconds - self.clock_origin_ns) * 1e-9
+
     def publish_playing(self):
         """Publish the tool frame's pose on the trajectory being played, at the current time."""
-        trajectory, frames = self.playing
-        elapsed = (self.get_clock().now() - self.play_start).nanoseconds * 1e-9
-        duration = trajectory.duration
-        sample = trajectory.sample([min(elapsed, duration)])
-        tool = frames.tool_from_platform(Transform(sample.positions[0], sample.rotations[0]))
-        self.publisher.publish(pose_message(tool.position, tool.rotation))
-        self.published += 1
-        if elapsed >= duration:
+        command, over = self.playing.pose_at(self.clock_seconds())
+        if command.accepted:
+            self.publisher.publish(command)
+            self.published += 1
+        else:
+            self.get_logger().warning(f'playing stopped: the pose at this time is not sent: '
+                                      f'{command.reason}')
+        if over:
             self.play_timer.cancel()
 
 
@@ -291,6 +309,7 @@ class PlanSettings:
     :param publish_rate: points per second of leg_trajectory, and of the poses played.
     :param play: also play an accepted trajectory on target_pose.
     :param base_frame: frame of leg_trajectory's header.
+    :param ramp_gate: the command gate of the ramp's poses on target_pose (with the frames).
     """
 
     planner: MotionPlanner
@@ -298,6 +317,7 @@ class PlanSettings:
     publish_rate: float
     play: bool
     base_frame: str
+    ramp_gate: CommandGate
 
 
 @dataclass
@@ -309,12 +329,15 @@ class PlanningJob:
     :param settings: the parameters it is planned with (those when it arrived).
     :param waypoints: how many waypoints the message has, for the log.
     :param plan: ``plan(cancel) -> MotionPlan``: converts the message and plans it.
+    :param prepare: the leg_trajectory publisher's ``prepare``: the message of the plan's
+        verdict, built in the worker.
     """
 
     accounting: Any
     settings: PlanSettings
     waypoints: int
     plan: Callable
+    prepare: Callable
     cancel: threading.Event = field(default_factory=threading.Event)
 
     def run(self):
@@ -331,17 +354,15 @@ class PlanningJob:
             return Finding(INVALID_TRAJECTORY, str(error))
         if not plan.accepted:
             return PlannedTrajectory(plan)
-        points = leg_trajectory(plan.trajectory, self.settings.planner.geometry,
-                                self.settings.actuators, self.settings.publish_rate)
-        return PlannedTrajectory(plan, joint_trajectory_message(Header(), points))
+        return PlannedTrajectory(plan, self.prepare(plan.command))
 
 
 @dataclass(frozen=True)
 class PlannedTrajectory:
-    """An answer of the worker: the plan and, accepted, its leg_trajectory message."""
+    """An answer of the worker: the plan and, accepted, its leg_trajectory message prepared."""
 
     plan: Any
-    message: Optional[JointTrajectory] = None
+    message: Optional[Any] = None
 
 
 class PlanningWorker:
