@@ -158,7 +158,8 @@ class MotionCueing:
         self.washout = ClassicalWashout(self.settings)
         self.limiter = CueLimiter(geometry, self.actuator_limits, self.settings)
         #: The last check of every command, as sent: a motion (leg rates by the send times).
-        self.gate = CommandGate(geometry, self.actuator_limits, timing=MOTION, frames=frames)
+        self.gate = CommandGate(geometry, self.actuator_limits, timing=MOTION, frames=frames,
+                                sends='poses')
         #: The IMU frame's orientation in the vehicle frame (vectors from one to the other).
         self._imu_rotation = euler_zyx_to_matrix(np.array(self.settings.imu_orientation_rpy))
         self.perception = PerceptionEstimator(self.settings.head_position, self.settings.gravity)

@@ -90,6 +90,9 @@ _SOLVE_ITERATIONS = 20
 #: accelerations with quintic splines), against the stroke, to this many metres of rounding.
 INTERPOLATION_SAMPLES = 16
 INTERPOLATION_ROUNDING = 1e-12
+#: Braking decelerates at this share of leg_acceleration_max: the rest absorbs the rounding of
+#: the pose a braking command is sent as (found by forward kinematics to 1e-12 m).
+BRAKING_SHARE = 0.999
 #: The lengths a trajectory's point carries match those of its pose to this, metres (the
 #: rounding of ``length - offset + offset``).
 LENGTH_MATCH = 1e-9
@@ -223,13 +226,18 @@ class CommandGate:
     :param jerk: whether the motion's jerk is checked (streamed commands: the only producer
         that limits jerk; the cue and trajectories limit velocity and acceleration).
     :param frames: the frame tree of pose messages (:meth:`tool_pose`), or ``None``.
-    :raises ValueError: for an unknown ``timing``.
+    :param sends: ``'legs'`` (messages of leg lengths) or ``'poses'`` (pose messages, which a
+        node such as ik_node turns into leg lengths): what a braking command is sent as.
+    :raises ValueError: for an unknown ``timing`` or ``sends``.
     """
 
     def __init__(self, geometry, actuator_limits: Optional[ActuatorLimits] = None, *,
-                 timing: str = SETPOINT, jerk: bool = False, frames=None):
+                 timing: str = SETPOINT, jerk: bool = False, frames=None, sends: str = 'legs'):
         if timing not in TIMINGS:
             raise ValueError(f'timing must be one of {TIMINGS}, got {timing!r}')
+        if sends not in ('legs', 'poses'):
+            raise ValueError(f"sends must be 'legs' or 'poses', got {sends!r}")
+        self.sends = sends
         self.geometry = geometry
         self.actuator_limits = actuator_limits or ActuatorLimits()
         self.timing = timing
@@ -248,15 +256,25 @@ class CommandGate:
         """
         Start a motion at rest: the last command is ``lengths`` (default: home), sent at ``time``.
 
-        :param lengths: metres, shape (6,); with ``pose`` (``[X, Y, Z, alpha, beta, gamma]``)
-            the pose they put the platform at (default: home, and its lengths).
+        :param lengths: metres, shape (6,) (default: home's); with ``pose`` (``[X, Y, Z,
+            alpha, beta, gamma]``) the pose they put the platform at (default: found by forward
+            kinematics from home). Lengths beyond a limit are where the platform is: the
+            commands after them may only come back.
         :param time: seconds, or ``None``: the first command after it has no rates to check
             but its own (it starts the clock).
+        :raises ValueError: for lengths whose pose cannot be found.
         """
         geometry = self.geometry
-        self._pose = np.array(geometry.home_pose if pose is None else pose, dtype=float)
         self._lengths = (geometry.home_leg_lengths.copy() if lengths is None
                          else np.array(lengths, dtype=float))
+        if pose is None and lengths is not None:
+            solution = forward_kinematics(geometry, self._lengths, geometry.home_pose,
+                                          tolerance=_SOLVE_TOLERANCE)
+            if not solution.converged:
+                raise ValueError(f'no pose of the leg lengths {np.round(self._lengths, 6).tolist()}'
+                                 f' m found: {solution.reason}')
+            pose = solution.pose
+        self._pose = np.array(geometry.home_pose if pose is None else pose, dtype=float)
         self._time = None if time is None else float(time)
         #: Divided differences of the last command: velocity, acceleration (m/s, m/s^2).
         self._velocity = np.zeros(6)
@@ -267,6 +285,11 @@ class CommandGate:
         #: ``(limit, leg, other leg)``: their excess, which a motion's next command may not
         #: pass (it may only come back toward the limits).
         self._outside = {}
+        if lengths is not None:
+            violations = self.limits.violations_of(self.limits.pose_legs(
+                self._pose[:3], euler_zyx_to_matrix(self._pose[3:])))
+            self._outside = {(violation.limit, violation.leg, violation.other_leg):
+                             violation.excess for violation in violations}
 
     @property
     def last_time(self) -> Optional[float]:
@@ -449,13 +472,13 @@ class CommandGate:
                 f'({self._time:.9f} s): no time passed, so no motion may be commanded'))
         rates = None if self._time is None else self._rates(lengths, time - self._time)
         if rates is not None:
-            violations = tuple(self.limits.leg_state_violations(**rates['checked']))
-            if violations:
-                return LegCommand(None, violations, Finding(
+            too_fast = tuple(self.limits.leg_state_violations(**rates['checked']))
+            if too_fast:
+                return LegCommand(None, too_fast, Finding(
                     findings.TOO_FAST,
                     f'the command {time - self._time:.6g} s after the last asks too much of the '
-                    'legs: ' + '; '.join(map(str, violations)),
-                    findings.violation_details(violations)), position=position,
+                    'legs: ' + '; '.join(map(str, too_fast)),
+                    findings.violation_details(too_fast)), position=position,
                     rotation=rotation, time=time)
         self._advance(lengths, np.concatenate([position, matrix_to_euler_zyx(rotation)]),
                       time, rates, violations)
@@ -464,7 +487,8 @@ class CommandGate:
             'never further out: ' + '; '.join(map(str, violations)),
             findings.violation_details(violations)),)
         return LegCommand(lengths, violations, None, warnings, position, rotation, time=time,
-                          velocities=None if rates is None else rates['velocities'])
+                          velocities=None if rates is None else rates['velocities'],
+                          accelerations=None if rates is None else rates['accelerations'])
 
     def _rates(self, lengths, interval) -> dict:
         """
@@ -510,10 +534,11 @@ class CommandGate:
         Give the command that slows every leg at its acceleration limit, from the last one.
 
         Each leg's velocity (the divided difference) falls toward zero by at most
-        ``leg_acceleration_max`` times the acceleration span (as :meth:`legs` checks it):
-        within the velocity and acceleration limits by construction, to rest and no further;
-        the jerk limit may be exceeded. A leg that would pass an end of its stroke stops there.
-        Given at rest, it repeats the last command.
+        :data:`BRAKING_SHARE` of ``leg_acceleration_max`` times the acceleration span (as
+        :meth:`legs` checks it): within the velocity and acceleration limits by construction,
+        to rest and no further; the jerk limit may be exceeded. A leg that would pass an end of
+        its stroke stops there. Given at rest, it repeats the last command. A gate that sends
+        poses (``sends='poses'``) judges the lengths of the pose message it gives, as sent.
 
         :param time: when it is sent, seconds, after the last command.
         :param replaced: the refusal of the command it replaces, or ``None`` (a stop asked
@@ -530,7 +555,7 @@ class CommandGate:
                 'to brake yet'))
         last = self._intervals[0]
         span = 0.5 * (interval + (last if last is not None else interval))
-        change = self.actuator_limits.acceleration_max * span
+        change = BRAKING_SHARE * self.actuator_limits.acceleration_max * span
         velocities = self._velocity - np.clip(self._velocity, -change, change)
         lengths = self._lengths + velocities * interval
         low, high = self.geometry.leg_length_min, self.geometry.leg_length_max
@@ -545,13 +570,19 @@ class CommandGate:
                 f'pose of the braking command could not be found ({solution.reason}): the last '
                 'command stands'))
         position, rotation = solution.pose[:3], euler_zyx_to_matrix(solution.pose[3:])
-        violations = tuple(self.limits.violations_of(self.limits.pose_legs(position, rotation)))
-        rates = self._rates(lengths, interval)
-        self._advance(lengths, np.array(solution.pose, dtype=float), float(time), rates,
-                      violations)
         tool = (Transform(position, rotation) if self.frames is None
                 else self.frames.tool_from_platform(Transform(position, rotation)))
         tool_pose = (np.array(tool.position, dtype=float), matrix_to_quaternion(tool.rotation))
+        if self.sends == 'poses':
+            # What is sent is the pose message: its numbers, read back, give the lengths.
+            position, rotation = platform_of_tool_message(*tool_pose, self.frames)
+        legs = self.limits.pose_legs(position, rotation)
+        if self.sends == 'poses':
+            lengths = legs.lengths[:, 0].copy()
+        violations = tuple(self.limits.violations_of(legs))
+        rates = self._rates(lengths, interval)
+        self._advance(lengths, np.concatenate([position, matrix_to_euler_zyx(rotation)]),
+                      float(time), rates, violations)
         warnings = ()
         if replaced is not None or violations or np.any(stopped):
             details = (('replaced', replaced.code),) if replaced is not None else ()

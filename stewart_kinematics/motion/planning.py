@@ -175,9 +175,9 @@ def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
         return command
     # Every sample of the check kept the limits: the point sent lies between two of them.
     refusal = command.refusal
-    return dataclasses.replace(command, refusal=Finding(
-        refusal.code, refusal.message + ' (between the samples of the check: raise '
-        'validation_rate, or publish more points)', refusal.details))
+    return dataclasses.replace(command, refusal=dataclasses.replace(
+        refusal, message=refusal.message + ' (between the samples of the check: raise '
+        'validation_rate, or publish more points)'))
 
 
 def _speed_excess(violation) -> float:
