@@ -63,6 +63,7 @@ from stewart_kinematics.findings import (
     TIME_NOT_INCREASING,
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
     check_values,
@@ -204,7 +205,8 @@ class MotionCueing:
         try:
             time = float(time)
         except (TypeError, ValueError):
-            return Finding(TIME_NOT_INCREASING, f'time must be a number of seconds, got {time!r}')
+            return Finding(TIME_NOT_INCREASING,
+                           f'time must be a number of seconds, got {preview(time)}')
         if not math.isfinite(time):
             return Finding(TIME_NOT_INCREASING, f'time must be finite, got {time!r}')
         if self.time is not None and not time > self.time:
@@ -220,7 +222,8 @@ class MotionCueing:
             try:
                 vector = np.asarray(value, dtype=float)
             except (TypeError, ValueError):
-                return Finding(INVALID_VEHICLE_MOTION, f'{name} must be 3 numbers, got {value!r}')
+                return Finding(INVALID_VEHICLE_MOTION,
+                               f'{name} must be 3 numbers, got {preview(value)}')
             if vector.shape != (3,):
                 return Finding(INVALID_VEHICLE_MOTION,
                                f'{name} must have shape (3,), got {vector.shape}')
