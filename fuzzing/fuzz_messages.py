@@ -25,6 +25,9 @@ where it hurts: NaN, infinities, 1e308, -0.0 and subnormal numbers; integers at 
 bounds (stamps of -2^31 or 2^31 - 1 s, nanoseconds of 10^9 and more); empty, long, foreign and
 wrong frame and joint names; sequences emptied, shortened, lengthened, duplicated, reversed,
 and now and then given :data:`HUGE_LENGTH` elements. Some are hostile in every number.
+*Oversized* ones (:meth:`MessageFuzzer.oversized`) make one field as large as a sender likes
+(a million numbers, a string of a million characters, 10^5 names or elements) in an
+otherwise plausible message, so that a refusal that echoes its input whole shows (issue 27).
 
 Every draw comes from one ``random.Random(seed)``: the same seed gives the same messages in
 the same order, so a failure replays from the seed a run prints.
@@ -34,6 +37,7 @@ from dataclasses import dataclass, field
 import importlib
 import math
 import random
+import re
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 from rosidl_parser import definition
@@ -67,6 +71,17 @@ HOSTILE_STRINGS = ('', ' ', '\t\n', 'x' * 10_000, 'é漢字🙂', '..', '/', '*'
                    'tf', 'a b')
 #: Mutations applied to a mutated message, at most.
 MAX_MUTATIONS = 3
+#: Sizes of an oversized field: values of a number sequence, characters of a string, names of
+#: a string sequence, elements of a message sequence (trajectory points, path poses).
+OVERSIZED_VALUES = 1_000_000
+OVERSIZED_CHARACTERS = 1_000_000
+OVERSIZED_NAMES = 100_000
+OVERSIZED_ELEMENTS = 10_000
+#: The oversized place that stands for every top-level sequence at once, each of
+#: :data:`OVERSIZED_NAMES` elements (a JointState's names and positions, of one length).
+EVERY_SEQUENCE = '*'
+#: Plausible messages drawn, at most, to find a place inside a sequence (``joint_names[0]``).
+PLACE_DRAWS = 32
 
 
 def message_class(slot_type: definition.NamespacedType):
@@ -166,8 +181,9 @@ class MessageFuzzer:
 
         :param kind: ``plausible`` (as drawn), ``mutated`` (one to :data:`MAX_MUTATIONS`
             mutations of a plausible one), ``hostile`` (about half of every number and string
-            hostile, sequences of random length) or ``huge`` (a sequence of :data:`HUGE_LENGTH`
-            elements, plus a mutation).
+            hostile, sequences of random length), ``huge`` (a sequence of :data:`HUGE_LENGTH`
+            elements, plus a mutation) or ``oversized`` (:meth:`oversized` at a place drawn
+            from :meth:`oversized_places`).
         :returns: ``(message, what was done)``: the message and its mutations in words.
         """
         tree = self.plausible_tree(self.message_type)
@@ -180,9 +196,13 @@ class MessageFuzzer:
         elif kind == 'huge':
             done.append(self.make_huge(tree))
             done.append(self.mutate(tree))
+        elif kind == 'oversized':
+            places = self.oversized_places()
+            if places:
+                return self.oversized(self.rng.choice(places))
         elif kind != 'plausible':
-            raise ValueError(f"kind must be 'plausible', 'mutated', 'hostile' or 'huge', got "
-                             f'{kind!r}')
+            raise ValueError(f"kind must be 'plausible', 'mutated', 'hostile', 'huge' or "
+                             f"'oversized', got {kind!r}")
         return build(self.message_type, tree), [what for what in done if what]
 
     # Plausible values -------------------------------------------------------------------------
@@ -387,6 +407,87 @@ class MessageFuzzer:
             values[:] = [neutral_basic(element.typename, self.rng)] * HUGE_LENGTH
         return f'{location.path}: {HUGE_LENGTH} elements'
 
+    # Oversized fields -------------------------------------------------------------------------
+
+    def oversized_places(self) -> List[str]:
+        """
+        Return each place of this type a sender can make as large as it likes, once.
+
+        A place is the path of an unbounded sequence or an unbounded string in a plausible
+        message (``header.frame_id``, ``name``, ``points``, ``poses[0].header.frame_id``),
+        one per field whatever the element (``poses[0]`` stands for every pose); then
+        :data:`EVERY_SEQUENCE` when the type has more than one top-level sequence. Fixed-size
+        fields (an Imu's covariances) cannot be oversized; a type of fixed size (a Pose) has
+        no place.
+        """
+        places = {}
+        for location in walk(self.plausible_tree(self.message_type), self.message_type):
+            if _unbounded(location.slot_type):
+                places.setdefault(re.sub(r'\[\d+\]', '[0]', location.path), None)
+        places = list(places)
+        top_fields = dict(fields_of(self.message_type))
+        tops = [place for place in places
+                if isinstance(top_fields.get(place), definition.UnboundedSequence)]
+        return places + ([EVERY_SEQUENCE] if len(tops) > 1 else [])
+
+    def oversized(self, place: str) -> Tuple[object, List[str]]:
+        """
+        Draw a plausible message with one field grown, or all of them for :data:`EVERY_SEQUENCE`.
+
+        A string becomes :data:`OVERSIZED_CHARACTERS` characters; a number sequence
+        :data:`OVERSIZED_VALUES` copies of its first value; a string sequence
+        :data:`OVERSIZED_NAMES` names, the platform's joint names but the last among them
+        (so a node reads on and refuses the missing leg); a message sequence
+        :data:`OVERSIZED_ELEMENTS` copies of its first element. With :data:`EVERY_SEQUENCE`
+        each top-level sequence of numbers or strings gets :data:`OVERSIZED_NAMES` elements,
+        so that they agree in length (a JointState's names and positions), and each sequence
+        of messages :data:`OVERSIZED_ELEMENTS`.
+
+        :param place: one of :meth:`oversized_places`.
+        :returns: ``(message, what was done)``, as :meth:`message`.
+        """
+        for _ in range(PLACE_DRAWS):   # a place inside a sequence that a draw left empty
+            tree = self.plausible_tree(self.message_type)
+            locations = list(walk(tree, self.message_type))
+            if place == EVERY_SEQUENCE or any(location.path == place for location in locations):
+                break
+        if place == EVERY_SEQUENCE:
+            done = [self.oversize(location, None if isinstance(
+                        location.slot_type.value_type, definition.NamespacedType)
+                        else OVERSIZED_NAMES)
+                    for location in locations if location.path == location.field_name
+                    and isinstance(location.slot_type, definition.UnboundedSequence)]
+        else:
+            done = [self.oversize(location) for location in locations
+                    if location.path == place][:1]
+            if not done:
+                raise ValueError(f'{type_name(self.message_type)} has no place {place!r}; '
+                                 f'it has {self.oversized_places()}')
+        return build(self.message_type, tree), done
+
+    def oversize(self, location: Location, count: Optional[int] = None) -> str:
+        """Make the sequence or string at ``location`` oversized (see :meth:`oversized`)."""
+        slot_type = location.slot_type
+        if isinstance(slot_type, definition.AbstractGenericString):
+            location.container[location.key] = 'f' * (count or OVERSIZED_CHARACTERS)
+            return f'{location.path}: {count or OVERSIZED_CHARACTERS:,} characters'
+        values = location.container[location.key]
+        element = slot_type.value_type
+        if isinstance(element, definition.NamespacedType):
+            count = count or OVERSIZED_ELEMENTS
+            template = values[0] if values else self.plausible_tree(
+                message_class(element), location.field_name)
+            values[:] = [copy_tree(template) for _ in range(count)]
+        elif isinstance(element, definition.AbstractGenericString):
+            count = count or OVERSIZED_NAMES
+            names = list(self.plausible.joint_names[:-1])
+            values[:] = names + [f'joint_{index}' for index in range(len(names), count)]
+        else:
+            count = count or OVERSIZED_VALUES
+            value = values[0] if values else neutral_basic(element.typename, self.rng)
+            values[:] = [value] * count
+        return f'{location.path}: {count:,} elements'
+
     def hostile_basic(self, slot_type):
         """Return a hostile value of a number, boolean or string type."""
         rng = self.rng
@@ -409,6 +510,13 @@ class MessageFuzzer:
         candidates = [low, high, high // 2 + 1] + [value for value in HOSTILE_INTEGERS
                                                    if low <= value <= high]
         return rng.choice(candidates)
+
+
+def _unbounded(slot_type) -> bool:
+    """Whether a field can be as large as a sender likes: an unbounded sequence or string."""
+    if isinstance(slot_type, definition.AbstractGenericString):
+        return not slot_type.has_maximum_size()
+    return isinstance(slot_type, definition.UnboundedSequence)
 
 
 def neutral_basic(typename: str, rng: random.Random):

@@ -26,6 +26,9 @@ services. It then checks the invariants:
   deadline after the flood, and stops cleanly on SIGINT (exit 0, no traceback);
 - every message it published is finite, with unit quaternions, and within the limits
   (:mod:`~fuzzing.output_invariants`);
+- no string it published (``/diagnostics`` included) and no line it logged is longer than the
+  bound of :mod:`~fuzzing.output_invariants`, also after oversized messages (a million numbers,
+  a frame id of a million characters: :meth:`~fuzzing.fuzz_messages.MessageFuzzer.oversized`);
 - every parameter change that must be refused is, with a reason (naming the parameter when
   the spec refuses the value), and the node then holds exactly the values it accepted;
 - its /diagnostics reports come about once a second and add up: received = published +
@@ -50,7 +53,7 @@ from fuzzing.fuzz_client import DiagnosticsLog, paced, SpinningClient
 from fuzzing.fuzz_messages import choose_kind, MessageFuzzer, summarize
 from fuzzing.fuzz_parameters import argument, start_variant
 from fuzzing.fuzz_targets import parameter_files, plausible_hints
-from fuzzing.output_invariants import OutputInvariants, OutputLog
+from fuzzing.output_invariants import log_problems, OutputInvariants, OutputLog
 from fuzzing.parameter_requests import (
     held_value_problems,
     parameter_clients,
@@ -97,6 +100,9 @@ class FuzzSettings:
     :param parameter_every: one parameter request (one to three changes) per this many
         messages (0: none).
     :param huge: messages with a sequence of 10^5 elements among them.
+    :param oversized: rounds of oversized messages: in each, every input gets one message per
+        field that a sender can grow (a million numbers, a string of a million characters, 10^5
+        names or elements; :meth:`~fuzzing.fuzz_messages.MessageFuzzer.oversized_places`).
     :param files: parameter files (default: :func:`parameter_files`).
     :param arguments: more ``--ros-args`` arguments for the node.
     :param variant: start the node with a :func:`~fuzzing.fuzz_parameters.
@@ -110,6 +116,7 @@ class FuzzSettings:
     rate: float = 1000.0
     parameter_every: int = 50
     huge: int = 1
+    oversized: int = 1
     files: Optional[Sequence[Path]] = None
     arguments: Sequence[str] = ()
     variant: bool = True
@@ -117,7 +124,7 @@ class FuzzSettings:
     def replay_options(self) -> str:
         """Return the command-line options that replay this run."""
         return (f'--node {self.node} --seed {self.seed} --messages {self.messages} '
-                f'--rate {self.rate:g} --huge {self.huge}'
+                f'--rate {self.rate:g} --huge {self.huge} --oversized {self.oversized}'
                 + ('' if self.variant else ' --no-variant'))
 
 
@@ -232,6 +239,7 @@ def _fuzz_once(settings: FuzzSettings, variant: List[str], context) -> FuzzRepor
         report.problems.append(f'{settings.node} exited with code {code} on SIGINT')
     if 'Traceback' in report.output:
         report.problems.append(f'{settings.node} printed a traceback')
+    report.problems += log_problems(report.output)
     return report
 
 
@@ -290,20 +298,23 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
     requests = ParameterRequests(fuzzer, invariants)
     phase('start')
 
-    # The flood: inputs in random order, parameter requests mixed in, huge messages spread.
+    # The flood: inputs in random order, parameter requests mixed in, huge and oversized
+    # messages spread over it.
     huge_inputs = [entry for entry in inputs if has_sequence(entry[2].message_type)]
+    special = [('huge', huge_inputs[number % len(huge_inputs)], None)
+               for number in range(settings.huge if huge_inputs else 0)]
+    special += [('oversized', entry, place) for _ in range(settings.oversized)
+                for entry in inputs for place in entry[2].oversized_places()]
     huge_at = {}
-    if huge_inputs and settings.huge:
-        for number in range(settings.huge):
-            topic, publisher, generator = huge_inputs[number % len(huge_inputs)]
-            index = (number + 1) * settings.messages // (settings.huge + 1)
-            huge_at[index] = (topic, publisher) + generator.message('huge')
+    for number, (kind, (topic, publisher, generator), place) in enumerate(special):
+        index = (number + 1) * settings.messages // (len(special) + 1)
+        huge_at[index] = (topic, publisher, kind) + (
+            generator.message(kind) if place is None else generator.oversized(place))
     start = time.monotonic()
     recent = {topic: [] for topic, _, _ in inputs}
     for index in paced(settings.rate, settings.messages):
         if index in huge_at:
-            topic, publisher, message, done = huge_at[index]
-            kind = 'huge'
+            topic, publisher, kind, message, done = huge_at[index]
         else:
             topic, publisher, generator = inputs[rng.randrange(len(inputs))]
             kind = choose_kind(rng)
@@ -390,13 +401,17 @@ def parse_arguments(argv):
                         help='messages a second at most (default: 1000)')
     parser.add_argument('--huge', type=int, default=3,
                         help='messages with 10^5 elements per node and round (default: 3)')
+    parser.add_argument('--oversized', type=int, default=1,
+                        help='rounds of oversized messages per node and round: one message '
+                             'per input and per field it can grow (10^6 numbers, 10^6 '
+                             'characters, 10^5 names or elements; default: 1)')
     parser.add_argument('--no-variant', dest='variant', action='store_false',
                         help='start the nodes with the parameter files alone (default: with a '
                              'start-up variant of their read-only parameters drawn from the '
                              'seed)')
     arguments = parser.parse_args(argv)
-    if arguments.messages < 1 or arguments.huge < 0:
-        parser.error('--messages must be at least 1 and --huge at least 0')
+    if arguments.messages < 1 or arguments.huge < 0 or arguments.oversized < 0:
+        parser.error('--messages must be at least 1, --huge and --oversized at least 0')
     return arguments
 
 
@@ -414,6 +429,7 @@ def main(argv=None) -> int:
                 for node in nodes:
                     settings = FuzzSettings(node, seed + round_number, arguments.messages,
                                             arguments.rate, huge=arguments.huge,
+                                            oversized=arguments.oversized,
                                             variant=arguments.variant)
                     report = fuzz_node(settings)
                     print(report.summary(), flush=True)

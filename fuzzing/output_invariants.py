@@ -33,6 +33,11 @@ topic whose name says what it carries gets the limits too, checked with the pack
 A topic of another name is still checked for finite numbers and unit quaternions: a node added
 later is covered by those without a change here. Limits are checked to a relative
 :data:`TOLERANCE`: the rounding of a pose sent as a quaternion, not a margin.
+
+Text is bounded too, whatever the input was (issue 27: one refusal echoed a million values):
+no string of any output, ``/diagnostics`` included, is longer than :data:`MAX_OUTPUT_STRING`
+(:func:`string_problems`), and no line of a node's log longer than :data:`MAX_LOG_LINE`
+(:func:`log_problems`).
 """
 
 import functools
@@ -40,7 +45,7 @@ import math
 import threading
 from typing import Dict, List, Sequence
 
-from fuzzing.fuzz_messages import fields_of, type_name
+from fuzzing.fuzz_messages import fields_of, message_class, type_name
 import numpy as np
 from rosidl_parser import definition
 
@@ -56,6 +61,7 @@ from stewart_kinematics.parameters import (
     GeometrySettings,
     read_parameter_files,
 )
+from stewart_kinematics.ros.message_accounting import MAX_TEXT_LENGTH
 
 #: Relative slack on every limit (and absolute, in the limit's unit, near zero).
 TOLERANCE = 1e-9
@@ -65,6 +71,14 @@ QUATERNION_TOLERANCE = 1e-6
 MAX_PROBLEMS = 3
 #: Failing output messages an :class:`OutputLog` keeps for its final check.
 KEPT_FAILURES = 100
+#: Longest string an output may carry, characters: the bound of the nodes' /diagnostics
+#: strings; frame and joint names are far shorter.
+MAX_OUTPUT_STRING = MAX_TEXT_LENGTH
+#: Characters of a log line before its message: severity, time and logger name, as rclpy
+#: writes them (``[WARN] [1715683432.123456789] [ns.fk_node]: ``), with room for a namespace.
+LOG_PREFIX_ROOM = 200
+#: Longest line of a node's output.
+MAX_LOG_LINE = MAX_TEXT_LENGTH + LOG_PREFIX_ROOM
 
 
 @functools.lru_cache(maxsize=None)
@@ -108,6 +122,54 @@ def numbers_problems(message, path: str = '') -> List[str]:
         if len(problems) >= MAX_PROBLEMS:
             break
     return problems[:MAX_PROBLEMS]
+
+
+@functools.lru_cache(maxsize=None)
+def _text_fields(message_type):
+    """Return the fields of a message type that are or hold strings, at any depth."""
+    found = []
+    for name, slot_type in _fields(message_type):
+        element = getattr(slot_type, 'value_type', slot_type)
+        if isinstance(element, definition.AbstractGenericString) or (
+                isinstance(element, definition.NamespacedType)
+                and _text_fields(message_class(element))):
+            found.append((name, slot_type, element))
+    return tuple(found)
+
+
+def string_problems(message, path: str = '') -> List[str]:
+    """
+    Every string of a message longer than :data:`MAX_OUTPUT_STRING`, in words (empty: none).
+
+    Walks only the fields that hold strings (a marker's thousands of points are skipped).
+    """
+    problems = []
+    for name, slot_type, element in _text_fields(type(message)):
+        value = getattr(message, name)
+        where = f'{path}.{name}' if path else name
+        items = value if isinstance(slot_type, definition.AbstractNestedType) else [value]
+        for index, item in enumerate(items):
+            at = f'{where}[{index}]' if items is value else where
+            if isinstance(element, definition.NamespacedType):
+                problems += string_problems(item, at)
+            elif len(item) > MAX_OUTPUT_STRING:
+                problems.append(f'{at}: a string of {len(item):,} characters (at most '
+                                f'{MAX_OUTPUT_STRING:,}), starting {item[:60]!r}')
+            if len(problems) >= MAX_PROBLEMS:
+                return problems[:MAX_PROBLEMS]
+    return problems
+
+
+def log_problems(output: str) -> List[str]:
+    """Every line of a node's output longer than :data:`MAX_LOG_LINE`, in words (empty: none)."""
+    problems = []
+    for number, line in enumerate(output.splitlines(), 1):
+        if len(line) > MAX_LOG_LINE:
+            problems.append(f'log line {number} has {len(line):,} characters (at most '
+                            f'{MAX_LOG_LINE:,}): {line[:160]!r}...')
+            if len(problems) >= MAX_PROBLEMS:
+                break
+    return problems
 
 
 def _beyond(values, low, high) -> np.ndarray:
@@ -165,7 +227,7 @@ class OutputInvariants:
 
         :param topic: the topic's name; its last part chooses the limit checks.
         """
-        problems = numbers_problems(message)
+        problems = (numbers_problems(message) + string_problems(message))[:MAX_PROBLEMS]
         if problems:
             return problems
         role = topic.rstrip('/').split('/')[-1]

@@ -26,7 +26,16 @@ import math
 from pathlib import Path
 import random
 
-from fuzzing.fuzz_messages import MessageFuzzer, Plausible
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from fuzzing.fuzz_messages import (
+    EVERY_SEQUENCE,
+    MessageFuzzer,
+    OVERSIZED_CHARACTERS,
+    OVERSIZED_ELEMENTS,
+    OVERSIZED_NAMES,
+    OVERSIZED_VALUES,
+    Plausible,
+)
 from fuzzing.fuzz_parameters import (
     argument,
     ParameterFuzzer,
@@ -34,9 +43,17 @@ from fuzzing.fuzz_parameters import (
     start_variant,
 )
 from fuzzing.fuzz_targets import parameter_files
-from fuzzing.output_invariants import numbers_problems, OutputInvariants
-from geometry_msgs.msg import Pose, PoseStamped
+from fuzzing.output_invariants import (
+    log_problems,
+    MAX_LOG_LINE,
+    MAX_OUTPUT_STRING,
+    numbers_problems,
+    OutputInvariants,
+    string_problems,
+)
+from geometry_msgs.msg import Pose, PoseStamped, Twist
 from hypothesis import given, strategies as st
+from nav_msgs.msg import Path as PathMessage
 import numpy as np
 from properties import budget
 import pytest
@@ -47,7 +64,11 @@ from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.parameters import all_specs
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, SUBSCRIPTION
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+from trajectory_msgs.msg import (
+    JointTrajectory,
+    JointTrajectoryPoint,
+    MultiDOFJointTrajectory,
+)
 
 pytestmark = pytest.mark.node
 
@@ -198,3 +219,58 @@ def test_frames_a_node_would_refuse_add_no_frame_tree(invariants):
     before = list(invariants.frames)
     invariants.add_frames({'tool_frame': 'stewart_platform'})
     assert invariants.frames == before
+
+
+def test_oversized_places_are_every_field_a_sender_can_grow():
+    """Strings and unbounded sequences, once per field; none in a Pose; fixed arrays never."""
+    def places(message_type):
+        return MessageFuzzer(message_type, random.Random(1), HINTS).oversized_places()
+    assert places(Pose) == [] and places(Twist) == []
+    assert places(Imu) == ['header.frame_id']   # its covariances are float64[9]
+    assert places(JointState) == ['header.frame_id', 'name', 'name[0]', 'position', 'velocity',
+                                  'effort', EVERY_SEQUENCE]
+    assert {'header.frame_id', 'poses', 'poses[0].header.frame_id'} <= set(places(PathMessage))
+    assert {'joint_names', 'points', 'points[0].transforms', EVERY_SEQUENCE} <= set(
+        places(MultiDOFJointTrajectory))
+
+
+def test_an_oversized_message_has_its_field_at_the_size_and_goes_on_the_wire():
+    """Each place of each declared input type: the field grown, the rest plausible."""
+    rng = random.Random(27)
+    sizes = {}
+    for message_type in TYPES:
+        fuzzer = MessageFuzzer(message_type, rng, HINTS)
+        for place in fuzzer.oversized_places():
+            message, done = fuzzer.oversized(place)
+            assert isinstance(message, message_type) and done, place
+            if place != EVERY_SEQUENCE:
+                assert len(serialize_message(message)) > 10 ** 5, (message_type, place)
+            sizes[(message_type.__name__, place)] = message
+    assert len(sizes[('Float64MultiArray', 'data')].data) == OVERSIZED_VALUES
+    assert len(sizes[('PoseStamped', 'header.frame_id')].header.frame_id) == (
+        OVERSIZED_CHARACTERS)
+    assert len(sizes[('Path', 'poses')].poses) == OVERSIZED_ELEMENTS
+    every = sizes[('JointState', EVERY_SEQUENCE)]
+    assert len(every.name) == len(every.position) == len(every.velocity) == OVERSIZED_NAMES
+    assert every.name[:5] == list(HINTS.joint_names[:5]) and HINTS.joint_names[5] not in every.name
+    message, done = MessageFuzzer(Imu, random.Random(2), HINTS).message('oversized')
+    assert done == [f'header.frame_id: {OVERSIZED_CHARACTERS:,} characters']
+
+
+def test_the_oracle_finds_long_strings_in_any_output_and_long_log_lines():
+    """A frame id or a diagnostics value beyond the bound is a problem; the bound itself is not."""
+    stamped = PoseStamped()
+    stamped.pose.orientation.w = 1.0
+    stamped.header.frame_id = 'f' * MAX_OUTPUT_STRING
+    assert string_problems(stamped) == []
+    stamped.header.frame_id += 'f'
+    assert 'header.frame_id' in string_problems(stamped)[0]
+    status = DiagnosticStatus(name='/fk_node: leg_lengths', values=[
+        KeyValue(key='received', value='1'), KeyValue(key='last rejection', value='v' * 10 ** 6)])
+    problems = string_problems(DiagnosticArray(status=[status]))
+    assert problems and 'status[0].values[1].value' in problems[0] and '1,000,000' in problems[0]
+    assert string_problems(Pose()) == [] and string_problems(JointTrajectory(points=[
+        JointTrajectoryPoint(positions=[0.7] * 6)] * 1000)) == []
+    short = '[WARN] [1.0] [fk_node]: ' + 'x' * (MAX_LOG_LINE - 24)
+    assert log_problems(f'ok\n{short}\n') == []
+    assert 'log line 2' in log_problems(f'ok\n{short}x\n')[0]

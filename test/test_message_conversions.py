@@ -26,10 +26,12 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from reference import quaternion_from_euler
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayLayout
 
 from stewart_kinematics.ros.message_conversions import (
     leg_lengths_from_message,
+    legs_from_joint_state,
     legs_to_message,
     pose_from_message,
     pose_to_message,
@@ -218,3 +220,24 @@ def test_non_positive_or_non_finite_leg_length_is_refused(bad):
     with pytest.raises(ValueError, match='must be finite and positive') as raised:
         leg_lengths_from_message(lengths_message(data))
     assert 'metres' in str(raised.value)
+
+
+def test_a_million_leg_lengths_are_refused_by_their_count_not_echoed():
+    """Issue 27: the reason was 5 MB of values; now the count and the first few (one line)."""
+    with pytest.raises(ValueError) as raised:
+        leg_lengths_from_message(lengths_message([0.7] * 10 ** 6))
+    reason = str(raised.value)
+    assert len(reason) < 300 and 'got 1000000: [0.7, 0.7' in reason
+    assert '(1,000,000 values)' in reason
+
+
+@pytest.mark.parametrize('names, size', [
+    ([f'joint_{index}' for index in range(10 ** 5)], '(100,000 values)'),
+    (['n' * 10 ** 7, 'leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5'], '(10,000,000 characters)'),
+], ids=['many names', 'a long name'])
+def test_a_joint_state_of_oversized_names_is_refused_in_one_short_line(names, size):
+    """The names of a JointState that lacks a leg are previewed, never echoed whole."""
+    message = JointState(name=names, position=[0.7] * len(names))
+    with pytest.raises(ValueError, match='missing') as raised:
+        legs_from_joint_state(message)
+    assert len(str(raised.value)) < 600 and size in str(raised.value)

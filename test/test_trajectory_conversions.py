@@ -118,3 +118,22 @@ def test_a_path_is_read_in_its_frame_and_a_pose_in_another_is_refused():
     message.poses[1].header.frame_id = 'elsewhere'
     with pytest.raises(ValueError, match="pose 1 of the path is in frame 'elsewhere'"):
         path_from_message(message)
+
+
+def test_oversized_names_and_frames_are_refused_in_one_short_line():
+    """Issue 27: joint names and frame ids of a message are previewed, never echoed whole."""
+    trajectory = MultiDOFJointTrajectory(joint_names=[f'j{index}' for index in range(10 ** 5)],
+                                         points=[point(0, 0, 0.4), point(1, 0, 0.45)])
+    with pytest.raises(ValueError, match='one joint') as raised:
+        pose_trajectory_from_message(trajectory)
+    assert len(str(raised.value)) < 300 and '(100,000 values)' in str(raised.value)
+    path = Path()
+    path.header.frame_id = 'w' * 10 ** 7
+    for frame in ('', 'e' * 10 ** 7):
+        stamped = PoseStamped()
+        stamped.header.frame_id = frame
+        stamped.pose.orientation.w = 1.0
+        path.poses.append(stamped)
+    with pytest.raises(ValueError, match='pose 1 of the path is in frame') as raised:
+        path_from_message(path)
+    assert len(str(raised.value)) < 400 and str(raised.value).count('(10,000,000 characters)') == 2

@@ -55,7 +55,7 @@ from stewart_kinematics.analysis.calibration_files import (  # noqa: F401
     write_measurements,
     write_parameter_file,
 )
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.kinematics import as_poses
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -500,14 +500,14 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
     for name, value, low in (('count', count, MIN_POSES), ('candidates', candidates, 1),
                              ('random_draws', random_draws, 1)):
         if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value < low:
-            raise ValueError(f'{name} must be an integer of at least {low}, got {value!r}')
+            raise ValueError(f'{name} must be an integer of at least {low}, got {preview(value)}')
     generator = np.random.default_rng(seed)
     half_width = []
     for name, value in (('position_range', position_range), ('angle_range', angle_range)):
         value = as_float_array(value, name)
         if value.shape not in ((), (3,)) or not np.all((value > 0.0) & np.isfinite(value)):
             raise ValueError(f'{name} must be one positive finite number or three, got '
-                             f'{value.tolist()}')
+                             f'{preview(value)}')
         half_width.append(np.broadcast_to(value, (3,)))
     half_width = np.concatenate(half_width)
     pool = geometry.home_pose + generator.uniform(-1.0, 1.0, (candidates, 6)) * half_width
@@ -607,7 +607,7 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
 def _check_number(name, value, low, high, unit, low_inclusive=True):
     """Refuse a setting that is not a number in [low, high] (``(low, high]``), naming it."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValueError(f'{name} must be a number ({unit}), got {value!r}')
+        raise ValueError(f'{name} must be a number ({unit}), got {preview(value)}')
     above = value >= low if low_inclusive else value > low
     if not (above and value <= high):
         interval = f'{"[" if low_inclusive else "("}{low:g}, {high:g}]'
@@ -617,7 +617,8 @@ def _check_number(name, value, low, high, unit, low_inclusive=True):
 def _parameter_vector(geometry: Geometry, actuator_offsets) -> np.ndarray:
     offsets = np.asarray(actuator_offsets, dtype=float)
     if offsets.shape != (6,) or not np.all(np.isfinite(offsets)):
-        raise ValueError(f'actuator offsets must be 6 finite values (metres), got {offsets!r}')
+        raise ValueError(f'actuator offsets must be 6 finite values (metres), got '
+                         f'{preview(offsets)}')
     return np.concatenate([geometry.base_joints.ravel(), geometry.platform_joints.ravel(),
                            offsets])
 

@@ -30,6 +30,8 @@ import math
 from typing import Tuple
 
 import numpy as np
+
+from stewart_kinematics.model.arrays import preview
 import yaml
 
 #: The columns of a measurement CSV file, in this order (a header row names them).
@@ -87,10 +89,10 @@ def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
                 value = float(fields[column])
             except ValueError:
                 raise ValueError(f'{path}: line {number}: {name} must be a number, got '
-                                 f'{fields[column]!r}') from None
+                                 f'{preview(fields[column])}') from None
             if not math.isfinite(value):
                 raise ValueError(f'{path}: line {number}: {name} must be finite, got '
-                                 f'{fields[column]!r}')
+                                 f'{preview(fields[column])}')
             values.append(value)
         data.append(values)
     if not data:

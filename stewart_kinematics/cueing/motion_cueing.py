@@ -79,6 +79,7 @@ from stewart_kinematics.findings import (
 )
 from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
@@ -235,7 +236,8 @@ class MotionCueing:
         try:
             time = float(time)
         except (TypeError, ValueError):
-            return Finding(TIME_NOT_INCREASING, f'time must be a number of seconds, got {time!r}')
+            return Finding(TIME_NOT_INCREASING,
+                           f'time must be a number of seconds, got {preview(time)}')
         if not math.isfinite(time):
             return Finding(TIME_NOT_INCREASING, f'time must be finite, got {time!r}')
         if self.time is not None and not time > self.time:
@@ -251,7 +253,8 @@ class MotionCueing:
             try:
                 vector = np.asarray(value, dtype=float)
             except (TypeError, ValueError):
-                return Finding(INVALID_VEHICLE_MOTION, f'{name} must be 3 numbers, got {value!r}')
+                return Finding(INVALID_VEHICLE_MOTION,
+                               f'{name} must be 3 numbers, got {preview(value)}')
             if vector.shape != (3,):
                 return Finding(INVALID_VEHICLE_MOTION,
                                f'{name} must have shape (3,), got {vector.shape}')
@@ -273,7 +276,7 @@ class MotionCueing:
         if frame_id in known:
             return None
         return Finding(WRONG_FRAME, (
-            f'the sample is in frame {frame_id[:100]!r}, which cannot be placed in the vehicle '
+            f'the sample is in frame {preview(frame_id)}, which cannot be placed in the vehicle '
             f'frame: known are {known[1:]!r} (and an empty frame_id, the vehicle frame); set '
             'vehicle_frame, or imu_frame and imu_orientation_rpy_deg'))
 

@@ -33,6 +33,8 @@ from dataclasses import dataclass, fields
 import math
 from typing import Tuple
 
+from stewart_kinematics.model.arrays import preview
+
 #: Standard gravity, m/s^2: the specific force an accelerometer at rest reads on z.
 STANDARD_GRAVITY = 9.80665
 
@@ -144,24 +146,25 @@ class CueingSettings:
                     value = tuple(float(entry) for entry in value)
                 except (TypeError, ValueError):
                     raise ValueError(f'{item.name} must be {_VECTORS[item.name]} numbers, got '
-                                     f'{value!r}') from None
+                                     f'{preview(value)}') from None
                 if len(value) != _VECTORS[item.name] or not all(map(math.isfinite, value)):
                     raise ValueError(f'{item.name} must be {_VECTORS[item.name]} finite '
-                                     f'numbers, got {list(value)!r}')
+                                     f'numbers, got {preview(list(value))}')
             elif item.name in _NAMES:
                 if not isinstance(value, str):
-                    raise ValueError(f'{item.name} must be a frame name, got {value!r}')
+                    raise ValueError(f'{item.name} must be a frame name, got {preview(value)}')
             elif item.name == 'tilt_complementary':
                 if not isinstance(value, bool):
-                    raise ValueError(f'{item.name} must be true or false, got {value!r}')
+                    raise ValueError(f'{item.name} must be true or false, got {preview(value)}')
             elif item.name.endswith('_order'):
                 if isinstance(value, bool) or not isinstance(value, int):
-                    raise ValueError(f'{item.name} must be an integer, got {value!r}')
+                    raise ValueError(f'{item.name} must be an integer, got {preview(value)}')
             else:
                 try:
                     value = float(value)
                 except (TypeError, ValueError):
-                    raise ValueError(f'{item.name} must be a number, got {value!r}') from None
+                    raise ValueError(f'{item.name} must be a number, got '
+                                     f'{preview(value)}') from None
                 if not math.isfinite(value) and not (
                         item.name == 'translation_input_limit' and value == math.inf):
                     raise ValueError(f'{item.name} must be finite, got {value!r}')

@@ -55,6 +55,7 @@ from stewart_kinematics.cueing.filters import (
     low_pass,
 )
 from stewart_kinematics.cueing.settings import CueingSettings
+from stewart_kinematics.model.arrays import preview
 
 #: Rows of the filter bank's outputs: the translational channel's position, velocity and
 #: acceleration per axis, the tilt low-pass per axis, the rotational angle and rate per axis.
@@ -222,7 +223,7 @@ def _vector(name, value) -> np.ndarray:
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f'{name} must be 3 numbers, got {value!r}') from None
+        raise ValueError(f'{name} must be 3 numbers, got {preview(value)}') from None
     if array.shape != (3,):
         raise ValueError(f'{name} must have shape (3,), got {array.shape}')
     if not np.all(np.isfinite(array)):

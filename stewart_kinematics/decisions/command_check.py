@@ -57,7 +57,7 @@ from stewart_kinematics.limits.command_gate import (
     SETPOINT,
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
@@ -92,7 +92,7 @@ class CommandCheck:
                  twist_over_limit: str = 'refuse'):
         if twist_over_limit not in TWIST_POLICIES:
             raise ValueError(f'twist_over_limit must be one of {TWIST_POLICIES}, got '
-                             f'{twist_over_limit!r}')
+                             f'{preview(twist_over_limit)}')
         self.geometry = geometry
         #: Every limit a command must keep: the geometry's and the actuators'.
         self.limits = LimitModel(geometry, actuator_limits)
@@ -206,7 +206,7 @@ class CommandCheck:
             return LegCommand(None, refusal=Finding(
                 findings.INVALID_POSE,
                 f'a pose must be six finite numbers [X, Y, Z, alpha, beta, gamma] (metres, '
-                f'radians), got {pose.tolist()}'))
+                f'radians), got {preview(pose)}'))
         return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
 
     def _command(self, position, rotation) -> LegCommand:
@@ -238,7 +238,7 @@ class CommandCheck:
             return LegVelocityCommand(None, Finding(
                 findings.INVALID_TWIST,
                 f'a twist must be six finite numbers [vx, vy, vz, wx, wy, wz] (m/s, rad/s), '
-                f'got {twist.tolist()}'))
+                f'got {preview(twist)}'))
         if not np.all(np.abs(twist) <= TWIST_COMPONENT_MAX):
             return LegVelocityCommand(None, Finding(
                 findings.INVALID_TWIST,

@@ -52,7 +52,7 @@ from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import (
     as_leg_lengths,
     as_poses,
@@ -239,7 +239,7 @@ class PoseTracker:
         if velocities.shape != (6,) or not np.all(np.isfinite(velocities)):
             return TwistEstimate(None, Finding(
                 findings.INVALID_VELOCITIES,
-                f'leg velocities must be six finite numbers (m/s), got {velocities.tolist()}'))
+                f'leg velocities must be six finite numbers (m/s), got {preview(velocities)}'))
         margin = min(self.settings.near_singularity_condition,
                      self.geometry.max_jacobian_condition)
         try:

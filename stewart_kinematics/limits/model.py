@@ -44,7 +44,7 @@ from stewart_kinematics.limits.singularity import SingularityMargin
 from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.kinematics import as_poses
 
 #: The limits of a pose, in the order every check reports them.
@@ -306,7 +306,7 @@ class LimitModel:
         """
         velocities = as_float_array(velocities, 'velocities')
         if not np.all(np.isfinite(velocities)):
-            raise ValueError(f'velocities must be finite (m/s), got {velocities.tolist()}')
+            raise ValueError(f'velocities must be finite (m/s), got {preview(velocities)}')
         rates = [limit for limit in self.leg_state_limits
                  if isinstance(limit, LegRate) and limit.quantity == 'velocities']
         return rates[0].scale(velocities) if rates else 1.0

@@ -34,7 +34,7 @@ from typing import Sequence, Tuple
 
 import numpy as np
 
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 
 #: Default joint names of the legs, leg 1..6.
 DEFAULT_JOINT_NAMES = ('leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6')
@@ -59,7 +59,7 @@ class ActuatorLimits:
         for name in ('velocity_max', 'acceleration_max', 'jerk_max'):
             value = as_float_array(getattr(self, name), f'leg_{name}')
             if value.shape != ():
-                raise ValueError(f'leg_{name} must be one number, got {value.tolist()}')
+                raise ValueError(f'leg_{name} must be one number, got {preview(value)}')
             value = float(value)
             if not value > 0.0:
                 raise ValueError(f'leg_{name} must be positive (.inf for no limit), got {value!r}')
@@ -106,11 +106,12 @@ class ActuatorInterface:
         names = tuple(self.joint_names)
         if len(names) != 6 or len(set(names)) != 6 or not all(
                 isinstance(name, str) and name for name in names):
-            raise ValueError(f'joint_names must be 6 distinct, non-empty names, got {names!r}')
+            raise ValueError(f'joint_names must be 6 distinct, non-empty names, got '
+                             f'{preview(names)}')
         offsets = np.array(as_float_array(self.offsets, 'actuator_offsets'))
         if offsets.shape != (6,) or not np.all(np.isfinite(offsets)):
             raise ValueError(f'actuator_offsets must be 6 finite values (metres), got '
-                             f'{offsets.tolist()}')
+                             f'{preview(offsets)}')
         offsets.flags.writeable = False
         object.__setattr__(self, 'joint_names', names)
         object.__setattr__(self, 'offsets', offsets)
@@ -148,6 +149,6 @@ class ActuatorInterface:
                 problems.append('missing ' + ', '.join(missing))
             if repeated:
                 problems.append('repeated ' + ', '.join(repeated))
-            raise ValueError(f'joint names {names!r}: {"; ".join(problems)} (legs are '
+            raise ValueError(f'joint names {preview(names)}: {"; ".join(problems)} (legs are '
                              f'{", ".join(self.joint_names)})')
         return np.array([names.index(name) for name in self.joint_names])

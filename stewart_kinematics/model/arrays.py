@@ -20,20 +20,112 @@ and answers a ragged list, a dict or a complex number with its own messages ("se
 array element with a sequence", "float() argument must be ..."), which name no argument.
 :func:`as_float_array` refuses each of them with a ``ValueError`` that names the argument and
 shows what was given; :func:`check_finite_output` refuses a result that overflowed.
+
+:func:`preview` is how every message of the package shows an input it refuses: whole when it
+is small (a pose, a rotation matrix), else its first values and its size, so that an input of a
+million values or a frame id of ten megabytes makes a message of one short line, not one of
+megabytes in a log and in ``/diagnostics``.
 """
+
+from collections.abc import Sequence
+import reprlib
 
 import numpy as np
 
 #: Array kinds taken as numbers: signed and unsigned integers, floats.
 _NUMBER_KINDS = 'iuf'
-#: Characters of a given value shown in a message.
-_PREVIEW_LENGTH = 60
+#: An input of at most this many values is shown whole, each as ``repr`` shows it (the
+#: shortest text that reads back as the same float): a pose (6), a rotation matrix (9), the
+#: joints of a base (18), and a few more or less when one is missing or too many.
+PREVIEW_WHOLE = 24
+#: Values shown of a larger input, before ``...`` and its size.
+PREVIEW_VALUES = 6
+#: Characters shown of a longer string (a frame id, a joint name), before ``...`` and its length.
+PREVIEW_CHARACTERS = 60
+#: Nesting levels shown; deeper ones are ``[...]``.
+PREVIEW_DEPTH = 3
+#: Longest text :func:`preview` returns, whatever the input.
+PREVIEW_MAX = 600
+
+#: The repr of anything else (a dict, a set, an object), limited as :func:`preview` is.
+_OTHER = reprlib.Repr()
+_OTHER.maxlevel = PREVIEW_DEPTH
+_OTHER.maxstring = _OTHER.maxother = PREVIEW_CHARACTERS
+_OTHER.maxdict = _OTHER.maxset = _OTHER.maxfrozenset = _OTHER.maxdeque = PREVIEW_VALUES
+_OTHER.maxlist = _OTHER.maxtuple = _OTHER.maxarray = PREVIEW_VALUES
 
 
 def preview(values) -> str:
-    """Return a short ``repr`` of a value for an error message."""
-    text = repr(values.tolist() if isinstance(values, np.ndarray) else values)
-    return text if len(text) <= _PREVIEW_LENGTH else text[:_PREVIEW_LENGTH - 3] + '...'
+    """
+    Describe an input for a message: whole when small, else its first values and its size.
+
+    Up to :data:`PREVIEW_WHOLE` values are shown whole, as ``repr`` of their list shows them
+    (``[0.1, 0.2, nan, 0.4, 0.5, 0.6]``); a larger array or sequence shows its first
+    :data:`PREVIEW_VALUES`, ``...`` and how many it has (``[0.7, 0.7, 0.7, 0.7, 0.7, 0.7, ...]
+    (1,000,000 values)``, with the shape of an array of more than one dimension); a string
+    longer than :data:`PREVIEW_CHARACTERS` its start, ``...`` and its length. The text is never
+    longer than :data:`PREVIEW_MAX` characters, and its cost grows with what is shown, not with
+    the input (no ``tolist()`` or ``repr`` of the whole): call it only to build a message.
+
+    :param values: anything: an array, a (nested) list or tuple, a string, a number.
+    :returns: one line of at most :data:`PREVIEW_MAX` characters.
+
+    >>> preview([0.7, 0.7, 0.7, 0.7, 0.7, float('nan')])
+    '[0.7, 0.7, 0.7, 0.7, 0.7, nan]'
+    >>> preview(np.arange(1e6))
+    '[0.0, 1.0, 2.0, 3.0, 4.0, 5.0, ...] (1,000,000 values)'
+    >>> text = preview('f' * 10 ** 7)   # a frame id of 10 MB
+    >>> text.endswith("fff'... (10,000,000 characters)"), len(text)
+    (True, 89)
+    """
+    text = _preview(values, PREVIEW_DEPTH)
+    return text if len(text) <= PREVIEW_MAX else text[:PREVIEW_MAX - 3] + '...'
+
+
+def _preview(values, depth: int) -> str:
+    """Return :func:`preview` of one value, with ``depth`` levels of nesting left to show."""
+    if isinstance(values, (str, bytes, bytearray)):
+        if len(values) <= PREVIEW_CHARACTERS:
+            return repr(values)
+        return f'{values[:PREVIEW_CHARACTERS]!r}... ({len(values):,} characters)'
+    if isinstance(values, np.ndarray):
+        if values.ndim == 0:
+            return _preview(values.item(), depth)
+        if values.size <= PREVIEW_WHOLE:
+            return _preview(values.tolist(), depth)
+        shape = '' if values.ndim == 1 else f'shape {values.shape}: '
+        # The first values in C order, without a copy of the whole (np.asarray: a matrix
+        # stays two-dimensional when flattened).
+        head = _items(np.asarray(values).flat[:PREVIEW_VALUES].tolist(), depth - 1)
+        return f'[{head}, ...] ({shape}{_count(values.size)})'
+    if isinstance(values, np.generic):
+        return _preview(values.item(), depth)
+    if isinstance(values, (list, tuple)) or (
+            isinstance(values, Sequence) and not isinstance(values, range)):
+        opening, closing = ('(', ')') if isinstance(values, tuple) else ('[', ']')
+        count = len(values)
+        if depth <= 0:
+            return f'{opening}...{closing} ({_count(count)})'
+        if count <= PREVIEW_WHOLE:
+            single = ',' if isinstance(values, tuple) and count == 1 else ''
+            return f'{opening}{_items(values, depth - 1)}{single}{closing}'
+        head = _items([values[index] for index in range(PREVIEW_VALUES)], depth - 1)
+        return f'{opening}{head}, ...{closing} ({_count(count)})'
+    if isinstance(values, int) and values.bit_length() > 4 * PREVIEW_CHARACTERS:
+        return f'an integer of {values.bit_length():,} bits'   # repr refuses 4300+ digits
+    if values is None or isinstance(values, (bool, int, float, complex)):
+        return repr(values)
+    return _OTHER.repr(values)
+
+
+def _count(count: int) -> str:
+    """Return ``'1 value'``, ``'1,000,000 values'``."""
+    return f'{count:,} value' + ('' if count == 1 else 's')
+
+
+def _items(values, depth: int) -> str:
+    """Return the previews of a few values, comma-separated."""
+    return ', '.join(_preview(value, depth) for value in values)
 
 
 #: The dtype of the arrays the core computes with.

@@ -39,7 +39,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 
@@ -144,7 +144,7 @@ class FrameTree:
         names = [name for name in (self.base_frame, self.platform_frame, self.user_frame,
                                    self.tool_frame) if name]
         if len(set(names)) != len(names):
-            raise ValueError(f'frame names must differ, got {names}')
+            raise ValueError(f'frame names must differ, got {preview(names)}')
 
     def with_tool(self, tool_frame: str, tool_pose: Transform) -> 'FrameTree':
         """Return this tree with another tool frame (a change at run time)."""
@@ -163,7 +163,8 @@ class FrameTree:
             return self.user_pose
         accepted = f"base_frame '{self.base_frame}'" + (
             f" or user_frame '{self.user_frame}'" if self.user_frame else '')
-        raise ValueError(f"it is in frame '{frame_id}', not in {accepted}; transform it first")
+        raise ValueError(f'it is in frame {preview(frame_id)}, not in {accepted}; transform it '
+                         'first')
 
     def platform_from_tool(self, tool: Transform, frame_id: str = '') -> Transform:
         """

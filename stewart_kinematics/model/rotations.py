@@ -317,7 +317,7 @@ def normalize_quaternion(quaternion):
         if QUATERNION_NORM_MIN <= norm < math.inf:
             return np.array([value / norm for value in components])
     if not np.all(np.isfinite(quaternion)):
-        raise ValueError(f'quaternion components must be finite, got {quaternion.tolist()}')
+        raise ValueError(f'quaternion components must be finite, got {preview(quaternion)}')
     with np.errstate(over='ignore'):  # an overflow to inf is handled below
         norm = np.linalg.norm(quaternion, axis=-1, keepdims=True)
     if np.any(norm < QUATERNION_NORM_MIN):

@@ -58,7 +58,7 @@ from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import CommandGate, LegCommand, LimitModel, MOTION
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.arrays import as_float_array
+from stewart_kinematics.model.arrays import as_float_array, preview
 
 #: A target farther than the legs cover in this many seconds at full speed is approached
 #: through an aim point at that distance (and never nearer than twice the braking distance).
@@ -379,7 +379,7 @@ class CommandFilter:
         if values.shape != (6,) or not np.all(np.isfinite(values)) or not np.all(values > 0.0):
             return Finding(findings.INVALID_LENGTHS,
                            f'target lengths must be 6 finite, positive values (metres), got '
-                           f'{values.tolist()}')
+                           f'{preview(values)}')
         violations = self.model.leg_state_violations(lengths=values)
         if violations:
             return findings.out_of_limits('the target lengths are', violations)

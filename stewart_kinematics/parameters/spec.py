@@ -26,6 +26,8 @@ from dataclasses import dataclass
 import math
 from typing import Any, Callable, Tuple
 
+from stewart_kinematics.model.arrays import preview
+
 
 Validator = Callable[[str, Any], str]
 
@@ -106,14 +108,15 @@ class ParameterSpec:
                 hint = ' (write 1.0, not 1)'
             elif isinstance(value, str) and self.value_type in (DOUBLE, INTEGER, BOOL):
                 hint = ' (a value in quotes is a string: write it without quotes)'
-            return (f"parameter '{self.name}' must be of type {self.value_type}, got {value!r} "
-                    f'({type(value).__name__}){hint}')
+            return (f"parameter '{self.name}' must be of type {self.value_type}, got "
+                    f'{preview(value)} ({type(value).__name__}){hint}')
         if self.value_type == DOUBLE_ARRAY and not all(
                 isinstance(item, float) and not isinstance(item, bool) for item in value):
             return (f"parameter '{self.name}' must be a list of floating-point numbers, got "
-                    f'{list(value)!r} (write 1.0, not 1, and no quotes)')
+                    f'{preview(list(value))} (write 1.0, not 1, and no quotes)')
         if self.value_type == STRING_ARRAY and not all(isinstance(item, str) for item in value):
-            return f"parameter '{self.name}' must be a list of strings, got {list(value)!r}"
+            return (f"parameter '{self.name}' must be a list of strings, got "
+                    f'{preview(list(value))}')
         return ''
 
 
@@ -122,7 +125,7 @@ def fixed_length(length: int) -> Validator:
     def validate(name, value):
         if len(value) != length:
             return (f"parameter '{name}' must have exactly {length} elements, "
-                    f'got {len(value)}: {list(value)!r}')
+                    f'got {len(value)}: {preview(list(value))}')
         return ''
     return validate
 
@@ -131,7 +134,7 @@ def finite(name, value) -> str:
     """Require a finite number, or an array of finite numbers."""
     values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
     if not all(math.isfinite(item) for item in values):
-        return f"parameter '{name}' must be finite, got {value!r}"
+        return f"parameter '{name}' must be finite, got {preview(value)}"
     return ''
 
 
@@ -146,7 +149,7 @@ def in_range(low: float, high: float, *, low_inclusive: bool = True,
             if not (above_low and below_high):
                 interval = (('[' if low_inclusive else '(') + f'{low:g}, {high:g}'
                             + (']' if high_inclusive else ')'))
-                return f"parameter '{name}' must be in {interval}, got {value!r}"
+                return f"parameter '{name}' must be in {interval}, got {preview(value)}"
         return ''
     return validate
 
@@ -158,7 +161,8 @@ def zero_or_in_range(low: float, high: float) -> Validator:
     def validate(name, value):
         if value == 0.0 or not within(name, value):
             return ''
-        return f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got {value!r}"
+        return (f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got "
+                f'{preview(value)}')
     return validate
 
 
@@ -166,7 +170,7 @@ def one_of(*allowed: str) -> Validator:
     """Require one of the given strings."""
     def validate(name, value):
         if value not in allowed:
-            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {value!r}"
+            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {preview(value)}"
         return ''
     return validate
 
@@ -174,7 +178,8 @@ def one_of(*allowed: str) -> Validator:
 def distinct_names(name, value) -> str:
     """Require non-empty, distinct strings (joint names)."""
     if not all(value) or len(set(value)) != len(value):
-        return f"parameter '{name}' must hold distinct, non-empty names, got {list(value)!r}"
+        return (f"parameter '{name}' must hold distinct, non-empty names, got "
+                f'{preview(list(value))}')
     return ''
 
 
@@ -185,7 +190,7 @@ def frame_name(name, value) -> str:
     """Require a tf frame name: no spaces, no leading slash (tf2 refuses those)."""
     if value.startswith('/') or any(character.isspace() for character in value):
         return (f"parameter '{name}' must be a frame name without spaces or a leading '/', "
-                f'got {value!r}')
+                f'got {preview(value)}')
     return ''
 
 

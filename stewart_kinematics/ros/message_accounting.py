@@ -22,6 +22,12 @@ As diagnostic_updater does, a node publishes one diagnostic_msgs/msg/DiagnosticA
 ``/diagnostics``: one status per input topic with the counters, the counts by code and the
 latest rejection and warning with their details. The log says each kind of rejection at most
 once per :data:`WARNING_PERIOD`, kind by kind, so a flood of one kind does not hide another.
+
+Nor can a large message flood them: the core describes a large input by its size and a short
+preview (:func:`stewart_kinematics.model.arrays.preview`), and here, where the text is emitted,
+every log line and every string of a status (its message, each key and each value) is cut to
+:data:`MAX_TEXT_LENGTH` characters with a note of how much was cut (:func:`bounded`), whatever
+a finding says.
 """
 
 import time
@@ -41,6 +47,38 @@ REPORT_PERIOD = 1.0
 HARDWARE_ID = 'stewart_platform'
 #: Depth of the /diagnostics publisher's queue, arrays.
 DIAGNOSTICS_DEPTH = 10
+#: Longest log line, and longest string of a /diagnostics status (message, key, value), that a
+#: node's accounting emits, characters; a longer one is cut, ending with a note of how much.
+#: Above the longest reason the core writes itself (a pose that breaks every limit: 34
+#: violations, about 3,000 characters), so that only an input echoed whole is ever cut.
+MAX_TEXT_LENGTH = 4000
+#: Characters of a log line kept for the topic and the counters around a finding's message.
+LOG_LINE_ROOM = 200
+
+
+def bounded(text: str, limit: int = MAX_TEXT_LENGTH) -> str:
+    """
+    Return ``text``, or if it is longer than ``limit`` its start and a note of what was cut.
+
+    The result is never longer than ``limit`` characters: ``'... [12,345 more characters
+    cut]'`` ends a cut one.
+
+    :param text: a log line or a diagnostic string.
+    :param limit: the most characters to return (at least 64).
+    """
+    if len(text) <= limit:
+        return text
+    kept = limit - len(_cut_note(len(text)))   # the note of the most that can be cut
+    return text[:kept] + _cut_note(len(text) - kept)
+
+
+def _cut_note(count: int) -> str:
+    return f'... [{count:,} more characters cut]'
+
+
+def _reason(finding: Finding) -> str:
+    """Return a finding's message for a log line, cut to leave room for the line's counters."""
+    return bounded(finding.message, MAX_TEXT_LENGTH - LOG_LINE_ROOM)
 
 
 class NodeDiagnostics:
@@ -121,7 +159,7 @@ class MessageAccounting:
         self.last_rejection = refusal
         self._log_throttle.log(
             'rejected ' + refusal.code,
-            f'{self.topic} rejected: {refusal.message} ({self.rejected} rejected so far, '
+            f'{self.topic} rejected: {_reason(refusal)} ({self.rejected} rejected so far, '
             f'{count} of them {refusal.code})')
 
     def warn(self, warning: Finding):
@@ -129,7 +167,7 @@ class MessageAccounting:
         self.warned += 1
         self.warnings_by_code[warning.code] = self.warnings_by_code.get(warning.code, 0) + 1
         self.last_warning = warning
-        self._log_throttle.log('warned ' + warning.code, f'{self.topic}: {warning.message}')
+        self._log_throttle.log('warned ' + warning.code, f'{self.topic}: {_reason(warning)}')
 
     def report(self) -> DiagnosticStatus:
         """
@@ -139,7 +177,7 @@ class MessageAccounting:
         The values are the counters since the start: ``received``, ``published``,
         ``rejected``, ``rejected <code>`` and ``warned <code>`` for each code seen, then the
         latest rejection (``last rejection`` and its details) and the latest warning
-        (``last warning`` and its details).
+        (``last warning`` and its details). Each string is :func:`bounded`.
         """
         new_rejections = self.rejected - self._reported[0]
         new_warnings = self.warned - self._reported[1]
@@ -165,14 +203,17 @@ class MessageAccounting:
             if finding is not None:
                 values += [(key, finding.message), *finding.details]
         return DiagnosticStatus(
-            level=level, name=self.status_name, message=message,
+            level=level, name=self.status_name, message=bounded(message),
             hardware_id=self.diagnostics.hardware_id,
-            values=[KeyValue(key=str(key), value=str(value)) for key, value in values])
+            values=[KeyValue(key=bounded(str(key)), value=bounded(str(value)))
+                    for key, value in values])
 
 
 class LogThrottle:
     """
     Log warnings at most once per period for each kind, saying how many were left out.
+
+    Each line is :func:`bounded` to :data:`MAX_TEXT_LENGTH` characters.
 
     rclpy's own throttle is per call site, so one flood would hide every other kind of warning
     logged from the same line.
@@ -196,5 +237,5 @@ class LogThrottle:
             return
         skipped = self._skipped.pop(kind, 0)
         self._last[kind] = now
-        self.logger.warning(message + (f' [{skipped} more like it not logged]' if skipped
-                                       else ''))
+        self.logger.warning(bounded(message + (f' [{skipped} more like it not logged]'
+                                               if skipped else '')))

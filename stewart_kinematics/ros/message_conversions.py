@@ -29,6 +29,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
 from stewart_kinematics.model.actuators import ActuatorInterface
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.kinematics import as_leg_lengths
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_quaternion,
@@ -123,7 +124,7 @@ def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
     data = np.asarray(data, dtype=float)[message.layout.data_offset:]
     if data.shape != (6,):
         raise ValueError(
-            f'expected 6 leg lengths (leg 1..6, metres), got {data.size}: {data.tolist()}')
+            f'expected 6 leg lengths (leg 1..6, metres), got {data.size}: {preview(data)}')
     return as_leg_lengths(data)
 
 
@@ -205,7 +206,7 @@ def pose_trajectory_from_message(message: MultiDOFJointTrajectory) -> dict:
     """
     if len(message.joint_names) > 1:
         raise ValueError(f'the trajectory must have one joint, the platform; got '
-                         f'{len(message.joint_names)}: {list(message.joint_names)}')
+                         f'{len(message.joint_names)}: {preview(message.joint_names)}')
     points = message.points
     _check_count(len(points))
     if any(len(point.transforms) != 1 for point in points):
@@ -249,8 +250,8 @@ def path_from_message(message: Path):
     for index, stamped in enumerate(message.poses):
         if stamped.header.frame_id and stamped.header.frame_id != frame_id:
             raise ValueError(f'pose {index} of the path is in frame '
-                             f"'{stamped.header.frame_id}', not in the path's frame "
-                             f"'{frame_id}'")
+                             f"{preview(stamped.header.frame_id)}, not in the path's frame "
+                             f'{preview(frame_id)}')
     poses = [stamped.pose for stamped in message.poses]
     positions = _rows([(p.position.x, p.position.y, p.position.z) for p in poses], 3)
     quaternions = _unit_quaternions(_rows([(p.orientation.x, p.orientation.y,

@@ -34,6 +34,8 @@ from rcl_interfaces.srv import SetParameters, SetParametersAtomically
 from rclpy.parameter import Parameter
 from rosgraph_msgs.msg import Clock
 
+from stewart_kinematics.model.arrays import preview
+
 #: The clock topic of sim time.
 CLOCK_TOPIC = '/clock'
 #: Seconds between two warnings about skipped clock messages.
@@ -79,7 +81,8 @@ def _unknown_type_reason(parameter) -> str:
     """Say why a parameter message has a type code rclpy does not know, or return ''."""
     if parameter.value.type in _KNOWN_TYPE_CODES:
         return ''
-    return (f"parameter '{parameter.name}': no parameter type has code {parameter.value.type} "
+    return (f'parameter {preview(parameter.name)}: no parameter type has code '
+            f'{parameter.value.type} '
             f'(rcl_interfaces/msg/ParameterType defines {sorted(_KNOWN_TYPE_CODES)})')
 
 

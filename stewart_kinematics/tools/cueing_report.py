@@ -48,6 +48,7 @@ import time
 
 import numpy as np
 
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
 import yaml
 
@@ -183,7 +184,7 @@ def load_csv(path: Path):
                     value = math.nan
                 if not math.isfinite(value):
                     raise ValueError(f'{path} line {number}: {column} must be a finite number, '
-                                     f'got {cell.strip()!r}')
+                                     f'got {preview(cell.strip())}')
                 row.append(value)
             rows.append(row)
     return _checked_samples(str(path), np.array(rows).reshape(-1, len(CSV_COLUMNS)))
