@@ -72,6 +72,9 @@ SCALE_ITERATIONS = 40
 SCALE_WINDOW = 0.01
 #: The follower counts as on the cue when every pose coordinate is within this.
 ON_CUE_TOLERANCE = 1e-12
+#: Shares of the longest braking time at which a pose off the narrowed limits is checked to
+#: still keep the limits while the legs brake (a joint cone may peak before the stop).
+BRAKING_CHECKS = (0.25, 0.5, 0.75, 1.0)
 
 
 @dataclass(frozen=True)
@@ -131,6 +134,15 @@ class CueLimiter:
         #: The limits a stopping pose is checked against: all but the stroke.
         self._stop_geometry = dataclasses.replace(geometry, leg_length_min=0.0,
                                                   leg_length_max=math.inf)
+        #: Inside these limits (the margins twice over) a pose can stop inside the limits for
+        #: sure; beyond them, where it stops is computed (:meth:`_keeps_limits`): a joint cone
+        #: may change by more than its margin while the legs brake.
+        try:
+            self._safe_geometry = with_margins(
+                geometry, 2.0 * self.leg_length_margin, 2.0 * settings.joint_angle_margin,
+                max(2.0 * settings.condition_margin - 1.0, 1e-3))
+        except ValueError:   # no room for twice the margins: always compute where it stops
+            self._safe_geometry = None
         self.limits_speed = actuator_limits.limits_speed
         self._velocity_plan = PLANNING_SHARE * velocity_max
         self._acceleration_plan = PLANNING_SHARE * acceleration_max
@@ -343,12 +355,12 @@ class CueLimiter:
         """
         Slow the legs down as fast as their bounds allow; return ``(0, pose, lengths)``.
 
-        The feasible leg velocities nearest to rest in the twist metric (stroke braking curves
-        included); ``None`` when the pose of those lengths cannot be found.
+        Each leg on its own, as near to rest as its bounds allow (speed, acceleration, stroke
+        braking curve): the braking :meth:`_keeps_limits` foresees, as the command gate brakes.
+        ``None`` when the pose of those lengths cannot be found.
         """
         lower, upper = self._leg_bounds(dt)
-        velocities = box_least_squares(self._twist_metric(), np.zeros(6), np.array(lower),
-                                       np.array(upper))
+        velocities = np.clip(np.zeros(6), lower, upper)
         return self._pose_of(self.lengths + dt * velocities, guess, 0.0)
 
     def _pose_of(self, lengths, guess, share):
@@ -366,18 +378,19 @@ class CueLimiter:
 
     def _keeps_limits(self, pose, lengths, dt) -> bool:
         """
-        Whether ``pose`` and the pose where the platform would stop from it keep the limits.
+        Whether ``pose`` and the poses the platform passes while it brakes keep the limits.
 
-        A pose inside the narrowed limits passes at once: the margins cover the braking
-        distance. Otherwise the legs brake from it, each at the planned acceleration to rest
-        (``l + v |v| / (2 a)``, as the command gate brakes them), and the pose of those lengths
-        must keep the limits too (the stroke is kept leg by leg by the braking curves). A
-        platform already outside a limit (after braking that could not stay inside) may only
-        come back: no limit broken further than the current pose breaks it.
+        A pose inside the limits narrowed by twice the margins passes at once. Otherwise the
+        legs brake from it, each on its own at the planned acceleration to rest (as the command
+        gate brakes them), and the poses at each quarter of that braking must keep the limits
+        too (the stroke is kept leg by leg by the braking curves): a joint cone can move by
+        more than its margin while the legs brake (seen: 2.3 deg at full speed). A platform
+        already outside a limit (after braking that could not stay inside) may only come
+        back: no limit broken further than the current pose breaks it.
         """
         rotation = euler_zyx_to_matrix(pose[3:])
-        if not pose_violations(self.cue_geometry, pose[:3], rotation):
-            # Inside the narrowed limits: the margins cover the braking distance.
+        if self._safe_geometry is not None and not pose_violations(
+                self._safe_geometry, pose[:3], rotation):
             return True
         if not self._no_further_out(pose_violations(self.geometry, pose[:3], rotation)):
             return False
@@ -385,13 +398,22 @@ class CueLimiter:
         velocities = (np.asarray(lengths) - self.lengths) / dt
         if not math.isfinite(acceleration) or not np.any(velocities):
             return True
-        stop = self._pose_of(lengths + velocities * np.abs(velocities) / (2.0 * acceleration),
-                             pose, 0.0)
-        if stop is None:
-            return False
-        stop_pose = stop[1]
-        return self._no_further_out(pose_violations(
-            self._stop_geometry, stop_pose[:3], euler_zyx_to_matrix(stop_pose[3:])))
+        # Where the legs are at each quarter of the longest braking, each leg braking on its own
+        # at the planned rate to rest: a joint cone may peak before the stop.
+        duration = float(np.max(np.abs(velocities))) / acceleration
+        guess = pose
+        for share in BRAKING_CHECKS:
+            elapsed = np.minimum(share * duration, np.abs(velocities) / acceleration)
+            on_the_way = lengths + velocities * elapsed - 0.5 * np.sign(velocities) * (
+                acceleration * elapsed * elapsed)
+            found = self._pose_of(on_the_way, guess, 0.0)
+            if found is None:
+                return False
+            guess = found[1]
+            if not self._no_further_out(pose_violations(
+                    self._stop_geometry, guess[:3], euler_zyx_to_matrix(guess[3:]))):
+                return False
+        return True
 
     def _no_further_out(self, violations) -> bool:
         """Whether ``violations`` break no limit further than the platform's pose now does."""
