@@ -21,6 +21,7 @@ half-angle quaternions, leg lengths leg by leg in plain Python. Nothing here imp
 stewart_kinematics except :func:`paper_geometry`, which builds a Geometry from these tables.
 """
 
+from fractions import Fraction
 import math
 
 import numpy as np
@@ -317,6 +318,10 @@ def segment_distance(p0, p1, q0, q1):
     square's four edges, each the distance from an end point to the other segment. The
     smallest of those five candidates is the distance.
 
+    In floating point, so not exact for near-parallel segments (within about 1e-6 rad the
+    critical point is left out, and above that it is computed with the cancellation of
+    ``a e - b^2``): :func:`segment_distance_exact` is exact at every angle.
+
     :param p0: shape (..., 3); ``p1``, ``q0``, ``q1`` likewise.
     :returns: shape (...).
     """
@@ -336,6 +341,47 @@ def segment_distance(p0, p1, q0, q1):
     between = (p0 + s[..., None] * d1) - (q0 + t[..., None] * d2)
     candidates.append(np.where(inside, np.linalg.norm(between, axis=-1), np.inf))
     return np.min(candidates, axis=0)
+
+
+def segment_distance_exact(first, second, offset):
+    """
+    Distance between the segments ``p + s first`` and ``q + t second``, exact up to one rounding.
+
+    The same enumeration as :func:`segment_distance` (the critical point of the two lines when
+    it lies in the unit square, else the best point of each of the square's four edges: an end
+    point's clamped projection onto the other segment) in exact rational arithmetic on the
+    floats given, so parallel, near-parallel and zero-length segments cost no digits. The
+    squared distance is exact; its square root is rounded once.
+
+    :param first: the first segment's vector ``p1 - p0``, three floats; ``second`` likewise.
+    :param offset: ``p0 - q0``, three floats.
+    :returns: the distance, a float.
+    """
+    d1, d2, r = ([Fraction(float(value)) for value in vector]
+                 for vector in (first, second, offset))
+
+    def dot(u, v):
+        return sum((x * y for x, y in zip(u, v)), Fraction(0))
+
+    def clamp(value):
+        return min(max(value, Fraction(0)), Fraction(1))
+
+    def squared(s, t):
+        between = [x + s * y - t * z for x, y, z in zip(r, d1, d2)]
+        return dot(between, between)
+
+    a, b, e, c, f = dot(d1, d1), dot(d1, d2), dot(d2, d2), dot(d1, r), dot(d2, r)
+    candidates = []
+    for end in (Fraction(0), Fraction(1)):
+        # The end s = 0 or 1 of the first segment, and its projection onto the second.
+        candidates.append(squared(end, clamp((b * end + f) / e) if e else Fraction(0)))
+        candidates.append(squared(clamp((b * end - c) / a) if a else Fraction(0), end))
+    determinant = a * e - b * b
+    if determinant:
+        s, t = (b * f - c * e) / determinant, (a * f - b * c) / determinant
+        if 0 <= s <= 1 and 0 <= t <= 1:
+            candidates.append(squared(s, t))
+    return math.sqrt(float(min(candidates)))
 
 
 def segment_distance_by_search(p0, p1, q0, q1, iterations=200):

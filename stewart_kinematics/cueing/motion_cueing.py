@@ -79,7 +79,7 @@ from stewart_kinematics.findings import (
 )
 from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.arrays import preview
+from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
@@ -251,10 +251,9 @@ class MotionCueing:
                 ('specific_force', specific_force, s.max_specific_force, 'm/s^2'),
                 ('angular_velocity', angular_velocity, s.max_angular_velocity, 'rad/s')):
             try:
-                vector = np.asarray(value, dtype=float)
-            except (TypeError, ValueError):
-                return Finding(INVALID_VEHICLE_MOTION,
-                               f'{name} must be 3 numbers, got {preview(value)}')
+                vector = as_float_array(value, name)
+            except ValueError as error:
+                return Finding(INVALID_VEHICLE_MOTION, str(error))
             if vector.shape != (3,):
                 return Finding(INVALID_VEHICLE_MOTION,
                                f'{name} must have shape (3,), got {vector.shape}')

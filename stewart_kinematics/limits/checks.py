@@ -30,6 +30,7 @@ from stewart_kinematics.limits.base import PoseLegs
 from stewart_kinematics.limits.joint_cones import JointCones
 from stewart_kinematics.limits.model import LimitChecks, LimitModel
 from stewart_kinematics.limits.violation import Violation
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.kinematics import as_leg_lengths, as_poses
 
 #: How many failing samples :func:`check_samples` lists in full.
@@ -106,7 +107,12 @@ def joint_angles(geometry, position, rotation):
         measured in the base frame, at the platform joint measured in the platform frame; NaN
         for a leg of zero length.
     """
-    position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+    position = as_float_array(position, 'position')
+    rotation = as_float_array(rotation, 'rotation')
+    if (position.shape[-1:] != (3,) or position.ndim > 2
+            or rotation.shape != position.shape[:-1] + (3, 3)):
+        raise ValueError(f'expected positions (3,) or (N, 3) and rotations (3, 3) or (N, 3, 3), '
+                         f'got shapes {position.shape} and {rotation.shape}')
     single = position.ndim == 1
     legs = PoseLegs.of_matrices(geometry, np.atleast_2d(position),
                                 rotation.reshape(-1, 3, 3))

@@ -290,10 +290,20 @@ class LimitModel:
         included), in floats: a few microseconds where the arrays cost tens.
 
         :param sample: ``lengths``, ``velocities``, ``accelerations``, ``jerks`` (those given),
-            each six floats.
+            each six floats: a list (the fast path) or anything :meth:`leg_state_violations`
+            takes.
+        :raises ValueError: for a quantity that is not six numbers.
         """
-        return all(limit.allows(sample) for limit in self.leg_state_limits
-                   if limit.quantity in sample)
+        for name, values in sample.items():
+            if type(values) is not list or len(values) != 6:
+                sample[name] = _six_floats(values, name)
+        try:
+            return all(limit.allows(sample) for limit in self.leg_state_limits
+                       if limit.quantity in sample)
+        except TypeError:   # a list of six that are not all numbers
+            sample = {name: _six_floats(values, name) for name, values in sample.items()}
+            return all(limit.allows(sample) for limit in self.leg_state_limits
+                       if limit.quantity in sample)
 
     def leg_velocity_scale(self, velocities) -> float:
         """
@@ -476,3 +486,11 @@ class LimitChecks:
             if name in self._values:
                 return self.values(name)
         return None
+
+
+def _six_floats(values, name) -> list:
+    """Return one leg state's quantity as six floats, or raise ValueError naming it."""
+    values = as_float_array(values, name)
+    if values.shape != (6,):
+        raise ValueError(f'{name} of one leg state must have shape (6,), got {values.shape}')
+    return values.tolist()

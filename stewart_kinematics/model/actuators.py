@@ -121,16 +121,18 @@ class ActuatorInterface:
         Actuator positions of leg lengths: ``length - offset``, metres.
 
         :param lengths: shape (6,) or (N, 6), metres.
+        :raises ValueError: for what is not numbers of that shape.
         """
-        return np.asarray(lengths, dtype=float) - self.offsets
+        return _rows_of_six(lengths, 'lengths') - self.offsets
 
     def lengths(self, positions) -> np.ndarray:
         """
         Leg lengths of actuator positions: ``position + offset``, metres.
 
         :param positions: shape (6,) or (N, 6), metres.
+        :raises ValueError: for what is not numbers of that shape.
         """
-        return np.asarray(positions, dtype=float) + self.offsets
+        return _rows_of_six(positions, 'positions') + self.offsets
 
     def order(self, names: Sequence[str]) -> np.ndarray:
         """
@@ -152,3 +154,11 @@ class ActuatorInterface:
             raise ValueError(f'joint names {preview(names)}: {"; ".join(problems)} (legs are '
                              f'{", ".join(self.joint_names)})')
         return np.array([names.index(name) for name in self.joint_names])
+
+
+def _rows_of_six(values, name) -> np.ndarray:
+    """Return ``values`` as floats of shape (6,) or (N, 6), or raise ValueError naming them."""
+    values = as_float_array(values, name)
+    if values.ndim not in (1, 2) or values.shape[-1] != 6:
+        raise ValueError(f'{name} must have shape (6,) or (N, 6), got {values.shape}')
+    return values

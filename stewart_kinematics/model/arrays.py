@@ -25,6 +25,12 @@ shows what was given; :func:`check_finite_output` refuses a result that overflow
 is small (a pose, a rotation matrix), else its first values and its size, so that an input of a
 million values or a frame id of ten megabytes makes a message of one short line, not one of
 megabytes in a log and in ``/diagnostics``.
+
+Array-likes (the rule every public function and decision follows, doc/python_api.md): an
+argument is what ``numpy.asarray`` makes of it, always a plain ``ndarray``. An ``np.matrix``
+is its 2-D array, so six lengths in a matrix have shape (1, 6); a masked array with a masked
+entry is refused, naming the entries (a masked value is no number to use, and the data under
+the mask is not used); a masked array with nothing masked is its data.
 """
 
 from collections.abc import Sequence
@@ -78,7 +84,10 @@ def preview(values) -> str:
     >>> text.endswith("fff'... (10,000,000 characters)"), len(text)
     (True, 89)
     """
-    text = _preview(values, PREVIEW_DEPTH)
+    try:
+        text = _preview(values, PREVIEW_DEPTH)
+    except Exception:   # noqa: B902 - a user's object whose repr or len fails
+        text = f'<{type(values).__name__}>'
     return text if len(text) <= PREVIEW_MAX else text[:PREVIEW_MAX - 3] + '...'
 
 
@@ -134,23 +143,41 @@ _FLOAT = np.dtype(float)
 
 def as_float_array(values, name: str) -> np.ndarray:
     """
-    Return ``values`` as a float array, or refuse them naming the argument.
+    Return ``values`` as a plain float array, or refuse them naming the argument.
+
+    What ``numpy.asarray`` makes of ``values``, as a plain ``ndarray`` (never a subclass):
+
+    - an ``np.matrix`` is its 2-D array: six numbers in a matrix have shape (1, 6), which a
+      caller that wants shape (6,) refuses by its shape check (and a batch function takes as
+      one row);
+    - a masked array (``numpy.ma``), or a list whose items are masked arrays or
+      ``numpy.ma.masked``, is refused if any entry is masked, naming the masked entries by
+      index: a masked value is no number to use, and the data under the mask is not used. With
+      nothing masked it is its data;
+    - objects with ``__array__`` (a pandas Series or DataFrame), ``memoryview`` and
+      ``array.array`` are the numbers they hold; an ``__array__`` that raises is refused with
+      what it raised.
 
     :param values: numbers: a number, a (nested) list or tuple of numbers, or a numeric array.
     :param name: the argument's name, as the message should give it.
-    :raises ValueError: for strings, booleans, complex numbers, ``None``, ragged lists and
-        anything else that is not numbers, or numbers beyond the float range.
+    :raises ValueError: for strings, bytes, booleans, complex numbers, ``None``, dicts,
+        generators, ragged lists, masked entries and anything else that is not numbers, or
+        numbers beyond the float range.
     """
-    if isinstance(values, np.ndarray):
+    if type(values) is np.ndarray:   # exactly: a subclass (matrix, masked) is converted below
         if values.dtype == _FLOAT:   # the common case, first: no conversion to make
             return values
         if values.dtype.kind in _NUMBER_KINDS:
             return values.astype(float)
+    values = _unmasked(values, name)
     try:
         array = np.asarray(values)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f'{name} must be an array of numbers of one shape (not ragged), got '
                          f'{preview(values)}') from None
+    except Exception as error:   # noqa: B902 - a user's __array__ may raise anything
+        raise ValueError(f'{name} could not be read as an array: {type(error).__name__}: '
+                         f'{preview(str(error))}') from None
     if array.dtype.kind in _NUMBER_KINDS:
         return array.astype(float, copy=False)
     if array.dtype.kind == 'O' and not any(isinstance(item, (str, bytes, bool, type(None)))
@@ -161,6 +188,42 @@ def as_float_array(values, name: str) -> np.ndarray:
             pass
     raise ValueError(f'{name} must be numbers within the float range, got {preview(values)} '
                      f'({type(values).__name__})')
+
+
+#: Masked entries a refusal names, at most.
+_MASKED_SHOWN = 10
+
+
+def _unmasked(values, name: str):
+    """
+    Return the data of a masked array with nothing masked; anything else as it is.
+
+    A list or tuple is looked into one level deep (rows that are masked arrays, or
+    ``numpy.ma.masked`` among numbers).
+
+    :raises ValueError: naming the masked entries, if any entry is masked.
+    """
+    if isinstance(values, np.ma.MaskedArray):
+        entries = np.argwhere(np.ma.getmaskarray(values)).tolist()
+        data = np.ma.getdata(values)
+    elif isinstance(values, (list, tuple)) and any(isinstance(item, np.ma.MaskedArray)
+                                                   for item in values):
+        entries = [[row] + entry for row, item in enumerate(values)
+                   if isinstance(item, np.ma.MaskedArray)
+                   for entry in np.argwhere(np.ma.getmaskarray(item)).tolist()]
+        data = [np.ma.getdata(item) if isinstance(item, np.ma.MaskedArray) else item
+                for item in values]
+    else:
+        return values
+    if not entries:
+        return data
+    if entries == [[]]:   # a masked scalar
+        raise ValueError(f'{name} must be a number, not masked (fill it, or give a float)')
+    shown = [entry[0] if len(entry) == 1 else entry for entry in entries[:_MASKED_SHOWN]]
+    more = (f' and {len(entries) - _MASKED_SHOWN} more' if len(entries) > _MASKED_SHOWN
+            else '')
+    raise ValueError(f'{name} must be numbers, not masked: entries {shown}{more} are masked '
+                     '(fill them, or give a plain array)')
 
 
 def check_finite_output(values, what: str, cause: str) -> np.ndarray:

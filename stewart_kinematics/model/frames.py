@@ -99,8 +99,15 @@ class Transform:
         return Transform(-(self.rotation.T @ self.position), self.rotation.T)
 
     def apply(self, points) -> np.ndarray:
-        """Map points (3,) or (N, 3) from the child frame to the parent frame, metres."""
-        return np.asarray(points, dtype=float) @ self.rotation.T + self.position
+        """
+        Map points (3,) or (N, 3) from the child frame to the parent frame, metres.
+
+        :raises ValueError: for what is not numbers of that shape.
+        """
+        points = as_float_array(points, 'points')
+        if points.ndim not in (1, 2) or points.shape[-1] != 3:
+            raise ValueError(f'points must have shape (3,) or (N, 3), got {points.shape}')
+        return points @ self.rotation.T + self.position
 
     def is_identity(self) -> bool:
         """Whether this transform changes nothing (exactly)."""
@@ -196,14 +203,18 @@ class FrameTree:
         Like :meth:`platform_from_tool`, on a position (3,) and a rotation matrix (3, 3).
 
         The hot path of a command stream: with no tool frame and a pose in the base frame it
-        returns its arguments untouched, at no cost.
+        returns its arguments as float arrays (float arrays of shapes (3,) and (3, 3)
+        untouched, at no cost; not checked to be a rotation).
 
         :returns: ``(position, rotation)`` of the platform frame in the base frame.
         :raises ValueError: for a frame :meth:`reference` does not accept, or a position or
             rotation that is no rigid transform.
         """
         if self.tool_pose is IDENTITY and self.reference(frame_id) is IDENTITY:
-            return position, rotation
+            position = as_float_array(position, 'position')
+            rotation = as_float_array(rotation, 'rotation')
+            if position.shape == (3,) and rotation.shape == (3, 3):
+                return position, rotation
         platform = self.platform_from_tool(Transform(position, rotation), frame_id)
         return platform.position, platform.rotation
 
@@ -211,11 +222,15 @@ class FrameTree:
         """
         Like :meth:`tool_from_platform`, on pose vectors ``[X, Y, Z, alpha, beta, gamma]``.
 
-        With no tool frame and the base frame asked for, returns ``platform_pose`` itself.
+        With no tool frame and the base frame asked for, returns ``platform_pose`` as a float
+        array (the very array, when it is one).
 
-        :raises ValueError: for a frame :meth:`reference` does not accept.
+        :raises ValueError: for a frame :meth:`reference` does not accept, or a pose that is not
+            six numbers.
         """
-        if self.tool_pose is IDENTITY and self.reference(frame_id) is IDENTITY:
+        platform_pose = as_float_array(platform_pose, 'platform_pose')
+        if (self.tool_pose is IDENTITY and self.reference(frame_id) is IDENTITY
+                and platform_pose.shape == (6,)):
             return platform_pose
         return self.tool_from_platform(Transform.from_pose(platform_pose), frame_id).as_pose()
 
@@ -225,7 +240,9 @@ class FrameTree:
 
         :param tool_poses: poses of the tool frame in the base frame, shape (N, 6).
         """
-        tool_poses = np.asarray(tool_poses, dtype=float)
+        tool_poses = as_float_array(tool_poses, 'tool_poses')
+        if tool_poses.ndim != 2 or tool_poses.shape[1] != 6:
+            raise ValueError(f'tool_poses must have shape (N, 6), got {tool_poses.shape}')
         if self.tool_pose is IDENTITY:
             return tool_poses
         return np.array([self.platform_from_tool(Transform.from_pose(pose)).as_pose()

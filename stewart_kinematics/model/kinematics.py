@@ -106,7 +106,7 @@ def as_leg_lengths(lengths, name='leg lengths') -> np.ndarray:
     :returns: a float array of the same shape.
     :raises ValueError: if the shape is wrong or a length is not finite and positive.
     """
-    if isinstance(lengths, np.ndarray) and lengths.shape == (6,) and lengths.dtype == _FLOAT:
+    if type(lengths) is np.ndarray and lengths.shape == (6,) and lengths.dtype == _FLOAT:
         # One set of six floats (fk_node's per message): checked in floats; a sum of finite
         # numbers can overflow, and then the full checks below decide.
         values = lengths.tolist()
@@ -1217,7 +1217,7 @@ def _single_values(values, positive=False):
 
     :returns: a list of six floats, or None.
     """
-    if isinstance(values, np.ndarray):
+    if type(values) is np.ndarray:   # exactly: a matrix or masked array takes the full checks
         if values.shape != (6,) or values.dtype.kind not in 'iuf':
             return None
         if values.dtype == _FLOAT:  # the common case: six Python floats at once

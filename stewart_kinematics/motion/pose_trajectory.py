@@ -322,8 +322,11 @@ class PoseTrajectory:
         Poses, velocities and accelerations at the given times (held outside the waypoints).
 
         :param times: seconds on this trajectory's clock, shape (M,).
+        :raises ValueError: for times that are not finite numbers of shape (M,) (or one time).
         """
-        times = np.atleast_1d(np.asarray(times, dtype=float))
+        times = np.atleast_1d(as_float_array(times, 'times'))
+        if times.ndim != 1 or not np.all(np.isfinite(times)):
+            raise ValueError(f'times must be finite seconds, shape (M,), got {preview(times)}')
         k = self.segments(times)
         h = self.times[k + 1] - self.times[k]
         s = np.clip((times - self.times[k]) / h, 0.0, 1.0)

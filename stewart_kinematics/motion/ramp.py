@@ -125,8 +125,12 @@ class Ramp:
             ``orientation_step_deg`` and ``orientation_end_deg``.
         """
         def pose(position, orientation_deg):
-            return np.concatenate([as_float_array(position, 'position'),
-                                   np.radians(as_float_array(orientation_deg, 'orientation'))])
+            position = as_float_array(position, 'position')
+            orientation = as_float_array(orientation_deg, 'orientation')
+            if position.shape != (3,) or orientation.shape != (3,):
+                raise ValueError(f'a ramp row is 3 position and 3 orientation values, got '
+                                 f'shapes {position.shape} and {orientation.shape}')
+            return np.concatenate([position, np.radians(orientation)])
         return cls(start=pose(position_start, orientation_start_deg),
                    step=pose(position_step, orientation_step_deg),
                    end=pose(position_end, orientation_end_deg))

@@ -165,7 +165,7 @@ class CommandFilter:
         if refusal is not None:
             return refusal
         #: The command's state (lengths, velocities, accelerations), six floats each.
-        self._position = [float(length) for length in lengths]
+        self._position = np.asarray(lengths, dtype=float).tolist()
         self._velocity = [0.0] * 6
         self._acceleration = [0.0] * 6
         self._target = np.array(self._position)
