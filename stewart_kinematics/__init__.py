@@ -48,7 +48,12 @@ from stewart_kinematics.analysis.workspace import (
     workspace_volume,
 )
 from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
-from stewart_kinematics.decisions.pose_tracker import PoseEstimate, PoseTracker, TwistEstimate
+from stewart_kinematics.decisions.pose_tracker import (
+    PoseAnchor,
+    PoseEstimate,
+    PoseTracker,
+    TwistEstimate,
+)
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
@@ -131,6 +136,7 @@ __all__ = [
     'plan_motion',
     'orientation_workspace',
     'platform_twist',
+    'PoseAnchor',
     'PoseEstimate',
     'PoseTracker',
     'PoseTrajectory',

@@ -66,20 +66,22 @@ def _register(code: str, kind: str, emitted_by: str, meaning: str) -> str:
 
 INVALID_POSE = _register(
     'invalid_pose', 'refusal',
-    '`CommandCheck` (ik_node: `target_pose`, `target_pose_stamped`)',
+    '`CommandCheck` (ik_node: `target_pose`, `target_pose_stamped`), `PoseTracker.anchor` '
+    '(fk_node: `anchor_pose`)',
     'A pose with a NaN or infinite coordinate, a zero or NaN quaternion, a matrix that is no '
     'rotation, or the wrong shape.')
 WRONG_FRAME = _register(
     'wrong_frame', 'refusal',
-    '`CommandCheck.tool_pose` (ik_node: `target_pose_stamped`)',
+    '`CommandCheck.tool_pose` (ik_node: `target_pose_stamped`; fk_node: `anchor_pose`)',
     "A stamped pose in a frame other than `base_frame`, `user_frame` or `''`.")
 QUATERNION_NOT_UNIT = _register(
     'quaternion_not_unit', 'warning',
-    '`CommandCheck.tool_pose` (ik_node: `target_pose`, `target_pose_stamped`)',
+    '`CommandCheck.tool_pose` (ik_node: `target_pose`, `target_pose_stamped`; fk_node: '
+    '`anchor_pose`)',
     'A quaternion whose norm is not 1 (within 1e-6): it is normalised and the pose is used.')
 UNREACHABLE = _register(
     'unreachable', 'refusal',
-    '`CommandCheck` (ik_node)',
+    '`CommandCheck` (ik_node), `PoseTracker.anchor` (fk_node: `anchor_pose`)',
     'A pose whose leg lengths are not finite and positive: a platform joint on its base '
     'joint, or a pose so far away that the lengths overflow.')
 OUT_OF_LIMITS = _register(
@@ -190,6 +192,20 @@ ASSEMBLY_MODE_MARGIN = _register(
     'Another real assembly mode within the limits lies closer than '
     '`assembly_mode_margin_warning` to the estimated pose, or the search for one was '
     'incomplete.')
+AMBIGUOUS_ESTIMATE = _register(
+    'ambiguous_estimate', 'warning',
+    '`PoseTracker` (fk_node: with every accepted pose while it lasts, and the status `assembly '
+    'mode ambiguity` on `/diagnostics`)',
+    'Since the tracker was last anchored, a fold singularity may have been crossed: a solve '
+    'started or ended nearer a singularity than the singularity margin, or a solution lay '
+    "across a singularity from the last one (its Jacobian's determinant changed sign), or a "
+    'solve failed, jumped or fell back to home (`no_solution`, `inaccurate_pose`, '
+    '`assembly_mode_jump`), or the assembly-mode margin fell below '
+    '`assembly_mode_margin_warning`. There two assembly modes meet and six leg lengths cannot '
+    'tell which one the platform went on in: the pose is published, with this warning, until '
+    'the tracker is re-anchored by `reset_tracker` (homing), a known pose on `anchor_pose`, or '
+    'a pose whose margin finds no other real assembly mode the platform could be in (the '
+    'rules: Every assembly mode).')
 NEAR_SINGULARITY = _register(
     'near_singularity', 'refusal or warning',
     '`PoseTracker` (fk_node: a warning on a pose, a refusal of a twist)',

@@ -215,7 +215,8 @@ def test_one_solve_figures_at_exact_singularities(geometry):
     platform_joints[0] = BASE_JOINTS[0]
     touching = paper_geometry(platform_joints=platform_joints)
     pose = np.zeros(6)  # leg 1's joints coincide: its vector is exactly zero
-    single = kinematics._single_singular_values(touching, pose.tolist())
+    single = kinematics._single_singular_values(
+        *kinematics._single_dimensionless_jacobian(touching, pose.tolist()))
     batch = kinematics._dimensionless_singular_values(touching, pose[None, :3], np.eye(3)[None])
     assert single[-1] == 0.0 == batch[0, -1]
     np.testing.assert_allclose(single[:-1], batch[0, :-1], rtol=1e-12)

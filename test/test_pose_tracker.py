@@ -235,12 +235,16 @@ def test_the_tracker_refuses_a_jump_and_keeps_its_last_solution():
 
 
 def test_near_a_singularity_a_pose_comes_with_a_warning():
-    """With near_singularity_condition 5 (home is about 9.5) home is accepted with a warning."""
+    """
+    With near_singularity_condition 5 (home is about 9.5) home is accepted with a warning.
+
+    Beyond the singularity margin the estimate is also flagged ambiguous (test_ambiguity.py).
+    """
     tracker = PoseTracker(geometry(), SolverSettings(near_singularity_condition=5.0))
     estimate = tracker.update(lengths_of(HOME))
     assert estimate.accepted
-    [warning] = estimate.warnings
-    assert warning.code == 'near_singularity'
+    warning, ambiguity = estimate.warnings
+    assert (warning.code, ambiguity.code) == ('near_singularity', 'ambiguous_estimate')
     assert 'near_singularity_condition 5' in warning.message
     assert float(dict(warning.details)['jacobian_condition']) == pytest.approx(9.54, abs=0.01)
 
@@ -250,7 +254,8 @@ def test_a_pose_the_lengths_fix_only_loosely_is_refused():
     1e-6 rad from the singular yaw (90.4 deg) the solve converges to 1e-13 m, microns off.
 
     The pose error bound says so, and the tracker refuses the pose with pose_tolerance 1e-9;
-    with no pose tolerance it is accepted, with a near-singularity warning.
+    with no pose tolerance it is accepted, with a near-singularity warning (and flagged
+    ambiguous from the refusal on: test_ambiguity.py).
     """
     truth = HOME + [0.0, 0.0, 0.0, 0.0, 0.0, singular_yaw() + 1e-6]
     start = truth + [0.0, 0.0, 0.0, 0.0, 0.0, 1e-3]
@@ -270,7 +275,8 @@ def test_a_pose_the_lengths_fix_only_loosely_is_refused():
     tracker.configure(tracker.settings.replace(pose_tolerance=math.inf))
     accepted = tracker.update(lengths_of(truth))
     assert accepted.accepted
-    assert [warning.code for warning in accepted.warnings] == ['near_singularity']
+    assert [warning.code for warning in accepted.warnings] == ['near_singularity',
+                                                               'ambiguous_estimate']
     # What was refused: converged, yet further from the truth than the tolerance.
     assert np.max(np.abs(accepted.pose - truth)) > 1e-9
 

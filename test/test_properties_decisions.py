@@ -51,6 +51,7 @@ from stewart_kinematics import (
     leg_velocities,
     LegCommand,
     LegVelocityCommand,
+    PoseAnchor,
     PoseEstimate,
     PoseTracker,
     SolverSettings,
@@ -162,6 +163,8 @@ def test_the_tracker_follows_a_random_walk(steps, start):
         estimate = tracker.update(inverse_kinematics(LIMITED, pose))
         assert estimate.accepted, estimate.reason
         assert pose_distance(estimate.pose, pose) <= 1e-9
+        # Small steps within the limits (singularity margin 50) never come near a fold.
+        assert not estimate.ambiguous and estimate.warnings == ()
 
 
 @covers('PoseTracker', 'PoseEstimate', 'TwistEstimate')
@@ -182,6 +185,41 @@ def test_the_tracker_never_raises_and_keeps_its_state_on_a_refusal(value):
         assert np.all(np.isfinite(twist.twist))
     else:
         assert_refusal(twist, ('invalid_velocities', 'near_singularity'))
+
+
+@covers('PoseTracker', 'PoseAnchor')
+@budget(40)
+@given(WIDE, poses_near_home())
+def test_an_anchor_within_the_limits_is_where_the_tracker_goes_on_from(known, other):
+    tracker = PoseTracker(LIMITED)
+    tracker.update(inverse_kinematics(LIMITED, other))
+    anchor = tracker.anchor(known)
+    assert isinstance(anchor, PoseAnchor)
+    if not CommandCheck(LIMITED).pose_vector(known).accepted:
+        assert_refusal(anchor, ('out_of_limits', 'unreachable'))
+        return
+    assert anchor.accepted, anchor.reason
+    assert pose_distance(anchor.pose, known) <= 1e-12 and not tracker.ambiguous
+    assert_allclose(anchor.lengths, inverse_kinematics(LIMITED, known), rtol=0, atol=1e-15)
+    estimate = tracker.update(inverse_kinematics(LIMITED, known))
+    assert estimate.accepted and pose_distance(estimate.pose, known) <= 1e-9
+    assert not estimate.ambiguous
+
+
+@covers('PoseTracker', 'PoseAnchor')
+@budget(60)
+@given(HOSTILE)
+def test_an_anchor_of_anything_never_raises_and_a_refusal_changes_nothing(value):
+    tracker = PoseTracker(LIMITED)
+    accepted = tracker.update(LIMITED.home_leg_lengths)
+    for anchor in (tracker.anchor(value), tracker.anchor_tool_pose(value, [0.0, 0.0, 0.0, 1.0]),
+                   tracker.anchor_tool_pose([0.0, 0.0, 0.45], value)):
+        assert isinstance(anchor, PoseAnchor)
+        if anchor.accepted:   # a finite value that happens to be a pose within the limits
+            assert np.all(np.isfinite(anchor.pose)) and np.all(np.isfinite(anchor.lengths))
+            return
+        assert_refusal(anchor, ('invalid_pose', 'unreachable', 'out_of_limits'))
+        np.testing.assert_array_equal(tracker.last_pose, accepted.pose)
 
 
 @covers('PoseTracker', 'TwistEstimate')

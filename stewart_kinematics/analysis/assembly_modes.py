@@ -76,6 +76,9 @@ from stewart_kinematics.model.rotations import (
 REFINED_RESIDUAL = 1e-9
 #: Two refined modes closer than this (metres, and radians times the platform radius) are one.
 DISTINCT_POSE = 1e-7
+#: Limits a platform can physically pass: margins the software keeps, not stops of the
+#: hardware. A mode that breaks only these is still where the platform could be.
+SOFT_LIMITS = ('max_jacobian_condition',)
 #: Reasons a result is empty or incomplete.
 NO_REAL_MODE = 'no real assembly mode: the {count} solutions of these lengths are all complex'
 
@@ -269,6 +272,9 @@ class AssemblyModeMargin:
     :param modes_within_limits: real modes within the limits, the pose's own included.
     :param complete: whether the search was complete (see :class:`AssemblyModes`).
     :param reason: ``''``, or why the margin is unknown or partial.
+    :param others_beyond_singularity_margin: other real modes that break no limit but the
+        singularity margin (``max_jacobian_condition``): a margin kept by the software, not a
+        stop of the hardware, so the platform can physically be there.
     """
 
     position: float
@@ -278,6 +284,21 @@ class AssemblyModeMargin:
     modes_within_limits: int
     complete: bool
     reason: str
+    others_beyond_singularity_margin: int = 0
+
+    @property
+    def rules_out_other_modes(self) -> bool:
+        """
+        Whether the lengths leave the platform no other pose than this one.
+
+        True when the search was complete, the pose is the only real mode within the limits,
+        and every other real mode breaks a limit the hardware cannot pass (a joint cone, a leg
+        collision; the stroke cannot differ: the modes share their lengths), not only the
+        singularity margin. A tracker whose estimate this is knows the platform's pose without
+        any history (see :meth:`stewart_kinematics.PoseTracker.note_margin`).
+        """
+        return (self.complete and self.modes_within_limits == 1 and self.nearest is None
+                and self.others_beyond_singularity_margin == 0)
 
 
 def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyModeMargin:
@@ -300,15 +321,19 @@ def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyMo
     within = modes.within_limits
     others = [mode for mode in within
               if pose_distance(geometry, mode.pose, pose)[2] > DISTINCT_POSE * 1e3]
+    beyond_margin = sum(
+        1 for mode in modes.modes if mode.violations
+        and all(violation.limit in SOFT_LIMITS for violation in mode.violations)
+        and pose_distance(geometry, mode.pose, pose)[2] > DISTINCT_POSE * 1e3)
     reason = modes.reason if not modes.complete else ''
     if not others:
         return AssemblyModeMargin(math.inf, math.inf, math.inf, None, len(within),
-                                  modes.complete, reason)
+                                  modes.complete, reason, beyond_margin)
     distances = [pose_distance(geometry, mode.pose, pose) for mode in others]
     nearest = int(np.argmin([d[2] for d in distances]))
     position, angle, distance = distances[nearest]
     return AssemblyModeMargin(float(position), float(angle), float(distance), others[nearest],
-                              len(within), modes.complete, reason)
+                              len(within), modes.complete, reason, beyond_margin)
 
 
 @dataclass(frozen=True)
@@ -400,11 +425,14 @@ class AssemblyModeMarginMonitor:
         self.geometry = geometry
         self.warning_distance = float(warning_distance)
         self.worker = worker
-        #: The last margin computed, or None; with the lengths it is for and its cost, seconds.
+        #: The last margin computed, or None; with the lengths it is for, its cost, seconds,
+        #: and the tag its request carried.
         self.latest: Optional[AssemblyModeMargin] = None
         self.latest_lengths = None
         self.latest_seconds = None
+        self.latest_tag = None
         self._running = None
+        self._running_tag = None
         self._start_worker()
 
     def _start_worker(self):
@@ -420,10 +448,13 @@ class AssemblyModeMarginMonitor:
                 initializer=_start_margin_worker, initargs=(self.geometry, os.getpid()))
             self._warm_up = self._pool.submit(int)
 
-    def request(self, pose, lengths) -> bool:
+    def request(self, pose, lengths, tag=None) -> bool:
         """
         Start computing the margin of ``pose`` (with its ``lengths``) unless one is running.
 
+        :param tag: anything that says which pose this is, given back with the result as
+            :attr:`latest_tag` (fk_node: the tracker's ``accepted_count``, for
+            :meth:`stewart_kinematics.PoseTracker.note_margin`).
         :returns: whether a computation started; none does for lengths already done.
         """
         self._collect()
@@ -436,6 +467,7 @@ class AssemblyModeMarginMonitor:
         try:
             self._running = self._pool.submit(
                 _timed_margin, geometry, np.array(pose, dtype=float), lengths)
+            self._running_tag = tag
         except BrokenProcessPool:   # the worker process died: a new one for the next request
             self._start_worker()
             return False
@@ -470,6 +502,7 @@ class AssemblyModeMarginMonitor:
             future, self._running = self._running, None
             try:
                 self.latest, self.latest_lengths, self.latest_seconds = future.result()
+                self.latest_tag = self._running_tag
             except BrokenProcessPool:   # the worker process died: a new one for the next
                 self._start_worker()
 

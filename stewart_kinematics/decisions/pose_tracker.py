@@ -29,6 +29,8 @@ Python user's own loop can::
     twist = tracker.twist(leg_velocities)           # at the last accepted pose
     estimate = tracker.update(lengths, velocities)  # a joint state: the pose and its twist
     tracker.reset()                                 # homing: the next solve starts from home
+    if estimate.ambiguous:                          # maybe another assembly mode (a fold
+        tracker.anchor(known_pose)                  # was crossed): re-anchor at a known pose
 
 Each update checks the lengths against the actuator stroke, solves by Newton-Raphson from the
 last accepted solution (its pose and its Jacobian: a platform moves continuously), falls back
@@ -40,6 +42,16 @@ twist, or a warning that says why there is none. Every limit is the limits model
 (:class:`~stewart_kinematics.limits.LimitModel`). :func:`margin_status` decides what fk_node
 reports of the assembly-mode margin. Nothing raises for lengths it cannot use, and nothing
 here imports ROS.
+
+Continuity proves the assembly mode only while the estimate stays away from singularities:
+where a fold is crossed, two modes meet, and the lengths cannot tell which one the platform
+went on in. From the first sign of that (a solution beyond the singularity margin, a change of
+sign of the Jacobian's determinant, a solve that failed, jumped or fell back to home, or an
+assembly-mode margin below its warning distance, given by :meth:`PoseTracker.note_margin`)
+every accepted estimate carries an ``ambiguous_estimate`` warning and ``ambiguous`` is True,
+until the tracker is re-anchored: :meth:`PoseTracker.reset`, :meth:`PoseTracker.anchor` (a
+known pose), or a margin that finds no other real mode the platform could be in. The rules and
+their reasons: doc/assembly_modes.md.
 """
 
 from dataclasses import dataclass
@@ -50,6 +62,7 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
+from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview
@@ -59,7 +72,11 @@ from stewart_kinematics.model.kinematics import (
     forward_kinematics,
     ForwardKinematicsResult,
 )
-from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
+from stewart_kinematics.model.rotations import (
+    euler_zyx_to_matrix,
+    matrix_to_euler_zyx,
+    rotation_angle_between,
+)
 from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
 from stewart_kinematics.parameters.settings import SolverSettings
 
@@ -78,6 +95,9 @@ class PoseEstimate(Decision):
     :param twist: with leg velocities given, the platform twist at the accepted pose
         (``[vx, vy, vz, wx, wy, wz]``, base frame); ``None`` otherwise, or when the velocities
         gave none (the reason is then among the warnings: the pose itself was accepted).
+    :param ambiguous: True while the tracker's estimates may be in another assembly mode than
+        the platform (:attr:`PoseTracker.ambiguity`, then also among the warnings of an
+        accepted pose): re-anchor the tracker.
     """
 
     pose: Optional[np.ndarray]
@@ -85,6 +105,7 @@ class PoseEstimate(Decision):
     warnings: Tuple[Finding, ...] = ()
     solution: Optional[ForwardKinematicsResult] = None
     twist: Optional[np.ndarray] = None
+    ambiguous: bool = False
 
     @property
     def iterations(self) -> Optional[int]:
@@ -108,6 +129,25 @@ class PoseEstimate(Decision):
 
 
 @dataclass(frozen=True, eq=False)
+class PoseAnchor(Decision):
+    """
+    The answer to a known pose given to :meth:`PoseTracker.anchor`: taken, or why not.
+
+    :param pose: the platform frame's pose in the base frame the tracker now starts from,
+        ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians); ``None`` when refused.
+    :param lengths: its leg lengths, metres, shape (6,); ``None`` when refused.
+    :param refusal: why the pose was refused (``invalid_pose``, ``wrong_frame``,
+        ``unreachable``, ``out_of_limits``), or ``None`` when taken.
+    :param warnings: findings about the input (a quaternion that was not unit).
+    """
+
+    pose: Optional[np.ndarray]
+    lengths: Optional[np.ndarray] = None
+    refusal: Optional[Finding] = None
+    warnings: Tuple[Finding, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
 class TwistEstimate(Decision):
     """
     The platform twist of a set of leg velocities, or why none was given.
@@ -128,7 +168,8 @@ class PoseTracker:
 
     State: the last accepted solution (:attr:`last_pose`, :attr:`last_lengths`,
     :attr:`last_solution`), where the next solve starts and what the assembly-mode guard
-    compares with. :meth:`reset` forgets it.
+    compares with; :meth:`reset` forgets it, :meth:`anchor` replaces it with a known pose.
+    And whether continuity since then still proves the assembly mode (:attr:`ambiguity`).
 
     :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
     :param settings: the solver's tolerance, iterations and checks (fk_node's solver
@@ -149,6 +190,21 @@ class PoseTracker:
         self.last_solution = None
         #: After a start or reset: the last start_ambiguity check, with its lengths.
         self._start_check = None
+        #: Why the estimate may be in another assembly mode than the platform (an
+        #: ``ambiguous_estimate`` finding, the first sign since the last anchor), or ``None``
+        #: while continuity since the last anchor proves the mode.
+        self.ambiguity: Optional[Finding] = None
+        #: How the tracker was last anchored, in words.
+        self.anchored_by = 'the start, at the home pose'
+        #: Poses accepted so far: the number of the last one, which tags its assembly-mode
+        #: margin for :meth:`note_margin`.
+        self.accepted_count = 0
+        #: ``accepted_count`` at the last anchor; a margin of a pose numbered from
+        #: ``_resolvable_from`` on, after the last sign of ambiguity, may clear it.
+        self._anchored_at = 0
+        self._resolvable_from = 1
+        #: Checks a known pose (frames, quaternion, limits) as ik_node checks a command.
+        self._anchor_check = CommandCheck(geometry)
 
     def configure(self, settings: SolverSettings):
         """
@@ -160,12 +216,24 @@ class PoseTracker:
             raise TypeError(f'settings must be SolverSettings, got {type(settings).__name__}')
         self.settings = settings
 
+    @property
+    def ambiguous(self) -> bool:
+        """Whether the estimate may be in another assembly mode (:attr:`ambiguity` says why)."""
+        return self.ambiguity is not None
+
+    @property
+    def poses_since_anchor(self) -> int:
+        """Poses accepted since the tracker was last anchored."""
+        return self.accepted_count - self._anchored_at
+
     def reset(self, pose=None):
         """
         Forget the last solution: the next solve starts from ``pose``, by default home.
 
         For homing and restarts. The assembly-mode guard has nothing to compare the next
-        solution with, so it accepts whichever assembly mode that start leads to.
+        solution with, so it accepts whichever assembly mode that start leads to (or, with
+        ``refuse_ambiguous_start``, refuses lengths that several modes within the limits
+        share). The tracker counts as anchored: the platform is taken to be near ``pose``.
 
         :param pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,).
         :raises ValueError: if ``pose`` is malformed.
@@ -177,6 +245,121 @@ class PoseTracker:
         self.last_lengths = None
         self.last_solution = None
         self._start_check = None
+        self._anchor('a reset' if pose is None else 'a reset at a given pose')
+
+    def anchor(self, pose) -> PoseAnchor:
+        """
+        Take a known pose of the platform (homing, a camera, a probe): the tracker re-anchors.
+
+        The estimate is unambiguous again (:attr:`ambiguity` cleared); the next solve starts
+        from ``pose``, and the assembly-mode guard compares its solution with ``pose`` and
+        its leg lengths, so lengths that differ from these by at most
+        ``assembly_guard_length_change`` must lead near it. Give the pose the platform has
+        now. A pose that is malformed, unreachable or beyond a limit is refused, the state
+        unchanged.
+
+        :param pose: the platform frame in the base frame, ``[X, Y, Z, alpha, beta, gamma]``
+            (metres, radians), shape (6,).
+        :returns: a :class:`PoseAnchor`.
+        """
+        try:
+            values = as_float_array(pose, 'anchor pose')
+        except ValueError as error:
+            return PoseAnchor(None, refusal=Finding(findings.INVALID_POSE, str(error)))
+        if values.shape != (6,) or not all(map(math.isfinite, values.tolist())):
+            return PoseAnchor(None, refusal=Finding(
+                findings.INVALID_POSE,
+                'an anchor pose must be six finite numbers [X, Y, Z, alpha, beta, gamma] '
+                f'(metres, radians), got {preview(values)}'))
+        return self._take_anchor(self._anchor_check.pose_vector(values))
+
+    def anchor_tool_pose(self, position, quaternion, frames=None,
+                         frame_id: str = '') -> PoseAnchor:
+        """
+        :meth:`anchor` at a known pose of the tool frame, given in a frame, as a message has it.
+
+        Converted and checked as ik_node converts a commanded pose
+        (:meth:`stewart_kinematics.CommandCheck.tool_pose`): ``frame_id`` ``base_frame``,
+        ``user_frame`` or ``''``, a non-unit quaternion normalised with a warning.
+
+        :param position: the tool frame's origin in ``frame_id``, metres, three numbers.
+        :param quaternion: its orientation ``(x, y, z, w)``.
+        :param frames: the :class:`stewart_kinematics.FrameTree`, or ``None``: the pose is the
+            platform frame's, in the base frame.
+        :param frame_id: the frame the pose is given in.
+        :returns: a :class:`PoseAnchor`.
+        """
+        return self._take_anchor(self._anchor_check.tool_pose(position, quaternion, frames,
+                                                              frame_id))
+
+    def _take_anchor(self, command: LegCommand) -> PoseAnchor:
+        """Anchor at the pose of a command the limits accepted, or refuse it."""
+        if not command.accepted:
+            return PoseAnchor(None, refusal=command.refusal, warnings=command.warnings)
+        pose = np.concatenate([command.position, matrix_to_euler_zyx(command.rotation)])
+        # The pose solves its own lengths at once: a solution to start from, with its sign.
+        solution = forward_kinematics(self.geometry, command.lengths, pose,
+                                      tolerance=self.settings.tolerance,
+                                      max_iterations=self.settings.max_iterations)
+        self.last_pose, self.last_lengths = solution.pose, command.lengths
+        self.last_solution = solution if solution.converged else None
+        self._start_check = None
+        self._anchor('a known pose')
+        return PoseAnchor(solution.pose, command.lengths, warnings=command.warnings)
+
+    def _anchor(self, how: str):
+        """Clear the ambiguity: the estimate is anchored, ``how`` (in words)."""
+        self.ambiguity = None
+        self.anchored_by = how
+        self._anchored_at = self.accepted_count
+        self._resolvable_from = self.accepted_count + 1
+
+    def note_margin(self, margin, pose_number: int, warning_distance: float,
+                    lengths=None) -> bool:
+        """
+        Take the assembly-mode margin of an accepted pose: it may flag the estimate, or clear it.
+
+        A margin below ``warning_distance`` (another real mode within the limits that near)
+        flags it: a motion of that size could have taken the platform into that mode. A
+        margin that rules out every other mode (its ``rules_out_other_modes``) clears it, if
+        the pose came after the last sign of ambiguity: the platform was then at that pose,
+        whatever happened before, and continuity holds since. A margin of a pose before the
+        last anchor is ignored. Whether the other modes are ruled out depends on the lengths
+        alone (the estimate, accepted, is within the limits): a margin of the lengths of the
+        last accepted pose counts as that pose's, whatever its number (a platform at rest,
+        whose margin is not computed again).
+
+        :param margin: an :class:`~stewart_kinematics.analysis.assembly_modes.AssemblyModeMargin`
+            of an accepted pose (from :func:`stewart_kinematics.assembly_mode_margin`, or
+            fk_node's monitor).
+        :param pose_number: that pose's number, :attr:`accepted_count` just after it was
+            accepted.
+        :param warning_distance: the margin below which another mode is within reach, metres
+            (fk_node: ``assembly_mode_margin_warning``); 0 for never.
+        :param lengths: the leg lengths the margin is for, metres, or ``None``.
+        :returns: whether the margin cleared the ambiguity.
+        :raises TypeError: if ``pose_number`` is not an int.
+        """
+        if not isinstance(pose_number, int) or isinstance(pose_number, bool):
+            raise TypeError(f'pose_number must be an int, got {type(pose_number).__name__}')
+        if (lengths is not None and self.accepted_count > self._anchored_at
+                and np.array_equal(lengths, self.last_lengths)):
+            pose_number = self.accepted_count
+        if not self._anchored_at < pose_number <= self.accepted_count:
+            return False
+        if margin.distance < warning_distance:
+            self._flag('assembly_mode_margin', (
+                f'another assembly mode within the limits lay {margin.position:.4g} m and '
+                f'{math.degrees(margin.angle):.4g} deg from an estimate (combined distance '
+                f'{margin.distance:.4g} m < {warning_distance:g} m)'),
+                (('margin_distance_m', f'{margin.distance:.4g}'),), pose_number + 1)
+            return False
+        if self.ambiguity is None or not (margin.rules_out_other_modes
+                                          and pose_number >= self._resolvable_from):
+            return False
+        self._anchor(f'pose {pose_number}, where no other real assembly mode lay within the '
+                     'limits')
+        return True
 
     def update(self, lengths, velocities=None) -> PoseEstimate:
         """
@@ -199,10 +382,13 @@ class PoseTracker:
         if violations:
             return PoseEstimate(None, findings.out_of_limits('the leg lengths are', violations))
         lengths = np.array(lengths, dtype=float)
-        solution = self._solve(lengths)
+        solution, fell_back = self._solve(lengths)
         refusal = self._refusal(lengths, solution)
+        evidence = self._fold_evidence(solution, refusal, fell_back)
+        if evidence is not None:
+            self._flag(*evidence, self.accepted_count + 1)
         if refusal is not None:
-            return PoseEstimate(None, refusal, solution=solution)
+            return PoseEstimate(None, refusal, solution=solution, ambiguous=self.ambiguous)
         warnings = ()
         if solution.condition > self.settings.near_singularity_condition:
             warnings = (Finding(
@@ -212,12 +398,15 @@ class PoseTracker:
                 f'{self.settings.near_singularity_condition:g}',
                 (('jacobian_condition', f'{solution.condition:.4g}'),)),)
         self.last_pose, self.last_lengths, self.last_solution = solution.pose, lengths, solution
+        self.accepted_count += 1
+        if self.ambiguity is not None:
+            warnings += (self.ambiguity,)
         twist = None
         if velocities is not None:
             estimate = self.twist(velocities)
             twist = estimate.twist
             warnings += () if estimate.accepted else (estimate.refusal,)
-        return PoseEstimate(solution.pose, None, warnings, solution, twist)
+        return PoseEstimate(solution.pose, None, warnings, solution, twist, self.ambiguous)
 
     def twist(self, velocities) -> TwistEstimate:
         """
@@ -240,8 +429,7 @@ class PoseTracker:
             return TwistEstimate(None, Finding(
                 findings.INVALID_VELOCITIES,
                 f'leg velocities must be six finite numbers (m/s), got {preview(velocities)}'))
-        margin = min(self.settings.near_singularity_condition,
-                     self.geometry.max_jacobian_condition)
+        margin = self.singularity_margin
         try:
             return TwistEstimate(platform_twist(self.geometry, self.last_pose, velocities,
                                                 max_condition=margin))
@@ -253,17 +441,84 @@ class PoseTracker:
         except ValueError as error:   # a twist beyond the float range
             return TwistEstimate(None, Finding(findings.INVALID_VELOCITIES, str(error)))
 
-    def _solve(self, lengths) -> ForwardKinematicsResult:
-        """Solve from the last solution (with its Jacobian), then from home if that fails."""
+    @property
+    def singularity_margin(self) -> float:
+        """
+        Give the condition number beyond which a pose counts as near a singularity.
+
+        The smaller of ``near_singularity_condition`` and the geometry's
+        ``max_jacobian_condition``: beyond it no twist is given, and an estimate that comes
+        there is flagged ambiguous.
+        """
+        return min(self.settings.near_singularity_condition,
+                   self.geometry.max_jacobian_condition)
+
+    def _solve(self, lengths) -> Tuple[ForwardKinematicsResult, bool]:
+        """
+        Solve from the last solution (with its Jacobian), then from home if that fails.
+
+        :returns: the solution, and whether it came from the fallback start at home.
+        """
         options = {'tolerance': self.settings.tolerance,
                    'max_iterations': self.settings.max_iterations}
         start = self.last_solution if self.last_solution is not None else self.last_pose
         solution = forward_kinematics(self.geometry, lengths, start, **options)
         if not solution.converged and not np.array_equal(self.last_pose,
                                                          self.geometry.home_pose):
-            solution = forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
-                                          **options)
-        return solution
+            return forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
+                                      **options), True
+        return solution, False
+
+    def _fold_evidence(self, solution, refusal, fell_back):
+        """
+        Say how a solve shows that a fold may have been crossed: ``(cause, sentence, details)``.
+
+        Or return ``None``. The rules of doc/assembly_modes.md: a refusal whose solve could not
+        follow the platform (no solution, a pose the lengths fix only loosely, a jump); a
+        solution that came from the fallback start at home; a solve that started (the last
+        solution, or an anchor) or ended beyond the singularity margin; a solution across a
+        singularity from the last one (its Jacobian's determinant has the other sign).
+        """
+        if refusal is not None and refusal.code in FOLD_REFUSALS:
+            return refusal.code, f'a solve was refused as {refusal.code}', ()
+        if not solution.converged:
+            return None
+        if fell_back:
+            return 'fallback_start', (
+                'a solve from the last solution failed and the solution came from the home '
+                'pose'), ()
+        margin = self.singularity_margin
+        start = self.last_solution
+        for where, result in (('came', solution), ('started', start)):
+            if result is not None and not result.condition <= margin:
+                return 'near_singularity', (
+                    f'a solve {where} near a singularity (Jacobian condition number '
+                    f'{result.condition:.4g} > {margin:g}, the singularity margin)'), (
+                    ('jacobian_condition', f'{result.condition:.4g}'),)
+        if start is not None and solution.jacobian_sign != start.jacobian_sign:
+            return 'jacobian_sign', (
+                'a solution lay across a singularity from the last accepted pose (the '
+                'determinant of its Jacobian changed sign)'), ()
+        return None
+
+    def _flag(self, cause: str, sentence: str, details, resolvable_from: int):
+        """
+        Flag the estimate ambiguous (keeping the first cause since the anchor).
+
+        :param resolvable_from: the first pose number whose margin may clear it.
+        """
+        self._resolvable_from = max(self._resolvable_from, resolvable_from)
+        if self.ambiguity is not None:
+            return
+        self.ambiguity = Finding(
+            findings.AMBIGUOUS_ESTIMATE,
+            f'the estimate may be in another assembly mode than the platform: since the '
+            f'tracker was anchored ({self.anchored_by}), {sentence}, where two assembly modes '
+            'can meet and six leg lengths cannot tell which one the platform went on in; '
+            're-anchor it: reset_tracker at the home pose (homing), a known pose on '
+            'anchor_pose (PoseTracker.anchor), or a pose where no other real assembly mode '
+            'lies within the limits',
+            (('cause', cause), *details, ('anchored_by', self.anchored_by)))
 
     def _refusal(self, lengths, solution) -> Optional[Finding]:
         """Say why a solution cannot be accepted, or return ``None``."""
@@ -364,6 +619,9 @@ def assembly_mode_jump(settings: SolverSettings, last_pose, last_lengths, pose,
          ('length_change_m', f'{length_change:.4g}')))
 
 
+#: Refusals whose solve could not follow the platform: evidence that a fold may be near.
+FOLD_REFUSALS = (findings.NO_SOLUTION, findings.INACCURATE_POSE, findings.ASSEMBLY_MODE_JUMP)
+
 #: :func:`euler_angle_change_bound` decides alone only this far below the threshold: far
 #: beyond the rounding of either figure (about 1e-15 relative).
 ANGLE_BOUND_MARGIN = 1.0 - 1e-9
@@ -436,3 +694,35 @@ def margin_status(monitor) -> MarginStatus:
     warning = (Finding(findings.ASSEMBLY_MODE_MARGIN, message, values)
                if too_close or not margin.complete else None)
     return MarginStatus(warning, message, values)
+
+
+@dataclass(frozen=True)
+class AmbiguityStatus:
+    """
+    What fk_node reports of the tracker's ambiguity: a warning or not, a sentence, the values.
+
+    :param warning: the tracker's ``ambiguous_estimate`` finding while it holds, else ``None``.
+    :param message: the status sentence.
+    :param values: ``(key, value)`` pairs: whether ambiguous, how and when last anchored, the
+        cause.
+    """
+
+    warning: Optional[Finding]
+    message: str
+    values: Tuple[Tuple[str, str], ...] = ()
+
+
+def ambiguity_status(tracker: PoseTracker) -> AmbiguityStatus:
+    """
+    Decide what to report of a tracker's ambiguity: WARN with its finding while it holds.
+
+    :param tracker: a :class:`PoseTracker`.
+    """
+    values = (('ambiguous', str(tracker.ambiguous)), ('anchored_by', tracker.anchored_by),
+              ('poses_since_anchor', str(tracker.poses_since_anchor)))
+    ambiguity = tracker.ambiguity
+    if ambiguity is None:
+        return AmbiguityStatus(None, 'the estimate follows one assembly mode since the last '
+                               f'anchor ({tracker.anchored_by})', values)
+    return AmbiguityStatus(ambiguity, ambiguity.message, values + tuple(
+        pair for pair in ambiguity.details if pair[0] != 'anchored_by'))

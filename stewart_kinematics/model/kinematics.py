@@ -695,9 +695,9 @@ class ForwardKinematicsResult:
     :param reason: ``''`` where converged, else why not (iteration limit, singular Jacobian,
         divergence).
 
-    Two more figures are computed on first access (a singular value decomposition, about
-    40 us, that a solve does not pay for) and kept: :attr:`condition` and
-    :attr:`pose_error_bound`.
+    Three more figures are computed on first access (a singular value decomposition, about
+    40 us, and a determinant, that a solve does not pay for) and kept: :attr:`condition`,
+    :attr:`pose_error_bound` and :attr:`jacobian_sign`.
     """
 
     pose: np.ndarray
@@ -728,12 +728,39 @@ class ForwardKinematicsResult:
                      _hashable(residual), reason))
 
     @cached_property
-    def _singular_values(self):
+    def _jacobian(self):
+        """Return the dimensionless Jacobian at :attr:`pose`, and where it has a zero row."""
         pose = self.pose
         if pose.ndim == 1:
-            return _single_singular_values(self._solve[0], pose.tolist())
-        return _dimensionless_singular_values(
-            self._solve[0], pose[..., :3], euler_zyx_to_matrix(pose[..., 3:]))
+            return _single_dimensionless_jacobian(self._solve[0], pose.tolist())
+        jacobians = _dimensionless(self._solve[0], twist_jacobian(
+            self._solve[0], pose[..., :3], euler_zyx_to_matrix(pose[..., 3:])))
+        return jacobians, np.any(np.all(jacobians == 0.0, axis=-1), axis=-1)
+
+    @cached_property
+    def _singular_values(self):
+        if self.pose.ndim == 1:
+            return _single_singular_values(*self._jacobian)
+        return _singular_values(self._jacobian[0])
+
+    @cached_property
+    def jacobian_sign(self) -> Union[int, np.ndarray]:
+        """
+        Sign of the Jacobian's determinant at :attr:`pose`: +1, -1, or 0 at a singularity.
+
+        Which side of the singularity surface the pose lies on: along a path of poses it
+        changes only where the path crosses a singularity (``det J = 0``), so two solutions of
+        opposite signs are not joined by a path that avoids one. The determinant of the
+        dimensionless twist Jacobian (:func:`jacobian_condition`'s: the same sign as the twist
+        Jacobian's, whose rotation columns are divided by a positive ``rho``), about 4 us; 0
+        where a leg has zero length. Near a singularity (condition numbers of 1e13 and more)
+        rounding may give either sign. An int for one solve, an array (N,) for a batch.
+        """
+        jacobian, zero_row = self._jacobian
+        if self.pose.ndim == 1:
+            determinant = 0.0 if zero_row else float(np.linalg.det(jacobian))
+            return (determinant > 0.0) - (determinant < 0.0)
+        return np.where(zero_row, 0, np.sign(np.linalg.det(jacobian))).astype(int)
 
     @cached_property
     def condition(self) -> Union[float, np.ndarray]:
@@ -819,21 +846,32 @@ class ForwardKinematicsResult:
         return float(bound) if bound.ndim == 0 else bound
 
 
-def _single_singular_values(geometry, pose):
+def _single_dimensionless_jacobian(geometry, pose):
     """
-    :func:`_dimensionless_singular_values` of one pose, six floats: a list, largest first.
+    Return the dimensionless Jacobian of one pose (6, 6), and whether it has a zero row.
 
-    The Jacobian's rows in floats from the legs (:func:`_single_euler_legs`), then one SVD:
-    a fifth of the time of the array path on one pose (12 us against 50 us, with
-    :attr:`ForwardKinematicsResult.pose_error_bound`), which fk_node pays for every message.
-    test_kinematics.py proves the two equal, singular poses and zero rows included.
+    The Jacobian's rows in floats from the legs (:func:`_single_euler_legs`): a fifth of the
+    time of the array path on one pose, which fk_node pays for every message.
+
+    :param pose: ``[X, Y, Z, alpha, beta, gamma]``, six floats.
     """
     rows = _float_twist_rows(_single_euler_legs(_constants(geometry), pose))
     jacobian = np.array(rows).reshape(6, 6)
     jacobian[:, 3:] /= geometry.platform_radius
+    return jacobian, any(not any(rows[start:start + 6]) for start in range(0, 36, 6))
+
+
+def _single_singular_values(jacobian, zero_row):
+    """
+    :func:`_dimensionless_singular_values` of one pose, six floats: a list, largest first.
+
+    One SVD of :func:`_single_dimensionless_jacobian`'s answer (12 us against 50 us on the
+    array path, with :attr:`ForwardKinematicsResult.pose_error_bound`). test_fk_result.py
+    proves the two equal, singular poses and zero rows included.
+    """
     values = np.linalg.svd(jacobian, compute_uv=False).tolist()
     # A zero row (a leg of zero length) is an exact singularity, whatever rounding says.
-    if any(not any(rows[start:start + 6]) for start in range(0, 36, 6)):
+    if zero_row:
         values[-1] = 0.0
     return values
 

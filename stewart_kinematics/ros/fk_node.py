@@ -16,21 +16,23 @@
 Forward kinematics node: six leg lengths in, the platform pose out.
 
 Subscribes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6), ``joint_states``
-(sensor_msgs/msg/JointState, legs ``leg_1`` .. ``leg_6``) and ``leg_velocities``
-(Float64MultiArray, m/s). Publishes ``estimated_pose`` (geometry_msgs/msg/Pose: the tool frame in
-the base frame, metres), ``estimated_pose_stamped`` (geometry_msgs/msg/PoseStamped: the tool frame
-in ``estimated_pose_frame``, with the stamp of the joint state it comes from, or the time of
-the estimate), ``estimated_twist`` (geometry_msgs/msg/Twist, base frame: from leg velocities, at
-the last pose; the velocity of the tool frame's origin and the angular velocity, like every pose
-topic about the tool frame's point), the platform frame on ``/tf`` (with the same stamp) and the
-user and tool frames on ``/tf_static`` (see :mod:`stewart_kinematics.model.frames`). Each solve
-starts from the last good solution, since a platform moves continuously, and falls back to the home
-pose when that fails; the service ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve
-start from the home pose, for homing and restarts. What to publish and what to refuse is decided by
-:class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths that neither start
-solves, a solution whose pose is not fixed to pose_tolerance, out of the limits, or in another
-assembly mode); the node converts the messages, publishes, and counts each refusal and each warning
-(near a singularity) with the core's reason on the log and ``/diagnostics``.
+(sensor_msgs/msg/JointState, legs ``leg_1`` .. ``leg_6``), ``leg_velocities`` (Float64MultiArray,
+m/s) and ``anchor_pose`` (geometry_msgs/msg/PoseStamped: a known pose of the tool frame, in the
+base or user frame, to re-anchor the tracker). Publishes ``estimated_pose``
+(geometry_msgs/msg/Pose: the tool frame in the base frame, metres), ``estimated_pose_stamped``
+(geometry_msgs/msg/PoseStamped: the tool frame in ``estimated_pose_frame``, with the stamp of the
+joint state it comes from, or the time of the estimate), ``estimated_twist``
+(geometry_msgs/msg/Twist, base frame: from leg velocities, at the last pose; the velocity of the
+tool frame's origin and the angular velocity, like every pose topic about the tool frame's point),
+the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on ``/tf_static``
+(see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good solution, since
+a platform moves continuously, and falls back to the home pose when that fails; the service
+``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for homing
+and restarts, and ``anchor_pose`` makes it start from a known pose. What to publish and what to
+refuse is decided by :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths
+that neither start solves, a solution whose pose is not fixed to pose_tolerance, out of the limits,
+or in another assembly mode); the node converts the messages, publishes, and counts each refusal
+and each warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
 nearest other real assembly mode within the limits is computed in a worker process (a thread
@@ -40,6 +42,13 @@ lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
 solution (after a start or reset_tracker) when the lengths allow several modes within the
 limits and none near the last known pose.
+
+Where a fold singularity may have been crossed since the tracker was last anchored (see
+doc/assembly_modes.md), the two assembly modes that meet there cannot be told apart by the
+lengths: every pose is then still published, with an ``ambiguous_estimate`` warning counted on
+its input's status, and the status ``assembly mode ambiguity`` is WARN, until the tracker is
+re-anchored: ``reset_tracker`` (homing), a known pose on ``anchor_pose``, or a margin that
+finds no other real mode the platform could be in.
 """
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
@@ -52,7 +61,11 @@ from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import margin_status, PoseTracker
+from stewart_kinematics.decisions.pose_tracker import (
+    ambiguity_status,
+    margin_status,
+    PoseTracker,
+)
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -116,11 +129,14 @@ class FkNode(Node):
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
         self.velocity_accounting = diagnostics.accounting('leg_velocities')
+        self.anchor_accounting = diagnostics.accounting('anchor_pose')
         create_input_subscription(self, FK_NODE['leg_lengths'], self.on_leg_lengths, depth)
         create_input_subscription(self, FK_NODE['joint_states'], self.on_joint_states, depth)
         create_input_subscription(
             self, FK_NODE['leg_velocities'], self.on_leg_velocities, depth)
+        create_input_subscription(self, FK_NODE['anchor_pose'], self.on_anchor_pose, depth)
         create_declared_service(self, FK_NODE['reset_tracker'], self.on_reset_tracker)
+        diagnostics.reporters.append(AmbiguityReport(self, diagnostics))
         self.margin = None
         margin = settings.assembly_modes
         if margin.assembly_mode_margin_period > 0.0:
@@ -150,8 +166,19 @@ class FkNode(Node):
             self.margin.monitor.warning_distance = value
 
     def on_margin_timer(self):
-        """Start computing the assembly-mode margin of the last solution, in the background."""
-        self.margin.monitor.request(self.tracker.last_pose, self.tracker.last_lengths)
+        """
+        Start computing the assembly-mode margin of the last solution, in the background.
+
+        The latest margin goes to the tracker, which may flag its estimate ambiguous (another
+        mode near) or re-anchor (no other mode the platform could be in).
+        """
+        monitor, tracker = self.margin.monitor, self.tracker
+        monitor.request(tracker.last_pose, tracker.last_lengths, tag=tracker.accepted_count)
+        if monitor.latest is None or monitor.latest_tag is None:
+            return
+        if tracker.note_margin(monitor.latest, monitor.latest_tag, monitor.warning_distance,
+                               monitor.latest_lengths):
+            self.get_logger().info(f'estimate unambiguous again: {tracker.anchored_by}')
 
     def destroy_node(self):
         """Stop the margin's worker process, then the node."""
@@ -214,6 +241,25 @@ class FkNode(Node):
         self.get_logger().info(response.message)
         return response
 
+    def on_anchor_pose(self, message: PoseStamped):
+        """Re-anchor the tracker at a known pose of the tool frame (base or user frame)."""
+        accounting = self.anchor_accounting
+        accounting.receive()
+        point, orientation = message.pose.position, message.pose.orientation
+        anchor = self.tracker.anchor_tool_pose(
+            (point.x, point.y, point.z),
+            (orientation.x, orientation.y, orientation.z, orientation.w), self.frames,
+            message.header.frame_id)
+        for warning in anchor.warnings:
+            accounting.warn(warning)
+        if not anchor.accepted:
+            accounting.reject(anchor.refusal)
+            return
+        accounting.use()
+        self.get_logger().info(
+            'tracker anchored at a known pose: the next solve starts from the platform pose '
+            f'{np.round(anchor.pose, 6).tolist()} (m, rad)', throttle_duration_sec=1.0)
+
     def estimate(self, lengths, header: Header, accounting: MessageAccounting,
                  velocities=None):
         """
@@ -271,6 +317,31 @@ class AssemblyModeMarginReport:
         status = margin_status(self.monitor)
         if status.warning is not None:
             self._log_throttle.log(status.warning.code, status.warning.message)
+        return DiagnosticStatus(
+            level=DiagnosticStatus.WARN if status.warning else DiagnosticStatus.OK,
+            name=self.status_name, message=status.message, hardware_id=self.hardware_id,
+            values=[KeyValue(key=key, value=value) for key, value in status.values])
+
+
+class AmbiguityReport:
+    """
+    Whether the tracker's estimate may be in another assembly mode, as a diagnostic status.
+
+    WARN with the tracker's reason from the first sign of a fold crossing until the tracker is
+    re-anchored, whether messages arrive or not.
+
+    :param node: the fk_node (its tracker is read at each report).
+    :param diagnostics: its :class:`NodeDiagnostics`.
+    """
+
+    def __init__(self, node, diagnostics: NodeDiagnostics):
+        self.node = node
+        self.status_name = f'{node.get_fully_qualified_name()}: assembly mode ambiguity'
+        self.hardware_id = diagnostics.hardware_id
+
+    def report(self) -> DiagnosticStatus:
+        """Return the tracker's ambiguity: WARN with its finding while it holds, else OK."""
+        status = ambiguity_status(self.node.tracker)
         return DiagnosticStatus(
             level=DiagnosticStatus.WARN if status.warning else DiagnosticStatus.OK,
             name=self.status_name, message=status.message, hardware_id=self.hardware_id,

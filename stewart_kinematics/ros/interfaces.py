@@ -169,6 +169,12 @@ FK_NODE = NodeInterface('fk_node', (
     Endpoint('leg_velocities', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
              'Rates of change of the leg lengths, m/s, turned into the twist at the last '
              'estimated pose.'),
+    Endpoint('anchor_pose', SUBSCRIPTION, 'geometry_msgs/msg/PoseStamped', QUEUE,
+             'A known pose of the tool frame (from homing, a camera, a probe: where the '
+             "platform is now) in `base_frame` (or `''`) or `user_frame`: the tracker "
+             're-anchors there (no more `ambiguous_estimate`) and the next solve starts from '
+             'it. Another frame, or a pose that is unreachable or breaks a limit, is refused '
+             'with the reason.'),
     Endpoint('estimated_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
              'The pose of the tool frame (by default the platform frame) in the base frame '
              'whose leg lengths match; metres, unit quaternion with `w >= 0`.'),
@@ -188,12 +194,16 @@ FK_NODE = NodeInterface('fk_node', (
              condition='publish_tf'),
     Endpoint('reset_tracker', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
              'Forget the last solution: the next solve starts from the home pose (homing, a '
-             'restart, lengths from another session). Answers `success: true`.'),
+             'restart, lengths from another session), and the tracker counts as anchored (no '
+             'more `ambiguous_estimate`). Answers `success: true`.'),
     Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
              DIAGNOSTICS_TOPIC.meaning + ' (iterations, residual, condition number, pose error '
              'bound), near-singularity warnings; and the status `fk_node: assembly mode '
              'margin`: the distance from the last solution to the nearest other real assembly '
-             'mode within the limits, WARN below `assembly_mode_margin_warning`.'),
+             'mode within the limits, WARN below `assembly_mode_margin_warning`; and the status '
+             '`fk_node: assembly mode ambiguity`: WARN, with the reason, from the first sign '
+             'that a fold singularity was crossed (`ambiguous_estimate`) until the tracker is '
+             're-anchored.'),
 ))
 
 TRAJECTORY_NODE = NodeInterface('trajectory_node', (

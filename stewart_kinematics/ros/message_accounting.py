@@ -147,6 +147,15 @@ class MessageAccounting:
         publisher.publish(message, *extra)
         self.published += 1
 
+    def use(self):
+        """
+        Count a message used without an output of its own (fk_node's ``anchor_pose``).
+
+        It counts with the published ones: every message still ends as one output or one
+        rejection.
+        """
+        self.published += 1
+
     def reject(self, refusal: Finding):
         """
         Count a rejected message by its code and log why (throttled per code).
