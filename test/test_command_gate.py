@@ -26,10 +26,10 @@ import math
 from hypothesis import given, strategies as st
 import numpy as np
 from numpy.testing import assert_allclose
+from properties import budget
 import pytest
 import reference
 
-from properties import budget
 from stewart_kinematics import ActuatorLimits, MotionPlanner
 from stewart_kinematics.limits import CommandGate, MOTION, SETPOINT
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, euler_zyx_to_quaternion
@@ -96,9 +96,10 @@ def test_a_pose_message_is_checked_as_ik_node_reads_it():
 
 def test_the_rates_of_a_motion_are_its_divided_differences():
     """
-    The velocity and acceleration a command carries are the derivatives of the polynomial
-    through the last commands (at jittered times); a jerk a hair above the limit is refused,
-    a hair below passes.
+    A command's velocity and acceleration are those of the polynomial through the commands.
+
+    The last commands at jittered times; and a jerk a hair above the limit is refused, a hair
+    below passes.
     """
     gate = CommandGate(GEOMETRY, LIMITS, timing=MOTION, jerk=True)
     gate.reset(time=0.0)
@@ -134,11 +135,13 @@ def test_the_rates_of_a_motion_are_its_divided_differences():
        st.floats(0.0, 0.45))
 @budget(25)
 def test_a_motion_within_the_limits_passes_whatever_the_send_times(share, frequency, seed,
-                                                                    jitter):
+                                                                   jitter):
     """
-    A smooth motion with peak velocity and acceleration at ``share`` of the limits, sent at
-    jittered times (each interval off by up to 45 %), passes every command: the divided
-    differences never exceed the derivatives they stand for.
+    A smooth motion within the limits passes every command, whatever its send times.
+
+    Peak velocity and acceleration at ``share`` of the limits, sent at jittered times (each
+    interval off by up to 45 %): the divided differences never exceed the derivatives they
+    stand for.
     """
     amplitude = share * min(LIMITS.velocity_max / frequency,
                             LIMITS.acceleration_max / frequency ** 2)
@@ -159,6 +162,8 @@ def test_a_motion_within_the_limits_passes_whatever_the_send_times(share, freque
 
 def test_a_stop_in_one_step_is_refused_and_braking_keeps_the_limits():
     """
+    A stop in one step is refused; the gate brakes within every rate limit instead.
+
     The defect of the cue's last resort (issue 27): legs at 0.0245 m/s held in one 10 ms step
     ask 2.45 m/s^2. The gate refuses the hold; its braking slows each leg at 0.25 m/s^2 to rest
     within every rate limit, in about v / a, never in one step.
@@ -235,8 +240,12 @@ def test_a_motion_outside_its_limits_may_only_come_back():
 
 
 def test_the_clock_a_motion_is_sent_on():
-    """No time passed: a new command is refused, the same one again passes; a clock moved back
-    starts a new time line."""
+    """
+    A motion's commands need time to pass between them.
+
+    No time passed: a new command is refused, the same one again passes; a clock moved back
+    starts a new time line.
+    """
     gate = CommandGate(GEOMETRY, LIMITS, timing=MOTION)
     gate.reset(time=1.0)
     home = GEOMETRY.home_leg_lengths

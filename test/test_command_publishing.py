@@ -32,8 +32,6 @@ import pytest
 from rclpy.publisher import Publisher
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float64MultiArray
-from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
-
 from stewart_kinematics.limits import CommandGate, Verdict
 from stewart_kinematics.ros.command_publishing import CommandPublisher
 from stewart_kinematics.ros.ik_node import IkNode
@@ -41,6 +39,7 @@ from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 from stewart_kinematics.ros.node_main import create_executor, create_output_publisher
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
+from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
 
 pytestmark = pytest.mark.node
 
@@ -144,12 +143,12 @@ def _command_publishers(node):
 
 
 def _attributes(node):
-    """The node's attribute values, and those of the objects they hold (one level down)."""
+    """Return the node's attribute values, and those of the objects they hold (one deep)."""
     values = []
+    skipped = (type, Publisher, CommandPublisher)
     for value in vars(node).values():
         values.append(value)
-        if hasattr(value, '__dict__') and not isinstance(value, (type, Publisher,
-                                                                CommandPublisher)):
+        if hasattr(value, '__dict__') and not isinstance(value, skipped):
             values.extend(vars(value).values())
     return values
 
@@ -255,4 +254,3 @@ def test_motion_cueing_node_publishes_its_commands_only_through_the_gate(ros):
         assert all(isinstance(message, Pose) for message in recorder.messages['target_pose'])
     finally:
         node.destroy_node()
-

@@ -41,7 +41,7 @@ VELOCITY_MAX, ACCELERATION_MAX = 0.05, 0.25   # config/example_limits.yaml
 
 
 def cueing(**overrides):
-    """MotionCueing of the shipped files (the paper's platform, example limits, cueing)."""
+    """Return the MotionCueing of the shipped files (paper platform, example limits, cueing)."""
     values = read_parameter_files([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml',
                                    CONFIG / 'motion_cueing.yaml'], 'motion_cueing_node')
     values.update(overrides)
@@ -49,7 +49,7 @@ def cueing(**overrides):
 
 
 def sent_lengths(step):
-    """The leg lengths of a step's target_pose message, by the reference formula."""
+    """Return the leg lengths of a step's target_pose message, by the reference formula."""
     position, quaternion = step.command.tool_pose
     rotation = quaternion_to_matrix(quaternion / np.linalg.norm(quaternion))
     return reference.leg_lengths_of_matrix(position, rotation)
@@ -66,9 +66,11 @@ def rates(times, lengths):
 
 def test_noisy_input_never_stops_a_leg_in_one_step():
     """
+    Noisy input keeps both rate limits at every command.
+
     The adversarial pass's input (issue 27): specific force noise of 30 m/s^2 around gravity,
     rotation noise of 5 rad/s, at 100 Hz, for 60 s. It stopped legs at 0.0245 m/s within one
-    10 ms step (2.45 m/s^2). Every command now keeps both rate limits.
+    10 ms step (2.45 m/s^2).
     """
     motion = cueing()
     rng = np.random.default_rng(1)
@@ -88,6 +90,8 @@ def test_noisy_input_never_stops_a_leg_in_one_step():
 
 def test_a_follower_whose_forward_kinematics_fails_brakes_instead_of_holding(monkeypatch):
     """
+    A follower whose forward kinematics fails brakes; it never holds the pose.
+
     Forward kinematics failing inside the follower while the actuators limit the cue (the
     noisy input above): braking, never the pose held (a stop in one step); the rates are kept
     throughout (issue 27: the pose was held, warned only as actuator_limited).
@@ -123,6 +127,8 @@ def test_a_follower_whose_forward_kinematics_fails_brakes_instead_of_holding(mon
 @pytest.mark.parametrize('speed_up', [1.0, 10.0])
 def test_the_platform_is_paced_by_the_commands_times_not_the_stamps(speed_up):
     """
+    The platform is paced by the times its commands are sent, not by the input's stamps.
+
     A recording (stamps 10 ms apart) played ``speed_up`` times fast: the commands sent every
     10 / speed_up ms keep the leg rates in the time they are sent (issue 27: played ten times
     fast, the legs moved ten times faster than the limits allow).

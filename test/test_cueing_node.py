@@ -305,7 +305,8 @@ def test_one_stamp_far_in_the_future_does_not_freeze_the_node(wall_clock_rig):
 
     stream_cued_again.index = 5
     timeout = wall_clock_rig.node.input_timeout
-    assert wall_clock_rig.spin_until(wall_clock_rig.executor, stream_cued_again, 5.0 + 4 * timeout), (
+    assert wall_clock_rig.spin_until(wall_clock_rig.executor, stream_cued_again,
+                                     5.0 + 4 * timeout), (
         f'still refused after {stream_cued_again.index} messages: '
         f'{accounting.rejections_by_code}')
     assert accounting.rejections_by_code.get('time_not_increasing', 0) >= 1

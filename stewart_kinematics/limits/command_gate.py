@@ -271,8 +271,9 @@ class CommandGate:
             solution = forward_kinematics(geometry, self._lengths, geometry.home_pose,
                                           tolerance=_SOLVE_TOLERANCE)
             if not solution.converged:
-                raise ValueError(f'no pose of the leg lengths {np.round(self._lengths, 6).tolist()}'
-                                 f' m found: {solution.reason}')
+                raise ValueError(f'no pose of the leg lengths '
+                                 f'{np.round(self._lengths, 6).tolist()} m found: '
+                                 f'{solution.reason}')
             pose = solution.pose
         self._pose = np.array(geometry.home_pose if pose is None else pose, dtype=float)
         self._time = None if time is None else float(time)

@@ -607,15 +607,16 @@ MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'vehicle_frame', STRING,
         "The vehicle's body frame (x forward, y left, z up, REP 103): vehicle_imu in this frame "
-        "(or with an empty frame_id) is cued as it is; a sample in a frame neither this nor "
+        '(or with an empty frame_id) is cued as it is; a sample in a frame neither this nor '
         'imu_frame is refused with the reason',
         default='base_link', read_only=True, validators=(non_empty, frame_name),
         constraints='a frame name'),
     ParameterSpec(
         'imu_frame', STRING,
-        "Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed "
+        'Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed '
         "by imu_orientation_rpy_deg; '' for none",
-        default='', read_only=True, validators=(frame_name,), constraints="a frame name or ''"),
+        default='', read_only=True, validators=(frame_name,),
+        constraints="a frame name or ''"),
     ParameterSpec(
         'imu_orientation_rpy_deg', DOUBLE_ARRAY,
         'Orientation of imu_frame in vehicle_frame: roll, pitch, yaw about the fixed x, y, z '
