@@ -111,6 +111,8 @@ CLOCK_JUMPS = (-30.0, 3600.0, -3600.0, 1e6, None)   # None: back to the start's 
 #: time on /clock for HOSTILE_CLOCK_SECONDS (rclpy's clock subscription has depth 1).
 HOSTILE_CLOCKS = ((-5, 0), (0, 4_294_967_295), (2 ** 31 - 1, 999_999_999))
 HOSTILE_CLOCK_SECONDS = 0.1
+#: Longest wait, after the stream, for every node to answer what it received and report it.
+DRAIN_SECONDS = 10.0
 #: Seconds a node's run is younger than when its memory is not yet counted (imports, caches).
 RSS_WARM_UP = 20.0
 #: Seconds of samples after the warm-up a memory slope needs.
@@ -387,6 +389,18 @@ class Soak:
         self._stop.set()
         parameter_thread.join(timeout=30.0)
         client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
+        # Let every node answer what it received (a trajectory still being planned) and report
+        # it, the clock of the nodes on sim time still running, before the final stop.
+        reports_at = {name: self.diagnostics.count('/' + name) for name in self.slots}
+        inputs = {name: {endpoint.name for endpoint in NODE_INTERFACES[name].of_kind(
+            SUBSCRIPTION)} for name in self.slots}
+        drain_end = time.monotonic() + DRAIN_SECONDS
+        while time.monotonic() < drain_end and not all(
+                self.diagnostics.settled('/' + name, reports_at[name], inputs[name])
+                for name in self.slots):
+            sim = SIM_TIME_START + (time.monotonic() - start) + offset
+            clock.publish(Clock(clock=Time(sec=int(sim), nanosec=int((sim % 1.0) * 1e9))))
+            time.sleep(TICK)
         for slot in self.slots.values():
             self.stop(slot, signal.SIGINT)
         client.wait(lambda: not any(process_running(pid) for check in self.orphan_checks

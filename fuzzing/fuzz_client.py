@@ -227,7 +227,9 @@ class DiagnosticsLog:
         reports = self.reports(node)
         if len(reports.stamps) < since + 2:
             return False
+        # Nothing new, and every message answered (a trajectory still being planned is not).
         return all(len(history) >= 2 and history[-1] == history[-2]
+                   and _answered(reports.latest[name])
                    for name, history in reports.received.items()
                    if topics is None or name.split(': ', 1)[-1] in topics)
 
@@ -266,3 +268,8 @@ class DiagnosticsLog:
                 problems.append(f'{name}: received {received}, more than the {sent[topic]} '
                                 'sent')
         return problems
+
+
+def _answered(counters) -> bool:
+    """Whether every message a status counted was published or rejected."""
+    return counters['received'] == counters['published'] + counters['rejected']

@@ -27,6 +27,7 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from rclpy.exceptions import ParameterException
+import reference
 from reference import quaternion_from_euler
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
@@ -175,6 +176,31 @@ def test_each_sample_gives_a_pose_a_stamped_cue_and_the_felt_force(rig):
     # The platform moves forward and tilts back: the felt force grows toward the push.
     assert poses[-1].position.x > 0.0 and felt[-1].accel.linear.x > 0.1
     assert rig.node.accounting.published == 100 and rig.node.accounting.rejected == 0
+
+
+def test_the_leg_rates_hold_in_the_time_the_commands_are_sent(rig):
+    """
+    The legs of target_pose keep their rate limits in the node's (simulated) time.
+
+    The rig sets /clock to each sample's stamp before sending it, so the commands' times are
+    known exactly: 3 s of a hard, noisy drive at 100 Hz; the leg lengths of every target_pose
+    (by the reference formula) move within leg_velocity_max and leg_acceleration_max.
+    """
+    rng = np.random.default_rng(7)
+    start = 30_000_000_000
+    messages = [imu(start + k * 10_000_000, force=tuple([0.0, 0.0, G] + rng.normal(0.0, 15.0, 3)),
+                    rate=tuple(rng.normal(0.0, 2.0, 3))) for k in range(300)]
+    rig.send(messages)
+    poses = rig.inbox['target_pose'][-300:]
+    lengths = np.array([reference.leg_lengths_of_matrix(
+        [pose.position.x, pose.position.y, pose.position.z],
+        reference.quaternion_matrix(pose.orientation.x, pose.orientation.y, pose.orientation.z,
+                                    pose.orientation.w)) for pose in poses])
+    velocities = np.diff(lengths, axis=0) / 0.01
+    accelerations = np.diff(velocities, axis=0) / 0.01
+    assert np.ptp(lengths, axis=0).max() > 1e-3
+    assert np.abs(velocities).max() <= 0.05 * (1 + 1e-9)
+    assert np.abs(accelerations).max() <= 0.25 * (1 + 1e-9)
 
 
 def test_bad_values_are_refused_counted_and_ease_home(rig):

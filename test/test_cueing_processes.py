@@ -114,9 +114,16 @@ def test_cue_drives_ik_node_within_the_stroke(client, start_node, config_directo
         assert_allclose(measured, expected_leg_lengths(target), atol=1e-9)
         moved = max(moved, abs(target.position.x), abs(target.position.y))
     assert moved > 0.02  # the cue did move the platform
-    velocities = np.diff(data, axis=0) * RATE
-    assert np.max(np.abs(velocities)) <= 0.05 * (1.0 + 1e-9)
-    assert np.max(np.abs(np.diff(velocities, axis=0))) * RATE <= 0.25 * (1.0 + 1e-9)
+    # The leg rates are those of the times the commands were sent (the node's clock), which
+    # this burst does not show: they are checked exactly on a simulated clock driven in
+    # lockstep (test/test_cueing_node.py) and by the core (test/test_cueing_commands.py). Here:
+    # the gate passed every command as the follower gave it (no braking, no refusal).
+    def rejected(code):
+        return any(value.key == f'rejected {code}' for report in reports
+                   for status in report.status if status.name.endswith('vehicle_imu')
+                   for value in status.values)
+    client.spin_for(1.5)   # one more report
+    assert not rejected('command_braking') and not rejected('too_fast')
 
     # Bad input over the wire: refused with the reason on /diagnostics; reset answers.
     for index, force in enumerate(((math.nan, 0.0, G), (0.0, 1e308, G))):

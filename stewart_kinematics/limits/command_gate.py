@@ -417,9 +417,7 @@ class CommandGate:
         if violations:
             return LegCommand(None, violations, findings.out_of_limits(
                 'the leg command is', violations), time=time)
-        solution = forward_kinematics(self.geometry, lengths, self._pose,
-                                      tolerance=_SOLVE_TOLERANCE,
-                                      max_iterations=_SOLVE_ITERATIONS)
+        solution = self._solve(lengths)
         if not solution.converged:
             return LegCommand(None, refusal=Finding(
                 findings.OUT_OF_LIMITS, 'the pose of the leg command could not be found from '
@@ -435,6 +433,11 @@ class CommandGate:
         if command.accepted and carried:
             command = _replace(command, **carried)
         return command
+
+    def _solve(self, lengths):
+        """Return the forward kinematics of leg lengths, from the last command's pose."""
+        return forward_kinematics(self.geometry, lengths, self._pose, tolerance=_SOLVE_TOLERANCE,
+                                  max_iterations=_SOLVE_ITERATIONS)
 
     def _coming_back(self, violations) -> bool:
         """
@@ -562,9 +565,7 @@ class CommandGate:
         low, high = self.geometry.leg_length_min, self.geometry.leg_length_max
         stopped = (lengths < low) | (lengths > high)
         lengths = np.clip(lengths, low, high)
-        solution = forward_kinematics(self.geometry, lengths, self._pose,
-                                      tolerance=_SOLVE_TOLERANCE,
-                                      max_iterations=_SOLVE_ITERATIONS)
+        solution = self._solve(lengths)
         if not solution.converged:
             return LegCommand(None, refusal=Finding(
                 findings.COMMAND_BRAKING, 'no command within the limits could be given, and the '

@@ -53,8 +53,23 @@ PREVIEW_DEPTH = 3
 #: Longest text :func:`preview` returns, whatever the input.
 PREVIEW_MAX = 600
 
+class _LimitedRepr(reprlib.Repr):
+    """reprlib's limited repr; an object whose own repr fails is shown as ``<TypeName>``."""
+
+    def repr_instance(self, obj, level):
+        """Return the limited repr of an object, or ``<TypeName>`` when its repr fails."""
+        try:
+            text = repr(obj)
+        except Exception:   # noqa: B902 - any error of a user's __repr__
+            return f'<{type(obj).__name__}>'
+        if len(text) > self.maxother:
+            half = max(0, (self.maxother - 3) // 2)
+            text = text[:half] + '...' + text[len(text) - (self.maxother - 3 - half):]
+        return text
+
+
 #: The repr of anything else (a dict, a set, an object), limited as :func:`preview` is.
-_OTHER = reprlib.Repr()
+_OTHER = _LimitedRepr()
 _OTHER.maxlevel = PREVIEW_DEPTH
 _OTHER.maxstring = _OTHER.maxother = PREVIEW_CHARACTERS
 _OTHER.maxdict = _OTHER.maxset = _OTHER.maxfrozenset = _OTHER.maxdeque = PREVIEW_VALUES
