@@ -48,8 +48,8 @@ from stewart_kinematics.analysis.calibration_files import (
 )
 from stewart_kinematics.model.kinematics import forward_kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
-from stewart_kinematics.parameters import load_geometry, read_parameter_file
-from stewart_kinematics.tools.cli_arguments import check_output_paths
+from stewart_kinematics.parameters import load_geometry, ParameterFileError, read_parameter_file
+from stewart_kinematics.tools.cli_arguments import check_output_paths, refuse_parameter_file
 from stewart_kinematics.tools.ramp_demo import default_config_directory
 
 SEED = 2026
@@ -188,6 +188,11 @@ def main(argv=None) -> int:
             print(pose_errors(arguments.output, arguments.check, config_directory))
         else:
             write_example(arguments.output, config_directory)
+    except ParameterFileError as error:
+        source = Path(error.source)
+        option = ('--check' if source == arguments.check else
+                  '--config-dir' if source.parent == config_directory else 'output')
+        return refuse_parameter_file('calibration_example', error, option)
     except (ValueError, RuntimeError) as error:
         print(f'calibration_example: {error}', file=sys.stderr)
         return 1

@@ -19,10 +19,15 @@ Each case is config/paper_platform.yaml with one parameter changed (or removed),
 temporary folder and given to ik_node, fk_node and trajectory_node exactly as ``ros2 run``
 would, through main(); main() initialises rclpy itself, so these tests use no ``ros`` fixture.
 The log is read from the process's file descriptors (capfd), where rcutils writes it.
+
+Hostile files too (issue 27): an alias bomb, a list 100,000 deep, a mapping 3,000 deep, a null
+and an empty value are refused within a second, the file and its line named, before rcl reads
+them (rcl alone spends half a minute on the deep list).
 """
 
 from pathlib import Path
 import threading
+import time
 
 import pytest
 import rclpy
@@ -192,3 +197,32 @@ def test_fk_main_refuses_bad_solver_settings(tmp_path, capfd, name, value, words
     code = main_with_watchdog(fk_node.main, [
         'fk_node', '--ros-args', '--params-file', str(PLATFORM_FILE), '--params-file', str(path)])
     assert_refused(code, capfd, words)
+
+
+#: Hostile files (issue 27): (case id, the layer's text, its line at fault, words of the log).
+HOSTILE = [
+    ('alias bomb', '\n'.join(f'    a{level}: &a{level} [' + ', '.join(
+        [f'*a{level - 1}' if level else '1.0'] * 9) + ']' for level in range(9)),
+     4, ['YAML alias *a0']),
+    ('list 100000 deep', '    deep: ' + '[' * 100_000 + ']' * 100_000, 3,
+     ['nested more than 64 levels deep']),
+    ('mapping 3000 deep', '    deep: ' + '{a: ' * 3000 + '1.0' + '}' * 3000, 3,
+     ['nested more than 64 levels deep']),
+    ('null value', '    leg_length_max: null', 3,
+     ["'leg_length_max' must be of type double, got null (an empty value"]),
+    ('empty value', '    leg_length_max:', 3, ["the value of 'leg_length_max' is empty"]),
+]
+
+
+@pytest.mark.parametrize('node_name', NODES)
+@pytest.mark.parametrize('text, line, words', [case[1:] for case in HOSTILE],
+                         ids=[case[0] for case in HOSTILE])
+def test_main_refuses_a_hostile_file_at_once(tmp_path, capfd, node_name, text, line, words):
+    """An alias bomb, deep nesting or a null: refused in a second, naming file and line."""
+    path = tmp_path / 'hostile.yaml'
+    path.write_text('/**:\n  ros__parameters:\n' + text + '\n', encoding='utf-8')
+    started = time.monotonic()
+    code = run_main(node_name, [str(PLATFORM_FILE), str(path)])
+    # rcl alone reads the deep list for half a minute: the package's reader refuses first.
+    assert time.monotonic() - started < 5.0
+    assert_refused(code, capfd, [f'{path}:{line}'] + words)

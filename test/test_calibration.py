@@ -295,6 +295,9 @@ def test_calibrated_parameter_file_loads_as_the_calibrated_geometry(tmp_path,
     write_parameter_file(tiny, {'leg_length_min': 1e-05, 'actuator_offsets': [1e-05] * 6})
     check_values(ACTUATOR_PARAMETERS, read_parameter_file(tiny))
     assert read_parameter_file(tiny)['leg_length_min'] == 1e-05
+    # A subnormal number is written 0.0: rcl (strtod, ERANGE) would read it as a string.
+    write_parameter_file(tiny, {'leg_length_min': 5e-324, 'actuator_offsets': [-1e-310] * 6})
+    assert read_parameter_file(tiny) == {'leg_length_min': 0.0, 'actuator_offsets': [0.0] * 6}
 
 
 def test_measurement_files_round_trip_and_bad_ones_are_named(tmp_path):

@@ -169,7 +169,8 @@ def test_the_example_script_refuses_a_missing_check_file(tmp_path, capsys):
     assert code == 2 and 'argument --check' in error
     (tmp_path / 'calibrated.yaml').write_text('/**:\n  ros__parameters:\n    a: 1.0\n')
     code, error = run(EXAMPLE.main, [tmp_path, '--check', tmp_path / 'calibrated.yaml'], capsys)
-    assert code == 1 and 'true_platform.yaml' in error
+    # The folder holds no true_platform.yaml: a parameter file that cannot be read (exit 2).
+    assert code == 2 and 'argument output:' in error and 'true_platform.yaml' in error
 
 
 def test_a_quoted_number_layered_in_either_order_is_refused_by_the_tools(tmp_path, capsys):
@@ -179,8 +180,22 @@ def test_a_quoted_number_layered_in_either_order_is_refused_by_the_tools(tmp_pat
         arguments = [a for path in files for a in ('--params-file', path)]
         code, error = run(workspace_report.main, arguments + ['--output', tmp_path / 'out'],
                           capsys)
-        assert code == 1 and "'leg_length_max' must be of type double" in error, error
-        assert 'quoted.yaml' in error
+        # A value of the wrong type: the file cannot be read as a parameter file (exit 2),
+        # named with its line.
+        assert code == 2 and "'leg_length_max' must be of type double" in error, error
+        assert 'quoted.yaml:3:' in error and 'a value in quotes' in error
         code, error = run(calibrate.main, arguments + ['--propose', '10', '--poses-out',
                                                        tmp_path / 'poses.csv'], capsys)
-        assert code == 1 and "'leg_length_max'" in error and 'quoted.yaml' in error
+        assert code == 2 and "'leg_length_max'" in error and 'quoted.yaml:3:' in error
+
+
+def test_the_example_script_refuses_a_hostile_check_file_naming_it(tmp_path, capsys):
+    # Issue 27: the reader of every tool refuses an alias (rcl does too), in one line.
+    (tmp_path / 'true_platform.yaml').write_text(Path(PLATFORM).read_text())
+    check = tmp_path / 'calibrated.yaml'
+    check.write_text('/**:\n  ros__parameters:\n    a: &a [1.0, 1.0]\n    b: [*a, *a]\n',
+                     encoding='utf-8')
+    code, error = run(EXAMPLE.main, [tmp_path, '--check', check], capsys)
+    assert code == 2 and error.strip() == (
+        f'calibration_example: error: argument --check: {check}:4: YAML alias *a refused: a '
+        'parameter file cannot use aliases (rcl refuses them too); write the values out')

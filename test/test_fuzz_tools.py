@@ -20,6 +20,9 @@ type a declared node subscribes to (and a few more), every kind of message build
 serializes, a plausible one has only finite numbers and unit quaternions, and one seed gives the
 same messages twice. The oracle (:class:`OutputInvariants`) is checked against messages made by
 hand on each side of each limit, and the parameter fuzzer's expectations against the specs.
+The hostile parameter files (fuzzing/fuzz_parameter_files.py) are what they say, the package's
+reader keeps every invariant on them, and the oracle finds the defects of issue 27 in a reader
+built as the package's was (PyYAML's composer and a recursive walk).
 """
 
 import math
@@ -35,6 +38,16 @@ from fuzzing.fuzz_messages import (
     OVERSIZED_NAMES,
     OVERSIZED_VALUES,
     Plausible,
+)
+from fuzzing.fuzz_parameter_files import (
+    alias_bomb,
+    deep_list,
+    deep_mapping,
+    hostile_file,
+    huge_scalar,
+    KINDS,
+    null_value,
+    reader_problems,
 )
 from fuzzing.fuzz_parameters import (
     argument,
@@ -69,6 +82,7 @@ from trajectory_msgs.msg import (
     JointTrajectoryPoint,
     MultiDOFJointTrajectory,
 )
+import yaml
 
 pytestmark = pytest.mark.node
 
@@ -274,3 +288,92 @@ def test_the_oracle_finds_long_strings_in_any_output_and_long_log_lines():
     short = '[WARN] [1.0] [fk_node]: ' + 'x' * (MAX_LOG_LINE - 24)
     assert log_problems(f'ok\n{short}\n') == []
     assert 'log line 2' in log_problems(f'ok\n{short}x\n')[0]
+
+
+# Hostile parameter files -------------------------------------------------------------------
+
+
+def _expanded_size(text):
+    """Count the scalars an alias bomb's last anchor stands for, from its text alone."""
+    sizes = {}
+    for line in text.splitlines():
+        if '&' not in line:
+            continue
+        anchor = line.split('&', 1)[1].split()[0]
+        aliases = [word.strip('[]{},').split('*')[1] for word in line.split() if '*' in word]
+        sizes[anchor] = sum(sizes[name] for name in aliases) if aliases else line.count('"lol"')
+    return sizes[anchor]
+
+
+@pytest.mark.parametrize('style', ['list', 'mapping'])
+def test_an_alias_bomb_stands_for_width_to_the_levels_values(style):
+    for seed in range(5):
+        rng = random.Random(seed)
+        levels, width = rng.randint(2, 9), rng.randint(2, 10)
+        bomb = alias_bomb(rng, levels=levels, width=width, style=style)
+        assert _expanded_size(bomb.data.decode()) == width ** levels
+        assert bomb.refused and bomb.reason == 'alias' and len(bomb.data) < 2000
+
+
+def test_deep_files_nest_as_deep_as_they_say():
+    for style in ('flow', 'block'):
+        hostile = deep_list(random.Random(0), depth=1000, style=style)
+        body = hostile.data.decode().splitlines()[-1]
+        assert body.count('[') == 1000 or body.count('- ') == 1000
+        hostile = deep_mapping(random.Random(0), depth=500, style=style)
+        text = hostile.data.decode()
+        assert text.count('{') == 500 or text.count(':\n') == 2 + 499
+        assert hostile.refused
+    # Within the limit (the file's 3 levels above the value): either answer is right.
+    assert not deep_list(random.Random(0), depth=61).refused
+    assert deep_list(random.Random(0), depth=62).refused
+
+
+def test_null_values_and_huge_scalars_are_written_as_drawn():
+    for seed in range(30):
+        hostile = null_value(random.Random(seed))
+        value = hostile.data.decode().splitlines()[2:]
+        assert hostile.null in ('null', '~', 'Null', 'NULL', '') and hostile.refused
+        assert any(line.rstrip().endswith(f': {hostile.null}'.rstrip()) or
+                   f', {hostile.null}, ' in line or line.strip() == '-' for line in value)
+        hostile = huge_scalar(random.Random(seed))
+        assert len(hostile.data) > 10 ** 4
+
+
+def test_every_kind_is_drawn_and_one_seed_draws_one_file():
+    kinds = {hostile_file(random.Random(seed), max_bytes=100_000).kind for seed in range(60)}
+    assert kinds == set(KINDS)
+    assert hostile_file(random.Random(9)) == hostile_file(random.Random(9))
+
+
+def test_the_package_reader_keeps_every_invariant_on_drawn_files(tmp_path):
+    for seed in range(60):
+        hostile = hostile_file(random.Random(seed), max_bytes=300_000)
+        assert not reader_problems(hostile, tmp_path, deadline=2.0), hostile.note
+
+
+def _reader_as_it_was(paths):
+    """Read as the reader of issue 27 did: PyYAML's composer, a walk expanding every alias."""
+    def walk(node):
+        if isinstance(node, yaml.SequenceNode):
+            return [walk(item) for item in node.value]
+        if isinstance(node, yaml.MappingNode):
+            return {key.value: walk(value) for key, value in node.value}
+        return node.value
+    for path in paths:
+        with open(path, encoding='utf-8') as stream:
+            walk(yaml.compose(stream))
+
+
+def test_the_oracle_finds_the_defects_of_the_reader_as_it_was(tmp_path):
+    bomb = alias_bomb(random.Random(0), levels=9, width=9, style='list')
+    assert reader_problems(bomb, tmp_path, _reader_as_it_was, deadline=0.5) == [
+        f'{bomb.note}: no answer within 0.5 s']
+    for hostile in (deep_list(random.Random(0), depth=100_000, style='flow'),
+                    deep_mapping(random.Random(0), depth=3000, style='flow')):
+        assert reader_problems(hostile, tmp_path, _reader_as_it_was) == [
+            f'{hostile.note}: RecursionError']
+    # Read without a word: refused files must be refused.
+    small = deep_list(random.Random(0), depth=100, style='flow')
+    assert reader_problems(small, tmp_path, _reader_as_it_was) == [
+        f'{small.note}: read without a refusal']

@@ -31,6 +31,7 @@ import rclpy
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
+from stewart_kinematics import parameters
 from stewart_kinematics.ros import fk_node, ik_node, ros_parameters, trajectory_node
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ros_parameters import ParameterSources
@@ -166,6 +167,34 @@ def test_sections_apply_to_a_node_as_rcl_applies_them(ros, tmp_path, namespace):
             'use_sim_time', 'start_type_description_service'}
         sources = ParameterSources(node.get_fully_qualified_name(), arguments)
         assert set(sources.names()) == rclpy_names
+    finally:
+        node.destroy_node()
+
+
+#: Scalars whose type rcl decides by C's strtol and strtod, not by YAML 1.1 (issue 27), and a
+#: null, which rcl reads as a string and the package's reader marks as null.
+EDGE_SCALARS = ['1', '-9223372036854775808', '0777', '0x1F', '99999999999999999999',
+                '0x7fffffffffffffff1', '1e-3', '.inf', '08', '1e999', '1e-400', '5e-324',
+                '1_000', 'yes', 'Off', 'abc', 'null', '~', "'0.9'", '!!str 1.0', '!!float 3',
+                '"' + '1' * 5000 + '"', '1' * 5000]
+
+
+def test_every_scalar_is_typed_as_rcl_types_it(ros, tmp_path):
+    # Compared with rclpy's own view: a node that declares every override it was given. The
+    # keys are written as rcl takes them too (on, 1e-3: not YAML's true and 0.001).
+    lines = ''.join(f'    p{index}: {text}\n' for index, text in enumerate(EDGE_SCALARS))
+    path = write(tmp_path, 'scalars.yaml', '/**:\n  ros__parameters:\n' + lines
+                 + '    on: 1\n    1e-3: 2\n')
+    node = Node('probe', cli_args=['--ros-args', '--params-file', path],
+                automatically_declare_parameters_from_overrides=True)
+    try:
+        ours = ros_parameters.ParameterSources('/probe', ['--ros-args', '--params-file', path])
+        ours = {name: value for name, value, _ in ours.values()}
+        for name in [f'p{index}' for index in range(len(EDGE_SCALARS))] + ['on', '1e-3']:
+            theirs = node.get_parameter(name).value
+            assert type(ours[name]) in (type(theirs), parameters.NullString,
+                                        parameters.OutOfRangeNumber), name
+            assert ours[name] == theirs, (name, ours[name], theirs)
     finally:
         node.destroy_node()
 

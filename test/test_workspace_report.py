@@ -96,6 +96,7 @@ def test_bad_input_is_refused_with_a_message(tmp_path):
     assert done.returncode == 1
     assert 'start pose breaks the limits' in done.stderr and 'leg_length_max' in done.stderr
     missing = run_report('--params-file', tmp_path / 'missing.yaml')
-    assert missing.returncode == 1 and 'cannot read parameter file' in missing.stderr
+    # A parameter file that cannot be read is refused as a bad option is (issue 27).
+    assert missing.returncode == 2 and 'cannot read parameter file' in missing.stderr
     usage = run_report('--output', tmp_path)
     assert usage.returncode == 2 and '--params-file' in usage.stderr

@@ -27,6 +27,7 @@ parameter file the nodes load as it is. Nothing here needs scipy (the fit is in
 import csv
 import io
 import math
+import sys
 from typing import Tuple
 
 import numpy as np
@@ -141,6 +142,10 @@ def _yaml_scalar(value) -> str:
         value = float(value)
         if math.isinf(value):
             return '.inf' if value > 0 else '-.inf'
+        if value != 0.0 and abs(value) < sys.float_info.min:
+            # rcl's strtod refuses a subnormal (ERANGE): the node would read a string. Below
+            # 2.2e-308 (metres, degrees), the value is 0.
+            value = 0.0
         text = repr(value)
         # YAML 1.1 (PyYAML) reads 1e-05 as a string: a float needs its dot, 1.0e-05.
         mantissa, exponent = text.split('e') if 'e' in text else (text, None)

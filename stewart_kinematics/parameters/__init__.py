@@ -17,8 +17,9 @@ The parameters: every ROS parameter declared once, the parameter files, and what
 
 :mod:`.spec` (one parameter's declaration and the validators), :mod:`.declarations` (every
 parameter of the package, by group), :mod:`.files` (parameter files read as rcl reads them),
-:mod:`.builders` (the geometry and frames from parameter values) and :mod:`.tables` (the
-documentation's parameter tables).
+:mod:`.rcl_yaml` (the package's one YAML reader, with its limits), :mod:`.builders` (the
+geometry and frames from parameter values) and :mod:`.tables` (the documentation's parameter
+tables).
 
 May import: :mod:`stewart_kinematics.model`, numpy and PyYAML. Nothing here imports ROS.
 """
@@ -56,6 +57,7 @@ from stewart_kinematics.parameters.declarations import (
 from stewart_kinematics.parameters.files import (
     load_geometry,
     load_settings,
+    ParameterFileError,
     read_parameter_file,
     read_parameter_files,
 )
@@ -86,6 +88,8 @@ from stewart_kinematics.parameters.spec import (
     DOUBLE,
     DOUBLE_ARRAY,
     INTEGER,
+    NullString,
+    OutOfRangeNumber,
     ParameterSpec,
     STRING,
     STRING_ARRAY,
@@ -134,11 +138,14 @@ __all__ = [
     'MOTION_PARAMETERS',
     'MotionSettings',
     'NodeSettings',
+    'NullString',
+    'OutOfRangeNumber',
     'ParameterSpec',
     'QUEUE_PARAMETERS',
     'QueueSettings',
     'RAMP_PARAMETERS',
     'RampSettings',
+    'ParameterFileError',
     'read_parameter_file',
     'read_parameter_files',
     'REPLACED_PARAMETERS',

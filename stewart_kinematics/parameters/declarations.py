@@ -649,6 +649,10 @@ REPLACED_PARAMETERS = {
 }
 
 
+#: Unknown names a refusal lists (the others are counted).
+_UNKNOWN_NAMES_SHOWN = 5
+
+
 def check_known_names(names, context: str) -> None:
     """
     Refuse parameter names that no node of the package declares: a typo would go unnoticed.
@@ -665,7 +669,12 @@ def check_known_names(names, context: str) -> None:
                 return f' (replaced by {REPLACED_PARAMETERS[name]})'
             close = difflib.get_close_matches(name, known, n=1)
             return f" (did you mean '{close[0]}'?)" if close else ''
-        described = ', '.join(f"'{name}'{hint(name)}" for name in unknown)
+        # A few names, each shortened: a hostile file may hold thousands, or a huge one.
+        shown = [name if len(name) <= 60 else f'{name[:60]}... ({len(name)} characters)'
+                 for name in unknown[:_UNKNOWN_NAMES_SHOWN]]
+        described = ', '.join(f"'{text}'{hint(name)}" for text, name in zip(shown, unknown))
+        if len(unknown) > _UNKNOWN_NAMES_SHOWN:
+            described += f' and {len(unknown) - _UNKNOWN_NAMES_SHOWN} more'
         raise ValueError(f'unknown parameter(s) {described} in {context}; known parameters: '
                          + ', '.join(sorted(known)))
 

@@ -15,88 +15,33 @@
 """
 ROS 2 parameter files read as a node would read them, and the geometry loaded from them.
 
-Nothing here imports ROS.
+The YAML itself is read by :mod:`~stewart_kinematics.parameters.rcl_yaml` (limits, aliases
+refused); a file that cannot be read raises a :class:`ParameterFileError`, one line, ``file:line:
+what is wrong``. Nothing here imports ROS.
 """
 
 import fnmatch
-import math
-import re
 from typing import Optional
 
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters.builders import geometry_from_parameters
 from stewart_kinematics.parameters.declarations import all_specs, check_known_names
-import yaml
-
-#: rcl's words for true and false (rcl_yaml_param_parser): YAML 1.1's, in three spellings.
-_TRUE_WORDS = {'y', 'Y', 'yes', 'Yes', 'YES', 'true', 'True', 'TRUE', 'on', 'On', 'ON'}
-_FALSE_WORDS = {'n', 'N', 'no', 'No', 'NO', 'false', 'False', 'FALSE', 'off', 'Off', 'OFF'}
-_SPECIAL_FLOATS = {'.nan': math.nan, '.NaN': math.nan, '.NAN': math.nan, '.inf': math.inf,
-                   '.Inf': math.inf, '.INF': math.inf, '+.inf': math.inf, '+.Inf': math.inf,
-                   '+.INF': math.inf, '-.inf': -math.inf, '-.Inf': -math.inf,
-                   '-.INF': -math.inf}
-_STRING_TAG = 'tag:yaml.org,2002:str'
-_RESOLVER = yaml.resolver.Resolver()
-#: An integer as C's strtol reads it with base 0: decimal, 0x hexadecimal or 0 octal.
-_INTEGER = re.compile(r'\s*[+-]?(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)\Z')
-
-
-def rcl_scalar(text: str, quoted: bool = False):
-    """
-    Type a YAML scalar as rcl does: a quoted one is a string; else bool, integer, float, string.
-
-    PyYAML follows YAML 1.1, where ``1e-3`` (no dot) is a string; rcl reads it as a double
-    (strtod), as it reads ``.inf``. A node and this package's tools must see the same value.
-
-    :param text: the scalar as written.
-    :param quoted: whether it was written in quotes.
-    """
-    if quoted:
-        return text
-    if text in _TRUE_WORDS:
-        return True
-    if text in _FALSE_WORDS:
-        return False
-    if _INTEGER.match(text):
-        return int(text, 8) if re.match(r'\s*[+-]?0[0-7]+\Z', text) else int(text, 0)
-    if text in _SPECIAL_FLOATS:
-        return _SPECIAL_FLOATS[text]
-    if '_' in text:   # Python's float reads 1_000; strtod does not
-        return text
-    try:
-        value = float(text)
-    except ValueError:
-        return text
-    # strtod reads inf, nan and infinity in any case; YAML's own are handled above.
-    return value
-
-
-def _rcl_value(node, path):
-    """Return the value of a composed YAML node, typed as rcl types it."""
-    if isinstance(node, yaml.ScalarNode):
-        # Quoted, or tagged !!str: a string, as for rcl.
-        explicit_string = node.tag == _STRING_TAG and _RESOLVER.resolve(
-            yaml.ScalarNode, node.value, (True, False)) != _STRING_TAG
-        return rcl_scalar(node.value, node.style in ("'", '"') or explicit_string)
-    if isinstance(node, yaml.SequenceNode):
-        return [_rcl_value(item, path) for item in node.value]
-    if isinstance(node, yaml.MappingNode):
-        return {str(_rcl_value(key, path)): _rcl_value(value, path)
-                for key, value in node.value}
-    raise ValueError(f'parameter file {path}: unexpected YAML node {node!r}')
+from stewart_kinematics.parameters.rcl_yaml import (  # noqa: F401  (rcl_scalar: re-exported)
+    ParameterFileError,
+    parse_yaml_value,
+    rcl_scalar,
+    read_yaml_file,
+)
 
 
 def parse_rcl_yaml(text: str):
     """
     Parse a YAML value as rcl parses the value of ``-p name:=value``.
 
-    :raises ValueError: if it is not YAML.
+    :raises ValueError: (a :class:`ParameterFileError`) if it is not YAML, or breaks a rule
+        or a limit of :mod:`~stewart_kinematics.parameters.rcl_yaml`.
     """
-    try:
-        node = yaml.compose(text)
-    except yaml.YAMLError as error:
-        raise ValueError(f'{text!r} is not a YAML value: {error}') from error
-    return None if node is None else _rcl_value(node, repr(text))
+    return parse_yaml_value(text)
 
 
 def read_parameter_sections(path) -> dict:
@@ -106,27 +51,35 @@ def read_parameter_sections(path) -> dict:
     Scalars are typed as rcl types them (:func:`rcl_scalar`), and nested maps become dotted
     names (``qos_overrides./topic.publisher.depth``), as rcl flattens them.
 
-    :raises ValueError: if the file is missing, is not valid YAML or has no such layout.
+    :raises ParameterFileError: (a ``ValueError``, ``file:line: what is wrong``) if the file
+        is missing, is not valid YAML, breaks a limit of
+        :mod:`~stewart_kinematics.parameters.rcl_yaml` (aliases, depth, size) or has no such
+        layout.
     """
-    try:
-        with open(path, encoding='utf-8-sig') as stream:
-            document = yaml.compose(stream)
-    except OSError as error:
-        raise ValueError(f'cannot read parameter file {path}: {error.strerror}') from error
-    except yaml.YAMLError as error:
-        raise ValueError(f'parameter file {path} is not valid YAML: {error}') from error
-    except UnicodeDecodeError as error:
-        raise ValueError(f'parameter file {path} is not UTF-8 text: {error}') from error
-    document = None if document is None else _rcl_value(document, path)
-    if not isinstance(document, dict):
-        raise ValueError(f'parameter file {path} must map node names to ros__parameters')
-    sections = {}
-    for key, content in document.items():
+    return read_sections_and_lines(path)[0]
+
+
+def read_sections_and_lines(path):
+    """
+    Read a parameter file as :func:`read_parameter_sections`, with the line of each value.
+
+    :returns: ``(sections, lines)``: the sections, and ``(section, name) -> line``.
+    :raises ParameterFileError: as :func:`read_parameter_sections`.
+    """
+    document = read_yaml_file(path)
+    if not isinstance(document.value, dict):
+        raise ParameterFileError(path, None, 'must map node names to ros__parameters')
+    sections, lines = {}, {}
+    for key, content in document.value.items():
         if not isinstance(content, dict) or not isinstance(content.get('ros__parameters'), dict):
-            raise ValueError(
-                f"section '{key}' of parameter file {path} has no ros__parameters map")
+            raise ParameterFileError(path, document.lines.get((key,)), (
+                f"section '{key}' has no ros__parameters map"))
         sections[key] = _flatten(content['ros__parameters'])
-    return sections
+        prefix = (key, 'ros__parameters')
+        lines.update({(key, '.'.join(where[2:])): line
+                      for where, line in document.lines.items()
+                      if where[:2] == prefix and len(where) > 2})
+    return sections, lines
 
 
 def _flatten(values, prefix=''):
@@ -178,18 +131,25 @@ def read_parameter_file(path, node_name: Optional[str] = None) -> dict:
         section in any namespace, a full name (``/robot_a/fk_node``) the sections rcl would
         apply to that node; ``None`` reads only ``/**``.
     :returns: parameter name -> value.
-    :raises ValueError: if the file is missing, is not valid YAML or has no such layout.
+    :raises ParameterFileError: (a ``ValueError``, ``file:line: what is wrong``) if the file
+        is missing, is not valid YAML, breaks a limit or has no such layout.
     """
-    sections = read_parameter_sections(path)
-    values = dict(sections.get('/**', {}))
+    return _read_layer(path, node_name)[0]
+
+
+def _read_layer(path, node_name):
+    """Return what :func:`read_parameter_file` returns, and the line of each value."""
+    sections, lines = read_sections_and_lines(path)
+    keys = ['/**'] if '/**' in sections else []
     if node_name is not None:
-        for key, section in sections.items():
-            if key == '/**':
-                continue
-            if section_applies(key, node_name) or (
-                    '/' not in node_name and key.rsplit('/', 1)[-1] == node_name):
-                values.update(section)
-    return values
+        keys += [key for key in sections if key != '/**' and (
+            section_applies(key, node_name) or (
+                '/' not in node_name and key.rsplit('/', 1)[-1] == node_name))]
+    values, value_lines = {}, {}
+    for key in keys:
+        values.update(sections[key])
+        value_lines.update({name: lines.get((key, name)) for name in sections[key]})
+    return values, value_lines
 
 
 def read_parameter_files(paths, node_name: Optional[str] = None) -> dict:
@@ -198,24 +158,30 @@ def read_parameter_files(paths, node_name: Optional[str] = None) -> dict:
 
     Unlike rcl's merge, which keeps one type per name and so drops a quoted ``"0.9"`` layered
     over a double whatever the order, every file's own value must have its parameter's type.
+    Every tool reads its parameter files with this function.
 
     :param paths: a file or a list of them, in the order of repeated ``--params-file``.
     :param node_name: also apply this node's sections (see :func:`read_parameter_file`).
     :returns: parameter name -> value.
-    :raises ValueError: naming the file, if a file cannot be read, names an unknown parameter
-        or gives a value of the wrong type.
+    :raises ParameterFileError: (a ``ValueError``, ``file:line: what is wrong``) if a file
+        cannot be read, names an unknown parameter or gives a value of the wrong type.
     """
     if isinstance(paths, (str, bytes)) or not hasattr(paths, '__iter__'):
         paths = [paths]
     specs = {spec.name: spec for spec in all_specs()}
     values = {}
     for path in paths:
-        layer = read_parameter_file(path, node_name)
-        check_known_names(layer, f'parameter file {path}')
+        layer, lines = _read_layer(path, node_name)
+        try:
+            check_known_names(layer, 'the parameter file')
+        except ValueError as error:
+            first = min((line for name, line in lines.items()
+                         if name not in specs and line is not None), default=None)
+            raise ParameterFileError(path, first, str(error)) from None
         for name, value in layer.items():
-            reason = specs[name].type_reason(value) if value is not None else ''
+            reason = specs[name].type_reason(value)
             if reason:
-                raise ValueError(f'{reason}, in parameter file {path}')
+                raise ParameterFileError(path, lines.get(name), reason)
         values.update(layer)
     return values
 

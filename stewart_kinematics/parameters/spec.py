@@ -31,6 +31,30 @@ from stewart_kinematics.model.arrays import preview
 
 Validator = Callable[[str, Any], str]
 
+
+class NullString(str):
+    """
+    The string rcl makes of YAML's null: an unquoted ``null``, ``Null``, ``NULL`` or ``~``.
+
+    rcl reads ``name: null`` as the string ``'null'``; the parameter files are read the same
+    way, but with this mark, so that a refusal says the value was empty (null), not a string
+    written in quotes.
+    """
+
+    __slots__ = ()
+
+
+class OutOfRangeNumber(str):
+    """
+    A number rcl reads as a string: beyond a double's range, or below its normal range.
+
+    C's strtod sets ERANGE for ``1e999`` and for ``1e-400`` or ``5e-324`` (a subnormal), and
+    rcl then keeps the text as a string. Marked so that a refusal says why.
+    """
+
+    __slots__ = ()
+
+
 # Parameter types, spelled as in rcl_interfaces/msg/ParameterType.
 BOOL = 'bool'
 INTEGER = 'integer'
@@ -97,8 +121,20 @@ class ParameterSpec:
         Check the type of a value alone (not ``None``), strictly as rcl types parameters.
 
         :returns: ``''`` if the type is right, else the reason, with a hint for a quoted
-            number or an integer written for a double.
+            number, an integer written for a double, a null (empty) value or a number
+            beyond a double's range.
         """
+        marked = _marked_string_of(value, self.value_type)
+        if marked is not None:
+            where = '' if marked is value else ' in the list'
+            if isinstance(marked, NullString):
+                return (f"parameter '{self.name}' must be of type {self.value_type}, got "
+                        f'{marked}{where} (an empty value in YAML, which ROS reads as the '
+                        f"string '{marked}'): write a value, or remove the line to keep the "
+                        'default')
+            return (f"parameter '{self.name}' must be of type {self.value_type}, got "
+                    f'{_short(marked)}{where} (beyond the range of a double: a size from '
+                    '2.2e-308 to 1.8e308, or 0; ROS reads it as a string)')
         # Strict as rcl is: YAML's 1 is an integer, and a double parameter wants 1.0.
         if not isinstance(value, _PYTHON_TYPES[self.value_type]) or (
                 self.value_type == INTEGER and isinstance(value, bool)):
@@ -106,7 +142,8 @@ class ParameterSpec:
             if self.value_type == DOUBLE and isinstance(value, int) and not isinstance(
                     value, bool):
                 hint = ' (write 1.0, not 1)'
-            elif isinstance(value, str) and self.value_type in (DOUBLE, INTEGER, BOOL):
+            elif isinstance(value, str) and self.value_type in (DOUBLE, INTEGER, BOOL) and (
+                    _reads_as_number_or_bool(value)):
                 hint = ' (a value in quotes is a string: write it without quotes)'
             return (f"parameter '{self.name}' must be of type {self.value_type}, got "
                     f'{preview(value)} ({type(value).__name__}){hint}')
@@ -118,6 +155,37 @@ class ParameterSpec:
             return (f"parameter '{self.name}' must be a list of strings, got "
                     f'{preview(list(value))}')
         return ''
+
+
+def _reads_as_number_or_bool(text: str) -> bool:
+    """Whether a string would be a number or a bool without its quotes (roughly as rcl)."""
+    if text.strip().lower() in ('true', 'false', 'yes', 'no', 'on', 'off', 'y', 'n'):
+        return True
+    try:
+        float(text)
+    except ValueError:
+        return text.strip().lower().startswith(('0x', '+0x', '-0x'))
+    return True
+
+
+def _short(text: str) -> str:
+    """Return ``text`` as it is, or its start and its length when it is long."""
+    return text if len(text) <= 60 else f'{text[:60]}... ({len(text)} characters)'
+
+
+def _marked_string_of(value, value_type: str):
+    """
+    Return the string rcl made of a null or a number out of range that makes ``value`` wrong.
+
+    :returns: the :class:`NullString` or :class:`OutOfRangeNumber` (alone, or the first in a
+        list) when the type wants no string there, else ``None``.
+    """
+    marks = (NullString, OutOfRangeNumber)
+    if isinstance(value, marks):
+        return None if value_type == STRING else value
+    if isinstance(value, (list, tuple)) and value_type != STRING_ARRAY:
+        return next((item for item in value if isinstance(item, marks)), None)
+    return None
 
 
 def fixed_length(length: int) -> Validator:

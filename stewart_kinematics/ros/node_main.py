@@ -48,7 +48,10 @@ from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import get_default_context, remove_ros_args
 
 from stewart_kinematics.ros.command_publishing import CommandPublisher
-from stewart_kinematics.ros.ros_parameters import remember_process_arguments
+from stewart_kinematics.ros.ros_parameters import (
+    parameter_file_problem,
+    remember_process_arguments,
+)
 
 #: Exit code of a node that could not start (bad parameters, bad arguments).
 EXIT_START_FAILED = 1
@@ -170,13 +173,20 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     :param node_classes: the nodes' classes, each constructed without arguments, in order.
     :param name: the process's name, for the log of a failed start.
     :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
-    :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a node could not be
-        built or the executor is unknown, with a fatal log that says why.
+    :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a parameter file cannot
+        be read, a node could not be built or the executor is unknown, with a fatal log that
+        says why.
     """
     stop_requests = []
     previous = {number: signal.signal(number, lambda number, frame: stop_requests.append(number))
                 for number in STOP_SIGNALS}
     try:
+        # The package's reader first: rcl takes half a minute to parse a list nested 100,000
+        # deep; ours refuses it at once, naming the file and the line.
+        problem = parameter_file_problem(sys.argv if args is None else args)
+        if problem:
+            rclpy.logging.get_logger(name).fatal(f'cannot start: {problem}')
+            return EXIT_START_FAILED
         try:
             rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
             remember_process_arguments(get_default_context(), args)

@@ -33,6 +33,7 @@ guard_node`: rclpy's parameter services and sim-time clock survive the malformed
 messages that rclpy itself would raise on.
 """
 
+import os
 import sys
 from typing import Dict, List, Optional, Sequence, Tuple
 import weakref
@@ -44,6 +45,7 @@ from stewart_kinematics import parameters
 from stewart_kinematics.parameters.files import (
     parse_rcl_yaml,
     read_parameter_sections,
+    read_sections_and_lines,
     section_applies,
 )
 from stewart_kinematics.ros.rclpy_guards import guard_node
@@ -107,7 +109,9 @@ def declare_parameters(node, specs, on_change=None, check=None,
     # it is declared): check the value of each source.
     layered = sources.layered_names()
     for name, value, source in sources.values():
-        spec = by_name.get(name) if name in layered else None
+        # A null (an unquoted null or ~) or a number out of a double's range too: rcl gives a
+        # string, and rclpy's refusal would not say why.
+        spec = by_name.get(name) if name in layered or _holds_marked_string(value) else None
         reason = spec.type_reason(value) if spec is not None else ''
         if reason:
             raise ValueError(f'{reason}, in {source}')
@@ -195,10 +199,13 @@ class ParameterSources:
         self._values: List[Tuple[str, object, str]] = []
         for option, value in _ros_options(arguments):
             if option == '--params-file':
-                for key, section in read_parameter_sections(value).items():
+                sections, lines = read_sections_and_lines(value)
+                for key, section in sections.items():
                     if section_applies(key, node_name):
-                        self._values += [(name, item, f"parameter file {value} (section '{key}')")
-                                         for name, item in section.items()]
+                        self._values += [
+                            (name, item, f'parameter file {value}:{lines.get((key, name))} '
+                                         f"(section '{key}')")
+                            for name, item in section.items()]
             else:
                 assignment = _parameter_assignment(value)
                 if assignment is not None and section_applies(assignment[0], node_name):
@@ -236,6 +243,33 @@ class ParameterSources:
     def values(self) -> List[Tuple[str, object, str]]:
         """Return ``(name, value, source)`` for every value given."""
         return list(self._values)
+
+
+def parameter_file_problem(arguments: Sequence[str]) -> str:
+    """
+    Read every ``--params-file`` of the ROS arguments with the package's reader, before rcl.
+
+    rcl reads a list nested 100,000 deep for half a minute before any node exists; the
+    package's reader refuses it at once (:mod:`stewart_kinematics.parameters.rcl_yaml`). A
+    file that does not exist is left to rcl, which says so.
+
+    :param arguments: the process's command-line arguments.
+    :returns: ``''``, or the first problem: one line, ``file:line: what is wrong``.
+    """
+    for option, value in _ros_options(arguments):
+        if option == '--params-file' and os.path.isfile(value):
+            try:
+                read_parameter_sections(value)
+            except ValueError as error:
+                return str(error)
+    return ''
+
+
+def _holds_marked_string(value) -> bool:
+    """Whether a value read from a file is or holds a null or a number rcl made a string of."""
+    items = value if isinstance(value, list) else [value]
+    return any(isinstance(item, (parameters.NullString, parameters.OutOfRangeNumber))
+               for item in items)
 
 
 def _ros_options(arguments):

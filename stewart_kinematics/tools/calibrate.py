@@ -19,6 +19,9 @@ Reads a CSV of measurements and the nominal parameter files, prints the calibrat
 writes a calibrated parameter file that the nodes load as it is (``--params-file``) and a PNG
 of the residuals per leg before and after. With ``--propose N`` it instead writes N
 well-conditioned poses to measure (the actuator columns left empty).
+
+A parameter file that cannot be read (not YAML, an alias, nested too deep, a value of the
+wrong type or null) exits 2 with one line, ``file:line: what is wrong``, before any work.
 """
 
 import argparse
@@ -45,6 +48,7 @@ from stewart_kinematics.parameters import (
     ACTUATOR_PARAMETERS,
     check_values,
     geometry_from_parameters,
+    ParameterFileError,
     read_parameter_files,
 )
 from stewart_kinematics.tools.cli_arguments import (
@@ -53,6 +57,7 @@ from stewart_kinematics.tools.cli_arguments import (
     number_at_least,
     number_in,
     positive_number,
+    refuse_parameter_file,
 )
 
 EPILOG = """\
@@ -151,6 +156,8 @@ def main(argv=None) -> int:
         result = calibrate(nominal, poses, readings, offsets, loss=arguments.loss,
                            outlier_threshold=arguments.outlier_threshold,
                            max_condition=arguments.max_condition)
+    except ParameterFileError as error:
+        return refuse_parameter_file('stewart_calibrate', error)
     except CalibrationError as error:
         print(f'stewart_calibrate: cannot calibrate: {error}', file=sys.stderr)
         return 1

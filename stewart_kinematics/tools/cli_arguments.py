@@ -19,12 +19,19 @@ Each ``type=`` function here refuses a bad value with ``argparse.ArgumentTypeErr
 argparse exits with code 2 and a message naming the option (``argument --max-condition: must
 be at least 1, got 0``) before any work starts; :func:`check_output_paths` refuses an output
 that cannot be written, also before the work, instead of a traceback at its end.
+:func:`refuse_parameter_file` does the same for a parameter file that cannot be read
+(:class:`~stewart_kinematics.parameters.ParameterFileError`): exit code 2 and one line naming
+the option, the file and the line.
 """
 
 import argparse
 import math
 import os
 from pathlib import Path
+import sys
+
+#: Exit code of a bad option or a parameter file that cannot be read (argparse's own).
+EXIT_USAGE = 2
 
 
 def number(text: str) -> float:
@@ -123,3 +130,18 @@ def check_output_paths(parser: argparse.ArgumentParser, outputs) -> None:
         problem = output_problem(path, directory)
         if problem:
             parser.error(f'argument {option}: cannot write there: {problem}')
+
+
+def refuse_parameter_file(prog: str, error, option: str = '--params-file') -> int:
+    """
+    Report a parameter file that cannot be read as a bad option is reported; return 2.
+
+    One line on stderr, ``prog: error: argument --params-file: file:line: what is wrong``,
+    and no usage: the option is right, the file is not.
+
+    :param prog: the tool's name.
+    :param error: the :class:`~stewart_kinematics.parameters.ParameterFileError`.
+    :param option: the option that named the file.
+    """
+    print(f'{prog}: error: argument {option}: {error}', file=sys.stderr)
+    return EXIT_USAGE

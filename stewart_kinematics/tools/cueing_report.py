@@ -35,8 +35,10 @@ CSV input: a header line, then one row per sample (``#`` starts a comment line):
 in seconds, m/s^2 (what an accelerometer at the driver's head reads: 9.81 on z at rest) and
 rad/s, vehicle frame (x forward, y left, z up), times increasing.
 
-Exit codes: 0 done; 1 an input or parameter file cannot be used (the message says why); 2 a
-bad option (argparse names it); 3 with ``--strict``, a target missed.
+Exit codes: 0 done; 1 an input or the parameters cannot be used (the message says why); 2 a
+bad option (argparse names it) or a parameter file that cannot be read (one line, ``file:line:
+what is wrong``: not YAML, an alias, nested too deep, a value of the wrong type or null); 3
+with ``--strict``, a target missed.
 """
 
 import argparse
@@ -49,7 +51,11 @@ import time
 import numpy as np
 
 from stewart_kinematics.model.arrays import preview
-from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
+from stewart_kinematics.tools.cli_arguments import (
+    check_output_paths,
+    number_in,
+    refuse_parameter_file,
+)
 import yaml
 
 #: The CSV columns, in order.
@@ -247,13 +253,14 @@ def load_mcap(path: Path, topic: str):
 
 
 def read_parameters(paths):
-    """Return the parameter values motion_cueing_node would see from ``paths``."""
-    from stewart_kinematics.parameters import check_known_names, read_parameter_file
-    values = {}
-    for path in paths:
-        values.update(read_parameter_file(path, NODE_NAME))
-    check_known_names(values, ', '.join(map(str, paths)))
-    return values
+    """
+    Return the parameter values motion_cueing_node would see from ``paths``.
+
+    :raises ParameterFileError: as :func:`~stewart_kinematics.parameters.read_parameter_files`,
+        the reader of every tool.
+    """
+    from stewart_kinematics.parameters import read_parameter_files
+    return read_parameter_files(paths, NODE_NAME)
 
 
 def targets(name, evaluation):
@@ -450,8 +457,11 @@ def main(argv=None) -> int:
     parser = build_parser()
     options = parser.parse_args(argv)
     check_output(parser, options.output)
+    from stewart_kinematics.parameters import ParameterFileError
     try:
         _, all_met = run(options)
+    except ParameterFileError as error:
+        return refuse_parameter_file('stewart_cueing', error)
     except ValueError as error:
         print(f'stewart_cueing: {error}', file=sys.stderr)
         return EXIT_INPUT

@@ -22,6 +22,9 @@ lengths, the FK pose and the round-trip error: the paper's Figures 5, 7 and 9 as
 The run is also recorded as a rosbag2 folder in MCAP format (with ``/diagnostics``), for
 ``ros2 bag``, Foxglove or PlotJuggler. Exits 0 when every pose came back within the required
 error.
+
+The parameter files are read first, as each node will get them: one that cannot be read exits
+2 with one line, ``file:line: what is wrong``, before any node starts.
 """
 
 import argparse
@@ -32,11 +35,18 @@ import time
 
 import numpy as np
 
-from stewart_kinematics.tools.cli_arguments import check_output_paths, number_in
+from stewart_kinematics.tools.cli_arguments import (
+    check_output_paths,
+    number_in,
+    refuse_parameter_file,
+)
 
 #: The demo passes when every round trip is within these (metres, radians).
 MAX_POSITION_ERROR = 1e-9
 MAX_ORIENTATION_ERROR = 1e-9
+#: The parameter files the demo starts the nodes with, from ``--config-dir``: the platform,
+#: the solver (ik_node and fk_node) and the ramp (trajectory_node).
+CONFIG_FILES = ('paper_platform.yaml', 'solver.yaml', 'table3_ramp.yaml')
 
 
 def default_config_directory() -> Path:
@@ -86,14 +96,35 @@ def parse_arguments(argv):
 def main(argv=None) -> int:
     """Run the demo; return 0 when all 11 poses made the round trip within 1e-9."""
     options = parse_arguments(argv)
+    from stewart_kinematics.parameters import ParameterFileError
+    config_directory = options.config_dir or default_config_directory()
+    try:
+        read_config_files(config_directory)
+    except ParameterFileError as error:
+        return refuse_parameter_file('ramp_demo', error, '--config-dir')
     from stewart_kinematics.tools.node_processes import isolated_ros_environment
     with isolated_ros_environment() as domain:
         print(f'ROS_DOMAIN_ID={domain}, ROS_AUTOMATIC_DISCOVERY_RANGE='
               f'{os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}', flush=True)
-        return run_demo(options.config_dir or default_config_directory(),
+        return run_demo(config_directory,
                         options.row_period, options.timeout,
                         None if options.no_figures else options.figures,
                         None if options.no_bag else options.bag)
+
+
+def read_config_files(config_directory: Path) -> None:
+    """
+    Read the demo's parameter files as each node will get them, before any node starts.
+
+    A file that is missing is left to :func:`run_demo`, which says so.
+
+    :raises ParameterFileError: naming the file and the line, if one cannot be read.
+    """
+    from stewart_kinematics.parameters import read_parameter_files
+    platform, solver, ramp = (config_directory / name for name in CONFIG_FILES)
+    for node, files in (('ik_node', [platform, solver]), ('fk_node', [platform, solver]),
+                        ('trajectory_node', [platform, ramp])):
+        read_parameter_files([path for path in files if path.is_file()], node)
 
 
 def run_demo(config_directory: Path, row_period: float, timeout: float,
@@ -110,14 +141,16 @@ def run_demo(config_directory: Path, row_period: float, timeout: float,
     from stewart_kinematics.tools.node_processes import NodeProcess
     from stewart_kinematics.tools.ramp_recorder import RampRecorder
 
-    platform = config_directory / 'paper_platform.yaml'
-    solver = config_directory / 'solver.yaml'
-    ramp = config_directory / 'table3_ramp.yaml'
+    platform, solver, ramp = (config_directory / name for name in CONFIG_FILES)
     for path in (platform, solver, ramp):
         if not path.is_file():
             print(f'error: parameter file {path} not found', file=sys.stderr)
             return 1
-    table_rows = _ramp_rows(ramp)
+    try:
+        table_rows = _ramp_rows(ramp)
+    except ValueError as error:
+        print(f'error: {error}', file=sys.stderr)
+        return 1
     row_count = len(table_rows)
     print(f'config: {config_directory}', flush=True)
 

@@ -24,6 +24,10 @@ gamma values) and ``dexterity.png`` (condition number over the slices)::
 
     stewart_workspace --params-file config/paper_platform.yaml \\
         --params-file config/example_limits.yaml --output workspace_output
+
+A parameter file that cannot be read (not YAML, an alias, nested too deep, a value of the
+wrong type or null) exits 2 with one line, ``file:line: what is wrong``; a geometry that cannot
+be used exits 1, saying why.
 """
 
 import argparse
@@ -38,6 +42,7 @@ from stewart_kinematics.tools.cli_arguments import (
     check_output_paths,
     number,
     number_in,
+    refuse_parameter_file,
 )
 import yaml
 
@@ -126,7 +131,7 @@ def parse_arguments(argv):
 def main(argv=None) -> int:
     """Run the report; return 0, or 1 with a message when the geometry cannot be used."""
     options = parse_arguments(argv)
-    from stewart_kinematics.parameters import load_geometry
+    from stewart_kinematics.parameters import load_geometry, ParameterFileError
     try:
         geometry = load_geometry(options.params_files, options.node_name)
         options.output.mkdir(parents=True, exist_ok=True)
@@ -135,6 +140,8 @@ def main(argv=None) -> int:
         path = options.output / 'workspace.yaml'
         with open(path, 'w', encoding='utf-8') as stream:
             yaml.safe_dump(report, stream, sort_keys=False, default_flow_style=None)
+    except ParameterFileError as error:
+        return refuse_parameter_file('stewart_workspace', error)
     except ValueError as error:
         print(f'stewart_workspace: {error}', file=sys.stderr)
         return 1
