@@ -118,6 +118,7 @@ def test_cue_drives_ik_node_within_the_stroke(client, start_node, config_directo
     # this burst does not show: they are checked exactly on a simulated clock driven in
     # lockstep (test/test_cueing_node.py) and by the core (test/test_cueing_commands.py). Here:
     # the gate passed every command as the follower gave it (no braking, no refusal).
+
     def rejected(code):
         return any(value.key == f'rejected {code}' for report in reports
                    for status in report.status if status.name.endswith('vehicle_imu')

@@ -195,7 +195,7 @@ def test_a_huge_value_is_read_and_its_refusal_is_short(tmp_path):
     assert len(message) < 2000 and '(1000001 characters)' in message
     path = write(tmp_path, HEADER + f'    leg_length_max: {huge}\n')
     message = refusal([path])
-    assert len(message) < 1000 and '(1000000 characters)' in message
+    assert len(message) < 1000 and '(1,000,000 characters)' in message
 
 
 # Empty values, keys, documents, encodings -------------------------------------------------------

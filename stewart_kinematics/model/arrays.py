@@ -53,6 +53,7 @@ PREVIEW_DEPTH = 3
 #: Longest text :func:`preview` returns, whatever the input.
 PREVIEW_MAX = 600
 
+
 class _LimitedRepr(reprlib.Repr):
     """reprlib's limited repr; an object whose own repr fails is shown as ``<TypeName>``."""
 
