@@ -60,12 +60,9 @@ from stewart_kinematics.analysis.homotopy import (  # noqa: F401 (re-exported)
     StartSystem,
 )
 from stewart_kinematics.analysis.worker_processes import exit_with_owner
-from stewart_kinematics.model.kinematics import (
-    as_leg_lengths,
-    as_poses,
-    forward_kinematics,
-    jacobian_condition,
-)
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,
@@ -92,7 +89,7 @@ class AssemblyMode:
         :func:`stewart_kinematics.forward_kinematics` returns poses.
     :param residual: largest leg length error, metres.
     :param condition: condition number of the dimensionless Jacobian
-        (:func:`stewart_kinematics.model.kinematics.jacobian_condition`); large near a singularity.
+        (:func:`stewart_kinematics.model.jacobians.jacobian_condition`); large near a singularity.
     :param violations: every limit of the geometry the pose breaks (empty when allowed).
     :param position_distance: distance of the platform origin from the reference pose's,
         metres.
@@ -312,7 +309,7 @@ def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyMo
     :returns: an :class:`AssemblyModeMargin`; ``inf`` distances when no other mode within
         the limits exists.
     """
-    from stewart_kinematics.model.kinematics import inverse_kinematics
+    from stewart_kinematics.model.inverse import inverse_kinematics
     pose = as_poses(pose, 'pose')
     if lengths is None:
         lengths = inverse_kinematics(geometry, pose)

@@ -53,11 +53,9 @@ import numpy as np
 from stewart_kinematics.cueing.limit_check import limit_margins, pose_violations, with_margins
 from stewart_kinematics.findings import ACTUATOR_LIMITED, COMMAND_BRAKING, CUE_SCALED, Finding
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    inverse_kinematics,
-    twist_jacobian,
-)
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 #: Share of the actuator limits the follower plans with; the rest absorbs the legs'

@@ -58,7 +58,7 @@ from stewart_kinematics.limits.command_gate import (
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import twist_jacobian
+from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     normalize_quaternion,

@@ -66,12 +66,9 @@ from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import (
-    as_leg_lengths,
-    as_poses,
-    forward_kinematics,
-    ForwardKinematicsResult,
-)
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,

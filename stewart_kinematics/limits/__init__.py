@@ -16,7 +16,7 @@
 The limits model: every reason a pose, or a motion, is not allowed, decided in one place.
 
 One evaluator per kind of limit, each checking one pose or arrays of poses through the
-core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.kinematics`, the
+core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.formulas`, the
 rotation entries of :mod:`stewart_kinematics.model.rotations`):
 
 - :mod:`.stroke`: ``leg_length_min``, ``leg_length_max`` (poses and leg lengths);

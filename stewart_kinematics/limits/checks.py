@@ -31,7 +31,7 @@ from stewart_kinematics.limits.joint_cones import JointCones
 from stewart_kinematics.limits.model import LimitChecks, LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.arrays import as_float_array
-from stewart_kinematics.model.kinematics import as_leg_lengths, as_poses
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
 
 #: How many failing samples :func:`check_samples` lists in full.
 LISTED_FAILURES = 10

@@ -62,8 +62,9 @@ from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.limits.model import LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.kinematics import forward_kinematics, leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,

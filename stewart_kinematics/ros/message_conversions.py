@@ -30,7 +30,7 @@ from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.arrays import preview
-from stewart_kinematics.model.kinematics import as_leg_lengths
+from stewart_kinematics.model.inputs import as_leg_lengths
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_quaternion,
     matrix_to_quaternion,
