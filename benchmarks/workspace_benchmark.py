@@ -147,7 +147,7 @@ def stall_rows(rows):
     """
     import threading
     from stewart_kinematics.decisions.command_check import CommandCheck
-    from stewart_kinematics.ros.workspace_reporting import WorkspaceWorker
+    from stewart_kinematics.workers.workspace_worker import WorkspaceWorker
 
     geometry = load_geometry(FILES)
     check = CommandCheck(geometry)

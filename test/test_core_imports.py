@@ -47,6 +47,7 @@ MAY_IMPORT = {
     'motion': {'model', 'limits', 'findings', 'parameters', 'motion'},
     'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis'},
     'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
+    'workers': {'analysis', 'workers'},
 }
 #: Single modules allowed one import more than their folder, and why.
 EXCEPTIONS = {

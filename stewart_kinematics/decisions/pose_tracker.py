@@ -666,7 +666,7 @@ def margin_status(monitor) -> MarginStatus:
     Decide what to report of the latest assembly-mode margin of a monitor.
 
     :param monitor: an
-        :class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`.
+        :class:`stewart_kinematics.workers.margin_monitor.AssemblyModeMarginMonitor`.
     :returns: a :class:`MarginStatus`; its warning, if any, is what the node counts and logs.
     """
     too_close = monitor.warning()
