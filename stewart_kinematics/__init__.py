@@ -47,7 +47,7 @@ from stewart_kinematics.analysis.workspace import (
     workspace_slice,
     workspace_volume,
 )
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.decisions.pose_commands import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.decisions.pose_tracker import (
     PoseAnchor,
     PoseEstimate,

@@ -83,7 +83,7 @@ print('imported', len(sys.argv) - 1, 'core modules')
 def test_core_modules_exist():
     """The core is where the layout says: the model, the limits, the decisions, motion."""
     assert {'model.geometry', 'model.inverse', 'model.forward', 'model.rotations',
-            'limits.checks', 'decisions.command_check', 'motion.retiming',
+            'limits.geometry_checks', 'decisions.pose_commands', 'motion.retiming',
             'findings'} <= set(CORE_MODULES)
 
 

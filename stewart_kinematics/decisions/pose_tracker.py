@@ -62,7 +62,7 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
+from stewart_kinematics.decisions.pose_commands import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview

@@ -59,7 +59,7 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
-from stewart_kinematics.limits.model import LimitModel
+from stewart_kinematics.limits.limit_model import LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.forward import forward_kinematics

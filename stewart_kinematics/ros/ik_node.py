@@ -51,7 +51,7 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics.decisions.command_check import CommandCheck
+from stewart_kinematics.decisions.pose_commands import CommandCheck
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
