@@ -39,7 +39,7 @@ from reference import (
 )
 
 from stewart_kinematics.model import formulas, forward_solver, jacobians
-from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.forward import forward_kinematics, solve_trusted
 from stewart_kinematics.model.forward_result import ForwardKinematicsResult
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.inverse import inverse_kinematics, leg_lengths, leg_vectors
@@ -445,6 +445,33 @@ def test_single_pose_forward_kinematics_failures_match_batch(geometry):
     assert single.reason == batch.reason[0]
     assert single.iterations == batch.iterations[0]
     assert single.residual == pytest.approx(batch.residual[0], abs=1e-9)
+
+
+def test_the_trusted_solve_is_forward_kinematics_without_its_checks(geometry):
+    """
+    solve_trusted (lengths checked where they entered) gives forward_kinematics' result.
+
+    Converged, unreachable, singular and stopped-early solves, from a pose, from home, from a
+    converged and from a failed previous result: the same fields to the bit, and the same
+    Jacobian handed on to the next solve.
+    """
+    poses = random_poses(30, seed=41)
+    targets = list(inverse_kinematics(geometry, poses)) + [np.full(6, 5.0), np.full(6, 0.2)]
+    converged = forward_kinematics(geometry, targets[0])
+    failed = forward_kinematics(geometry, np.full(6, 5.0), max_iterations=3)
+    assert converged.converged and not failed.converged
+    starts = [np.array(HOME), np.array(TABLE_3[4]), poses[1] + 1e-3, list(TABLE_3[2]),
+              converged, failed]
+    for target in targets:
+        for start in starts:
+            for tolerance, max_iterations in ((1e-12, 50), (1e-6, 2), (1e-12, 1)):
+                expected = forward_kinematics(geometry, target, start, tolerance=tolerance,
+                                              max_iterations=max_iterations)
+                trusted = solve_trusted(geometry, target.tolist(), start, tolerance,
+                                        max_iterations)
+                assert trusted == expected
+                assert trusted._solve[1:] == expected._solve[1:]
+                assert trusted.pose.flags.writeable is False
 
 
 def count_jacobian_inversions(monkeypatch):
