@@ -82,7 +82,6 @@ import rclpy
 from rosgraph_msgs.msg import Clock
 from rosidl_parser import definition
 
-from stewart_kinematics.analysis.worker_processes import process_running
 from stewart_kinematics.parameters import read_parameter_files
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
@@ -91,6 +90,7 @@ from stewart_kinematics.tools.node_processes import (
     isolated_ros_environment,
     NodeProcess,
 )
+from stewart_kinematics.workers.owner_watch import process_running
 
 # fuzzing/ is the test suite's harness, not installed: import it from the repository root.
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))

@@ -59,7 +59,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.kinematics import leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import normalize_quaternion, quaternion_to_matrix
 from stewart_kinematics.parameters import (
     FRAME_PARAMETERS,

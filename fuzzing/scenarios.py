@@ -47,7 +47,7 @@ from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.kinematics import leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_quaternion
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
 from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint

@@ -47,7 +47,7 @@ from stewart_kinematics.analysis.workspace import (
     workspace_slice,
     workspace_volume,
 )
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
+from stewart_kinematics.decisions.pose_commands import CommandCheck, LegCommand, LegVelocityCommand
 from stewart_kinematics.decisions.pose_tracker import (
     PoseAnchor,
     PoseEstimate,
@@ -57,17 +57,12 @@ from stewart_kinematics.decisions.pose_tracker import (
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    ForwardKinematicsResult,
-    inverse_kinematics,
-    jacobian,
-    leg_lengths,
-    leg_vectors,
-    twist_jacobian,
-)
+from stewart_kinematics.model.inverse import inverse_kinematics, leg_lengths, leg_vectors
+from stewart_kinematics.model.jacobians import jacobian, twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,

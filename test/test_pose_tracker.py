@@ -134,6 +134,35 @@ def test_malformed_lengths_are_refused_not_raised(lengths, words):
     assert tracker.last_lengths is None
 
 
+def test_lengths_are_checked_once_where_they_enter_then_solved_unchecked(monkeypatch):
+    """
+    The tracker checks a message's lengths in update; its solves (and anchors) trust them.
+
+    Issue 28: the numbers were checked by the message conversion, by update and again by
+    forward_kinematics. The solver's checks now fail the test if anything calls them.
+    """
+    from stewart_kinematics.model import forward
+
+    def checked_again(*arguments, **options):
+        raise AssertionError('the lengths were checked again after update')
+    for name in ('single_values', 'as_leg_lengths', 'as_poses', 'as_rows'):
+        monkeypatch.setattr(forward, name, checked_again)
+    tracker = PoseTracker(geometry())
+    for row in TABLE3:
+        estimate = tracker.update(lengths_of(row))
+        assert estimate.accepted, estimate.reason
+        assert_allclose(estimate.pose, row, rtol=0.0, atol=1e-9)
+    # From a turn of -60 degrees about z, Table 3's last row diverges: the fallback from home.
+    assert tracker.update(lengths_of(yawed_home(-60.0))).accepted
+    assert_allclose(tracker.update(lengths_of(TABLE3[10])).pose, TABLE3[10], rtol=0.0,
+                    atol=1e-9)
+    # An anchor's solve of its own lengths.
+    assert tracker.anchor(TABLE3[2]).accepted
+    assert tracker.update(lengths_of(TABLE3[3])).accepted
+    # Bad lengths are refused by update's own check, as before.
+    assert tracker.update([0.7] * 5 + [math.nan]).refusal.code == 'invalid_lengths'
+
+
 def test_lengths_out_of_the_stroke_are_refused_before_any_solve():
     """Legs beyond leg_length_max: every leg listed, no solve."""
     tracker = PoseTracker(geometry(leg_length_min=0.69, leg_length_max=0.73))

@@ -17,7 +17,7 @@ Motion cueing as one decision object: a vehicle's motion in, a pose within every
 
 :class:`MotionCueing` takes samples of the vehicle's specific force and angular velocity at the
 driver's head, each with its time, and returns the platform pose to command: the classical
-washout (:mod:`.washout`) turns the sample into a cue, :class:`~.limiting.CueLimiter` scales it
+washout (:mod:`.washout`) turns the sample into a cue, :class:`~.cue_limiter.CueLimiter` scales it
 into the limits and follows it within the actuators' speed, and the specific force felt at the
 head is estimated as the poses stream (:mod:`.perception`).
 
@@ -64,7 +64,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.cueing.limiting import CueLimiter
+from stewart_kinematics.cueing.cue_limiter import CueLimiter
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout

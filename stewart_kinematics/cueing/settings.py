@@ -18,7 +18,8 @@ The settings of the motion cueing: filters, scale factors, tilt limits, limit ma
 One frozen :class:`CueingSettings`, in SI units (radians, not degrees), validated when built;
 :meth:`CueingSettings.from_parameters` builds it from the ROS parameter values declared in
 :data:`stewart_kinematics.parameters.MOTION_CUEING_PARAMETERS` (where angles are in degrees and
-say so in their names).
+say so in their names; :class:`stewart_kinematics.parameters.CueingParameterSettings` holds them
+as the node declares them).
 
 Defaults are the classical washout's of the literature (Reid and Nahon 1985, UTIAS Report 296;
 Nahon and Reid 1990, J. Guidance 13(2)): a third-order translational high-pass (second order at

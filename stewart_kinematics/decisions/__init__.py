@@ -15,7 +15,7 @@
 """
 The decisions the nodes take, as pure objects a Python user can call in a loop.
 
-:class:`~.command_check.CommandCheck` (ik_node: a commanded pose in, safe leg lengths or every
+:class:`~.pose_commands.CommandCheck` (ik_node: a commanded pose in, safe leg lengths or every
 reason out) and :class:`~.pose_tracker.PoseTracker` (fk_node: measured leg lengths in, a trusted
 pose or the reason out). Each returns a result that carries a
 :class:`~stewart_kinematics.findings.Finding` when it refuses.

@@ -62,16 +62,13 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
+from stewart_kinematics.decisions.pose_commands import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import (
-    as_leg_lengths,
-    as_poses,
-    forward_kinematics,
-    ForwardKinematicsResult,
-)
+from stewart_kinematics.model.forward import solve_trusted
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,
@@ -298,9 +295,9 @@ class PoseTracker:
             return PoseAnchor(None, refusal=command.refusal, warnings=command.warnings)
         pose = np.concatenate([command.position, matrix_to_euler_zyx(command.rotation)])
         # The pose solves its own lengths at once: a solution to start from, with its sign.
-        solution = forward_kinematics(self.geometry, command.lengths, pose,
-                                      tolerance=self.settings.tolerance,
-                                      max_iterations=self.settings.max_iterations)
+        # The command's lengths and pose were checked where the pose entered (CommandCheck).
+        solution = solve_trusted(self.geometry, command.lengths.tolist(), pose,
+                                 self.settings.tolerance, self.settings.max_iterations)
         self.last_pose, self.last_lengths = solution.pose, command.lengths
         self.last_solution = solution if solution.converged else None
         self._start_check = None
@@ -370,6 +367,10 @@ class PoseTracker:
             accepted pose carries its twist (:meth:`twist`), or a warning saying why not; the
             pose is published either way.
         :returns: a :class:`PoseEstimate`; an accepted one becomes the last solution.
+
+        The lengths are checked here, once, where they enter the core (fk_node only converts a
+        message's numbers): refused with ``invalid_lengths`` unless six finite, positive
+        numbers, then solved without a second check.
         """
         try:
             lengths = as_leg_lengths(lengths)
@@ -457,16 +458,18 @@ class PoseTracker:
         """
         Solve from the last solution (with its Jacobian), then from home if that fails.
 
+        :param lengths: the six lengths :meth:`update` checked where they entered: solved
+            without a second check (:func:`~stewart_kinematics.model.forward.solve_trusted`,
+            the same solve as ``forward_kinematics``).
         :returns: the solution, and whether it came from the fallback start at home.
         """
-        options = {'tolerance': self.settings.tolerance,
-                   'max_iterations': self.settings.max_iterations}
+        options = (self.settings.tolerance, self.settings.max_iterations)
+        target = lengths.tolist()
         start = self.last_solution if self.last_solution is not None else self.last_pose
-        solution = forward_kinematics(self.geometry, lengths, start, **options)
+        solution = solve_trusted(self.geometry, target, start, *options)
         if not solution.converged and not np.array_equal(self.last_pose,
                                                          self.geometry.home_pose):
-            return forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
-                                      **options), True
+            return solve_trusted(self.geometry, target, self.geometry.home_pose, *options), True
         return solution, False
 
     def _fold_evidence(self, solution, refusal, fell_back):
@@ -669,7 +672,7 @@ def margin_status(monitor) -> MarginStatus:
     Decide what to report of the latest assembly-mode margin of a monitor.
 
     :param monitor: an
-        :class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`.
+        :class:`stewart_kinematics.workers.margin_monitor.AssemblyModeMarginMonitor`.
     :returns: a :class:`MarginStatus`; its warning, if any, is what the node counts and logs.
     """
     too_close = monitor.warning()

@@ -59,11 +59,12 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
-from stewart_kinematics.limits.model import LimitModel
+from stewart_kinematics.limits.limit_model import LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.kinematics import forward_kinematics, leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -206,7 +207,21 @@ def platform_of_tool_message(position, quaternion, frames=None, frame_id: str = 
     :returns: ``(position (3,), rotation (3, 3))`` of the platform frame in the base frame.
     :raises ValueError: for a zero or non-finite quaternion, or a frame the tree refuses.
     """
-    rotation = quaternion_to_matrix(normalize_quaternion(quaternion))
+    return platform_of_unit_quaternion(position, normalize_quaternion(quaternion), frames,
+                                       frame_id)
+
+
+def platform_of_unit_quaternion(position, unit, frames=None, frame_id: str = ''):
+    """
+    :func:`platform_of_tool_message` of a quaternion that the caller has checked and normalised.
+
+    For a decision that checked a message's numbers where they entered
+    (:meth:`stewart_kinematics.CommandCheck.tool_pose`): the same conversion, and the same
+    arithmetic, without checking the quaternion a second time.
+
+    :param unit: ``normalize_quaternion`` of the message's quaternion, shape (4,).
+    """
+    rotation = quaternion_to_matrix(unit)
     if frames is None:
         return position, rotation
     return frames.platform_in_base(position, rotation, frame_id)

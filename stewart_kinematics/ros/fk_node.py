@@ -37,7 +37,7 @@ and each warning (near a singularity) with the core's reason on the log and ``/d
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
 nearest other real assembly mode within the limits is computed in a worker process (a thread
 would hold up the message callbacks: it shares the interpreter lock)
-(:class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`, only when the
+(:class:`stewart_kinematics.workers.margin_monitor.AssemblyModeMarginMonitor`, only when the
 lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
 solution (after a start or reset_tracker) when the lengths allow several modes within the
@@ -60,7 +60,6 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
-from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
 from stewart_kinematics.decisions.pose_tracker import (
     ambiguity_status,
     margin_status,
@@ -98,6 +97,7 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
+from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 
 
 class FkNode(Node):

@@ -32,7 +32,7 @@ with ``command_rate``, streamed at that rate through the jerk-limited
 break a limit in red, even for a refused pose), ``workspace_markers`` (the boundary of the
 constant-orientation workspace at the home orientation, latched) and ``travel_ranges`` (the
 range left along each axis from the last accepted pose, about once a second), those two
-computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command path; and, if
+computed by :mod:`stewart_kinematics.ros.workspace_publishing` off the command path; and, if
 ``publish_commanded_tf`` is set, the commanded platform frame on ``/tf`` as
 ``<platform_frame>_commanded``.
 
@@ -51,7 +51,7 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics.decisions.command_check import CommandCheck
+from stewart_kinematics.decisions.pose_commands import CommandCheck
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
@@ -74,7 +74,7 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
-from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
+from stewart_kinematics.ros.workspace_publishing import WorkspacePublisher
 
 #: Suffix of the commanded platform frame's name on /tf.
 COMMANDED_SUFFIX = '_commanded'
@@ -141,7 +141,7 @@ class IkNode(Node):
         create_input_subscription(self, IK_NODE['target_twist'], self.on_target_twist, depth)
         if self.command_filter is not None:
             self.create_timer(self.command_filter.period, self.publish_streamed_command)
-        self.workspace = WorkspaceReporter(
+        self.workspace = WorkspacePublisher(
             self, self.geometry, self.base_frame, settings.workspace.workspace_resolution,
             settings.workspace.travel_range_rate, lambda: self.check.last_pose, depth)
         self.get_logger().info(

@@ -53,14 +53,14 @@ from stewart_kinematics.limits.command_gate import (
     CommandGate,
     LegCommand,
     LegVelocityCommand,
-    platform_of_tool_message,
+    platform_of_unit_quaternion,
     SETPOINT,
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import twist_jacobian
+from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import (
-    euler_zyx_to_matrix,
+    euler_zyx_matrix_entries,
     normalize_quaternion,
 )
 
@@ -181,9 +181,9 @@ class CommandCheck:
                                 (('quaternion_norm', f'{norm:.9g}'),)),)
         try:
             # As the gate reads a pose message: the same conversion for what is received and
-            # for what a node sends on (a cue pose, a played trajectory).
-            position, rotation = platform_of_tool_message(position, quaternion, frames,
-                                                          frame_id)
+            # for what a node sends on (a cue pose, a played trajectory); the quaternion was
+            # checked above, once.
+            position, rotation = platform_of_unit_quaternion(position, unit, frames, frame_id)
         except ValueError as error:
             return LegCommand(None, refusal=Finding(findings.WRONG_FRAME, str(error)),
                               warnings=warnings)
@@ -207,7 +207,9 @@ class CommandCheck:
                 findings.INVALID_POSE,
                 f'a pose must be six finite numbers [X, Y, Z, alpha, beta, gamma] (metres, '
                 f'radians), got {preview(pose)}'))
-        return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
+        # The angles were checked above, once: the matrix of euler_zyx_to_matrix, unchecked.
+        rotation = np.array(euler_zyx_matrix_entries(*pose[3:].tolist())).reshape(3, 3)
+        return self._command(pose[:3], rotation)
 
     def _command(self, position, rotation) -> LegCommand:
         """Decide on a valid position (3,) and rotation matrix (3, 3): the gate's verdict."""
