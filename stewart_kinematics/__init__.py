@@ -82,7 +82,7 @@ from stewart_kinematics.motion.planning import MotionPlan, MotionPlanner, plan_m
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
 from stewart_kinematics.motion.ramp import Ramp
 from stewart_kinematics.motion.retiming import retime
-from stewart_kinematics.motion.streaming import CommandFilter, FilteredCommand
+from stewart_kinematics.motion.streaming import CommandFilter, FilteredCommand, StreamTarget
 from stewart_kinematics.motion.trajectory_check import check_trajectory, TrajectoryCheck
 from stewart_kinematics.parameters import (
     frames_from_parameters,
@@ -146,6 +146,7 @@ __all__ = [
     'retime',
     'SingularPoseError',
     'SolverSettings',
+    'StreamTarget',
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',
