@@ -146,7 +146,7 @@ def stall_rows(rows):
     which shares the interpreter lock with the command path.
     """
     import threading
-    from stewart_kinematics.decisions.command_check import CommandCheck
+    from stewart_kinematics.pose_decisions.command_check import CommandCheck
     from stewart_kinematics.ros.workspace_reporting import WorkspaceWorker
 
     geometry = load_geometry(FILES)

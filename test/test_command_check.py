@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.decisions.command_check.CommandCheck (pure numpy, no ROS).
+Unit tests of stewart_kinematics.pose_decisions.command_check.CommandCheck (pure numpy, no ROS).
 
 Expected leg lengths are computed here from the paper's tables, leg by leg with the textbook
 rotation matrices; leg velocities are checked against central differences of those lengths.

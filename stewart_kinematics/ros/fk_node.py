@@ -63,11 +63,6 @@ from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import (
-    ambiguity_status,
-    margin_status,
-    PoseTracker,
-)
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.parameters import (
@@ -77,6 +72,11 @@ from stewart_kinematics.parameters import (
     frames_from_settings,
     geometry_from_settings,
     SolverSettings,
+)
+from stewart_kinematics.pose_decisions.pose_tracker import (
+    ambiguity_status,
+    margin_status,
+    PoseTracker,
 )
 from stewart_kinematics.ros.interfaces import FK_NODE
 from stewart_kinematics.ros.message_accounting import (

@@ -53,7 +53,6 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics.decisions.command_check import CommandCheck
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
@@ -64,6 +63,7 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     IkNodeSettings,
 )
+from stewart_kinematics.pose_decisions.command_check import CommandCheck
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import PlatformMarkerPublisher

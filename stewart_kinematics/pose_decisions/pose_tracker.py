@@ -67,7 +67,6 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview
@@ -85,6 +84,7 @@ from stewart_kinematics.model.rotations import (
 )
 from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
 from stewart_kinematics.parameters.settings import SolverSettings
+from stewart_kinematics.pose_decisions.command_check import CommandCheck, LegCommand
 
 
 @dataclass(frozen=True, eq=False)
