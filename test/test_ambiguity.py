@@ -52,7 +52,7 @@ from stewart_kinematics import (
 )
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMargin
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.pose_decisions.pose_tracker import ambiguity_status
+from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status
 
 pytestmark = pytest.mark.core
 

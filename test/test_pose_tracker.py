@@ -361,7 +361,7 @@ class FakeMargin:
 
 def test_margin_status_warns_when_the_margin_is_small_or_the_search_incomplete():
     """The level fk_node reports: OK, or WARN with an assembly_mode_margin finding."""
-    from stewart_kinematics.pose_decisions.pose_tracker import margin_status
+    from stewart_kinematics.pose_decisions.tracker_status import margin_status
     assert margin_status(FakeMonitor(None)).warning is None
     fine = margin_status(FakeMonitor(FakeMargin()))
     assert fine.warning is None and fine.message.startswith('nearest other assembly mode')

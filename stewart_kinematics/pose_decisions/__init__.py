@@ -19,7 +19,8 @@ The pose decisions of the kinematics nodes: a pose to command (ik_node), a pose 
 safe leg lengths or velocities or every reason out) and :class:`~.pose_tracker.PoseTracker`
 (fk_node: measured leg lengths in, a trusted pose of the tool frame or the reason out). Each
 returns the shared :class:`~stewart_kinematics.findings.Decision` result, which carries a
-:class:`~stewart_kinematics.findings.Finding` when it refuses.
+:class:`~stewart_kinematics.findings.Finding` when it refuses. :mod:`.tracker_status` decides
+what fk_node reports of its tracker on ``/diagnostics``.
 
 Every node's decision object lives with the concept it decides on, and a node converts
 messages, calls it, publishes and counts:

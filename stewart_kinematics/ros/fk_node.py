@@ -73,11 +73,8 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     SolverSettings,
 )
-from stewart_kinematics.pose_decisions.pose_tracker import (
-    ambiguity_status,
-    margin_status,
-    PoseTracker,
-)
+from stewart_kinematics.pose_decisions.pose_tracker import PoseTracker
+from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status, margin_status
 from stewart_kinematics.ros.interfaces import FK_NODE
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
