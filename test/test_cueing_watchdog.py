@@ -147,7 +147,7 @@ def test_a_broken_clock_gives_nothing_and_breaks_nothing():
     cueing = make_cueing(input_timeout=0.5)
     last = lean(cueing)
     cueing.watch(last + 1.0)
-    for time in (math.nan, math.inf, -math.inf):
+    for time in (math.nan, math.inf, -math.inf, 'soon', None, [1.0]):
         assert cueing.watch(time) is None
     step = cueing.watch(last + 1.0 + WATCHDOG_PERIOD)
     assert step is not None and step.command.accepted

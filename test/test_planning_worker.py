@@ -214,3 +214,22 @@ def test_the_warm_up_runs_beside_the_plans_and_its_error_is_ignored():
     release.set()
     assert harness.codes() == [('pose_trajectory', 'accepted')]
     harness.worker.close()
+
+
+def test_a_hand_over_that_raises_keeps_the_answers_and_the_worker_alive():
+    """An executor shut down may raise in create_task: the next job is still planned."""
+    harness = Harness()
+    failed = threading.Event()
+
+    def deliver(task):
+        if not failed.is_set():
+            failed.set()
+            raise RuntimeError('the executor is shut down')
+        return harness.deliver(task)
+    harness.worker.deliver = deliver
+    harness.worker.submit(PlanningJob('first', lambda cancel: Plan()))
+    assert failed.wait(TIMEOUT)
+    harness.worker.submit(PlanningJob('second', lambda cancel: Plan()))
+    harness.run_tasks()
+    assert harness.codes() == [('first', 'accepted'), ('second', 'accepted')]
+    harness.worker.close()

@@ -117,6 +117,9 @@ def test_a_non_finite_time_plays_the_start_of_the_pass():
         command, over = player.next_pose(time)
         assert_message_pose(command, TABLE3[0])
         assert not over
+    for time in ('now', None, [1.0]):
+        with pytest.raises(ValueError, match='a time must be a number of seconds'):
+            player.next_pose(time)
 
 
 def test_a_tool_frame_moves_the_poses_checked_but_not_the_numbers_sent():

@@ -271,3 +271,25 @@ def test_steps_and_targets_are_the_shared_decision_result():
     assert step.accepted and step.reason == '' and step.warnings == () and not step.held
     refused = command_filter.set_target([0.7] * 5)
     assert refused.reason == refused.refusal.message and refused.lengths is None
+
+
+@pytest.mark.parametrize('time', [math.nan, math.inf, -math.inf, 'now', None, True, [1.0]])
+def test_a_time_that_is_not_a_finite_number_starts_nothing_and_sends_nothing(time):
+    """
+    set_target takes the target but does not start; send refuses; neither raises.
+
+    Before, a NaN start time was kept by the gate: every later command was refused
+    (clock_not_advancing) and the stream never started again.
+    """
+    command_filter = CommandFilter(LIMITS, PERIOD, GEOMETRY.home_leg_lengths, GEOMETRY)
+    target = command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, time)
+    assert target.accepted and not target.started and not command_filter.started
+    refused = command_filter.send(time)
+    assert refused.refusal.code == 'clock_not_advancing' and not command_filter.started
+    with pytest.raises(ValueError, match='finite number of seconds'):
+        command_filter.start(time)
+    # A good time then starts it, and it moves.
+    assert command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, 1.0).started
+    commands = [command_filter.send(1.0 + 0.01 * k) for k in range(1, 20)]
+    assert all(command.accepted for command in commands)
+    assert np.all(commands[-1].lengths > GEOMETRY.home_leg_lengths)

@@ -386,9 +386,13 @@ class MotionCueing:
         :param command_time: seconds, the node's clock.
         :returns: the :class:`CueStep` whose accepted ``command`` is to be sent (stamped now:
             no sample to stamp it with), or ``None``: nothing to send (input flowing, none
-            yet, the platform at rest, no time passed, or nothing could be sent).
+            yet, the platform at rest, no time passed, a time that is not a finite number, or
+            nothing could be sent). Never raises.
         """
-        now = float(command_time)
+        try:
+            now = float(command_time)
+        except (TypeError, ValueError):
+            return None
         if not math.isfinite(now):
             return None
         last_watch, self._last_watch = self._last_watch, now

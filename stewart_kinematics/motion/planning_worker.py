@@ -31,8 +31,8 @@ while a long trajectory is checked. The worker's policy:
 - Answers go back through ``deliver``, the caller's way to have a function called on the thread
   that publishes (trajectory_node: its executor, :func:`stewart_kinematics.ros.node_main.
   hand_to_executor`); that function calls ``on_done(answer)`` for each finished job, in order.
-  When ``deliver`` cannot hand it over (it returns False), the answers wait for the next
-  hand-over.
+  When ``deliver`` cannot hand it over (it returns False, or raises), the answers wait for
+  the next hand-over.
 - :meth:`PlanningWorker.close` cancels the work under way and waits at most
   :data:`WORKER_STOP_TIMEOUT` for the thread (a daemon, so it never holds up an exit);
   nothing is answered after it.
@@ -201,7 +201,7 @@ class PlanningWorker:
                     return
                 self._answers.append(answer)
                 # Under the lock: close() marks the worker closed only after it.
-                self.deliver(self._deliver)
+                _hand_over(self.deliver, self._deliver)
 
     def _deliver(self):
         """Hand the finished answers to ``on_done`` (the thread that publishes)."""
@@ -237,6 +237,14 @@ def _answer(job: PlanningJob) -> PlanningAnswer:
     except Exception as error:  # noqa: B902 - a bug must not leave messages unanswered
         return PlanningAnswer(job, refusal=Finding(
             PLANNING_ERROR, f'planning failed unexpectedly: {type(error).__name__}: {error}'))
+
+
+def _hand_over(deliver, task) -> bool:
+    """Hand ``task`` over; a hand-over that fails (an executor shut down) keeps the answers."""
+    try:
+        return bool(deliver(task))
+    except Exception:  # noqa: B902 - the worker thread must live on to answer the next jobs
+        return False
 
 
 def _ignoring_errors(work):

@@ -41,6 +41,7 @@ import numpy as np
 
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import CommandGate, LegCommand, SETPOINT
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.rotations import matrix_to_quaternion
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
@@ -117,7 +118,7 @@ class RampPlayback:
     def start(self, time: float) -> None:
         """Start a pass at ``time`` (seconds, the node's clock): the first pose comes next."""
         self._row = 0
-        self._pass_start = float(time) if math.isfinite(float(time)) else 0.0
+        self._pass_start = _seconds(time)
         self.finished = False
 
     def next_pose(self, time: float) -> Tuple[LegCommand, bool]:
@@ -129,9 +130,11 @@ class RampPlayback:
         the pass ends). At the end of a pass a looping ramp starts the next; otherwise the
         playing is over (``over`` True, and :attr:`finished`). Starts a pass first if none was.
 
-        :param time: seconds, the node's clock.
+        :param time: seconds, the node's clock (a time that is not finite counts as the
+            start of the pass).
         :returns: ``(command, over)``: the gate's verdict, its ``tool_pose`` the message's
             numbers; not to be sent when refused.
+        :raises ValueError: for a time that is not a number.
         """
         if self._pass_start is None:
             self.start(time)
@@ -143,16 +146,24 @@ class RampPlayback:
             if ended:
                 self._row = 0
         else:
-            elapsed = float(time) - self._pass_start
-            if not math.isfinite(elapsed):
-                elapsed = 0.0
+            now = _seconds(time, None)
+            elapsed = 0.0 if now is None else now - self._pass_start
             pose = schedule.pose_at(elapsed)
             ended = elapsed >= schedule.duration
             if ended:
-                self._pass_start = float(time) if math.isfinite(float(time)) else 0.0
+                self._pass_start = now
         over = ended and not schedule.loop
         self.finished = self.finished or over
         return self.gate.pose_vector(pose), over
+
+
+def _seconds(time, otherwise=0.0):
+    """Return ``time`` as a float when finite, else ``otherwise``; refuse what is no number."""
+    try:
+        seconds = float(time)
+    except (TypeError, ValueError):
+        raise ValueError(f'a time must be a number of seconds, got {preview(time)}') from None
+    return seconds if math.isfinite(seconds) else otherwise
 
 
 class TrajectoryPlayback:

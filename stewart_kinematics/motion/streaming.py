@@ -217,11 +217,17 @@ class CommandFilter:
 
         :meth:`set_target` with a time calls it for the first target it accepts; :meth:`send`
         then gives a step at every call. A second call changes nothing.
+
+        :raises ValueError: without the geometry, or for a time that is not a finite number.
         """
         if self.gate is None:
             raise ValueError('sending needs the geometry: build the filter with it')
+        seconds = _finite_seconds(time)
+        if seconds is None:
+            raise ValueError(f'the start time must be a finite number of seconds, got '
+                             f'{preview(time)}')
         if not self._started:
-            self.gate.reset(self._position, time=time)
+            self.gate.reset(self._position, time=seconds)
             self._started = True
 
     def send(self, time: float) -> LegCommand:
@@ -238,6 +244,10 @@ class CommandFilter:
             stands) only when no time passed since the last command (``clock_not_advancing``)
             or not even a braking command could be found.
         """
+        if _finite_seconds(time) is None:
+            return LegCommand(None, refusal=Finding(
+                findings.CLOCK_NOT_ADVANCING, f'the time of a streamed command must be a '
+                f'finite number of seconds, got {preview(time)}: nothing sent'))
         self.start(time)
         interval = self.gate.elapsed(time)
         if interval is None:
@@ -266,8 +276,8 @@ class CommandFilter:
         Aim at new leg lengths (metres, shape (6,)), to be reached at rest.
 
         :param time: when the target arrives, seconds (the node's clock), or ``None``: with a
-            time, the first target accepted starts the sending there (:meth:`start`; the
-            command rests where it is until then).
+            finite time, the first target accepted starts the sending there (:meth:`start`;
+            the command rests where it is until then).
         :returns: a :class:`StreamTarget`: accepted, or refused (``invalid_lengths``, or
             ``out_of_limits`` beyond the stroke) while the filter keeps moving toward its last
             target. Never raises.
@@ -277,7 +287,8 @@ class CommandFilter:
             return StreamTarget(None, refusal)
         self._target = np.array(lengths, dtype=float)
         started = False
-        if time is not None and self.gate is not None and not self._started:
+        if (self.gate is not None and not self._started
+                and _finite_seconds(time) is not None):
             self.start(time)
             started = True
         return StreamTarget(self._target.copy(), started=started)
@@ -431,6 +442,13 @@ class CommandFilter:
         if violations:
             return findings.out_of_limits('the target lengths are', violations)
         return None
+
+
+def _finite_seconds(time) -> Optional[float]:
+    """Return ``time`` as a float if it is a finite real number (not a bool), else ``None``."""
+    if isinstance(time, bool) or not isinstance(time, (int, float, np.integer, np.floating)):
+        return None
+    return float(time) if math.isfinite(time) else None
 
 
 class _Plan:
