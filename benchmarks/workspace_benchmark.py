@@ -146,7 +146,7 @@ def stall_rows(rows):
     which shares the interpreter lock with the command path.
     """
     import threading
-    from stewart_kinematics.decisions.pose_commands import CommandCheck
+    from stewart_kinematics.pose_decisions.pose_commands import CommandCheck
     from stewart_kinematics.workers.workspace_worker import WorkspaceWorker
 
     geometry = load_geometry(FILES)

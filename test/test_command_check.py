@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.decisions.pose_commands.CommandCheck (pure numpy, no ROS).
+Unit tests of stewart_kinematics.pose_decisions.pose_commands.CommandCheck (pure numpy, no ROS).
 
 Expected leg lengths are computed here from the paper's tables, leg by leg with the textbook
 rotation matrices; leg velocities are checked against central differences of those lengths.
@@ -342,7 +342,7 @@ def test_a_message_quaternion_is_checked_once_and_converted_as_the_gate_converts
     rotation matrix. The matrix must stay the one the command gate computes for what a node
     sends on (platform_of_tool_message), so that the two agree exactly.
     """
-    from stewart_kinematics.decisions import pose_commands
+    from stewart_kinematics.pose_decisions import pose_commands
     from stewart_kinematics.limits import command_gate
     frames = FrameTree(user_frame='work', user_pose=Transform.from_pose([0.01] + [0.0] * 5))
     cases = [(quaternion, frame_id) for frame_id in ('', 'work') for quaternion in (

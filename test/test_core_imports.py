@@ -42,8 +42,8 @@ MAY_IMPORT = {
     'model': {'model'},
     'limits': {'model', 'limits', 'findings'},
     'parameters': {'model', 'parameters'},
-    'decisions': {'model', 'limits', 'findings', 'parameters', 'decisions',
-                  'analysis.assembly_modes'},
+    'pose_decisions': {'model', 'limits', 'findings', 'parameters', 'pose_decisions',
+                       'analysis.assembly_modes'},
     'motion': {'model', 'limits', 'findings', 'parameters', 'motion'},
     'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis'},
     'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
@@ -81,9 +81,9 @@ print('imported', len(sys.argv) - 1, 'core modules')
 
 
 def test_core_modules_exist():
-    """The core is where the layout says: the model, the limits, the decisions, motion."""
+    """The core is where the layout says: the model, the limits, the pose decisions, motion."""
     assert {'model.geometry', 'model.inverse', 'model.forward', 'model.rotations',
-            'limits.geometry_checks', 'decisions.pose_commands', 'motion.retiming',
+            'limits.geometry_checks', 'pose_decisions.pose_commands', 'motion.retiming',
             'findings'} <= set(CORE_MODULES)
 
 
@@ -125,7 +125,7 @@ def test_each_folder_imports_only_what_its_rule_allows():
 def test_the_rule_check_catches_a_forbidden_import():
     """The check above can fail: model/ may not import motion/ nor limits/."""
     assert not allowed('model', 'motion.ramp') and not allowed('model', 'limits')
-    assert allowed('motion', 'model.inverse') and allowed('decisions', 'findings')
+    assert allowed('motion', 'model.inverse') and allowed('pose_decisions', 'findings')
 
 
 def test_core_imports_with_rclpy_unavailable():

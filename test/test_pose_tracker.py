@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.decisions.pose_tracker.PoseTracker (pure numpy, no ROS).
+Unit tests of stewart_kinematics.pose_decisions.pose_tracker.PoseTracker (pure numpy, no ROS).
 
 The lengths fed to the tracker are computed from the paper's tables, leg by leg with the
 textbook rotation matrices (test/reference.py), so that every pose the tracker returns is
@@ -36,11 +36,11 @@ from reference import (
 )
 
 from stewart_kinematics import forward_kinematics, platform_twist, PoseTracker
-from stewart_kinematics.decisions.pose_tracker import (
+from stewart_kinematics.parameters import SolverSettings
+from stewart_kinematics.pose_decisions.pose_tracker import (
     assembly_mode_jump,
     euler_angle_change_bound,
 )
-from stewart_kinematics.parameters import SolverSettings
 
 pytestmark = pytest.mark.core
 
@@ -390,7 +390,7 @@ class FakeMargin:
 
 def test_margin_status_warns_when_the_margin_is_small_or_the_search_incomplete():
     """The level fk_node reports: OK, or WARN with an assembly_mode_margin finding."""
-    from stewart_kinematics.decisions.pose_tracker import margin_status
+    from stewart_kinematics.pose_decisions.tracker_status import margin_status
     assert margin_status(FakeMonitor(None)).warning is None
     fine = margin_status(FakeMonitor(FakeMargin()))
     assert fine.warning is None and fine.message.startswith('nearest other assembly mode')
