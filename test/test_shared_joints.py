@@ -181,8 +181,7 @@ def pairings():
 
 @budget(40)
 @given(pairings(), pairings())
-def test_any_pairing_of_joints_is_a_platform_unless_a_pair_shares_both(base_pairs,
-                                                                        platform_pairs):
+def test_pairings_make_platforms_unless_two_legs_share_both(base_pairs, platform_pairs):
     """
     Merge drawn pairs of the paper's joints: shared as drawn, or refused naming the legs.
 
