@@ -109,7 +109,7 @@ def tracking_cost(geometry, updates=2000):
     Table 3 ramp sampled at ``updates`` points.
     """
     from stewart_kinematics import PoseTracker
-    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
+    from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
     fractions = np.linspace(0.0, 1.0, updates)[:, None]
     lengths = inverse_kinematics(geometry, geometry.home_pose + fractions
                                  * (TABLE_3_END - geometry.home_pose))

@@ -44,7 +44,7 @@ import time
 import numpy as np
 
 from stewart_kinematics import inverse_kinematics
-from stewart_kinematics.cueing import limiting, MotionCueing
+from stewart_kinematics.cueing import cue_limiter, MotionCueing
 from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
 from stewart_kinematics.limits import check_pose
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -106,12 +106,12 @@ def core_benchmark():
     check = median_call(lambda: check_pose(geometry, pose[:3], rotation))
     ik = median_call(lambda: inverse_kinematics(core.geometry, pose))
     measured = step_times()
-    original = limiting.pose_violations
-    limiting.pose_violations = lambda *arguments: []
+    original = cue_limiter.pose_violations
+    cue_limiter.pose_violations = lambda *arguments: []
     try:
         unchecked = step_times()
     finally:
-        limiting.pose_violations = original
+        cue_limiter.pose_violations = original
     median = float(np.median(measured))
     print(f'Core step, {measured.size:,} samples (four scenarios at 1 kHz), shipped tuning:')
     print(f'  step: median {median * 1e6:.1f} us, p90 {np.percentile(measured, 90) * 1e6:.1f} '

@@ -79,6 +79,8 @@ RESPONSE_TARGET = 0.100    # seconds: a parameter request while a trajectory is 
 STOP_TARGET = 1.0          # seconds: SIGINT to exit while a trajectory is checked
 FILTER_TARGET = 50e-6      # seconds per command
 COMMAND_PERIOD = 0.002
+#: Points per second of leg_trajectory in the gated case (the shipped publish_rate), hertz.
+PUBLISH_RATE = 50.0
 
 
 def ten_second_trajectory(geometry):
@@ -162,6 +164,10 @@ def core_benchmark(rounds):
     cases = {
         'check 10 s as timed': lambda: plan_motion(ten, geometry, actuator_limits),
         'retime 10 s': lambda: plan_motion(ten, geometry, actuator_limits, retime_path=True),
+        # What trajectory_node does: the same, and every point of leg_trajectory (50 Hz, the
+        # shipped publish_rate) checked as published by the command gate.
+        'retime 10 s, points gated': lambda: plan_motion(
+            ten, geometry, actuator_limits, retime_path=True, publish_rate=PUBLISH_RATE),
     }
     cpu = {}
     times = interleaved(cases, rounds, cpu)
@@ -191,6 +197,12 @@ def core_benchmark(rounds):
     print(f'| 10 s, 100 waypoints: retime (toppra, refinement, check of the '
           f'{retimed.trajectory.duration:.2f} s result, {retimed.check.samples:,} samples) | '
           f'{spread(times["retime 10 s"])} | {shown(statistics.median(cpu["retime 10 s"]))} | |')
+    gated = times['retime 10 s, points gated']
+    print(f'| 10 s, 100 waypoints: retime, and each point of leg_trajectory at '
+          f'{PUBLISH_RATE:g} Hz checked as published (the command gate) | {spread(gated)} | '
+          f'{shown(statistics.median(cpu["retime 10 s, points gated"]))} | '
+          f'{statistics.median(gated) / statistics.median(times["retime 10 s"]):.2f}x the retime '
+          'alone |')
     print(f'| 10 s, 100 waypoints: check + retime (target < {CHECK_TARGET * 1e3:.0f} ms) | '
           f'{spread(both)} | {shown(statistics.median(both_cpu))} | '
           f'{sum(value < CHECK_TARGET for value in both)} of {rounds} rounds under the target '
@@ -209,7 +221,8 @@ def core_benchmark(rounds):
                  statistics.median(long_times['check 1e4 s as timed']) < 10.0,
                  spread(long_times['check 1e4 s as timed'])))
 
-    command_filter = CommandFilter(actuator_limits, COMMAND_PERIOD, geometry.home_leg_lengths)
+    command_filter = CommandFilter(actuator_limits, COMMAND_PERIOD, geometry.home_leg_lengths,
+                                   geometry)
     rng = np.random.default_rng(0)
     targets = geometry.home_leg_lengths + rng.uniform(-0.02, 0.02, size=(200, 6))
 
@@ -218,17 +231,36 @@ def core_benchmark(rounds):
             if index % 50 == 0:
                 command_filter.set_target(targets[index // 50])
             command_filter.step()
+
+    sent_filter = CommandFilter(actuator_limits, COMMAND_PERIOD, geometry.home_leg_lengths,
+                                geometry)
+    clock = [0.0]
+
+    def sent():
+        # What ik_node sends: the step at the node's clock, checked as sent by the command
+        # gate (the pose of its lengths against every pose limit, the rates between steps).
+        for index in range(1000):
+            if index % 50 == 0:
+                sent_filter.set_target(targets[index // 50])
+            clock[0] += COMMAND_PERIOD
+            sent_filter.send(clock[0])
     home = geometry.home_pose
     filter_times = interleaved({
-        'filter': stream,
+        'filter': stream, 'sent': sent,
         'ik': lambda: [inverse_kinematics(geometry, home) for _ in range(10000)]}, 3)
     per_command = statistics.median(filter_times['filter']) / 10000
+    per_sent = statistics.median(filter_times['sent']) / 1000
     per_ik = statistics.median(filter_times['ik']) / 10000
     print(f'| streaming filter, per command (ruckig, 6 legs; target < '
           f'{FILTER_TARGET * 1e6:.0f} us) | {shown(per_command)} | | {per_command / per_ik:.2f}x '
           f'one single-pose IK ({shown(per_ik)}) |')
+    print(f'| streamed command as sent (the filter, then the command gate: forward kinematics '
+          f'of the step and every pose limit; target < {FILTER_TARGET * 1e6:.0f} us) | '
+          f'{shown(per_sent)} | | {per_sent / per_command:.0f}x the filter alone |')
     rows.append((f'streaming filter < {FILTER_TARGET * 1e6:.0f} us per command',
                  per_command < FILTER_TARGET, shown(per_command)))
+    rows.append((f'streamed command as sent (filter + command gate) < '
+                 f'{FILTER_TARGET * 1e6:.0f} us', per_sent < FILTER_TARGET, shown(per_sent)))
     print()
     ramp = table_3_path()
     ramp_given = plan_motion(ramp, geometry, actuator_limits)

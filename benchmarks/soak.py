@@ -22,9 +22,17 @@ Table 3 ramp into ik_node, whose leg lengths feed fk_node. Then, for ``--minutes
 default):
 
 - a steady stream: plausible messages on every topic a node subscribes to and no node
-  publishes (``--stream-rate`` a second each; trajectories and paths one every two seconds);
+  publishes (``--stream-rate`` a second each; trajectories and paths one every two seconds),
+  with issue 27's cases among them (:mod:`fuzzing.scenarios`): every other trajectory bulges
+  between its waypoints, beyond the stroke or just inside it, made for the low
+  ``validation_rate`` (1 to 5 Hz) that half the parameter requests to trajectory_node set;
+  ``vehicle_imu`` turns in windows of ``--imu-window`` seconds between plausible samples,
+  noisy ones (30 m/s^2 and 5 rad/s of noise, accepted) and a recording stamped ten times as
+  fast as it is sent;
 - a flood of bad messages every ``--flood-every`` seconds: ``--flood-seconds`` of mutated and
-  hostile messages at ``--flood-rate`` on the same topics;
+  hostile messages at ``--flood-rate`` on the same topics, and ``--oversized`` oversized ones
+  (the fuzzer's: a million numbers, a string of a million characters, 10^5 names or 10^4
+  elements in one field), each field of each topic in turn;
 - node kills: every ``--kill-every`` seconds the next node in turn gets SIGKILL or SIGTERM (in
   turn), then starts again;
 - parameter changes mid-stream: one request every ``--parameter-every`` seconds to a node, valid
@@ -35,14 +43,19 @@ default):
   11.6 days, back to the start), and now and then carries a hostile time (negative seconds,
   nanoseconds beyond a second).
 
-Every message the nodes publish is checked (:mod:`fuzzing.output_invariants`:
-finite, unit quaternions, within the limits), every node's /diagnostics counted, and each
-node's resident memory sampled every ``--rss-every`` seconds. The report gives messages in and
-out per node, refusals by reason, crashes (a node that exits, or prints a traceback, when not
-killed by the soak; or that does not stop cleanly on SIGTERM or at the end on SIGINT: target
-0), non-finite outputs and outputs beyond a limit (target 0), parameter answers, kills and
-restarts, clock jumps, and the resident memory of each node (start and end after a warm-up,
-and the slope of each run of a node: flat). ``--figure rss.png`` draws it. Exits 1 when a
+ik_node streams its ``joint_commands`` at ``--command-rate``. Every message the nodes publish is
+checked (:mod:`fuzzing.output_invariants`: finite, unit quaternions, strings of at most 4,000
+characters, within the limits; ``joint_commands`` for the leg rates between consecutive
+commands, by their stamps; a pose beyond a pose limit or a command beyond a rate allowed only
+as one of the ``command_braking`` and ``returning_to_limits`` findings the nodes counted), every
+node's log checked for lines longer than 4,200 characters, every node's /diagnostics counted,
+and each node's resident memory sampled every ``--rss-every`` seconds. The report gives
+messages in and out per node, refusals by reason, crashes (a node that exits, or prints a
+traceback, when not killed by the soak; or that does not stop cleanly on SIGTERM or at the end
+on SIGINT: target 0), non-finite outputs, outputs beyond a limit, long strings and long log
+lines (target 0), parameter answers, kills and restarts, clock jumps, and the resident memory
+of each node (start and end after a warm-up, and the slope of each run of a node: flat).
+``--figure rss.png`` draws it. Exits 1 when a
 target is missed. Run from the repository root::
 
     .venv/bin/python benchmarks/soak.py                 # 10 minutes
@@ -69,7 +82,7 @@ import rclpy
 from rosgraph_msgs.msg import Clock
 from rosidl_parser import definition
 
-from stewart_kinematics.analysis.worker_processes import process_running
+from stewart_kinematics.parameters import read_parameter_files
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SUBSCRIPTION
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.node_processes import (
@@ -77,6 +90,7 @@ from stewart_kinematics.tools.node_processes import (
     isolated_ros_environment,
     NodeProcess,
 )
+from stewart_kinematics.workers.owner_watch import process_running
 
 # fuzzing/ is the test suite's harness, not installed: import it from the repository root.
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
@@ -87,15 +101,35 @@ from fuzzing.fuzz_client import (  # noqa: E402, I100 (after the path)
     SpinningClient,
 )
 from fuzzing.fuzz_messages import message_class, MessageFuzzer  # noqa: E402
-from fuzzing.fuzz_parameters import EITHER  # noqa: E402
+from fuzzing.fuzz_parameters import (  # noqa: E402
+    EITHER,
+    parameter_message,
+    ParameterChange,
+)
 from fuzzing.fuzz_targets import parameter_files, plausible_hints  # noqa: E402
-from fuzzing.output_invariants import numbers_problems, OutputInvariants  # noqa: E402
+from fuzzing.output_invariants import (  # noqa: E402
+    allowable,
+    log_problems,
+    numbers_problems,
+    OutputInvariants,
+    StreamChecks,
+    string_problems,
+)
 from fuzzing.parameter_requests import (  # noqa: E402
     FRAME_NAMES,
     parameter_clients,
     parameter_fuzzer_of,
     ParameterRequests,
 )
+from fuzzing.scenarios import (  # noqa: E402
+    bulging_trajectory,
+    FAST_FACTOR,
+    ImuStream,
+    LOW_VALIDATION_RATES,
+)
+from fuzzing.stream_rates import ALLOWED_CODES, braking_allowance  # noqa: E402
+from rcl_interfaces.msg import ParameterType  # noqa: E402
+from stewart_kinematics.ros.message_accounting import REPORT_PERIOD  # noqa: E402
 
 #: Extra start-up arguments of some nodes: trajectory_node loops the Table 3 ramp, a row
 #: every 0.2 s, so that the chain trajectory_node -> ik_node -> fk_node always has work.
@@ -111,12 +145,12 @@ CLOCK_JUMPS = (-30.0, 3600.0, -3600.0, 1e6, None)   # None: back to the start's 
 #: time on /clock for HOSTILE_CLOCK_SECONDS (rclpy's clock subscription has depth 1).
 HOSTILE_CLOCKS = ((-5, 0), (0, 4_294_967_295), (2 ** 31 - 1, 999_999_999))
 HOSTILE_CLOCK_SECONDS = 0.1
-#: Longest wait, after the stream, for every node to answer what it received and report it.
-DRAIN_SECONDS = 10.0
 #: Seconds a node's run is younger than when its memory is not yet counted (imports, caches).
 RSS_WARM_UP = 20.0
 #: Seconds of samples after the warm-up a memory slope needs.
 SLOPE_SPAN = 60.0
+#: Seconds the nodes get, after the stream, to answer what they have in hand.
+SETTLE_TIMEOUT = 30.0
 #: Seconds a node gets to stop on SIGTERM or SIGINT.
 STOP_TIMEOUT = 10.0
 #: Seconds a new run gets to report on /diagnostics before a SIGTERM or SIGINT is sent anyway.
@@ -125,6 +159,11 @@ READY_TIMEOUT = 20.0
 ORPHAN_GRACE = 5.0
 #: Examples kept of each kind of problem.
 KEPT_EXAMPLES = 5
+#: The kinds of vehicle_imu samples of the steady stream, a window of each in turn.
+IMU_KINDS = ('plausible', 'noise', 'recording')
+#: Share of the parameter requests to trajectory_node that set a low validation_rate
+#: (the first one always does).
+LOW_RATE_SHARE = 0.5
 #: Fast DDS shared-memory files (see test_load_and_faults.py).
 SHM_DIRECTORY = Path('/dev/shm')
 SHM_PREFIX = 'fastrtps_'
@@ -168,16 +207,16 @@ class Run:
 class Slot:
     """A node of the soak: its arguments and its runs."""
 
-    def __init__(self, name: str, sim_time: bool):
+    def __init__(self, name: str, sim_time: bool, extra=(), executables: Optional[Path] = None):
         self.name = name
         self.files = parameter_files(name)
         self.arguments = ['--ros-args']
         for path in self.files:
             self.arguments += ['--params-file', str(path)]
-        self.arguments += NODE_ARGUMENTS.get(name, [])
+        self.arguments += NODE_ARGUMENTS.get(name, []) + list(extra)
         if sim_time:
             self.arguments += ['-p', 'use_sim_time:=true']
-        self.executable = find_executable(name)
+        self.executable = find_executable(str(executables / name) if executables else name)
         self.runs: List[Run] = []
 
     @property
@@ -229,17 +268,47 @@ class Soak:
     def __init__(self, arguments):
         self.arguments = arguments
         self.rng = random.Random(arguments.seed)
-        self.slots = {name: Slot(name, name in arguments.sim_time)
+        streaming = {'command_rate': arguments.command_rate} if arguments.command_rate else {}
+        self.slots = {name: Slot(name, name in arguments.sim_time,
+                                 ['-p', f'command_rate:={arguments.command_rate!r}']
+                                 if name == 'ik_node' and streaming else (),
+                                 arguments.executables)
                       for name in arguments.nodes}
         any_files = next(iter(self.slots.values())).files
-        self.invariants = OutputInvariants.from_parameter_files(any_files, None)
+        self.invariants = OutputInvariants.from_parameter_files(
+            any_files, None, streaming if 'ik_node' in self.slots else {})
         self.hints = plausible_hints(any_files, None)
+        #: The command streams among the outputs, and the outputs that may be braking
+        #: commands (a pose beyond a pose limit), with examples.
+        self.streams = StreamChecks(self.invariants)
+        self.allowable = 0
+        self.allowable_examples: List[str] = []
+        self.long_strings: List[str] = []
+        self.log_problems: List[str] = []
+        #: The steady stream's generators: bulging trajectories (the validation rate last
+        #: asked for, beyond the stroke or not in turn) and the IMU's kinds and time line.
+        self.low_validation_rate = LOW_VALIDATION_RATES[0]
+        self.bulges = {'beyond': 0, 'inside': 0, 'not placed': 0}
+        self.imu_counts = dict.fromkeys(IMU_KINDS, 0)
+        self.oversized: Dict[str, int] = {}
+        self.max_clock = 0.0
+        self.trajectories = 0
+        self.low_rate_requests = 0
+        self.imu_ns = self.imu_wall_ns = None
+        cueing = read_parameter_files(parameter_files('motion_cueing_node'),
+                                      'motion_cueing_node')
+        self.imu_streams = {kind: ImuStream(self.rng, kind,
+                                            cueing.get('max_specific_force', 100.0),
+                                            cueing.get('max_angular_velocity', 20.0))
+                            for kind in IMU_KINDS if kind != 'plausible'}
+        #: The frames a vehicle_imu sample is cued in: the vehicle's (or none given).
+        self.vehicle_frames = ['', cueing.get('vehicle_frame', 'base_link')]
         self.diagnostics = DiagnosticsLog()
         self.totals = {name: CounterTotals() for name in self.slots}
         self.outputs: Dict[str, int] = {}
         self.non_finite: List[str] = []
         self.beyond_limits: List[str] = []
-        self.counts = {'non-finite': 0, 'beyond a limit': 0}
+        self.counts = {'non-finite': 0, 'beyond a limit': 0, 'long strings': 0}
         self.crashes: List[str] = []
         self.kills: Dict[str, int] = {'SIGKILL': 0, 'SIGTERM': 0}
         self.jumps = {'back': 0, 'forward': 0, 'hostile clock messages': 0}
@@ -259,17 +328,28 @@ class Soak:
     # Outputs ------------------------------------------------------------------------------------
 
     def output_callback(self, topic):
-        """Return the callback that checks and counts one output topic."""
-        def on_message(message):
+        """Return the callback that checks and counts one output topic (with message info)."""
+        def on_message(message, info):
             problems = self.invariants.problems(topic, message)
             with self._lock:
                 self.outputs[topic] = self.outputs.get(topic, 0) + 1
                 if problems:
-                    kind = 'non-finite' if numbers_problems(message) else 'beyond a limit'
-                    self.counts[kind] += 1
-                    examples = self.non_finite if kind == 'non-finite' else self.beyond_limits
+                    text = f'{topic}: {"; ".join(problems)}'
+                    if numbers_problems(message):
+                        kind, examples = 'non-finite', self.non_finite
+                    elif string_problems(message):
+                        kind, examples = 'long strings', self.long_strings
+                    elif allowable(topic, message):
+                        # A braking command may break a pose limit: counted at the end.
+                        kind, examples = None, self.allowable_examples
+                        self.allowable += 1
+                    else:
+                        kind, examples = 'beyond a limit', self.beyond_limits
+                    if kind is not None:
+                        self.counts[kind] += 1
                     if len(examples) < KEPT_EXAMPLES:
-                        examples.append(f'{topic}: {"; ".join(problems)}')
+                        examples.append(text)
+                self.streams.check(topic, message, info)
             if topic == '/diagnostics':
                 self.diagnostics(message)
         return on_message
@@ -302,7 +382,15 @@ class Soak:
             streams.append([name, node.create_publisher(endpoint.message_type, name, 100),
                             MessageFuzzer(endpoint.message_type, self.rng, self.hints, name),
                             rate, 0.0])
+        # The oversized messages of the floods: every field of every topic, in a drawn order.
+        oversized = [(stream, place) for stream in streams
+                     for place in stream[2].oversized_places()]
+        self.rng.shuffle(oversized)
+        oversized_index = 0
+        pending = []
         clock = node.create_publisher(Clock, '/clock', 10)
+        sim_nodes = bool(self.arguments.sim_time)
+        wall_start = time.time()
         for slot in self.slots.values():
             slot.start()
         parameter_thread = threading.Thread(target=self.parameter_loop, args=(client,),
@@ -332,16 +420,25 @@ class Soak:
                 stream[4] += elapsed * stream[3]
                 while stream[4] >= 1.0:
                     stream[4] -= 1.0
-                    self.publish(stream, 'plausible', self.sent)
+                    self.steady(stream, now - start)
             if now < flood_until:
                 flood_credit += elapsed * arguments.flood_rate
                 while flood_credit >= 1.0:
                     flood_credit -= 1.0
                     self.publish(self.rng.choice(streams),
                                  self.rng.choice(('mutated', 'mutated', 'hostile')), self.bad)
+                if pending:   # one oversized message a tick: each is megabytes
+                    stream, place = pending.pop()
+                    message, _ = stream[2].oversized(place)
+                    stream[1].publish(message)
+                    key = f'{stream[0]} {place}'
+                    self.oversized[key] = self.oversized.get(key, 0) + 1
             elif now >= next_flood:
                 flood_until = now + arguments.flood_seconds
                 next_flood += arguments.flood_every
+                for _ in range(arguments.oversized if oversized else 0):
+                    pending.append(oversized[oversized_index % len(oversized)])
+                    oversized_index += 1
             # The clock: jumps, and a hostile message once per cycle of jumps.
             if now >= next_jump:
                 next_jump += arguments.jump_every
@@ -358,10 +455,17 @@ class Soak:
             if now < hostile_until:
                 # Alone on /clock for a while: rclpy's clock subscription keeps one message.
                 clock.publish(Clock(clock=Time(sec=hostile[0], nanosec=hostile[1])))
+                self.max_clock = max(self.max_clock, hostile[0] + hostile[1] * 1e-9)
             else:
                 sim = SIM_TIME_START + (now - start) + offset
                 clock.publish(Clock(clock=Time(sec=int(sim),
                                                nanosec=int((sim % 1.0) * 1e9))))
+                self.max_clock = max(self.max_clock, sim)
+            # Where a command stream's clock origin can be: a run's start, on either clock.
+            with self._lock:
+                self.streams.set_origin_range(
+                    (0.0, self.max_clock + 1.0) if sim_nodes else (wall_start - 1.0,
+                                                                   time.time() + 1.0))
             # Faults: a kill in turn; a node that exited by itself is a crash, and restarts.
             if now >= next_kill:
                 next_kill += arguments.kill_every
@@ -389,15 +493,11 @@ class Soak:
         self._stop.set()
         parameter_thread.join(timeout=30.0)
         client.wait(lambda: all(requests.done() for requests in self.requests), 5.0)
-        # Let every node answer what it received (a trajectory still being planned) and report
-        # it, the clock of the nodes on sim time still running, before the final stop.
-        reports_at = {name: self.diagnostics.count('/' + name) for name in self.slots}
-        inputs = {name: {endpoint.name for endpoint in NODE_INTERFACES[name].of_kind(
-            SUBSCRIPTION)} for name in self.slots}
-        drain_end = time.monotonic() + DRAIN_SECONDS
-        while time.monotonic() < drain_end and not all(
-                self.diagnostics.settled('/' + name, reports_at[name], inputs[name])
-                for name in self.slots):
+        # The last work in hand (a large trajectory being planned) answered and reported, so
+        # that the counts add up, while the clock still runs.
+        settled_at = time.monotonic()
+        while time.monotonic() - settled_at < SETTLE_TIMEOUT and (
+                time.monotonic() - settled_at < 2.0 * REPORT_PERIOD or not self.accounted()):
             sim = SIM_TIME_START + (time.monotonic() - start) + offset
             clock.publish(Clock(clock=Time(sec=int(sim), nanosec=int((sim % 1.0) * 1e9))))
             time.sleep(TICK)
@@ -414,6 +514,68 @@ class Soak:
             for key, count in requests.counts.items():
                 self.parameter_counts[key] = self.parameter_counts.get(key, 0) + count
         return self.report(faults, time.monotonic() - start)
+
+    def accounted(self) -> bool:
+        """Whether every node's latest counts add up: no message in hand when it reported."""
+        for name in self.slots:
+            reports = self.diagnostics.reports('/' + name)
+            if any(counters['received'] != counters['published'] + counters['rejected']
+                   for counters in reports.latest.values()):
+                return False
+        return True
+
+    def steady(self, stream, elapsed: float):
+        """
+        Publish one message of the steady stream: plausible, or one of issue 27's cases.
+
+        ``vehicle_imu``: a window of each of :data:`IMU_KINDS` in turn, in the vehicle frame,
+        every sample stamped on one time line that runs :data:`FAST_FACTOR` times fast in a
+        recording's window; every
+        other ``pose_trajectory``: a bulging trajectory, beyond the stroke and inside it in
+        turn, made for the validation rate last asked of trajectory_node.
+
+        :param elapsed: seconds since the soak started.
+        """
+        name, publisher, generator = stream[:3]
+        if name.split('/')[-1] == 'vehicle_imu':
+            kind = IMU_KINDS[int(elapsed / self.arguments.imu_window) % len(IMU_KINDS)]
+            now = time.time_ns()
+            if self.imu_ns is None:
+                self.imu_ns = now
+            else:
+                speed_up = FAST_FACTOR if kind == 'recording' else 1.0
+                self.imu_ns += max(1, int((now - self.imu_wall_ns) * speed_up))
+            self.imu_wall_ns = now
+            frame_id = self.rng.choice(self.vehicle_frames)
+            if kind == 'plausible':
+                message, _ = generator.message('plausible')
+                message.header.stamp.sec, message.header.stamp.nanosec = divmod(
+                    self.imu_ns, 1_000_000_000)
+                message.header.frame_id = frame_id
+            else:
+                message = self.imu_streams[kind].message(self.imu_ns, frame_id)
+            self.imu_counts[kind] += 1
+            publisher.publish(message)
+            self.sent[name] = self.sent.get(name, 0) + 1
+            return
+        if name.split('/')[-1] == 'pose_trajectory':
+            self.trajectories += 1
+            if self.trajectories % 2 == 0:
+                beyond = self.trajectories % 4 == 0
+                invariants = self.invariants
+                try:
+                    message, _ = bulging_trajectory(
+                        self.rng, invariants.geometry, invariants.actuator_limits,
+                        invariants.frames[0], self.low_validation_rate, beyond,
+                        self.hints.frames[0])
+                except ValueError:
+                    self.bulges['not placed'] += 1
+                else:
+                    self.bulges['beyond' if beyond else 'inside'] += 1
+                    publisher.publish(message)
+                    self.sent[name] = self.sent.get(name, 0) + 1
+                    return
+        self.publish(stream, 'plausible', self.sent)
 
     def publish(self, stream, kind, counts):
         """Publish one message of a stream, of a kind (plausible, mutated, hostile)."""
@@ -458,11 +620,17 @@ class Soak:
         run.ended, run.stopped_with, run.exit_code = time.monotonic(), stop_signal.name, code
         output = process.output()
         process.__exit__(None, None, None)
+        self.check_log(slot, run, output)
         if stop_signal != signal.SIGKILL and code != 0:
             self.crash(slot, f'exit code {code} after {stop_signal.name}', output)
         elif 'Traceback' in output:
             self.crash(slot, f'a traceback (stopped with {stop_signal.name})', output)
         _remove_dead_segments(locks)
+
+    def check_log(self, slot: Slot, run: Run, output: str):
+        """Keep the lines of a run's log longer than the bound (a refusal that echoed a flood)."""
+        self.log_problems += [f'{slot.name} run {run.number}: {problem}'
+                              for problem in log_problems(output)]
 
     def watch_children(self, slot: Slot, run: Run):
         """Look, ORPHAN_GRACE seconds after this, for processes of the run still alive."""
@@ -492,6 +660,7 @@ class Soak:
         run.ended, run.exit_code = time.monotonic(), run.process.process.poll()
         output = run.process.output()
         run.process.__exit__(None, None, None)
+        self.check_log(slot, run, output)
         self.crash(slot, f'{what} with exit code {run.exit_code}', output)
         slot.start()
 
@@ -524,6 +693,16 @@ class Soak:
                 self.requests.append(ParameterRequests(fuzzer, self.invariants))
                 fuzzers[key + ('requests',)] = self.requests[-1]
             requests = fuzzers[key + ('requests',)]
+            if slot.name == 'trajectory_node' and (not self.low_rate_requests
+                                                   or rng.random() < LOW_RATE_SHARE):
+                # Issue 27: a low validation_rate, for the bulging trajectories.
+                rate = rng.uniform(*LOW_VALIDATION_RATES)
+                self.low_validation_rate = rate
+                self.low_rate_requests += 1
+                changes = [_valid_change('validation_rate', ParameterType.PARAMETER_DOUBLE, rate),
+                           _valid_change('retime', ParameterType.PARAMETER_BOOL, False)]
+                requests.send(services[SetParameters], changes, False)
+                continue
             changes = fuzzers[key].changes(rng.randint(1, 3))
             # A valid change of the frames moves every pose: let the checks know beforehand.
             for change in changes:
@@ -549,6 +728,10 @@ class Soak:
                  f'{", ".join(self.slots)}; sim time on {", ".join(arguments.sim_time) or "none"}']
         lines.append(f'SOAK stream sent {sum(self.sent.values())} {_sorted(self.sent)}')
         lines.append(f'SOAK bad messages sent {sum(self.bad.values())} {_sorted(self.bad)}')
+        lines.append(f'SOAK issue 27 cases: bulging trajectories {_sorted(self.bulges)}, '
+                     f'{self.low_rate_requests} requests of a low validation_rate; vehicle_imu '
+                     f'by kind {_sorted(self.imu_counts)}; oversized messages '
+                     f'{sum(self.oversized.values())} {_sorted(self.oversized)}')
         for name in self.slots:
             totals = self.totals[name].totals()
             received = sum(counters['received'] for counters in totals.values())
@@ -579,8 +762,24 @@ class Soak:
         lines += [f'  {orphan}' for orphan in self.orphans[:KEPT_EXAMPLES]]
         lines.append(f'SOAK non-finite outputs {self.counts["non-finite"]} (target 0)')
         lines += [f'  {example}' for example in self.non_finite]
-        lines.append(f'SOAK outputs beyond a limit {self.counts["beyond a limit"]} (target 0)')
+        allowance = sum(braking_allowance(self.totals[name].totals()) for name in self.slots)
+        streamed = self.streams.violations
+        excess = max(0, self.allowable + streamed - allowance)
+        beyond = self.counts['beyond a limit'] + excess
+        lines.append(f'SOAK outputs beyond a limit {beyond} (target 0)')
+        lines.append(f'SOAK   of which braking beyond what the nodes counted {excess}: '
+                     f'{self.allowable} poses beyond a pose limit and {streamed} of '
+                     f'{self.streams.checked} stream commands beyond a rate (between consecutive '
+                     f'joint_commands), against {allowance} {" and ".join(ALLOWED_CODES)} '
+                     'findings counted')
         lines += [f'  {example}' for example in self.beyond_limits]
+        if excess:
+            lines += [f'  {example}' for example in (
+                self.allowable_examples + self.streams.problems())[:KEPT_EXAMPLES]]
+        lines.append(f'SOAK long strings in outputs {self.counts["long strings"]} (target 0)')
+        lines += [f'  {example[:300]}' for example in self.long_strings]
+        lines.append(f'SOAK long log lines {len(self.log_problems)} (target 0)')
+        lines += [f'  {problem[:300]}' for problem in self.log_problems[:KEPT_EXAMPLES]]
         lines.append(f'SOAK kills {_sorted(self.kills)}; clock {_sorted(self.jumps)}')
         lines.append(f'SOAK parameter answers {_sorted(self.parameter_counts)}; problems '
                      f'{len(self.parameter_problems)} (target 0)')
@@ -603,7 +802,8 @@ class Soak:
         print('\n'.join(lines), flush=True)
         if arguments.figure:
             self.figure(arguments.figure)
-        missed = (self.crashes or self.counts['non-finite'] or self.counts['beyond a limit']
+        missed = (self.crashes or self.counts['non-finite'] or beyond
+                  or self.counts['long strings'] or self.log_problems
                   or self.parameter_problems or self.accounting_problems or self.orphans)
         return 1 if missed else 0
 
@@ -628,6 +828,12 @@ class Soak:
         figure.tight_layout()
         figure.savefig(path)
         print(f'SOAK figure {path}')
+
+
+def _valid_change(name: str, type_code: int, value) -> ParameterChange:
+    """Return a valid parameter change (either answer allowed; the value held is tracked)."""
+    return ParameterChange(parameter_message(name, type_code, value), EITHER, 'issue 27 case',
+                           value=value)
 
 
 def _sorted(counts) -> str:
@@ -718,6 +924,19 @@ def parse_arguments(argv):
                         help='seconds of each flood (default: 3)')
     parser.add_argument('--flood-rate', type=number_in(1.0, 5000.0), default=1000.0,
                         help='bad messages a second during a flood (default: 1000)')
+    parser.add_argument('--oversized', type=int, default=3,
+                        help='oversized messages in each flood (a million numbers, a string of '
+                             'a million characters...: each field of each topic in turn; '
+                             'default: 3)')
+    parser.add_argument('--imu-window', type=positive_number, default=5.0,
+                        help='seconds of each kind of vehicle_imu samples in turn: plausible, '
+                             'noisy, a recording ten times fast (default: 5)')
+    parser.add_argument('--command-rate', type=number_in(0.0, 1000.0), default=100.0,
+                        help="ik_node's command_rate: joint_commands streamed and checked for "
+                             'their leg rates (default: 100; 0: not streamed)')
+    parser.add_argument('--executables', type=Path, default=None,
+                        help='a folder to take the console scripts from (another build, such '
+                             'as an older revision), instead of the installed ones')
     parser.add_argument('--jump-every', type=positive_number, default=20.0,
                         help='seconds between two /clock jumps (default: 20)')
     parser.add_argument('--parameter-every', type=positive_number, default=2.0,
@@ -728,6 +947,8 @@ def parse_arguments(argv):
                         help='write a PNG of the resident memory over time here')
     arguments = parser.parse_args(argv)
     arguments.seconds = arguments.seconds or 60.0 * arguments.minutes
+    if arguments.oversized < 0:
+        parser.error('--oversized must be at least 0')
     if arguments.seed is None:
         arguments.seed = random.SystemRandom().randrange(2 ** 32)
     if arguments.sim_time is None:

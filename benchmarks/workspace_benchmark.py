@@ -146,8 +146,8 @@ def stall_rows(rows):
     which shares the interpreter lock with the command path.
     """
     import threading
-    from stewart_kinematics.decisions.command_check import CommandCheck
-    from stewart_kinematics.ros.workspace_reporting import WorkspaceWorker
+    from stewart_kinematics.pose_decisions.pose_commands import CommandCheck
+    from stewart_kinematics.workers.workspace_worker import WorkspaceWorker
 
     geometry = load_geometry(FILES)
     check = CommandCheck(geometry)

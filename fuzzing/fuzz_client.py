@@ -22,7 +22,7 @@ the DiagnosticArrays it published and the counters of each of its statuses
 from the registry, about one array a second. :func:`paced` yields on a monotonic schedule,
 :func:`resident_kb` reads a process's resident memory, and :func:`descendants` finds the
 processes a node started (a worker must not outlive its node; whether one still runs is the
-core's :func:`~stewart_kinematics.analysis.worker_processes.process_running`).
+core's :func:`~stewart_kinematics.workers.owner_watch.process_running`).
 """
 
 from dataclasses import dataclass, field

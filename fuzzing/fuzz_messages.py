@@ -253,6 +253,8 @@ class MessageFuzzer:
                 values = values[:slot_type.maximum_size]
             return values
         if isinstance(slot_type, definition.AbstractGenericString):
+            if field_name == 'frame_id' and self.topic.split('/')[-1] == 'vehicle_imu':
+                return ''   # the vehicle frame: a frame named by a parameter the hints lack
             if field_name == 'frame_id':
                 return hints.frames[0] if rng.random() < 0.8 else ''
             if field_name == 'child_frame_id':

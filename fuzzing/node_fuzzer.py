@@ -33,7 +33,16 @@ services. It then checks the invariants:
   the spec refuses the value), and the node then holds exactly the values it accepted;
 - its /diagnostics reports come about once a second and add up: received = published +
   rejected per input, rejections by code summing to the rejections, every code registered,
-  never more received than sent.
+  never more received than sent;
+- a command stream (ik_node's ``joint_commands`` with ``command_rate``) keeps the leg rates
+  between consecutive commands (:mod:`~fuzzing.stream_rates`), and only as many outputs break
+  a limit as the node counted braking commands.
+
+With ``scenarios`` (``--scenarios N``), the node's scenario of :mod:`~fuzzing.node_scenarios`
+follows the flood, N rounds of it: issue 27's cases drawn on purpose (trajectory_node: low
+``validation_rate`` and bulging trajectories; motion_cueing_node, on simulated time in
+lockstep with the fuzzer's ``/clock``: noisy IMU bursts and a recording played ten times fast,
+every ``target_pose`` checked for its leg rates at its exact send time).
 
 ``python -m fuzzing.node_fuzzer --minutes 10`` (``scripts/fuzz_nodes.sh``)
 runs rounds over every declared node for longer; each round prints its seed, and ``--node
@@ -53,6 +62,7 @@ from fuzzing.fuzz_client import DiagnosticsLog, paced, SpinningClient
 from fuzzing.fuzz_messages import choose_kind, MessageFuzzer, summarize
 from fuzzing.fuzz_parameters import argument, start_variant
 from fuzzing.fuzz_targets import parameter_files, plausible_hints
+from fuzzing.node_scenarios import Scenario, scenario_names, ScenarioRun, SCENARIOS, SimClock
 from fuzzing.output_invariants import log_problems, OutputInvariants, OutputLog
 from fuzzing.parameter_requests import (
     held_value_problems,
@@ -60,6 +70,7 @@ from fuzzing.parameter_requests import (
     parameter_fuzzer_of,
     ParameterRequests,
 )
+from fuzzing.stream_rates import braking_allowance
 from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomically
 import rclpy
 from rosidl_parser import definition
@@ -105,9 +116,19 @@ class FuzzSettings:
         names or elements; :meth:`~fuzzing.fuzz_messages.MessageFuzzer.oversized_places`).
     :param files: parameter files (default: :func:`parameter_files`).
     :param arguments: more ``--ros-args`` arguments for the node.
+    :param parameters: parameter values to start the node with (``-p``), over the files and
+        the variant, by name (the output checks see them: ``command_rate`` makes
+        ``joint_commands`` a command stream).
     :param variant: start the node with a :func:`~fuzzing.fuzz_parameters.
         start_variant` of its read-only parameters, drawn from the seed (a variant the node
         refuses to start with, saying why, is reported and the run made without it).
+    :param scenarios: rounds of the node's scenario after the flood
+        (:data:`~fuzzing.node_scenarios.SCENARIOS`; 0: none; a node without one: none). One
+        that needs simulated time starts the node with ``use_sim_time`` and a ``/clock``
+        from the fuzzer for the whole run.
+    :param only: the names of the scenarios to play (default: every one of the node's).
+    :param executable: the node's console script to start (a path), instead of the installed
+        one: to fuzz another build (an older revision, say).
     """
 
     node: str
@@ -119,13 +140,28 @@ class FuzzSettings:
     oversized: int = 1
     files: Optional[Sequence[Path]] = None
     arguments: Sequence[str] = ()
+    parameters: Dict[str, object] = field(default_factory=dict)
     variant: bool = True
+    scenarios: int = 0
+    only: Sequence[str] = ()
+    executable: Optional[str] = None
 
     def replay_options(self) -> str:
         """Return the command-line options that replay this run."""
         return (f'--node {self.node} --seed {self.seed} --messages {self.messages} '
                 f'--rate {self.rate:g} --huge {self.huge} --oversized {self.oversized}'
-                + ('' if self.variant else ' --no-variant'))
+                + ('' if self.variant else ' --no-variant')
+                + (f' --scenarios {self.scenarios}' if self.scenarios else '')
+                + ''.join(f' --scenario {name}' for name in self.only)
+                + (f' --executable {self.executable}' if self.executable else ''))
+
+    @property
+    def to_play(self) -> List[Scenario]:
+        """Return the node's scenarios to play (none without ``scenarios``)."""
+        if self.scenarios <= 0:
+            return []
+        return [scenario for scenario in SCENARIOS.get(self.node, ())
+                if not self.only or scenario.name in self.only]
 
 
 @dataclass
@@ -150,6 +186,8 @@ class FuzzReport:
     #: The start-up variant the node ran with (``-p`` arguments), and why one was dropped.
     variant: List[str] = field(default_factory=list)
     variant_refused: str = ''
+    #: What the node's scenario sent and saw, in words.
+    scenario: List[str] = field(default_factory=list)
 
     def summary(self) -> str:
         """Return the run's figures in a few lines."""
@@ -168,6 +206,7 @@ class FuzzReport:
             f'{dict(sorted(self.parameter_changes.items()))}; phases (s) '
             + ', '.join(f'{name} {seconds:.1f}' for name, seconds in self.phases.items()),
         ]
+        lines += [f'FUZZ {settings.node} scenario: {line}' for line in self.scenario]
         return '\n'.join(lines)
 
     def failure(self) -> str:
@@ -194,37 +233,47 @@ def fuzz_node(settings: FuzzSettings, context=None) -> FuzzReport:
     :param context: the rclpy context of the fuzzer's node (default: the global one).
     :returns: the :class:`FuzzReport`; its ``problems`` are empty when every invariant holds.
     """
-    variant = []
-    if settings.variant:
-        drawn = start_variant(random.Random(f'{settings.seed} variant'))
-        variant = [word for name, value in sorted(drawn.items())
-                   for word in ('-p', argument(name, value))]
-    report = _fuzz_once(settings, variant, context)
-    if variant and report.variant_refused:
+    drawn = start_variant(random.Random(f'{settings.seed} variant')) if settings.variant else {}
+    report = _fuzz_once(settings, drawn, context)
+    if drawn and report.variant_refused:
         refused = report.variant_refused
-        report = _fuzz_once(settings, [], context)
+        report = _fuzz_once(settings, {}, context)
         report.variant_refused = refused
     return report
 
 
-def _fuzz_once(settings: FuzzSettings, variant: List[str], context) -> FuzzReport:
-    """Fuzz a node started with ``variant`` (``-p`` arguments); see :func:`fuzz_node`."""
+def _fuzz_once(settings: FuzzSettings, drawn: dict, context) -> FuzzReport:
+    """Fuzz a node started with the variant ``drawn`` (name -> value); see :func:`fuzz_node`."""
     interface = NODE_INTERFACES[settings.node]
     files = list(settings.files or parameter_files(settings.node))
+    variant = [word for name, value in sorted(drawn.items())
+               for word in ('-p', argument(name, value))]
     report = FuzzReport(settings, variant=variant[1::2])
+    given = [word for name, value in sorted(settings.parameters.items())
+             for word in ('-p', argument(name, value))]
     rng = random.Random(settings.seed)
-    invariants = OutputInvariants.from_parameter_files(files, settings.node)
+    invariants = OutputInvariants.from_parameter_files(files, settings.node,
+                                                       {**drawn, **settings.parameters})
     hints = plausible_hints(files, settings.node)
     arguments = ['--ros-args']
     for path in files:
         arguments += ['--params-file', str(path)]
-    arguments += variant + list(settings.arguments)
-    process = NodeProcess(find_executable(settings.node), arguments)
+    arguments += variant + given + list(settings.arguments)
+    sim_time = any(scenario.sim_time for scenario in settings.to_play)
+    if sim_time:
+        arguments += ['-p', 'use_sim_time:=true']
+    # A command stream's times are seconds since the node's clock origin: when it was built.
+    launched = time.time()
+    invariants.origin_range = (launched - 1.0, launched + DEADLINE + 60.0)
+    process = NodeProcess(find_executable(settings.executable or settings.node), arguments)
     client = SpinningClient(rclpy.create_node(f'stewart_fuzzer_{settings.node}',
                                               context=context))
+    clock = SimClock(client.node) if sim_time else None
     try:
-        _run(settings, interface, process, client, rng, invariants, hints, report)
+        _run(settings, interface, process, client, rng, invariants, hints, report, clock, files)
     finally:
+        if clock is not None:
+            clock.close()
         client.close()
         code = process.stop()
         report.output = process.output()
@@ -251,8 +300,8 @@ def _start_refusal(output: str) -> str:
     return ''
 
 
-def _run(settings, interface, process, client, rng, invariants, hints, report):
-    """Run the body of :func:`fuzz_node`: discovery, flood, answers, checks."""
+def _run(settings, interface, process, client, rng, invariants, hints, report, clock, files):
+    """Run the body of :func:`fuzz_node`: discovery, flood, answers, scenario, checks."""
     node = client.node
     fqn = '/' + settings.node
     diagnostics = DiagnosticsLog()
@@ -272,8 +321,8 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
             continue   # an optional message package (tf2_msgs) that is not installed
         callback = outputs.callback(endpoint.name)
         if endpoint.name == '/diagnostics':
-            def callback(array, check=callback):
-                check(array)
+            def callback(array, info, check=callback):
+                check(array, info)
                 diagnostics(array)
         node.create_subscription(message_type, endpoint.name, callback, QUEUE_DEPTH)
     inputs = []
@@ -292,6 +341,9 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
                        and diagnostics.count(fqn) >= 1, DEADLINE, [process]):
         return fail(f'{settings.node} not matched on its inputs and /diagnostics within '
                     f'{DEADLINE} s (running: {process.running()})')
+    if clock is None:
+        # Built by now (it answers): its clock's origin is behind us.
+        outputs.streams.set_origin_range((invariants.origin_range[0], time.time() + 1.0))
     fuzzer = parameter_fuzzer_of(client, services, rng)
     if fuzzer is None:
         return fail(f'{settings.node} did not list or describe its parameters')
@@ -306,7 +358,8 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
     special += [('oversized', entry, place) for _ in range(settings.oversized)
                 for entry in inputs for place in entry[2].oversized_places()]
     huge_at = {}
-    for number, (kind, (topic, publisher, generator), place) in enumerate(special):
+    for number, (kind, (topic, publisher, generator), place) in enumerate(
+            special if settings.messages else ()):
         index = (number + 1) * settings.messages // (len(special) + 1)
         huge_at[index] = (topic, publisher, kind) + (
             generator.message(kind) if place is None else generator.oversized(place))
@@ -358,9 +411,28 @@ def _run(settings, interface, process, client, rng, invariants, hints, report):
         report.problems.append(f'{settings.node} still receiving {SETTLE_DEADLINE} s after the '
                                f'flood (running: {process.running()})')
     phase('settle')
+    finish = []
+    if settings.to_play and process.running():
+        run = ScenarioRun(fqn, client, process, {topic: publisher for topic, publisher, _
+                                                 in inputs}, services, requests, invariants,
+                          diagnostics, report, rng, files, clock)
+        for scenario in settings.to_play:
+            if process.running():
+                scenario.play(run, settings.scenarios)
+        finish = run.finish
+        scenario_end = diagnostics.count(fqn)
+        client.wait(requests.done, DEADLINE, [process])
+        if not client.wait(lambda: diagnostics.settled(fqn, scenario_end, report.sent),
+                           SETTLE_DEADLINE, [process]):
+            report.problems.append(f'{settings.node} still receiving {SETTLE_DEADLINE} s after '
+                                   f'the scenario (running: {process.running()})')
+        phase('scenario')
     report.problems += requests.problems
     report.problems += held_value_problems(client, services, fuzzer, DEADLINE)
-    report.problems += outputs.problems()
+    latest = diagnostics.reports(fqn).latest
+    report.problems += outputs.problems(braking_allowance(latest))
+    for check in finish:
+        report.problems += check()
     report.problems += diagnostics.problems(fqn, report.sent)
     reports = diagnostics.reports(fqn)
     report.reports = len(reports.stamps)
@@ -405,13 +477,28 @@ def parse_arguments(argv):
                         help='rounds of oversized messages per node and round: one message '
                              'per input and per field it can grow (10^6 numbers, 10^6 '
                              'characters, 10^5 names or elements; default: 1)')
+    parser.add_argument('--scenarios', type=int, default=1,
+                        help="rounds of each node's scenario after the flood (issue 27's "
+                             'cases: low validation_rate and bulging trajectories; noisy and '
+                             'fast IMU input in lockstep with a simulated clock; default: 1; '
+                             '0: none)')
+    parser.add_argument('--scenario', dest='only', action='append', default=[],
+                        choices=scenario_names(),
+                        help='play this scenario only (repeatable; default: every scenario of '
+                             'each node)')
+    parser.add_argument('--executable', default=None,
+                        help='the console script to start (a path), instead of the installed '
+                             'one: to fuzz another build; with one --node')
     parser.add_argument('--no-variant', dest='variant', action='store_false',
                         help='start the nodes with the parameter files alone (default: with a '
                              'start-up variant of their read-only parameters drawn from the '
                              'seed)')
     arguments = parser.parse_args(argv)
-    if arguments.messages < 1 or arguments.huge < 0 or arguments.oversized < 0:
-        parser.error('--messages must be at least 1, --huge and --oversized at least 0')
+    if (arguments.messages < 0 or arguments.huge < 0 or arguments.oversized < 0
+            or arguments.scenarios < 0):
+        parser.error('--messages, --huge, --oversized and --scenarios must be at least 0')
+    if arguments.executable and len(arguments.node or []) != 1:
+        parser.error('--executable needs exactly one --node')
     return arguments
 
 
@@ -430,7 +517,10 @@ def main(argv=None) -> int:
                     settings = FuzzSettings(node, seed + round_number, arguments.messages,
                                             arguments.rate, huge=arguments.huge,
                                             oversized=arguments.oversized,
-                                            variant=arguments.variant)
+                                            variant=arguments.variant,
+                                            scenarios=arguments.scenarios,
+                                            only=tuple(arguments.only),
+                                            executable=arguments.executable)
                     report = fuzz_node(settings)
                     print(report.summary(), flush=True)
                     if report.problems:

@@ -30,6 +30,15 @@ topic whose name says what it carries gets the limits too, checked with the pack
   leg collisions) under one of the frame trees the node had while the message was sent
   (:meth:`OutputInvariants.add_frames` adds one after an accepted tool frame change).
 
+A command stream (``joint_commands`` of an ik_node with ``command_rate``: every message a sample
+of a motion, stamped with the time it is sent) is checked across messages too: the leg
+velocity, acceleration and jerk between consecutive commands, as divided differences of the
+lengths by the stamps, within the limits (:class:`~fuzzing.stream_rates.LegRateStream`, kept by
+:class:`OutputLog`). Only a braking command may break a rate or, on a pose topic, a pose limit
+(a leg stopped at its stroke's end, a cone passed while braking, and the commands that come
+back): :meth:`OutputLog.problems` allows as many such outputs as the node counted
+``command_braking`` and ``returning_to_limits`` findings on ``/diagnostics``, and no more.
+
 A topic of another name is still checked for finite numbers and unit quaternions: a node added
 later is covered by those without a change here. Limits are checked to a relative
 :data:`TOLERANCE`: the rounding of a pose sent as a quaternion, not a margin.
@@ -46,6 +55,7 @@ import threading
 from typing import Dict, List, Sequence
 
 from fuzzing.fuzz_messages import fields_of, message_class, type_name
+from fuzzing.stream_rates import allowance_problems, LegRateStream
 import numpy as np
 from rosidl_parser import definition
 
@@ -190,7 +200,7 @@ class OutputInvariants:
     :param frames: the frame tree the node starts with.
     """
 
-    def __init__(self, geometry, actuator_limits, actuators, frames):
+    def __init__(self, geometry, actuator_limits, actuators, frames, streams=()):
         self.geometry = geometry
         self.model = LimitModel(geometry)
         self.actuator_limits = actuator_limits
@@ -198,15 +208,54 @@ class OutputInvariants:
         #: Every frame tree the node may have had while publishing (a change is asynchronous).
         self.frames = [frames]
         self.stroke = (geometry.leg_length_min, geometry.leg_length_max)
+        #: The topics (last name part) whose messages are a stamped command stream, checked
+        #: across messages for their leg rates (jerk included: ik_node's stream limits it).
+        self.streams = frozenset(streams)
+        #: Where the publishers' clock origins lie, seconds (:class:`LegRateStream`): a wall
+        #: clock's origin is after 0 and before now.
+        self.origin_range = (0.0, 2.0 ** 31)
 
     @classmethod
-    def from_parameter_files(cls, paths: Sequence, node_name: str) -> 'OutputInvariants':
-        """Build the invariants of a node started with these parameter files."""
-        values = read_parameter_files(paths, node_name)
+    def from_parameter_files(cls, paths: Sequence, node_name: str,
+                             overrides=None) -> 'OutputInvariants':
+        """
+        Build the invariants of a node started with these parameter files.
+
+        :param overrides: parameter values given besides the files (``-p name:=value``), by
+            name: ``command_rate`` makes ``joint_commands`` a command stream.
+        """
+        values = dict(read_parameter_files(paths, node_name))
+        values.update(overrides or {})
         geometry = geometry_from_parameters(values)
+        streams = ['joint_commands'] if (values.get('command_rate') or 0.0) > 0.0 else []
         return cls(geometry, actuator_limits_from_settings(GeometrySettings.from_values(values)),
                    actuator_interface_from_settings(ActuatorSettings.from_values(values)),
-                   frames_from_parameters(values))
+                   frames_from_parameters(values), streams)
+
+    def stream(self, topic: str):
+        """
+        Return a new :class:`LegRateStream` for a topic that is a command stream, or ``None``.
+
+        :param topic: the topic's name; its last part says whether it is one.
+        """
+        role = topic.rstrip('/').split('/')[-1]
+        if role not in self.streams:
+            return None
+        return LegRateStream(self.actuator_limits, True, self.origin_range, role)
+
+    def stream_command(self, message):
+        """
+        Return ``(send time, ns; leg lengths (6,))`` of a ``joint_commands`` message, or ``None``.
+
+        ``None`` for a message that names other joints (its own check says so).
+        """
+        try:
+            order = self.actuators.order(list(message.name))
+            lengths = self.actuators.lengths(np.asarray(message.position, dtype=float)[order])
+        except (ValueError, IndexError):
+            return None
+        stamp = message.header.stamp
+        return stamp.sec * 1_000_000_000 + stamp.nanosec, lengths
 
     def add_frames(self, values) -> None:
         """
@@ -246,13 +295,13 @@ class OutputInvariants:
         if lengths.shape != (6,):
             return [f'{what}: {lengths.size} values, not 6']
         low, high = self.stroke
-        return [f'{what}: leg {index + 1} length {lengths[index]!r} m outside the stroke '
+        return [f'{what}: leg {index + 1} length {float(lengths[index])!r} m outside the stroke '
                 f'[{low}, {high}]' for index in _beyond(lengths, max(low, 0.0), high)]
 
     def rate_problems(self, values, limit: float, what: str, unit: str) -> List[str]:
         """Rates beyond ``limit`` in magnitude."""
         values = np.asarray(values, dtype=float)
-        return [f'{what}: leg {index + 1} {values[index]!r} {unit} beyond {limit} {unit}'
+        return [f'{what}: leg {index + 1} {float(values[index])!r} {unit} beyond {limit} {unit}'
                 for index in _beyond(values, -limit, limit)]
 
     def leg_lengths_problems(self, message) -> List[str]:
@@ -364,13 +413,73 @@ def checked_roles() -> List[str]:
     return sorted({role for role, _ in _ROLE_CHECKS} | {'*pose', '*pose_stamped'})
 
 
+class StreamChecks:
+    """
+    The command streams among a node's outputs, each checked across its messages.
+
+    One :class:`~fuzzing.stream_rates.LegRateStream` per topic that
+    :attr:`OutputInvariants.streams` names. A new publisher on a topic (its sequence numbers
+    start again: a node started again) starts a new time line. Not thread-safe: the caller
+    holds its lock.
+
+    :param invariants: the :class:`OutputInvariants` that say which topics are streams.
+    """
+
+    def __init__(self, invariants: OutputInvariants):
+        self.invariants = invariants
+        self.streams: Dict[str, LegRateStream] = {}
+        self._sequence: Dict[str, int] = {}
+
+    def check(self, topic: str, message, info=None) -> None:
+        """Check one output message (of a stream topic; others are ignored) against the last."""
+        if topic not in self.streams:
+            stream = self.invariants.stream(topic)
+            if stream is None:
+                return
+            self.streams[topic] = stream
+        stream = self.streams[topic]
+        sequence = info.get('publication_sequence_number') if isinstance(info, dict) else None
+        last = self._sequence.get(topic)
+        if sequence is not None:
+            if last is not None and sequence <= last:
+                stream.reset()   # a new publisher: a node started again
+            self._sequence[topic] = sequence
+        command = self.invariants.stream_command(message)
+        if command is None:
+            stream.reset()
+            return
+        stream.add(*command, self.invariants.actuators.offsets)
+
+    def set_origin_range(self, origin_range) -> None:
+        """Say where the publishers' clock origins lie, seconds (see :class:`LegRateStream`)."""
+        self.invariants.origin_range = origin_range
+        for stream in self.streams.values():
+            stream.origin_range = origin_range
+
+    @property
+    def violations(self) -> int:
+        """Return how many stream commands broke a rate limit."""
+        return sum(stream.violations for stream in self.streams.values())
+
+    @property
+    def checked(self) -> int:
+        """Return how many stream commands were checked for their rates."""
+        return sum(stream.checked for stream in self.streams.values())
+
+    def problems(self) -> List[str]:
+        """Return the first of the commands that broke a rate limit, in words."""
+        return [problem for stream in self.streams.values() for problem in stream.problems]
+
+
 class OutputLog:
     """
     Subscription callbacks that check every output of a node: counts, and the failures kept.
 
     A failing message is kept (:data:`KEPT_FAILURES` at most) and checked again at the end by
     :meth:`problems`, against every frame tree seen by then: a frame change is asynchronous,
-    and an output may arrive before the answer that says its frames changed.
+    and an output may arrive before the answer that says its frames changed. A command stream
+    (:attr:`OutputInvariants.streams`) is checked across its messages as they arrive
+    (:class:`StreamChecks`).
 
     :param invariants: the :class:`OutputInvariants` to check with.
     """
@@ -380,11 +489,13 @@ class OutputLog:
         self.counts: Dict[str, int] = {}
         self.failures = []
         self.failure_count = 0
+        #: The command streams' checks.
+        self.streams = StreamChecks(invariants)
         self._lock = threading.Lock()
 
     def callback(self, topic):
-        """Return the subscription callback of one output topic."""
-        def on_message(message):
+        """Return the subscription callback of one output topic (it takes the message info)."""
+        def on_message(message, info):
             problems = self.invariants.problems(topic, message)
             with self._lock:
                 self.counts[topic] = self.counts.get(topic, 0) + 1
@@ -392,16 +503,39 @@ class OutputLog:
                     self.failure_count += 1
                     if len(self.failures) < KEPT_FAILURES:
                         self.failures.append((topic, message))
+                self.streams.check(topic, message, info)
         return on_message
 
-    def problems(self) -> List[str]:
-        """Check the failing messages again, against every frame tree seen: what still fails."""
-        problems = []
+    def problems(self, allowance: int = 0) -> List[str]:
+        """
+        Check the failing messages again, against every frame tree seen: what still fails.
+
+        :param allowance: how many outputs may break a limit because the node said so: its
+            ``command_braking`` and ``returning_to_limits`` counts on /diagnostics
+            (:func:`~fuzzing.stream_rates.braking_allowance`). Only a pose beyond a pose limit
+            and a command stream's rates are allowed; nothing non-finite, no long string, no
+            leg length or trajectory point beyond the stroke.
+        """
+        problems, allowed = [], []
         with self._lock:
             failures = list(self.failures)
+            streamed, examples = self.streams.violations, self.streams.problems()
         for topic, message in failures:
-            for problem in self.invariants.problems(topic, message):
-                problems.append(f'published on {topic}: {problem}')
+            found = [f'published on {topic}: {problem}'
+                     for problem in self.invariants.problems(topic, message)]
+            if found and allowable(topic, message):
+                allowed += found[:1]
+            else:
+                problems += found
         if problems and self.failure_count > len(failures):
             problems.append(f'... {self.failure_count} failing output messages in all')
+        problems += allowance_problems(len(allowed) + streamed, allowance, allowed + examples,
+                                       'poses beyond a pose limit and streams beyond a rate')
         return problems
+
+
+def allowable(topic: str, message) -> bool:
+    """Whether a failing output may be a braking command: a pose, finite, with short strings."""
+    role = topic.rstrip('/').split('/')[-1]
+    return ((role.endswith('pose') or role.endswith('pose_stamped'))
+            and not numbers_problems(message) and not string_problems(message))

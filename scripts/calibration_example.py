@@ -46,7 +46,7 @@ from stewart_kinematics.analysis.calibration_files import (
     write_measurements,
     write_parameter_file,
 )
-from stewart_kinematics.model.kinematics import forward_kinematics
+from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
 from stewart_kinematics.parameters import load_geometry, ParameterFileError, read_parameter_file
 from stewart_kinematics.tools.cli_arguments import check_output_paths, refuse_parameter_file

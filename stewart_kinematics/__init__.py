@@ -26,9 +26,13 @@ for timed motion, imported where used); the ROS nodes live in
     result = forward_kinematics(geometry, lengths)
     result.pose, result.converged, result.iterations, result.residual
 
-The decisions the nodes take, for a Python user's own loop: :class:`CommandCheck` (a commanded
-pose in, safe leg lengths or every reason out) and :class:`PoseTracker` (measured leg lengths
-in, a trusted pose or the reason out).
+The decisions the nodes take, for a Python user's own loop: :class:`CommandCheck` (ik_node: a
+commanded pose in, safe leg lengths or every reason out), :class:`PoseTracker` (fk_node:
+measured leg lengths in, a trusted pose or the reason out), :class:`MotionPlanner`
+(trajectory_node: a trajectory in, timed and checked whole, or the reason out),
+:class:`CommandFilter` (streamed commands) and :class:`stewart_kinematics.cueing.MotionCueing`
+(motion_cueing_node). Each answers with the shared
+:class:`~stewart_kinematics.findings.Decision` result.
 
 Poses are ``[X, Y, Z, alpha, beta, gamma]`` in metres and radians, with
 ``R = Rz(gamma) Ry(beta) Rx(alpha)``; leg lengths are in metres, leg 1..6.
@@ -47,27 +51,15 @@ from stewart_kinematics.analysis.workspace import (
     workspace_slice,
     workspace_volume,
 )
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand, LegVelocityCommand
-from stewart_kinematics.decisions.pose_tracker import (
-    PoseAnchor,
-    PoseEstimate,
-    PoseTracker,
-    TwistEstimate,
-)
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    ForwardKinematicsResult,
-    inverse_kinematics,
-    jacobian,
-    leg_lengths,
-    leg_vectors,
-    twist_jacobian,
-)
+from stewart_kinematics.model.inverse import inverse_kinematics, leg_lengths, leg_vectors
+from stewart_kinematics.model.jacobians import jacobian, twist_jacobian
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -82,7 +74,7 @@ from stewart_kinematics.motion.planning import MotionPlan, MotionPlanner, plan_m
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
 from stewart_kinematics.motion.ramp import Ramp
 from stewart_kinematics.motion.retiming import retime
-from stewart_kinematics.motion.streaming import CommandFilter, FilteredCommand
+from stewart_kinematics.motion.streaming import CommandFilter, FilteredCommand, StreamTarget
 from stewart_kinematics.motion.trajectory_check import check_trajectory, TrajectoryCheck
 from stewart_kinematics.parameters import (
     frames_from_parameters,
@@ -90,6 +82,17 @@ from stewart_kinematics.parameters import (
     load_geometry,
     load_settings,
     SolverSettings,
+)
+from stewart_kinematics.pose_decisions.pose_commands import (
+    CommandCheck,
+    LegCommand,
+    LegVelocityCommand,
+)
+from stewart_kinematics.pose_decisions.pose_tracker import (
+    PoseAnchor,
+    PoseEstimate,
+    PoseTracker,
+    TwistEstimate,
 )
 
 __all__ = [
@@ -146,6 +149,7 @@ __all__ = [
     'retime',
     'SingularPoseError',
     'SolverSettings',
+    'StreamTarget',
     'TimedTrajectory',
     'TrajectoryCheck',
     'Transform',

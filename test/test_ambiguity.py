@@ -51,8 +51,8 @@ from stewart_kinematics import (
     SolverSettings,
 )
 from stewart_kinematics.analysis.assembly_modes import AssemblyModeMargin
-from stewart_kinematics.decisions.pose_tracker import ambiguity_status
 from stewart_kinematics.model.frames import Transform
+from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status
 
 pytestmark = pytest.mark.core
 

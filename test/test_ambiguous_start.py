@@ -26,8 +26,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from stewart_kinematics import findings, inverse_kinematics, load_geometry, PoseTracker
-from stewart_kinematics.decisions import pose_tracker
 from stewart_kinematics.parameters import SolverSettings
+from stewart_kinematics.pose_decisions import pose_tracker
 
 pytestmark = pytest.mark.core
 

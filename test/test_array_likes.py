@@ -237,6 +237,13 @@ def checked_twist(twist):
     return check.twist(twist)
 
 
+def checked_tool_twist(twist):
+    """Return a fresh CommandCheck's leg velocities for a twist about a tool point, at home."""
+    check = CommandCheck(LIMITED, LIMITS)
+    check.pose_vector(LIMITED.home_pose)
+    return check.tool_twist(twist, FrameTree(tool_pose=Transform([0.0, 0.0, 0.1], np.eye(3))))
+
+
 PATH_POSITIONS = np.array([[0.0, 0.0, 0.45], [0.01, 0.0, 0.45], [0.01, 0.01, 0.46]])
 PATH_QUATERNIONS = np.array([[0.0, 0.0, 0.0, 1.0]] * 3)
 
@@ -276,6 +283,7 @@ ENTRY_POINTS = [
     ('CommandCheck.tool_pose quaternion', DECISION,
      lambda v: CommandCheck(LIMITED).tool_pose(POSITION, v), QUATERNION),
     ('CommandCheck.twist', DECISION, checked_twist, TWIST),
+    ('CommandCheck.tool_twist', DECISION, checked_tool_twist, TWIST),
     ('PoseTracker.update', DECISION, tracker_update, LIMITED.home_leg_lengths),
     ('PoseTracker.update velocities', DECISION,
      tracker_update_twist, [0.001] * 6),

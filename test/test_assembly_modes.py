@@ -337,7 +337,7 @@ def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
 
 @pytest.mark.parametrize('worker', ['thread', 'process'])
 def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper, worker):
-    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
+    from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
     end = pose_of(TABLE_3_END[:3], TABLE_3_END[3:])
     lengths = reference.leg_lengths_of_matrix(
         end[:3], euler_zyx_to_matrix(end[3:]), paper.base_joints, paper.platform_joints)
@@ -360,7 +360,7 @@ def test_margin_monitor_computes_in_the_background_once_per_set_of_lengths(paper
 
 
 def test_margin_monitor_refuses_an_unknown_worker_and_outlives_its_process(paper):
-    from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
+    from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
     with pytest.raises(ValueError, match="worker must be one of .'thread', 'process'., got 'x'"):
         AssemblyModeMarginMonitor(paper, worker='x')
     monitor = AssemblyModeMarginMonitor(paper, worker='process')

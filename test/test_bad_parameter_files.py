@@ -213,6 +213,12 @@ HOSTILE = [
     ('null value', '    leg_length_max: null', 3,
      ["'leg_length_max' must be of type double, got null (an empty value"]),
     ('empty value', '    leg_length_max:', 3, ["the value of 'leg_length_max' is empty"]),
+    # rcl refuses a list of mixed types before any node exists, in words that show the null
+    # as a string and name no parameter (found by the parameter-file fuzzer, seed 2523776678).
+    ('null in a list', '    base_joints: [0.1, ~, 0.2]', 3,
+     ["'base_joints' must be of type double_array, got ~ in the list"]),
+    ('mixed list', "    joint_names: ['a', 2, 'c', 'd', 'e', 'f']", 3,
+     ["'joint_names' must be"]),
 ]
 
 

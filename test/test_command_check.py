@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.decisions.command_check.CommandCheck (pure numpy, no ROS).
+Unit tests of stewart_kinematics.pose_decisions.pose_commands.CommandCheck (pure numpy, no ROS).
 
 Expected leg lengths are computed here from the paper's tables, leg by leg with the textbook
 rotation matrices; leg velocities are checked against central differences of those lengths.
@@ -332,6 +332,55 @@ def test_tool_pose_normalises_a_quaternion_with_a_warning():
     assert warning.code == 'quaternion_not_unit' and 'norm 2, not 1: normalised' in warning.message
     refused = check.tool_pose((0.0, 0.0, 0.62), 2.0 * quaternion)   # out of the stroke too
     assert refused.refusal.code == 'out_of_limits' and refused.warnings == doubled.warnings
+
+
+def test_a_message_quaternion_is_checked_once_and_converted_as_the_gate_converts_it(monkeypatch):
+    """
+    tool_pose checks the quaternion where it enters, and converts it as before, to the bit.
+
+    Issue 28: it was normalised (and checked) by tool_pose, then twice more on the way to the
+    rotation matrix. The matrix must stay the one the command gate computes for what a node
+    sends on (platform_of_tool_message), so that the two agree exactly.
+    """
+    from stewart_kinematics.pose_decisions import pose_commands
+    from stewart_kinematics.limits import command_gate
+    frames = FrameTree(user_frame='work', user_pose=Transform.from_pose([0.01] + [0.0] * 5))
+    cases = [(quaternion, frame_id) for frame_id in ('', 'work') for quaternion in (
+        reference.quaternion_from_euler(*TILTED[3:]),
+        2.0 * reference.quaternion_from_euler(*TILTED[3:]),
+        np.array([1e-3, -2e-3, 0.5, 3.0]), np.array([0.0, 0.0, 0.0, 1e200]),
+        np.array([0.1, 0.2, 0.3, 0.4]) * (1.0 + 1e-7))]
+    expected = [command_gate.platform_of_tool_message(np.array(TILTED[:3]), quaternion, frames,
+                                                      frame_id) for quaternion, frame_id in cases]
+    calls = []
+    for module in (pose_commands, command_gate):
+        def counted(quaternion, normalise=module.normalize_quaternion):
+            calls.append(1)
+            return normalise(quaternion)
+        monkeypatch.setattr(module, 'normalize_quaternion', counted)
+    check = CommandCheck(geometry())
+    for (quaternion, frame_id), (position, rotation) in zip(cases, expected):
+        calls.clear()
+        command = check.tool_pose(TILTED[:3], quaternion, frames, frame_id)
+        assert len(calls) == 1, frame_id
+        assert np.array_equal(command.position, position)
+        assert np.array_equal(command.rotation, rotation)
+    for bad in ([0.0] * 4, [math.nan, 0.0, 0.0, 1.0], [1.0, 2.0, 3.0]):
+        refusal = check.tool_pose(TILTED[:3], bad).refusal
+        assert refusal.code == 'invalid_pose', bad
+
+
+def test_a_pose_vector_is_checked_once_and_its_matrix_is_euler_zyx_to_matrix(monkeypatch):
+    """The angles checked by pose_vector are not checked again; the same matrix to the bit."""
+    from stewart_kinematics.model import rotations
+    poses = np.vstack([reference.random_poses(20, seed=43), [TILTED, HOME]])
+    expected = [rotations.euler_zyx_to_matrix(pose[3:]) for pose in poses]
+    check = CommandCheck(geometry())
+    monkeypatch.setattr(rotations, '_euler_angles', lambda angles: pytest.fail('checked again'))
+    for pose, rotation in zip(poses, expected):
+        command = check.pose_vector(pose)
+        assert np.array_equal(command.rotation, rotation)
+    assert check.pose_vector([0.0, 0.0, 0.45, math.nan, 0.0, 0.0]).refusal.code == 'invalid_pose'
 
 
 def test_a_refused_pose_reports_where_the_platform_would_have_been():

@@ -211,7 +211,7 @@ def test_trajectory_node_publishes_its_commands_only_through_the_gate(ros, spin_
         _assert_only_wrapped(node)
         recorder = Recorder(node)
         for _ in range(3):
-            node.publish_row()
+            node.publish_ramp()
         message = MultiDOFJointTrajectory()
         for k, z in enumerate((0.4325, 0.44, 0.4325)):
             point = MultiDOFJointTrajectoryPoint()

@@ -29,7 +29,7 @@ from numpy.testing import assert_allclose
 import pytest
 import reference
 
-from stewart_kinematics.cueing import limiting, MotionCueing
+from stewart_kinematics.cueing import cue_limiter, MotionCueing
 from stewart_kinematics.model.rotations import quaternion_to_matrix
 from stewart_kinematics.parameters import read_parameter_files
 
@@ -97,7 +97,7 @@ def test_a_follower_whose_forward_kinematics_fails_brakes_instead_of_holding(mon
     throughout (issue 27: the pose was held, warned only as actuator_limited).
     """
     motion = cueing()
-    real = limiting.forward_kinematics
+    real = cue_limiter.forward_kinematics
     failing = {'now': False, 'count': 0}
 
     def solve(*arguments, **keywords):
@@ -106,7 +106,7 @@ def test_a_follower_whose_forward_kinematics_fails_brakes_instead_of_holding(mon
             failing['count'] += 1
             return type(result)(result.pose, False, 50, 1.0, 'made to fail')
         return result
-    monkeypatch.setattr(limiting, 'forward_kinematics', solve)
+    monkeypatch.setattr(cue_limiter, 'forward_kinematics', solve)
     times, lengths, codes = [], [], []
     rng = np.random.default_rng(2)
     for k in range(600):

@@ -29,7 +29,7 @@ import pytest
 from stewart_kinematics import ActuatorLimits, travel_ranges
 from stewart_kinematics.cueing import evaluate, MotionCueing, replay
 from stewart_kinematics.cueing.evaluation import delay, pearson, rest_time
-from stewart_kinematics.cueing.limit_check import leg_speed_violations
+from stewart_kinematics.cueing.limit_margins import leg_speed_violations
 from stewart_kinematics.cueing.scenarios import (
     all_scenarios,
     MULTI_SINE_FREQUENCIES,

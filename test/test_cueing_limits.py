@@ -30,7 +30,7 @@ import pytest
 
 from stewart_kinematics import ActuatorLimits, inverse_kinematics, load_geometry
 from stewart_kinematics.cueing import CueingSettings, MotionCueing
-from stewart_kinematics.cueing.limiting import box_least_squares
+from stewart_kinematics.cueing.cue_limiter import box_least_squares
 from stewart_kinematics.limits import check_poses_array
 
 pytestmark = pytest.mark.core

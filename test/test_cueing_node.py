@@ -330,7 +330,7 @@ def test_one_stamp_far_in_the_future_does_not_freeze_the_node(wall_clock_rig):
         return accounting.published > published + 1
 
     stream_cued_again.index = 5
-    timeout = wall_clock_rig.node.input_timeout
+    timeout = wall_clock_rig.node.cueing.settings.input_timeout
     assert wall_clock_rig.spin_until(wall_clock_rig.executor, stream_cued_again,
                                      5.0 + 4 * timeout), (
         f'still refused after {stream_cued_again.index} messages: '

@@ -120,7 +120,7 @@ def test_every_code_emitted_is_registered_and_every_registered_code_is_emitted()
         'registered but emitted nowhere: ' + ', '.join(sorted(set(findings.CODES)
                                                               - set(emitted))))
     # The scan sees the nodes too: the codes that moved there from ik_node and trajectory_node.
-    assert any('decisions/command_check.py' in place for place in emitted['wrong_frame'])
+    assert any('pose_decisions/pose_commands.py' in place for place in emitted['wrong_frame'])
     assert any('motion/streaming.py' in place for place in emitted['stream_held'])
 
 

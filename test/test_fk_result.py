@@ -36,12 +36,10 @@ from reference import (
     twist_jacobian,
 )
 
-from stewart_kinematics.model import kinematics
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    inverse_kinematics,
-    jacobian_condition,
-)
+from stewart_kinematics.model import error_bound, jacobians
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import jacobian_condition
 
 pytestmark = pytest.mark.core
 
@@ -178,11 +176,11 @@ def test_pose_error_bound_definition(geometry):
     jac[:, 3:] /= rho
     singular_values = np.linalg.svd(jac, compute_uv=False)
     eps = np.finfo(float).eps
-    sigma = singular_values[-1] - kinematics.SINGULAR_VALUE_ROUNDING_ULPS * eps * (
+    sigma = singular_values[-1] - error_bound.SINGULAR_VALUE_ROUNDING_ULPS * eps * (
         singular_values[0])
     arms = np.linalg.norm(PLATFORM_JOINTS, axis=1)
     sizes = np.linalg.norm(result.pose[:3]) + arms + np.linalg.norm(BASE_JOINTS, axis=1)
-    error = result.residual + kinematics.LENGTH_ROUNDING_ULPS * eps * max(sizes)
+    error = result.residual + error_bound.LENGTH_ROUNDING_ULPS * eps * max(sizes)
     eta = math.sqrt(6.0) * error / sigma
     reach = np.sqrt(1.0 + (arms / rho) ** 2)
     shortest = np.array(leg_lengths(pose)) - result.residual - 2.0 * eta * reach
@@ -215,12 +213,12 @@ def test_one_solve_figures_at_exact_singularities(geometry):
     platform_joints[0] = BASE_JOINTS[0]
     touching = paper_geometry(platform_joints=platform_joints)
     pose = np.zeros(6)  # leg 1's joints coincide: its vector is exactly zero
-    single = kinematics._single_singular_values(
-        *kinematics._single_dimensionless_jacobian(touching, pose.tolist()))
-    batch = kinematics._dimensionless_singular_values(touching, pose[None, :3], np.eye(3)[None])
+    single = jacobians.single_singular_values(
+        *jacobians.single_dimensionless_jacobian(touching, pose.tolist()))
+    batch = jacobians.dimensionless_singular_values(touching, pose[None, :3], np.eye(3)[None])
     assert single[-1] == 0.0 == batch[0, -1]
     np.testing.assert_allclose(single[:-1], batch[0, :-1], rtol=1e-12)
     home = list(HOME)
     for converged, values in ((True, single), (False, [1.0, 0.5])):
-        assert kinematics._single_pose_error_bound(
+        assert error_bound.single_pose_error_bound(
             touching, home, [0.7] * 6, 0.0, converged, values) == math.inf

@@ -62,6 +62,7 @@ from fuzzing.output_invariants import (
     MAX_OUTPUT_STRING,
     numbers_problems,
     OutputInvariants,
+    OutputLog,
     string_problems,
 )
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -377,3 +378,31 @@ def test_the_oracle_finds_the_defects_of_the_reader_as_it_was(tmp_path):
     small = deep_list(random.Random(0), depth=100, style='flow')
     assert reader_problems(small, tmp_path, _reader_as_it_was) == [
         f'{small.note}: read without a refusal']
+
+
+def test_a_leg_trajectory_point_beyond_the_stroke_is_found_and_never_excused(invariants):
+    """
+    Issue 27's bulge: one point of leg_trajectory 0.1 um past leg_length_max is a problem.
+
+    Its index and leg are named, and no braking count on /diagnostics excuses it: only a pose
+    or a command stream may be a braking command.
+    """
+    names = [f'leg_{index}' for index in range(1, 7)]
+    points = [JointTrajectoryPoint(positions=[0.85] * 6) for _ in range(5)]
+    for index, point in enumerate(points):
+        point.time_from_start.nanosec = index * 20_000_000
+    trajectory = JointTrajectory(joint_names=names, points=points)
+    assert invariants.problems('leg_trajectory', trajectory) == []
+    points[3].positions = [0.85] * 3 + [0.9000001] + [0.85] * 2
+    trajectory = JointTrajectory(joint_names=names, points=points)
+    problems = invariants.problems('leg_trajectory', trajectory)
+    assert problems == ['leg_trajectory point 3: leg 4 length 0.9000001 m outside the stroke '
+                        '[0.65, 0.9]']
+    log = OutputLog(invariants)
+    log.callback('leg_trajectory')(trajectory, {})
+    assert log.problems(allowance=10) == [f'published on leg_trajectory: {problems[0]}']
+    high = Pose()
+    high.position.z = 0.7325   # a pose beyond the stroke: a braking command may be one
+    log.callback('target_pose')(high, {})
+    assert len(log.problems(allowance=1)) == 1
+    assert 'more than the 0' in log.problems(allowance=0)[1]

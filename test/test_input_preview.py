@@ -177,7 +177,7 @@ def test_pose_tracker_refusals_of_huge_inputs_are_short(geometry, home_lengths):
 
 def test_streaming_refusal_of_huge_lengths_is_short(home_lengths):
     command_filter = CommandFilter(LIMITS, 0.01, home_lengths)
-    refusal = command_filter.set_target(np.full(HUGE, 0.7))
+    refusal = command_filter.set_target(np.full(HUGE, 0.7)).refusal
     assert refusal.code == 'invalid_lengths'
     assert_short_and_sized(refusal.message, HUGE_WORDS)
 

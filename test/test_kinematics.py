@@ -13,7 +13,9 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.model.kinematics (pure numpy).
+Unit tests of inverse and forward kinematics and the Jacobians (pure numpy).
+
+The modules are stewart_kinematics.model.inverse, .forward (with .forward_solver) and .jacobians.
 
 Expected leg lengths come from the paper's equation evaluated leg by leg in plain Python, and
 the geometry from the paper's Tables 1 and 2, both in test/reference.py.
@@ -36,16 +38,12 @@ from reference import (
     TABLE_3,
 )
 
-from stewart_kinematics.model import kinematics
+from stewart_kinematics.model import formulas, forward_solver, jacobians
+from stewart_kinematics.model.forward import forward_kinematics, solve_trusted
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    ForwardKinematicsResult,
-    inverse_kinematics,
-    jacobian,
-    leg_lengths,
-    leg_vectors,
-)
+from stewart_kinematics.model.inverse import inverse_kinematics, leg_lengths, leg_vectors
+from stewart_kinematics.model.jacobians import jacobian
 
 pytestmark = pytest.mark.core
 
@@ -405,7 +403,7 @@ def test_single_pose_inverse_kinematics_equals_batch(geometry):
 
 def test_batched_inverse_kinematics_spans_blocks(geometry):
     """A batch longer than one block equals the per-pose leg vector norms."""
-    from stewart_kinematics.model.kinematics import IK_BLOCK_SIZE, leg_vectors_from_euler
+    from stewart_kinematics.model.inverse import IK_BLOCK_SIZE, leg_vectors_from_euler
     poses = random_poses(2 * IK_BLOCK_SIZE + 3, seed=7)
     expected = np.linalg.norm(leg_vectors_from_euler(geometry, poses), axis=-1)
     assert_allclose(inverse_kinematics(geometry, poses), expected, rtol=0.0, atol=1e-12)
@@ -449,16 +447,42 @@ def test_single_pose_forward_kinematics_failures_match_batch(geometry):
     assert single.residual == pytest.approx(batch.residual[0], abs=1e-9)
 
 
+def test_the_trusted_solve_is_forward_kinematics_without_its_checks(geometry):
+    """
+    solve_trusted (lengths checked where they entered) gives forward_kinematics' result.
+
+    Converged, unreachable, singular and stopped-early solves, from a pose, from home, from a
+    converged and from a failed previous result: the same fields to the bit, and the same
+    Jacobian handed on to the next solve.
+    """
+    poses = random_poses(30, seed=41)
+    targets = list(inverse_kinematics(geometry, poses)) + [np.full(6, 5.0), np.full(6, 0.2)]
+    converged = forward_kinematics(geometry, targets[0])
+    failed = forward_kinematics(geometry, np.full(6, 5.0), max_iterations=3)
+    assert converged.converged and not failed.converged
+    starts = [np.array(HOME), np.array(TABLE_3[4]), poses[1] + 1e-3, list(TABLE_3[2]),
+              converged, failed]
+    for target in targets:
+        for start in starts:
+            for tolerance, max_iterations in ((1e-12, 50), (1e-6, 2), (1e-12, 1)):
+                expected = forward_kinematics(geometry, target, start, tolerance=tolerance,
+                                              max_iterations=max_iterations)
+                trusted = solve_trusted(geometry, target.tolist(), start, tolerance,
+                                        max_iterations)
+                assert trusted == expected
+                assert trusted._solve[1:] == expected._solve[1:]
+                assert trusted.pose.flags.writeable is False
+
+
 def count_jacobian_inversions(monkeypatch):
     """Count the Jacobians the solver inverts (each costs a 6x6 inversion)."""
-    import stewart_kinematics.model.kinematics as kinematics
     calls = []
     inverse = np.linalg.inv
 
     def counting_inverse(matrix):
         calls.append(1)
         return inverse(matrix)
-    monkeypatch.setattr(kinematics.np.linalg, 'inv', counting_inverse)
+    monkeypatch.setattr(forward_solver.np.linalg, 'inv', counting_inverse)
     return calls
 
 
@@ -550,7 +574,7 @@ def test_a_batch_solves_its_valid_rows_and_reports_the_others(geometry):
     result = forward_kinematics(geometry, lengths)
     assert result.converged.tolist() == [True, False, True, False, False, False, True]
     for row in (1, 3, 4, 5):
-        assert result.reason[row] == kinematics.INVALID_LENGTHS
+        assert result.reason[row] == forward_solver.INVALID_LENGTHS
         assert 'finite and positive' in result.reason[row]
         assert result.residual[row] == math.inf and result.iterations[row] == 0
         assert_allclose(result.pose[row], HOME, rtol=0.0, atol=0.0)
@@ -567,7 +591,7 @@ def test_a_batch_reports_a_row_whose_guess_is_not_finite(geometry):
     guesses = np.array([HOME, [0.0, math.nan, 0.4, 0.0, 0.0, 0.0]])
     result = forward_kinematics(geometry, lengths, guesses)
     assert result.converged.tolist() == [True, False]
-    assert result.reason[1] == kinematics.INVALID_GUESS
+    assert result.reason[1] == forward_solver.INVALID_GUESS
     with pytest.raises(ValueError, match='initial_guess'):
         forward_kinematics(geometry, lengths[1], guesses[1])
 
@@ -600,7 +624,7 @@ def test_single_and_batch_solves_agree_on_every_field_failures_included(geometry
                          np.broadcast_to(singular, (len(near_singular), 6))])
     batch = assert_single_solves_equal_batch(geometry, lengths, guesses)
     reasons = set(batch.reason)
-    assert '' in reasons and kinematics.DIVERGED in reasons
+    assert '' in reasons and forward_solver.DIVERGED in reasons
     assert_single_solves_equal_batch(geometry, unreachable[:40], guesses[:40], max_iterations=7)
 
 
@@ -612,7 +636,7 @@ def test_single_and_batch_solves_agree_at_a_singular_jacobian():
     flat = Geometry(base_joints=joints, platform_joints=joints, home_pose=[0.0] * 6)
     lengths = np.array([[0.2] * 6, [0.3] * 6])
     batch = assert_single_solves_equal_batch(flat, lengths, np.zeros((2, 6)))
-    assert batch.reason == (kinematics.SINGULAR_JACOBIAN,) * 2
+    assert batch.reason == (forward_solver.SINGULAR_JACOBIAN,) * 2
 
 
 def test_one_pose_paths_equal_the_batch_formulas(geometry):
@@ -624,15 +648,15 @@ def test_one_pose_paths_equal_the_batch_formulas(geometry):
     rotations = np.array([rotation_zyx(*pose[3:]) for pose in poses])
     batch_lengths = leg_lengths(geometry, poses[:, :3], rotations)
     batch_vectors = leg_vectors(geometry, poses[:, :3], rotations)
-    batch_jacobians = kinematics.twist_jacobian(geometry, poses[:, :3], rotations)
+    batch_jacobians = jacobians.twist_jacobian(geometry, poses[:, :3], rotations)
     ik_batch = inverse_kinematics(geometry, poses)
     for k, (pose, rotation) in enumerate(zip(poses, rotations)):
         assert np.array_equal(leg_lengths(geometry, pose[:3], rotation), batch_lengths[k])
         assert np.array_equal(leg_vectors(geometry, pose[:3], rotation), batch_vectors[k])
-        assert np.array_equal(kinematics.twist_jacobian(geometry, pose[:3], rotation),
+        assert np.array_equal(jacobians.twist_jacobian(geometry, pose[:3], rotation),
                               batch_jacobians[k])
         assert_allclose(inverse_kinematics(geometry, pose), ik_batch[k], rtol=1e-15, atol=0.0)
-        assert_allclose(kinematics.jacobian(geometry, pose),
-                        kinematics.jacobian(geometry, poses)[k], rtol=0.0, atol=0.0)
-    euler_batch = kinematics._batch_euler_legs(kinematics._constants(geometry), poses)[0].T
+        assert_allclose(jacobians.jacobian(geometry, pose),
+                        jacobians.jacobian(geometry, poses)[k], rtol=0.0, atol=0.0)
+    euler_batch = formulas.batch_euler_legs(formulas.constants_of(geometry), poses)[0].T
     assert np.array_equal(ik_batch, euler_batch)

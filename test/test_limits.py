@@ -31,7 +31,8 @@ from reference import BASE_JOINTS, HOME, PLATFORM_JOINTS, rotation_zyx, TABLE_3_
 from stewart_kinematics import limits
 from stewart_kinematics.limits import Violation
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.model.kinematics import jacobian_condition, leg_lengths
+from stewart_kinematics.model.inverse import leg_lengths
+from stewart_kinematics.model.jacobians import jacobian_condition
 
 pytestmark = pytest.mark.core
 

@@ -28,7 +28,8 @@ from numpy.testing import assert_allclose
 import pytest
 
 from stewart_kinematics import limits, load_geometry
-from stewart_kinematics.model.kinematics import inverse_kinematics, jacobian_condition
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core

@@ -32,7 +32,7 @@ from reference import HOME, paper_geometry, TABLE_3
 
 from stewart_kinematics import ActuatorLimits, load_geometry
 from stewart_kinematics.limits import LIMIT_NAMES, LimitModel, PoseLegs
-from stewart_kinematics.model.kinematics import leg_arrays
+from stewart_kinematics.model.inverse import leg_arrays
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, zyx_entries
 
 pytestmark = pytest.mark.core

@@ -54,7 +54,7 @@ import pytest
 from reference import quaternion_angle as rotation_angle, quaternion_from_euler as quaternion
 from std_msgs.msg import Float64MultiArray
 
-from stewart_kinematics.model.kinematics import inverse_kinematics
+from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.tools.node_processes import NodeProcess

@@ -40,5 +40,5 @@ def test_module_opens_with_a_docstring(path):
 def test_modules_are_found():
     """The check sees the package's modules, nodes and tools included."""
     names = {path.relative_to(ROOT).as_posix() for path in MODULES}
-    assert {'stewart_kinematics/model/kinematics.py', 'stewart_kinematics/ros/ik_node.py',
+    assert {'stewart_kinematics/model/forward.py', 'stewart_kinematics/ros/ik_node.py',
             'stewart_kinematics/tools/ramp_demo.py'} <= names

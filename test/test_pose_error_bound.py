@@ -41,7 +41,7 @@ from reference import (
 )
 
 from stewart_kinematics import forward_kinematics, inverse_kinematics, jacobian
-from stewart_kinematics.model.kinematics import LENGTH_ROUNDING_ULPS
+from stewart_kinematics.model.error_bound import LENGTH_ROUNDING_ULPS
 
 pytestmark = pytest.mark.core
 

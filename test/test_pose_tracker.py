@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of stewart_kinematics.decisions.pose_tracker.PoseTracker (pure numpy, no ROS).
+Unit tests of stewart_kinematics.pose_decisions.pose_tracker.PoseTracker (pure numpy, no ROS).
 
 The lengths fed to the tracker are computed from the paper's tables, leg by leg with the
 textbook rotation matrices (test/reference.py), so that every pose the tracker returns is
@@ -36,11 +36,11 @@ from reference import (
 )
 
 from stewart_kinematics import forward_kinematics, platform_twist, PoseTracker
-from stewart_kinematics.decisions.pose_tracker import (
+from stewart_kinematics.parameters import SolverSettings
+from stewart_kinematics.pose_decisions.pose_tracker import (
     assembly_mode_jump,
     euler_angle_change_bound,
 )
-from stewart_kinematics.parameters import SolverSettings
 
 pytestmark = pytest.mark.core
 
@@ -132,6 +132,35 @@ def test_malformed_lengths_are_refused_not_raised(lengths, words):
     assert words in estimate.reason
     assert estimate.iterations is None and estimate.condition is None
     assert tracker.last_lengths is None
+
+
+def test_lengths_are_checked_once_where_they_enter_then_solved_unchecked(monkeypatch):
+    """
+    The tracker checks a message's lengths in update; its solves (and anchors) trust them.
+
+    Issue 28: the numbers were checked by the message conversion, by update and again by
+    forward_kinematics. The solver's checks now fail the test if anything calls them.
+    """
+    from stewart_kinematics.model import forward
+
+    def checked_again(*arguments, **options):
+        raise AssertionError('the lengths were checked again after update')
+    for name in ('single_values', 'as_leg_lengths', 'as_poses', 'as_rows'):
+        monkeypatch.setattr(forward, name, checked_again)
+    tracker = PoseTracker(geometry())
+    for row in TABLE3:
+        estimate = tracker.update(lengths_of(row))
+        assert estimate.accepted, estimate.reason
+        assert_allclose(estimate.pose, row, rtol=0.0, atol=1e-9)
+    # From a turn of -60 degrees about z, Table 3's last row diverges: the fallback from home.
+    assert tracker.update(lengths_of(yawed_home(-60.0))).accepted
+    assert_allclose(tracker.update(lengths_of(TABLE3[10])).pose, TABLE3[10], rtol=0.0,
+                    atol=1e-9)
+    # An anchor's solve of its own lengths.
+    assert tracker.anchor(TABLE3[2]).accepted
+    assert tracker.update(lengths_of(TABLE3[3])).accepted
+    # Bad lengths are refused by update's own check, as before.
+    assert tracker.update([0.7] * 5 + [math.nan]).refusal.code == 'invalid_lengths'
 
 
 def test_lengths_out_of_the_stroke_are_refused_before_any_solve():
@@ -361,7 +390,7 @@ class FakeMargin:
 
 def test_margin_status_warns_when_the_margin_is_small_or_the_search_incomplete():
     """The level fk_node reports: OK, or WARN with an assembly_mode_margin finding."""
-    from stewart_kinematics.decisions.pose_tracker import margin_status
+    from stewart_kinematics.pose_decisions.tracker_status import margin_status
     assert margin_status(FakeMonitor(None)).warning is None
     fine = margin_status(FakeMonitor(FakeMargin()))
     assert fine.warning is None and fine.message.startswith('nearest other assembly mode')

@@ -215,14 +215,15 @@ def test_the_command_filter_keeps_its_limits_and_settles_on_the_target(pose, per
     assert_allclose(command.lengths, target, rtol=0, atol=1e-9)
 
 
-@covers('CommandFilter')
+@covers('CommandFilter', 'StreamTarget')
 @budget(30)
 @given(st.one_of(NOT_NUMBERS, NON_FINITE.map(lambda value: [value] * 6), st.just([0.7] * 5)),
        st.one_of(NOT_NUMBERS, NON_FINITE, st.sampled_from([0.0, -0.01])))
 def test_the_command_filter_refuses_bad_targets_and_periods(lengths, period):
     command_filter = CommandFilter(ACTUATOR_LIMITS, 0.01, LIMITED.home_leg_lengths)
-    for refusal in (command_filter.set_target(lengths), command_filter.reset(lengths)):
-        assert refusal is not None and refusal.code == 'invalid_lengths', refusal
+    for target in (command_filter.set_target(lengths), command_filter.reset(lengths)):
+        refusal = target.refusal
+        assert not target.accepted and refusal.code == 'invalid_lengths', refusal
         assert 'target lengths' in refusal.message
         assert not any(words in refusal.message for words in NUMPY_WORDS), refusal.message
     assert_refused(lambda: CommandFilter(ACTUATOR_LIMITS, period, LIMITED.home_leg_lengths),

@@ -210,6 +210,9 @@ def test_stamp_goes_from_pose_through_joint_commands_to_estimated_pose(chain, pa
         chain.publishers['target_pose_stamped'].publish(
             stamped(pose, seconds, nanoseconds, frame))
         chain.wait_for('estimated_pose_stamped', index + 1)
+    # joint_commands reaches this client on its own subscription: under load, after fk_node's
+    # estimate of it.
+    chain.wait_for('joint_commands', len(inputs))
 
     commands = chain.received['joint_commands']
     estimates = chain.received['estimated_pose_stamped']

@@ -167,7 +167,7 @@ def test_markers_show_the_platform_and_colour_violating_legs(ros, spin_until):
         assert spin_until(executor, lambda: len(arrays) >= 1)
         # marker_rate's 1 ms first: the events executor can answer within it.
         assert spin_until(executor, lambda: ik.get_clock().now().nanoseconds
-                          - ik.last_marker_ns >= ik.marker_period_ns)
+                          - ik.markers.last_ns >= ik.markers.period_ns)
         far = np.array([0.1, 0.15, 0.5325, math.radians(15), math.radians(-15), math.radians(20)])
         publisher.publish(stamped(far))
         assert spin_until(executor, lambda: ik.stamped_accounting.rejected == 1)

@@ -38,8 +38,11 @@ from reference import (
     twist_jacobian as reference_twist_jacobian,
 )
 
-from stewart_kinematics.model import kinematics, start_table
-from stewart_kinematics.model.kinematics import forward_kinematics, inverse_kinematics
+from stewart_kinematics.model import formulas, forward_solver, start_table
+from stewart_kinematics.model.forward import forward_kinematics, start_table_of
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import jacobian_condition
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.model.start_table import StartTable
 
 pytestmark = pytest.mark.core
@@ -60,7 +63,7 @@ def geometry():
 def table(geometry):
     """Return the start table the forward solver built for the paper's platform."""
     forward_kinematics(geometry, leg_lengths_of(TABLE_3[1]))
-    return kinematics._constants(geometry).start_table
+    return start_table_of(geometry)
 
 
 def kept_samples(table):
@@ -199,8 +202,8 @@ def test_the_table_holds_only_the_working_mode(geometry):
     assert 0.0 < wide.coverage < 0.5
     signs = [np.sign(np.linalg.det(reference_twist_jacobian(pose))) for pose in samples]
     assert set(signs) == {np.sign(np.linalg.det(reference_twist_jacobian(HOME)))}
-    condition = kinematics.jacobian_condition(
-        geometry, samples[:, :3], kinematics.euler_zyx_to_matrix(samples[:, 3:]))
+    condition = jacobian_condition(
+        geometry, samples[:, :3], euler_zyx_to_matrix(samples[:, 3:]))
     assert np.all(condition <= start_table.MAX_CONDITION)
     # Lengths that the wide grid does not hold start from home and are solved as from home.
     poses = random_poses(200, seed=35, position_range=0.1, angle_range_deg=90.0)
@@ -233,13 +236,13 @@ def test_each_geometry_has_its_own_table(geometry, table):
     poses = random_poses(50, seed=37, around=other.home_pose)
     lengths = inverse_kinematics(other, poses)
     results = forward_kinematics(other, lengths)
-    other_table = kinematics._constants(other).start_table
+    other_table = start_table_of(other)
     assert other_table is not table
     assert other_table.index_offset != table.index_offset
     assert np.all(results.converged)
     assert_allclose(results.pose, poses, rtol=0.0, atol=1e-9)
     # The paper's platform still uses its own.
-    assert kinematics._constants(geometry).start_table is table
+    assert start_table_of(geometry) is table
 
 
 def test_a_table_does_not_keep_its_geometry_alive():
@@ -250,16 +253,17 @@ def test_a_table_does_not_keep_its_geometry_alive():
     """
     transient = paper_geometry()
     forward_kinematics(transient, leg_lengths_of(TABLE_3[2]))
-    constants = kinematics._constants(transient)
-    assert isinstance(constants.start_table, StartTable)
+    constants = formulas.constants_of(transient)
+    table = start_table_of(transient)
+    assert isinstance(table, StartTable)
     gc.collect()
     holders = [holder for holder in gc.get_referrers(transient)
-               if isinstance(holder, (StartTable, kinematics._GeometryConstants))
+               if isinstance(holder, (StartTable, formulas.GeometryConstants))
                or (isinstance(holder, dict) and any(
-                   isinstance(owner, (StartTable, kinematics._GeometryConstants))
+                   isinstance(owner, (StartTable, formulas.GeometryConstants))
                    for owner in gc.get_referrers(holder)))]
     assert holders == []
-    assert constants._geometry() is transient
+    assert formulas.constants_of(transient) is constants and start_table_of(transient) is table
 
 
 def test_a_geometry_with_a_singular_home_has_no_table():
@@ -267,6 +271,6 @@ def test_a_geometry_with_a_singular_home_has_no_table():
     joints = np.array(PLATFORM_JOINTS)
     joints[:, 2] = 0.0
     flat = paper_geometry(base_joints=joints, platform_joints=joints, home_pose=[0.0] * 6)
-    assert kinematics._constants(flat).start_table is None
+    assert start_table_of(flat) is None
     result = forward_kinematics(flat, [0.2] * 6)
-    assert result.reason == kinematics.SINGULAR_JACOBIAN
+    assert result.reason == forward_solver.SINGULAR_JACOBIAN

@@ -108,8 +108,9 @@ def test_reset_and_bad_input():
     command = command_filter.step()
     assert_allclose(command.lengths, HOME)
     assert command.settled
-    refusal = command_filter.set_target([math.nan] * 6)
-    assert refusal.code == 'invalid_lengths' and '6 finite' in refusal.message
+    target = command_filter.set_target([math.nan] * 6)
+    assert not target.accepted and target.lengths is None
+    assert target.refusal.code == 'invalid_lengths' and '6 finite' in target.reason
     with pytest.raises(ValueError, match='period'):
         CommandFilter(LIMITS, 0.0, HOME)
 
@@ -144,9 +145,9 @@ def test_a_far_target_is_approached_at_full_speed_within_the_limits(distance):
     """
     command_filter = CommandFilter(LIMITS, PERIOD, HOME)
     direction = np.array([1.0, 0.5, 0.2, 0.25, 0.0, 1.0])
-    assert command_filter.set_target(HOME + distance * direction) is None
+    assert command_filter.set_target(HOME + distance * direction).accepted
     commands = [command_filter.step() for _ in range(300)]
-    assert all(command.finding is None and not command.held for command in commands)
+    assert all(command.accepted and not command.warnings for command in commands)
     assert_every_step_within_every_limit(commands, HOME)
     last = commands[-1]
     assert_allclose(last.velocities, 0.05 * direction, rtol=1e-9)
@@ -157,11 +158,11 @@ def test_targets_that_are_not_lengths_or_leave_the_stroke_are_refused_and_ignore
     """NaN, inf, zero, the wrong length, text, beyond the stroke: a finding, and no motion."""
     command_filter = CommandFilter(LIMITS, PERIOD, HOME, GEOMETRY)
     for target in ([math.nan] * 6, [math.inf] * 6, [0.7] * 5, [0.0] * 6, ['a'] * 6, None):
-        refusal = command_filter.set_target(target)
+        refusal = command_filter.set_target(target).refusal
         assert refusal.code == 'invalid_lengths', target
     beyond = HOME.copy()
     beyond[2] = 0.95
-    refusal = command_filter.set_target(beyond)
+    refusal = command_filter.set_target(beyond).refusal
     assert refusal.code == 'out_of_limits' and 'leg 3: leg_length_max 0.9 m' in refusal.message
     assert_allclose(command_filter.target, HOME)
     command = command_filter.step()
@@ -175,7 +176,7 @@ def test_random_targets_at_the_ends_of_the_stroke_never_leave_it():
     commands = []
     for _ in range(150):
         target = np.where(rng.random(6) < 0.5, 0.65, 0.9)
-        assert command_filter.set_target(target) is None
+        assert command_filter.set_target(target).accepted
         commands += [command_filter.step() for _ in range(int(rng.integers(1, 150)))]
     assert_every_step_within_every_limit(commands, HOME, GEOMETRY)
     assert min(command.lengths.min() for command in commands) < 0.67
@@ -204,8 +205,9 @@ def test_a_plan_ruckig_refuses_brakes_to_rest_within_the_limits():
     command_filter._generator = FailingRuckig(command_filter._generator, {'Position'})
     command_filter.set_target(HOME - 0.03)
     commands = [command_filter.step() for _ in range(200)]
-    assert commands[0].finding.code == 'stream_braking'
-    assert all(command.finding is None for command in commands[1:])
+    assert [finding.code for finding in commands[0].warnings] == ['stream_braking']
+    assert commands[0].accepted
+    assert all(command.accepted and not command.warnings for command in commands[1:])
     assert_every_step_within_every_limit(moving + commands, HOME, GEOMETRY)
     assert_allclose(commands[-1].velocities, 0.0, atol=1e-12)
 
@@ -220,5 +222,74 @@ def test_when_nothing_can_be_planned_the_last_command_stands():
     command_filter.set_target(HOME - 0.03)
     for _ in range(3):
         held = command_filter.step()
-        assert held.held and held.finding.code == 'stream_held'
+        assert held.held and not held.accepted and held.refusal.code == 'stream_held'
         assert_allclose(held.lengths, last.lengths, rtol=0.0, atol=0.0)
+
+
+# The stream's start and its results as Decisions (issue 28) --------------------------------
+
+
+def test_the_first_target_accepted_at_a_time_starts_the_sending_there():
+    """Not started before; a refused target starts nothing; the first accepted one starts it."""
+    command_filter = CommandFilter(LIMITS, PERIOD, GEOMETRY.home_leg_lengths, GEOMETRY)
+    assert not command_filter.started
+    refused = command_filter.set_target([math.nan] * 6, 5.0)
+    assert not refused.accepted and not refused.started and not command_filter.started
+    assert not command_filter.set_target(HOME, None).started   # no time: nothing starts
+    target = command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, 5.0)
+    assert target.accepted and target.started and command_filter.started
+    assert_allclose(target.lengths, GEOMETRY.home_leg_lengths + 0.01, rtol=0.0, atol=0.0)
+    # The next targets do not start it again: the first command's step covers 5.0 to 5.01 s.
+    assert not command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, 5.005).started
+    command = command_filter.send(5.01)
+    assert command.accepted and command.time == 5.01
+    # From rest at the jerk limit for 0.01 s: moved j t^3 / 6, at j t^2 / 2.
+    assert_allclose(command.lengths - GEOMETRY.home_leg_lengths, 2.5 * 0.01 ** 3 / 6.0,
+                    rtol=1e-9)
+    assert_allclose(command.velocities, 2.5 * 0.01 ** 2 / 2.0, rtol=1e-9)
+    # A reset stops the sending until a target comes at a time again.
+    assert command_filter.reset(GEOMETRY.home_leg_lengths).accepted
+    assert not command_filter.started
+    assert command_filter.set_target(GEOMETRY.home_leg_lengths, 9.0).started
+
+
+def test_a_filter_without_geometry_takes_targets_at_a_time_but_never_sends():
+    """No gate without the geometry: the time is not used; the steps still come."""
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME)
+    target = command_filter.set_target(HOME + 0.01, 1.0)
+    assert target.accepted and not target.started and not command_filter.started
+    assert command_filter.step().accepted
+
+
+def test_steps_and_targets_are_the_shared_decision_result():
+    """accepted, reason, refusal, warnings: as every decision of the package answers."""
+    from stewart_kinematics.findings import Decision
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME)
+    target = command_filter.set_target(HOME + 0.01)
+    step = command_filter.step()
+    assert isinstance(target, Decision) and isinstance(step, Decision)
+    assert step.accepted and step.reason == '' and step.warnings == () and not step.held
+    refused = command_filter.set_target([0.7] * 5)
+    assert refused.reason == refused.refusal.message and refused.lengths is None
+
+
+@pytest.mark.parametrize('time', [math.nan, math.inf, -math.inf, 'now', None, True, [1.0]])
+def test_a_time_that_is_not_a_finite_number_starts_nothing_and_sends_nothing(time):
+    """
+    set_target takes the target but does not start; send refuses; neither raises.
+
+    Before, a NaN start time was kept by the gate: every later command was refused
+    (clock_not_advancing) and the stream never started again.
+    """
+    command_filter = CommandFilter(LIMITS, PERIOD, GEOMETRY.home_leg_lengths, GEOMETRY)
+    target = command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, time)
+    assert target.accepted and not target.started and not command_filter.started
+    refused = command_filter.send(time)
+    assert refused.refusal.code == 'clock_not_advancing' and not command_filter.started
+    with pytest.raises(ValueError, match='finite number of seconds'):
+        command_filter.start(time)
+    # A good time then starts it, and it moves.
+    assert command_filter.set_target(GEOMETRY.home_leg_lengths + 0.01, 1.0).started
+    commands = [command_filter.send(1.0 + 0.01 * k) for k in range(1, 20)]
+    assert all(command.accepted for command in commands)
+    assert np.all(commands[-1].lengths > GEOMETRY.home_leg_lengths)

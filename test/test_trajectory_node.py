@@ -19,7 +19,9 @@ STEWART_EXECUTOR chooses the executor, as for the nodes (test/conftest.py).
 
 The node plays config/table3_ramp.yaml, with a short row period or duration given as
 parameter overrides; the received poses are compared with the paper's Table 3 typed here in
-millimetres and degrees, orientations as textbook quaternions.
+millimetres and degrees, orientations as textbook quaternions. What the ramp plays when (rows,
+samples, loops) is RampPlayback's, tested without rclpy in test_ramp_playback.py; these tests
+check that the node plays it on its timers and clock, and stops when it is over.
 """
 
 from pathlib import Path
@@ -122,17 +124,6 @@ def test_table_mode_plays_the_11_rows_in_order_then_stops(start, spin_until):
     assert len(probe.poses) == 11
     assert node.published == 11
     assert node.timer.is_canceled()
-
-
-def test_loop_mode_wraps_back_to_the_first_row(start, spin_until):
-    """With loop true the 12th pose is row 0 again, and publishing goes on."""
-    node, probe, executor = start({'row_period': 0.05, 'min_subscribers': 1, 'loop': True})
-    assert spin_until(executor, lambda: len(probe.poses) >= 14), (
-        f'{len(probe.poses)} of 14 poses received')
-    for index, message in enumerate(probe.poses[:14]):
-        assert_pose_message(message, TABLE3[index % 11])
-    assert node.published > 11
-    assert not node.timer.is_canceled()
 
 
 def test_interpolate_mode_samples_the_straight_line(start, spin_until):

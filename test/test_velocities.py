@@ -22,7 +22,7 @@ import pytest
 from reference import HOME, paper_geometry, rotation_vector_matrix, singular_yaw
 
 from stewart_kinematics import leg_lengths, SingularPoseError
-from stewart_kinematics.model.kinematics import jacobian_condition
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.model.velocities import (
     DEFAULT_MAX_TWIST_CONDITION,

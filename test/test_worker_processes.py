@@ -33,8 +33,8 @@ import time
 from fuzzing.fuzz_client import descendants
 import pytest
 
-from stewart_kinematics.analysis.worker_processes import process_running
 from stewart_kinematics.tools.node_processes import NodeProcess
+from stewart_kinematics.workers.owner_watch import process_running
 from visualization_msgs.msg import MarkerArray
 
 pytestmark = pytest.mark.process

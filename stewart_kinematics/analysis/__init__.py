@@ -17,7 +17,8 @@ Offline analysis: the workspace, every assembly mode, and calibration.
 
 :mod:`.workspace` (travel ranges, volumes, slices), :mod:`.assembly_modes` (every real pose of a
 set of leg lengths) and :mod:`.calibration` (the geometry identified from measurements, with
-scipy).
+scipy). The worker threads and processes in which the nodes run them live in
+:mod:`stewart_kinematics.workers`.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.limits`,
 :mod:`stewart_kinematics.parameters`, numpy, scipy (calibration only). Nothing here imports

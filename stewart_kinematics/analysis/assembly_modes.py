@@ -33,20 +33,15 @@ as such.
 The assembly-mode margin (:func:`assembly_mode_margin`) is the distance from a pose to the
 nearest other real mode within the limits: how far a solver would have to be thrown to land in
 another mode, and how sure a start from a remembered pose can be (:func:`start_ambiguity`);
-:class:`AssemblyModeMarginMonitor` computes it in a worker thread, or process (fk_node's).
+:class:`stewart_kinematics.workers.margin_monitor.AssemblyModeMarginMonitor` computes it in a
+worker thread, or process (fk_node's).
 
 Units are metres and radians, frames and the rotation convention those of
 :mod:`stewart_kinematics.model.geometry`. Nothing here imports ROS.
 """
 
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 import math
-import multiprocessing
-import os
-import signal
-import time
 from typing import Optional, Tuple
 
 import numpy as np
@@ -59,13 +54,9 @@ from stewart_kinematics.analysis.homotopy import (  # noqa: F401 (re-exported)
     start_system,
     StartSystem,
 )
-from stewart_kinematics.analysis.worker_processes import exit_with_owner
-from stewart_kinematics.model.kinematics import (
-    as_leg_lengths,
-    as_poses,
-    forward_kinematics,
-    jacobian_condition,
-)
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,
@@ -92,7 +83,7 @@ class AssemblyMode:
         :func:`stewart_kinematics.forward_kinematics` returns poses.
     :param residual: largest leg length error, metres.
     :param condition: condition number of the dimensionless Jacobian
-        (:func:`stewart_kinematics.model.kinematics.jacobian_condition`); large near a singularity.
+        (:func:`stewart_kinematics.model.jacobians.jacobian_condition`); large near a singularity.
     :param violations: every limit of the geometry the pose breaks (empty when allowed).
     :param position_distance: distance of the platform origin from the reference pose's,
         metres.
@@ -312,7 +303,7 @@ def assembly_mode_margin(geometry, pose, lengths=None, modes=None) -> AssemblyMo
     :returns: an :class:`AssemblyModeMargin`; ``inf`` distances when no other mode within
         the limits exists.
     """
-    from stewart_kinematics.model.kinematics import inverse_kinematics
+    from stewart_kinematics.model.inverse import inverse_kinematics
     pose = as_poses(pose, 'pose')
     if lengths is None:
         lengths = inverse_kinematics(geometry, pose)
@@ -394,150 +385,3 @@ def start_ambiguity(geometry, lengths, known_pose, position_change, angle_change
             f'{math.degrees(nearest.angle_distance):.4g} deg away): the lengths do not tell '
             'which one the platform is in')
     return StartAmbiguity(ambiguous, reason, len(within), near, modes.complete)
-
-
-class AssemblyModeMarginMonitor:
-    """
-    The assembly-mode margin of a tracker's latest solution, computed in the background.
-
-    Finding every mode takes milliseconds to tens of them, too long for a message callback:
-    fk_node calls :meth:`request` at its status rate with the last solution, which starts one
-    computation in the worker unless one is running or the lengths have not changed, and reads
-    :attr:`latest` when it reports. The solutions keep flowing meanwhile.
-
-    The worker is a thread, or with ``worker='process'`` a process of its own (started by
-    ``forkserver``, at a lower priority, ignoring SIGINT: its owner stops it). fk_node takes the
-    process: a computing thread holds the interpreter lock, and the thread that runs the
-    message callbacks then waits for it at each hand-over, up to the interpreter's switch
-    interval (5 ms): measured here, its wake-ups were late by 3.6 ms at the 99th percentile
-    (0.16 ms without the thread) while margins were computed.
-
-    :param geometry: a :class:`stewart_kinematics.Geometry`.
-    :param warning_distance: a margin (the combined distance of :func:`pose_distance`)
-        below this, metres, is worth a warning; 0 for none.
-    :param worker: ``'thread'`` or ``'process'`` (:data:`MARGIN_WORKERS`).
-    :raises ValueError: for another ``worker``.
-    """
-
-    def __init__(self, geometry, warning_distance=0.0, worker='thread'):
-        if worker not in MARGIN_WORKERS:
-            raise ValueError(f'worker must be one of {MARGIN_WORKERS}, got {worker!r}')
-        self.geometry = geometry
-        self.warning_distance = float(warning_distance)
-        self.worker = worker
-        #: The last margin computed, or None; with the lengths it is for, its cost, seconds,
-        #: and the tag its request carried.
-        self.latest: Optional[AssemblyModeMargin] = None
-        self.latest_lengths = None
-        self.latest_seconds = None
-        self.latest_tag = None
-        self._running = None
-        self._running_tag = None
-        self._start_worker()
-
-    def _start_worker(self):
-        """Start the worker; it builds the geometry's start systems at once (under a second)."""
-        if self.worker == 'thread':
-            self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix='assembly_modes')
-            self._warm_up = self._pool.submit(geometry_start_system, self.geometry)
-        else:
-            # The process keeps the geometry (its start systems are cached by the object):
-            # each request sends only a pose and lengths.
-            self._pool = ProcessPoolExecutor(
-                max_workers=1, mp_context=multiprocessing.get_context('forkserver'),
-                initializer=_start_margin_worker, initargs=(self.geometry, os.getpid()))
-            self._warm_up = self._pool.submit(int)
-
-    def request(self, pose, lengths, tag=None) -> bool:
-        """
-        Start computing the margin of ``pose`` (with its ``lengths``) unless one is running.
-
-        :param tag: anything that says which pose this is, given back with the result as
-            :attr:`latest_tag` (fk_node: the tracker's ``accepted_count``, for
-            :meth:`stewart_kinematics.PoseTracker.note_margin`).
-        :returns: whether a computation started; none does for lengths already done.
-        """
-        self._collect()
-        if self._running is not None or lengths is None:
-            return False
-        lengths = np.array(lengths, dtype=float)
-        if self.latest_lengths is not None and np.array_equal(lengths, self.latest_lengths):
-            return False
-        geometry = self.geometry if self.worker == 'thread' else None
-        try:
-            self._running = self._pool.submit(
-                _timed_margin, geometry, np.array(pose, dtype=float), lengths)
-            self._running_tag = tag
-        except BrokenProcessPool:   # the worker process died: a new one for the next request
-            self._start_worker()
-            return False
-        return True
-
-    def warning(self) -> str:
-        """Say why the latest margin deserves a warning, or return ``''``."""
-        self._collect()
-        margin = self.latest
-        if margin is None or not margin.distance < self.warning_distance:
-            return ''
-        return (f'another assembly mode within the limits lies {margin.position:.4g} m and '
-                f'{math.degrees(margin.angle):.4g} deg from the estimated pose '
-                f'(combined distance {margin.distance:.4g} m < {self.warning_distance:g} m): a '
-                'solver thrown that far would land in it')
-
-    def wait(self, timeout=None):
-        """Wait for the running computation, if any (for tests and shutdown)."""
-        if self._running is not None:
-            try:
-                self._running.result(timeout)
-            except BrokenProcessPool:
-                pass
-        self._collect()
-
-    def close(self):
-        """Stop the worker (a running computation finishes first)."""
-        self._pool.shutdown(wait=True, cancel_futures=True)
-
-    def _collect(self):
-        if self._running is not None and self._running.done():
-            future, self._running = self._running, None
-            try:
-                self.latest, self.latest_lengths, self.latest_seconds = future.result()
-                self.latest_tag = self._running_tag
-            except BrokenProcessPool:   # the worker process died: a new one for the next
-                self._start_worker()
-
-
-#: Where :class:`AssemblyModeMarginMonitor` computes.
-MARGIN_WORKERS = ('thread', 'process')
-#: Scheduling priority of a margin worker process below its owner's (a nice(2) increment):
-#: on a busy machine the owner's message callbacks run first.
-MARGIN_WORKER_NICENESS = 10
-#: In a margin worker process, the geometry it computes for (see _start_margin_worker).
-_worker_geometry = None
-
-
-def _start_margin_worker(geometry, owner_pid):
-    """
-    Set up a margin worker process: lower priority, no Ctrl-C, its geometry's start systems.
-
-    :param owner_pid: the monitor's process: once it is gone (SIGKILL), the worker exits.
-    """
-    global _worker_geometry
-    exit_with_owner(owner_pid)
-    os.nice(MARGIN_WORKER_NICENESS)
-    # A Ctrl-C in a terminal reaches the whole process group: the owner stops the worker.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _worker_geometry = geometry
-    geometry_start_system(geometry)
-
-
-def _timed_margin(geometry, pose, lengths):
-    """
-    Return :func:`assembly_mode_margin`, ``lengths`` and the seconds it took.
-
-    :param geometry: the geometry, or None in a margin worker process: the process's own.
-    """
-    geometry = _worker_geometry if geometry is None else geometry
-    start = time.perf_counter()
-    margin = assembly_mode_margin(geometry, pose, lengths)
-    return margin, lengths, time.perf_counter() - start

@@ -65,7 +65,7 @@ from stewart_kinematics.analysis.calibration_files import (  # noqa: F401
 )
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.geometry import Geometry
-from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.model.inputs import as_poses
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     ACTUATOR_PARAMETERS,

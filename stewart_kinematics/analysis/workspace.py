@@ -45,7 +45,8 @@ import numpy as np
 
 from stewart_kinematics.limits import check_poses_array, LIMIT_NAMES
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import as_poses, jacobian_condition
+from stewart_kinematics.model.inputs import as_poses
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Names and units of the six pose coordinates.

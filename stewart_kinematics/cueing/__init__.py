@@ -16,8 +16,8 @@
 Motion cueing: a vehicle's motion in, platform motion a person feels out, within every limit.
 
 The classical washout (:mod:`.washout`, filters in :mod:`.filters`), scaled into the limits
-model and followed within the actuators' speed (:mod:`.limiting`, its limit calls in
-:mod:`.limit_check`), the motion felt at the head (:mod:`.perception`), all behind one decision
+model and followed within the actuators' speed (:mod:`.cue_limiter`, its limit calls in
+:mod:`.limit_margins`), the motion felt at the head (:mod:`.perception`), all behind one decision
 object (:class:`MotionCueing`, :mod:`.motion_cueing`); :func:`replay` (:mod:`.replay`) runs a
 whole input through it, :mod:`.scenarios` generates four test drives and :mod:`.evaluation`
 measures the result. Settings: :class:`CueingSettings` (:mod:`.settings`).

@@ -31,7 +31,7 @@ from typing import Dict, Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.cueing.limit_check import leg_speed_violations, poses_allowed
+from stewart_kinematics.cueing.limit_margins import leg_speed_violations, poses_allowed
 from stewart_kinematics.cueing.settings import STANDARD_GRAVITY
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_angle_between
 

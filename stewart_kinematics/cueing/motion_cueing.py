@@ -17,7 +17,7 @@ Motion cueing as one decision object: a vehicle's motion in, a pose within every
 
 :class:`MotionCueing` takes samples of the vehicle's specific force and angular velocity at the
 driver's head, each with its time, and returns the platform pose to command: the classical
-washout (:mod:`.washout`) turns the sample into a cue, :class:`~.limiting.CueLimiter` scales it
+washout (:mod:`.washout`) turns the sample into a cue, :class:`~.cue_limiter.CueLimiter` scales it
 into the limits and follows it within the actuators' speed, and the specific force felt at the
 head is estimated as the poses stream (:mod:`.perception`).
 
@@ -35,6 +35,12 @@ Every command comes with the command gate's verdict (:class:`~stewart_kinematics
 CommandGate`, a motion: every pose limit and the leg velocity and acceleration between
 consecutive commands, on the very numbers of the ``target_pose`` message, tool frame
 included); a command the gate refuses is replaced by its braking command (``command_braking``).
+
+The input watchdog: a node calls :meth:`MotionCueing.watch` on a timer (every
+:attr:`MotionCueing.watchdog_period`) with its clock. When no sample came for
+``input_timeout`` seconds (a sample refused for its time counts as none), the input is lost:
+the next sample starts a new time line (:meth:`MotionCueing.restart_time`), and each call
+takes the platform a step at rest (:meth:`MotionCueing.rest`) until it rests at home.
 
 The vehicle's frame: samples are in the vehicle frame (x forward, y left, z up); with a
 ``frame_id``, one in ``imu_frame`` is turned into the vehicle frame by
@@ -64,7 +70,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.cueing.limiting import CueLimiter
+from stewart_kinematics.cueing.cue_limiter import CueLimiter
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout
@@ -89,6 +95,9 @@ from stewart_kinematics.parameters import (
     GeometrySettings,
     MOTION_CUEING_PARAMETERS,
 )
+
+#: Longest period of the input watchdog, seconds (``input_timeout / 2`` when that is shorter).
+WATCHDOG_PERIOD = 0.02
 
 
 @dataclass(frozen=True)
@@ -171,6 +180,10 @@ class MotionCueing:
         self._clock = None
         #: Seconds of commands so far: the perception's clock.
         self._felt_clock = None
+        #: The watchdog's clock (the commands' times): the last sample whose time was taken,
+        #: and the last call of :meth:`watch`.
+        self._last_input = None
+        self._last_watch = None
 
     @classmethod
     def from_parameters(cls, values: dict, frames=None) -> 'MotionCueing':
@@ -195,6 +208,18 @@ class MotionCueing:
     def pose(self) -> np.ndarray:
         """Return the last pose commanded (the home pose before the first sample)."""
         return self.limiter.pose.copy()
+
+    def set_frames(self, frames) -> None:
+        """
+        Take a new frame tree (a tool frame changed at run time) from the next command on.
+
+        The platform's motion goes on from where it is; the ``target_pose`` messages carry the
+        new tool frame's pose, checked as sent.
+
+        :param frames: a :class:`stewart_kinematics.FrameTree`, or ``None``: the platform frame.
+        """
+        self.frames = frames
+        self.gate.frames = frames
 
     def settled(self, tolerance: float = 1e-7) -> bool:
         """
@@ -297,6 +322,8 @@ class MotionCueing:
         refusal = self.refusal(time, specific_force, angular_velocity)
         if refusal is not None and refusal.code == TIME_NOT_INCREASING:
             return CueStep(time=self.time, pose=None, refusal=refusal)
+        if command_time is not None:
+            self._last_input = float(command_time)   # input, for the watchdog
         if refusal is None and frame_id is not None:
             refusal = self.vehicle_frame_refusal(frame_id)
             if refusal is None and frame_id and frame_id == self.settings.imu_frame:
@@ -338,6 +365,45 @@ class MotionCueing:
             command_time = self.gate.last_time + dt
         return self._move(time, min(dt, self.settings.max_input_gap), self._rest_force,
                           np.zeros(3), None, [], command_time)
+
+    @property
+    def watchdog_period(self) -> Optional[float]:
+        """Return the seconds between two calls of :meth:`watch`; ``None``: no watchdog."""
+        timeout = self.settings.input_timeout
+        return min(WATCHDOG_PERIOD, timeout / 2.0) if timeout > 0.0 else None
+
+    def watch(self, command_time: float) -> Optional[CueStep]:
+        """
+        Watch the input: without a sample for ``input_timeout``, ease the platform home.
+
+        Called on a timer (every :attr:`watchdog_period`) with the node's clock, the clock of
+        :meth:`cue`'s ``command_time``. The input is lost when the last sample whose time was
+        taken came ``input_timeout`` seconds or more before (none yet: not lost). Then the next
+        sample starts a new time line (:meth:`restart_time`), and, until the platform rests at
+        home (:meth:`settled`), each call takes a step at rest (:meth:`rest`) covering the time
+        since the last call.
+
+        :param command_time: seconds, the node's clock.
+        :returns: the :class:`CueStep` whose accepted ``command`` is to be sent (stamped now:
+            no sample to stamp it with), or ``None``: nothing to send (input flowing, none
+            yet, the platform at rest, no time passed, a time that is not a finite number, or
+            nothing could be sent). Never raises.
+        """
+        try:
+            now = float(command_time)
+        except (TypeError, ValueError):
+            return None
+        if not math.isfinite(now):
+            return None
+        last_watch, self._last_watch = self._last_watch, now
+        timeout = self.settings.input_timeout
+        if timeout <= 0.0 or self._last_input is None or now - self._last_input < timeout:
+            return None
+        self.restart_time()   # whatever comes next starts a new time line
+        if last_watch is None or not now > last_watch or self.settled():
+            return None
+        step = self.rest(now - last_watch, now)
+        return step if step.command.accepted else None
 
     def _advance(self, time, specific_force, angular_velocity, refusal,
                  command_time) -> CueStep:

@@ -18,7 +18,8 @@ The settings of the motion cueing: filters, scale factors, tilt limits, limit ma
 One frozen :class:`CueingSettings`, in SI units (radians, not degrees), validated when built;
 :meth:`CueingSettings.from_parameters` builds it from the ROS parameter values declared in
 :data:`stewart_kinematics.parameters.MOTION_CUEING_PARAMETERS` (where angles are in degrees and
-say so in their names).
+say so in their names; :class:`stewart_kinematics.parameters.CueingParameterSettings` holds them
+as the node declares them).
 
 Defaults are the classical washout's of the literature (Reid and Nahon 1985, UTIAS Report 296;
 Nahon and Reid 1990, J. Guidance 13(2)): a third-order translational high-pass (second order at
@@ -103,6 +104,9 @@ class CueingSettings:
     :param imu_frame: the name of another frame samples may come in, or ``''``.
     :param imu_orientation_rpy: the orientation of ``imu_frame`` in ``vehicle_frame``, roll,
         pitch, yaw about fixed axes (``R = Rz Ry Rx``), radians.
+    :param input_timeout: without a sample for this long (the commands' clock), the input is
+        lost and the platform eases home (:meth:`~stewart_kinematics.cueing.MotionCueing.
+        watch`), seconds; 0 turns the watchdog off.
     :raises ValueError: naming the setting, for a value out of its range or of the wrong size.
     """
 
@@ -137,6 +141,7 @@ class CueingSettings:
     vehicle_frame: str = 'base_link'
     imu_frame: str = ''
     imu_orientation_rpy: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    input_timeout: float = 0.5
 
     def __post_init__(self):
         for item in fields(self):
@@ -193,7 +198,8 @@ class CueingSettings:
         bounded = {'tilt_max': (0.0, math.radians(45.0)),
                    'leg_length_margin': (0.0, 1.0),
                    'joint_angle_margin': (0.0, math.radians(45.0)),
-                   'condition_margin': (0.0, 1.0)}
+                   'condition_margin': (0.0, 1.0),
+                   'input_timeout': (0.0, 3600.0)}
         for name, (low, high) in bounded.items():
             value = getattr(self, name)
             if not low <= value <= high or (name == 'condition_margin' and value == 0.0):

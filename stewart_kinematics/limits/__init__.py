@@ -16,7 +16,7 @@
 The limits model: every reason a pose, or a motion, is not allowed, decided in one place.
 
 One evaluator per kind of limit, each checking one pose or arrays of poses through the
-core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.kinematics`, the
+core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.formulas`, the
 rotation entries of :mod:`stewart_kinematics.model.rotations`):
 
 - :mod:`.stroke`: ``leg_length_min``, ``leg_length_max`` (poses and leg lengths);
@@ -25,10 +25,10 @@ rotation entries of :mod:`stewart_kinematics.model.rotations`):
 - :mod:`.leg_collision`: ``leg_collision``, legs as capsules of ``leg_radius``;
 - :mod:`.leg_rates`: ``leg_velocity_max``, ``leg_acceleration_max``, ``leg_jerk_max``.
 
-:class:`~.model.LimitModel` composes those that are set and gives every check: one pose, a
+:class:`~.limit_model.LimitModel` composes those that are set and gives every check: one pose, a
 batch, leg states (trajectories, streams, twists). :class:`~.command_gate.CommandGate` applies
 it to every command as it is sent to the actuators, and gives the verdict a node publishes.
-:mod:`.checks` has the same as functions of a geometry. :mod:`.base` holds what the
+:mod:`.geometry_checks` has the same as functions of a geometry. :mod:`.base` holds what the
 evaluators share, :mod:`.violation` what they report.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
@@ -36,14 +36,6 @@ Nothing here imports ROS.
 """
 
 from stewart_kinematics.limits.base import Bound, LEG_PAIRS, LegSamples, Limit, PoseLegs
-from stewart_kinematics.limits.checks import (
-    check_pose,
-    check_poses,
-    check_poses_array,
-    check_samples,
-    joint_angles,
-    leg_length_violations,
-)
 from stewart_kinematics.limits.command_gate import (
     CommandGate,
     LegCommand,
@@ -53,10 +45,18 @@ from stewart_kinematics.limits.command_gate import (
     TrajectoryCommand,
     Verdict,
 )
+from stewart_kinematics.limits.geometry_checks import (
+    check_pose,
+    check_poses,
+    check_poses_array,
+    check_samples,
+    joint_angles,
+    leg_length_violations,
+)
 from stewart_kinematics.limits.joint_cones import JointCones
 from stewart_kinematics.limits.leg_collision import LegCollision, segment_distances
 from stewart_kinematics.limits.leg_rates import LegRate
-from stewart_kinematics.limits.model import (
+from stewart_kinematics.limits.limit_model import (
     LEG_STATE_LIMIT_NAMES,
     LIMIT_NAMES,
     LimitChecks,

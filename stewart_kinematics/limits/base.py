@@ -21,7 +21,7 @@ from arrays laid out leg by pose, shape (k, n): k = 6 legs, 15 pairs of legs or 
 platform), n poses or instants. The same code runs on one pose (n = 1) and on a million.
 
 The arrays come from the core's single formulas: :class:`PoseLegs` holds the legs of n poses
-as :func:`stewart_kinematics.model.kinematics.leg_arrays` gives them (lengths, leg vectors,
+as :func:`stewart_kinematics.model.inverse.leg_arrays` gives them (lengths, leg vectors,
 rotated platform joints) with the rotation entries of
 :func:`stewart_kinematics.model.rotations.zyx_entries`; :class:`LegSamples` holds leg lengths
 and their time derivatives. Nothing here imports ROS.
@@ -33,7 +33,7 @@ from typing import Tuple
 import numpy as np
 
 from stewart_kinematics.limits.violation import Violation
-from stewart_kinematics.model.kinematics import leg_arrays
+from stewart_kinematics.model.inverse import leg_arrays
 from stewart_kinematics.model.rotations import zyx_entries
 
 #: What a bound is about: each leg (6 rows), each pair of legs (15 rows), the platform (1 row).

@@ -59,11 +59,12 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
-from stewart_kinematics.limits.model import LimitModel
+from stewart_kinematics.limits.limit_model import LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.kinematics import forward_kinematics, leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     euler_zyx_to_quaternion,
@@ -206,7 +207,21 @@ def platform_of_tool_message(position, quaternion, frames=None, frame_id: str = 
     :returns: ``(position (3,), rotation (3, 3))`` of the platform frame in the base frame.
     :raises ValueError: for a zero or non-finite quaternion, or a frame the tree refuses.
     """
-    rotation = quaternion_to_matrix(normalize_quaternion(quaternion))
+    return platform_of_unit_quaternion(position, normalize_quaternion(quaternion), frames,
+                                       frame_id)
+
+
+def platform_of_unit_quaternion(position, unit, frames=None, frame_id: str = ''):
+    """
+    :func:`platform_of_tool_message` of a quaternion that the caller has checked and normalised.
+
+    For a decision that checked a message's numbers where they entered
+    (:meth:`stewart_kinematics.CommandCheck.tool_pose`): the same conversion, and the same
+    arithmetic, without checking the quaternion a second time.
+
+    :param unit: ``normalize_quaternion`` of the message's quaternion, shape (4,).
+    """
+    rotation = quaternion_to_matrix(unit)
     if frames is None:
         return position, rotation
     return frames.platform_in_base(position, rotation, frame_id)
@@ -276,6 +291,9 @@ class CommandGate:
                                  f'{solution.reason}')
             pose = solution.pose
         self._pose = np.array(geometry.home_pose if pose is None else pose, dtype=float)
+        #: The forward kinematics result of the last command passed, when one was solved
+        #: (its Jacobian starts the next solve), and that of the command being judged.
+        self._solution = self._candidate = None
         self._time = None if time is None else float(time)
         #: Divided differences of the last command: velocity, acceleration (m/s, m/s^2).
         self._velocity = np.zeros(6)
@@ -429,15 +447,24 @@ class CommandGate:
             return LegCommand(None, pose_violations, findings.out_of_limits(
                 'the pose of the leg command is', pose_violations), position=position,
                 rotation=rotation, time=time)
-        command = self._motion(lengths, position, rotation, time, pose_violations)
+        command = self._motion(lengths, position, rotation, time, pose_violations,
+                               solution.pose)
         if command.accepted and carried:
             command = _replace(command, **carried)
         return command
 
     def _solve(self, lengths):
-        """Return the forward kinematics of leg lengths, from the last command's pose."""
-        return forward_kinematics(self.geometry, lengths, self._pose, tolerance=_SOLVE_TOLERANCE,
-                                  max_iterations=_SOLVE_ITERATIONS)
+        """
+        Return the forward kinematics of leg lengths, from the last command's pose.
+
+        Started from the last solution itself when there is one (its Jacobian is reused, as
+        a tracking solve does), else from the last pose.
+        """
+        start = self._solution if self._solution is not None else self._pose
+        solution = forward_kinematics(self.geometry, lengths, start, tolerance=_SOLVE_TOLERANCE,
+                                      max_iterations=_SOLVE_ITERATIONS)
+        self._candidate = solution if solution.converged else None
+        return solution
 
     def _coming_back(self, violations) -> bool:
         """
@@ -457,8 +484,13 @@ class CommandGate:
                 return False
         return True
 
-    def _motion(self, lengths, position, rotation, time, violations=()) -> LegCommand:
-        """Check the rates from the last command to ``lengths`` at ``time``; pass it if kept."""
+    def _motion(self, lengths, position, rotation, time, violations=(),
+                pose=None) -> LegCommand:
+        """
+        Check the rates from the last command to ``lengths`` at ``time``; pass it if kept.
+
+        :param pose: the pose vector of ``position`` and ``rotation`` when known (a solve's).
+        """
         if time is None or not math.isfinite(float(time)):
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING, f'a command of a motion needs the time it is sent, '
@@ -484,8 +516,8 @@ class CommandGate:
                     'legs: ' + '; '.join(map(str, too_fast)),
                     findings.violation_details(too_fast)), position=position,
                     rotation=rotation, time=time)
-        self._advance(lengths, np.concatenate([position, matrix_to_euler_zyx(rotation)]),
-                      time, rates, violations)
+        self._advance(lengths, pose if pose is not None else np.concatenate(
+            [position, matrix_to_euler_zyx(rotation)]), time, rates, violations)
         warnings = () if not violations else (Finding(
             findings.RETURNING_TO_LIMITS, 'the platform is coming back within its limits, '
             'never further out: ' + '; '.join(map(str, violations)),
@@ -524,6 +556,9 @@ class CommandGate:
 
     def _advance(self, lengths, pose, time, rates, violations=()) -> None:
         """Make a command passed (or a braking one) the last one."""
+        self._solution = (self._candidate if self._candidate is not None
+                          and np.array_equal(self._candidate.pose, pose) else None)
+        self._candidate = None
         self._outside = {(violation.limit, violation.leg, violation.other_leg): violation.excess
                          for violation in violations}
         if rates is not None:

@@ -16,9 +16,9 @@
 The singularity margin: the condition number of the dimensionless Jacobian, at most a bound.
 
 The Jacobian and its condition number are those of
-:func:`stewart_kinematics.model.kinematics.jacobian_condition` (rows ``[u_i, (R p_i x u_i) /
+:func:`stewart_kinematics.model.jacobians.jacobian_condition` (rows ``[u_i, (R p_i x u_i) /
 rho]``), computed from the legs of the poses by
-:func:`~stewart_kinematics.model.kinematics.dimensionless_jacobians`. About 10 at the paper
+:func:`~stewart_kinematics.model.jacobians.dimensionless_jacobians`. About 10 at the paper
 platform's home pose, ``inf`` at a singularity and for a leg of zero length. Nothing here
 imports ROS.
 """
@@ -26,10 +26,7 @@ imports ROS.
 import numpy as np
 
 from stewart_kinematics.limits.base import Bound, Limit, PLATFORM
-from stewart_kinematics.model.kinematics import (
-    conditions_of_jacobians,
-    dimensionless_jacobians,
-)
+from stewart_kinematics.model.jacobians import conditions_of_jacobians, dimensionless_jacobians
 
 #: Relative rounding allowance of the pivots of the proof (see :func:`proved_within`).
 PIVOT_ROUNDING = 1e-13

@@ -17,8 +17,12 @@ The platform model: its geometry, rotations, frames, actuators and kinematics.
 
 Rotations (:mod:`.rotations`: one convention, R = Rz(gamma) Ry(beta) Rx(alpha)), the geometry
 (:mod:`.geometry`: joints, home pose, limits), the frames (:mod:`.frames`), the actuator
-interface and speed limits (:mod:`.actuators`), inverse and forward kinematics and the Jacobians
-(:mod:`.kinematics`) and the velocity kinematics (:mod:`.velocities`).
+interface and speed limits (:mod:`.actuators`), the velocity kinematics (:mod:`.velocities`),
+and the kinematics, one concern per module: the argument checks (:mod:`.inputs`, on
+:mod:`.arrays`), the leg formulas (:mod:`.formulas`), inverse kinematics (:mod:`.inverse`), the
+Jacobians and their conditioning (:mod:`.jacobians`), forward kinematics (:mod:`.forward`: the
+solver in :mod:`.forward_solver`, its start table in :mod:`.start_table`, its result in
+:mod:`.forward_result`, the result's error bound in :mod:`.error_bound`).
 
 May import: numpy and the standard library only. Nothing here imports ROS or another folder of
 the package.

@@ -134,6 +134,17 @@ class ActuatorInterface:
         """
         return _rows_of_six(positions, 'positions') + self.offsets
 
+    def concerns(self, names: Sequence[str]) -> bool:
+        """
+        Whether a message naming ``names`` is about these legs: it names at least one of them.
+
+        Two platforms may share one ``joint_states``: a message that names none of these joints
+        is another platform's, to be skipped (not refused: nothing is wrong with it).
+
+        :param names: the joint names of a JointState, in any order.
+        """
+        return any(name in names for name in self.joint_names)
+
     def order(self, names: Sequence[str]) -> np.ndarray:
         """
         Where each leg's joint is in a message's list of names (other joints are ignored).

@@ -81,7 +81,7 @@ class Geometry:
         base joint, radians, in (0, pi] (pi for no limit).
     :param platform_joint_max_angle: the same at the platform joint, in the platform frame.
     :param max_jacobian_condition: largest allowed condition number of the dimensionless
-        Jacobian (:func:`stewart_kinematics.model.kinematics.jacobian_condition`), >= 1
+        Jacobian (:func:`stewart_kinematics.model.jacobians.jacobian_condition`), >= 1
         (``inf`` for no limit): the singularity margin.
     :param leg_radius: radius of each leg, metres, >= 0 (0 for no collision check): a leg is a
         capsule of this radius around the segment from its base joint to its platform joint,
@@ -167,7 +167,7 @@ class Geometry:
 
         # Derived once: every IK request and limit check uses them.
         from stewart_kinematics import limits
-        from stewart_kinematics.model.kinematics import leg_vectors_from_euler
+        from stewart_kinematics.model.inverse import leg_vectors_from_euler
         home_legs = leg_vectors_from_euler(self, self.home_pose)
         home_lengths = np.linalg.norm(home_legs, axis=-1)
         home_lengths.flags.writeable = False

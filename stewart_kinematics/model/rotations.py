@@ -141,6 +141,42 @@ def zyx_angles(entries, operations=_FloatOperations):
             operations.where(gamma > -math.pi, gamma, math.pi))
 
 
+def canonical_zyx_angles(alpha, beta, gamma):
+    """
+    Euler angles of the same rotation in the canonical ranges (see :func:`zyx_angles`).
+
+    Angles already in them are kept as they are, to the bit.
+
+    :param alpha: radians, a float; ``beta`` and ``gamma`` likewise.
+    :returns: ``[alpha, beta, gamma]``, a list of floats.
+    """
+    if in_canonical_ranges(alpha, beta, gamma):
+        return [alpha, beta, gamma]
+    return list(zyx_angles(euler_zyx_matrix_entries(alpha, beta, gamma)))
+
+
+def canonical_zyx_angle_rows(angles):
+    """
+    :func:`canonical_zyx_angles` of each row of ``angles``, shape (n, 3), in place.
+
+    Rows already in the canonical ranges are kept as they are, to the bit.
+    """
+    outside = np.flatnonzero(~in_canonical_ranges(*angles.T))
+    cosines, sines = np.cos(angles[outside]), np.sin(angles[outside])
+    entries = zyx_entries(cosines[:, 0], sines[:, 0], cosines[:, 1], sines[:, 1],
+                          cosines[:, 2], sines[:, 2])
+    angles[outside] = np.stack(zyx_angles(entries, _ArrayOperations), axis=-1)
+
+
+def in_canonical_ranges(alpha, beta, gamma):
+    """Whether beta is in (-pi/2, pi/2), alpha and gamma in (-pi, pi]; floats or arrays."""
+    return ((-_HALF_PI < beta) & (beta < _HALF_PI) & (-math.pi < alpha) & (alpha <= math.pi)
+            & (-math.pi < gamma) & (gamma <= math.pi))
+
+
+_HALF_PI = 0.5 * math.pi
+
+
 def matrix_to_euler_zyx(rotation):
     """
     Euler ZYX angles of a rotation matrix.

@@ -46,7 +46,15 @@ import time
 
 import numpy as np
 
-from stewart_kinematics.model import kinematics
+from stewart_kinematics.model.formulas import apply_matrix, constants_of, euler_step
+from stewart_kinematics.model.forward_solver import (
+    DEFAULT_MAX_ITERATIONS,
+    DEFAULT_TOLERANCE,
+    solve_batch,
+)
+from stewart_kinematics.model.inputs import valid_lengths
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import jacobian, jacobian_condition, twist_jacobian
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Cells of the grid per pose coordinate (5 ** 6 = 15,625 cells; 416 bytes each), odd so that
@@ -61,7 +69,7 @@ REACH = 1.0
 #: Half-width of the grid in each Euler angle, radians.
 TURN = math.radians(20.0)
 #: Largest condition number of a sample's dimensionless Jacobian (see
-#: :func:`stewart_kinematics.model.kinematics.jacobian_condition`; about 10 at the paper
+#: :func:`stewart_kinematics.model.jacobians.jacobian_condition`; about 10 at the paper
 #: platform's home): a sample nearer a singularity is no good start and is left out.
 MAX_CONDITION = 1e3
 #: Two neighbouring samples belong to one assembly mode when the first-order prediction of
@@ -87,8 +95,8 @@ class StartTable:
         self.cells = cells
         home = np.asarray(geometry.home_pose, dtype=float)
         half_width = np.array([reach * geometry.platform_radius] * 3 + [turn] * 3)
-        home_jacobian = kinematics.jacobian(geometry, home)
-        home_lengths = kinematics.inverse_kinematics(geometry, home)
+        home_jacobian = jacobian(geometry, home)
+        home_lengths = inverse_kinematics(geometry, home)
         # The index: cell coordinates (the first step's coordinates in cells from the grid's
         # lower corner) as offset + rows @ lengths, with the first step home + J^-1 (l - l_home).
         scale = cells / (2.0 * half_width)
@@ -109,7 +117,7 @@ class StartTable:
         beta, gamma = samples[kept, 4], samples[kept, 5]
         self.entries[kept] = np.column_stack([samples[kept], lengths[kept], np.cos(beta),
                                               np.sin(beta), np.cos(gamma), np.sin(gamma)])
-        self.inverses[kept] = np.linalg.inv(kinematics.twist_jacobian(
+        self.inverses[kept] = np.linalg.inv(twist_jacobian(
             geometry, samples[kept, :3], euler_zyx_to_matrix(samples[kept, 3:])))
         #: Whether each cell holds a sample, as bytes (indexed faster than a numpy array).
         self.kept = bytes(kept.astype(np.uint8))
@@ -154,6 +162,54 @@ class StartTable:
         return np.where(inside & kept, index, -1)
 
 
+def cold_start(table, target):
+    """
+    Start of a solve without a guess, from the start table: ``(pose, jacobian_inverse)``.
+
+    One Newton step from the sample of the lengths' cell, with the sample's Jacobian (see
+    above); None, to start from home instead, where the table has no sample for the lengths.
+
+    :param table: the geometry's :class:`StartTable`, or None (its home is singular).
+    :param target: the six leg lengths, metres, as floats.
+    :returns: six floats and the sample's inverse twist Jacobian (nested lists), or None.
+    """
+    cell = -1 if table is None else table.cell(target)
+    if cell < 0:
+        return None
+    sample = table.entries[cell].tolist()
+    inverse = table.inverses[cell].tolist()
+    errors = [length - wanted for length, wanted in zip(sample[6:12], target)]
+    return euler_step(sample[:6], apply_matrix(inverse, errors), *sample[12:]), inverse
+
+
+def batch_cold_starts(table, home_pose, targets):
+    """
+    :func:`cold_start` of each row of ``targets`` (N, 6), with the same arithmetic.
+
+    :param table: as for :func:`cold_start`; ``home_pose``: six floats.
+    :returns: ``(started (N,), poses (N, 6), inverses (N, 6, 6))``: the rows started from the
+        table, and every row's start (home for the others) and inverse twist Jacobian.
+    """
+    count = len(targets)
+    poses = np.array(np.broadcast_to(home_pose, (count, 6)))
+    inverses = np.zeros((count, 6, 6))
+    started = np.zeros(count, dtype=bool)
+    rows = np.flatnonzero(valid_lengths(targets))
+    if table is None or rows.size == 0:
+        return started, poses, inverses
+    cells = table.cells_of(targets[rows])
+    rows, cells = rows[cells >= 0], cells[cells >= 0]
+    sample = table.entries[cells]
+    inverses[rows] = table.inverses[cells]
+    errors = sample[:, 6:12] - targets[rows]
+    # apply_matrix with the six rows of every sample as one row: see solve_batch.
+    twists = apply_matrix([np.ascontiguousarray(inverses[rows].transpose(2, 1, 0))],
+                          list(errors.T))[0]
+    poses[rows] = np.stack(euler_step(sample[:, :6].T, twists, *sample[:, 12:].T), axis=-1)
+    started[rows] = True
+    return started, poses, inverses
+
+
 def _cell_coordinates(rows, offset, lengths):
     """
     ``offset + rows @ lengths``, summed in index order: six floats, or six arrays for a batch.
@@ -175,11 +231,12 @@ def _solve_samples(geometry, centres, lengths):
     valid = np.all(lengths > 0.0, axis=-1)
     solved = np.zeros(len(centres), dtype=bool)
     poses = centres.copy()
-    result = kinematics.forward_kinematics(geometry, lengths[valid], centres[valid])
+    result = solve_batch(geometry, constants_of(geometry), lengths[valid], centres[valid],
+                         DEFAULT_TOLERANCE, DEFAULT_MAX_ITERATIONS)
     poses[valid] = result.pose
     solved[valid] = result.converged
     condition = np.full(len(centres), np.inf)
-    condition[solved] = kinematics.jacobian_condition(
+    condition[solved] = jacobian_condition(
         geometry, poses[solved, :3], euler_zyx_to_matrix(poses[solved, 3:]))
     return poses, solved & (condition <= MAX_CONDITION)
 
@@ -199,14 +256,14 @@ def _working_mode(geometry, home, samples, solved, home_jacobian, width, cells):
     :param cells: cells per coordinate.
     """
     def determinants(poses):
-        return np.linalg.det(kinematics.twist_jacobian(
+        return np.linalg.det(twist_jacobian(
             geometry, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:])))
 
     ok = solved.copy()
     ok[solved] = np.sign(determinants(samples[solved])) == np.sign(determinants(home[None]))
     # Each sample's Euler Jacobian inverse: the first-order prediction of its neighbours.
     inverses = np.zeros((len(samples), 6, 6))
-    inverses[ok] = np.linalg.inv(kinematics.jacobian(geometry, samples[ok]))
+    inverses[ok] = np.linalg.inv(jacobian(geometry, samples[ok]))
     grid = (cells,) * 6
     ok = ok.reshape(grid)
     samples = samples.reshape(grid + (6,))

@@ -20,7 +20,7 @@ in geometry_msgs/msg/Twist. Leg velocities are the rates of change of the leg le
 (metres per second), the paper's "rate of change of the lengths".
 
 Leg ``i`` changes at ``u_i . (v + w x R p_i) = [u_i, R p_i x u_i] . [v, w]``, with ``u_i`` its
-unit vector: the rows of :func:`stewart_kinematics.model.kinematics.twist_jacobian`.
+unit vector: the rows of :func:`stewart_kinematics.model.jacobians.twist_jacobian`.
 """
 
 from dataclasses import dataclass
@@ -29,12 +29,9 @@ import math
 import numpy as np
 
 from stewart_kinematics.model.arrays import check_finite_output
-from stewart_kinematics.model.kinematics import (
-    as_poses,
-    jacobian_condition,
-    leg_vectors,
-    twist_jacobian,
-)
+from stewart_kinematics.model.inputs import as_poses
+from stewart_kinematics.model.inverse import leg_vectors
+from stewart_kinematics.model.jacobians import jacobian_condition, twist_jacobian
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Largest condition number of the dimensionless Jacobian at which :func:`platform_twist`
@@ -73,7 +70,7 @@ def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.nda
 
     Near a singularity the twist grows without bound for bounded leg velocities (a small error
     in them becomes a large false motion), so a pose whose dimensionless Jacobian (see
-    :func:`stewart_kinematics.model.kinematics.jacobian_condition`) has a condition number above
+    :func:`stewart_kinematics.model.jacobians.jacobian_condition`) has a condition number above
     ``max_condition`` is refused.
 
     :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (6,) or (N, 6).

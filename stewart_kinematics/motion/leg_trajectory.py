@@ -86,7 +86,7 @@ def sampled_leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: Act
     :returns: ``(points, poses)``: the :class:`LegTrajectory` and the
         :class:`~stewart_kinematics.model.velocities.PoseSamples` at its times, for the
         command gate to check what is sent
-        (:meth:`~stewart_kinematics.decisions.command_gate.CommandGate.trajectory`).
+        (:meth:`~stewart_kinematics.limits.command_gate.CommandGate.trajectory`).
     """
     times = trajectory.sample_times(rate, max_samples=max_points)
     poses = trajectory.sample(times)

@@ -50,7 +50,7 @@ import math
 import numpy as np
 
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import leg_vectors
+from stewart_kinematics.model.inverse import leg_vectors
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_quaternion,

@@ -33,7 +33,7 @@ import numpy as np
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import check_samples
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.model.inputs import as_poses
 from stewart_kinematics.parameters.settings import RampSettings
 
 #: How trajectory_node plays a ramp: rows on a timer, samples in time, or no ramp.

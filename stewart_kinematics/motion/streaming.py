@@ -26,13 +26,16 @@ trajectory generation: the ruckig library), so a new target may arrive at any ti
 The filter is total: it never raises for a target or a step.
 
 - A target that is not six finite, positive lengths, or that breaks the stroke, is refused
-  with a finding; the filter keeps moving toward the last accepted target.
+  (:meth:`CommandFilter.set_target` returns a :class:`StreamTarget`, the shared
+  :class:`~stewart_kinematics.findings.Decision` result); the filter keeps moving toward the
+  last accepted target.
 - A target farther than the legs cover in :data:`WINDOW_SECONDS` at full speed is approached
   through an aim point at that distance on the straight line toward it (ruckig cannot plan a
   motion of days, and need not: the aim moves on at every step).
 - A plan ruckig refuses, or whose motion would leave the stroke, is replaced by braking to
-  rest within the limits (``stream_braking``); if even that fails, the step is ``held``
-  (``stream_held``): no step within every limit could be computed.
+  rest within the limits (a ``stream_braking`` warning); if even that fails, the step is
+  refused (``stream_held``): no step within every limit could be computed. Each step is a
+  :class:`FilteredCommand`, a :class:`~stewart_kinematics.findings.Decision`.
 - Every step is checked by the limits model
   (:meth:`~stewart_kinematics.limits.LimitModel.check_leg_states`: stroke, velocity,
   acceleration, and jerk as the change of acceleration over the step) before it is given.
@@ -42,6 +45,8 @@ The filter is total: it never raises for a target or a step.
   consecutive commands, jerk included). A step held or refused there is replaced by the gate's
   braking command (``command_braking``: every leg slowing at ``leg_acceleration_max``), never
   by holding the last command (a stop within one step); the filter goes on from what was sent.
+  Sending starts with the first target accepted at a time (``set_target(lengths, time)``):
+  until then there is nothing to send (:attr:`CommandFilter.started`).
 
 Units: metres, seconds. Nothing here imports ROS.
 """
@@ -49,12 +54,12 @@ Units: metres, seconds. Nothing here imports ROS.
 import dataclasses
 from dataclasses import dataclass
 import math
-from typing import Optional
+from typing import Optional, Tuple
 
 import numpy as np
 
 from stewart_kinematics import findings
-from stewart_kinematics.findings import Finding
+from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import CommandGate, LegCommand, LimitModel, MOTION
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
@@ -68,27 +73,51 @@ WINDOW_SECONDS = 10.0
 STROKE_ROUNDING = 1e-12
 
 
-@dataclass(frozen=True)
-class FilteredCommand:
+@dataclass(frozen=True, eq=False)
+class FilteredCommand(Decision):
     """
-    One step of a :class:`CommandFilter`.
+    One step of a :class:`CommandFilter`: the command to give, or why none could be computed.
 
-    :param lengths: commanded leg lengths, metres, shape (6,).
+    :param lengths: commanded leg lengths, metres, shape (6,); of a refused step, the last
+        command's, not to be given again (:meth:`CommandFilter.send` brakes instead).
     :param velocities: m/s, shape (6,).
     :param accelerations: m/s^2, shape (6,).
     :param settled: True when the command rests on the target.
-    :param held: True when no new command could be computed: these are the last command's
-        values, not to be given again (:meth:`CommandFilter.send` brakes instead).
-    :param finding: why the step did not move as planned (``stream_braking``,
-        ``stream_held``), or ``None``.
+    :param refusal: ``None`` when the step may be given; a ``stream_held`` finding when no
+        step within every limit could be computed.
+    :param warnings: a ``stream_braking`` finding when no motion toward the target could be
+        planned and the step brakes to rest instead; else empty.
     """
 
     lengths: np.ndarray
     velocities: np.ndarray
     accelerations: np.ndarray
     settled: bool
-    held: bool = False
-    finding: Optional[Finding] = None
+    refusal: Optional[Finding] = None
+    warnings: Tuple[Finding, ...] = ()
+
+    @property
+    def held(self) -> bool:
+        """Whether no new command could be computed (the step is refused, ``stream_held``)."""
+        return self.refusal is not None
+
+
+@dataclass(frozen=True, eq=False)
+class StreamTarget(Decision):
+    """
+    The answer of :meth:`CommandFilter.set_target` (and :meth:`CommandFilter.reset`).
+
+    :param lengths: the leg lengths now aimed at, metres, shape (6,); ``None`` when refused.
+    :param refusal: why the lengths cannot be a target (``invalid_lengths``, or
+        ``out_of_limits`` beyond the stroke), or ``None``.
+    :param warnings: none yet.
+    :param started: True when this target started the sending (:meth:`CommandFilter.send`).
+    """
+
+    lengths: Optional[np.ndarray]
+    refusal: Optional[Finding] = None
+    warnings: Tuple[Finding, ...] = ()
+    started: bool = False
 
 
 class CommandFilter:
@@ -107,11 +136,12 @@ class CommandFilter:
     >>> from stewart_kinematics import ActuatorLimits, CommandFilter, load_geometry
     >>> home_lengths = load_geometry('config/paper_platform.yaml').home_leg_lengths
     >>> command_filter = CommandFilter(ActuatorLimits(0.05, 0.25, 2.5), 0.01, home_lengths)
-    >>> command_filter.set_target(home_lengths + 0.01)   # every leg 10 mm longer: None, accepted
+    >>> command_filter.set_target(home_lengths + 0.01).accepted   # every leg 10 mm longer
+    True
     >>> command = command_filter.step()                  # every 10 ms
     >>> command.velocities, command.settled              # m/s, after 10 ms
     (array([0.000125, 0.000125, 0.000125, 0.000125, 0.000125, 0.000125]), False)
-    >>> command_filter.set_target([float('nan')] * 6).code
+    >>> command_filter.set_target([float('nan')] * 6).refusal.code
     'invalid_lengths'
     """
 
@@ -151,19 +181,22 @@ class CommandFilter:
         #: The last check of each step as sent (:meth:`send`), or ``None`` without a geometry.
         self.gate = (CommandGate(geometry, actuator_limits, timing=MOTION, jerk=True)
                      if geometry is not None else None)
-        refusal = self.reset(lengths)
-        if refusal is not None:
-            raise ValueError(refusal.message)
+        start = self.reset(lengths)
+        if not start.accepted:
+            raise ValueError(start.reason)
 
-    def reset(self, lengths) -> Optional[Finding]:
+    def reset(self, lengths) -> StreamTarget:
         """
         Put the command at rest at ``lengths`` (metres, shape (6,)), which is also the target.
 
-        :returns: ``None``, or the finding that refuses the lengths (nothing changes then).
+        Sending stops until a target is set at a time again (:meth:`set_target`).
+
+        :returns: a :class:`StreamTarget`; refused (nothing changes then) for lengths that are
+            not six finite, positive values within the stroke.
         """
         refusal = self._refusal(lengths)
         if refusal is not None:
-            return refusal
+            return StreamTarget(None, refusal)
         #: The command's state (lengths, velocities, accelerations), six floats each.
         self._position = np.asarray(lengths, dtype=float).tolist()
         self._velocity = [0.0] * 6
@@ -171,19 +204,30 @@ class CommandFilter:
         self._target = np.array(self._position)
         self._following = None
         self._started = False
-        return None
+        return StreamTarget(self._target.copy())
+
+    @property
+    def started(self) -> bool:
+        """Return whether sending started: :meth:`send` then gives a step at every call."""
+        return self._started
 
     def start(self, time: float) -> None:
         """
         Start sending at ``time`` (seconds, the node's clock): the command rests where it is.
 
-        Called once, when the first target is accepted; :meth:`send` then gives a step at
-        every call. A second call changes nothing.
+        :meth:`set_target` with a time calls it for the first target it accepts; :meth:`send`
+        then gives a step at every call. A second call changes nothing.
+
+        :raises ValueError: without the geometry, or for a time that is not a finite number.
         """
         if self.gate is None:
             raise ValueError('sending needs the geometry: build the filter with it')
+        seconds = _finite_seconds(time)
+        if seconds is None:
+            raise ValueError(f'the start time must be a finite number of seconds, got '
+                             f'{preview(time)}')
         if not self._started:
-            self.gate.reset(self._position, time=time)
+            self.gate.reset(self._position, time=seconds)
             self._started = True
 
     def send(self, time: float) -> LegCommand:
@@ -200,6 +244,10 @@ class CommandFilter:
             stands) only when no time passed since the last command (``clock_not_advancing``)
             or not even a braking command could be found.
         """
+        if _finite_seconds(time) is None:
+            return LegCommand(None, refusal=Finding(
+                findings.CLOCK_NOT_ADVANCING, f'the time of a streamed command must be a '
+                f'finite number of seconds, got {preview(time)}: nothing sent'))
         self.start(time)
         interval = self.gate.elapsed(time)
         if interval is None:
@@ -207,14 +255,14 @@ class CommandFilter:
                 findings.CLOCK_NOT_ADVANCING, 'no time passed since the last streamed command: '
                 'nothing sent this period'))
         step = self.step(interval)
-        if step.held:
-            command = self.gate.brake(time, replaced=step.finding)
+        if not step.accepted:
+            command = self.gate.brake(time, replaced=step.refusal)
         else:
             command = self.gate.legs(step.lengths, time, step.velocities, step.accelerations)
             if not command.accepted:
                 command = self.gate.brake(time, replaced=command.refusal)
-            elif step.finding is not None:
-                command = dataclasses.replace(command, warnings=(step.finding,))
+            elif step.warnings:
+                command = dataclasses.replace(command, warnings=step.warnings)
         if command.braking and command.accepted:
             # Go on from what was sent: a new plan from the braking command's state.
             self._position = command.lengths.tolist()
@@ -223,18 +271,27 @@ class CommandFilter:
             self._following = None
         return command
 
-    def set_target(self, lengths) -> Optional[Finding]:
+    def set_target(self, lengths, time: Optional[float] = None) -> StreamTarget:
         """
         Aim at new leg lengths (metres, shape (6,)), to be reached at rest.
 
-        :returns: ``None`` when accepted; else the finding that refuses them
-            (``invalid_lengths``, or ``out_of_limits`` beyond the stroke), and the filter keeps
-            moving toward its last target.
+        :param time: when the target arrives, seconds (the node's clock), or ``None``: with a
+            finite time, the first target accepted starts the sending there (:meth:`start`;
+            the command rests where it is until then).
+        :returns: a :class:`StreamTarget`: accepted, or refused (``invalid_lengths``, or
+            ``out_of_limits`` beyond the stroke) while the filter keeps moving toward its last
+            target. Never raises.
         """
         refusal = self._refusal(lengths)
-        if refusal is None:
-            self._target = np.array(lengths, dtype=float)
-        return refusal
+        if refusal is not None:
+            return StreamTarget(None, refusal)
+        self._target = np.array(lengths, dtype=float)
+        started = False
+        if (self.gate is not None and not self._started
+                and _finite_seconds(time) is not None):
+            self.start(time)
+            started = True
+        return StreamTarget(self._target.copy(), started=started)
 
     @property
     def target(self) -> np.ndarray:
@@ -282,9 +339,9 @@ class CommandFilter:
         return self._held('no step within the limits could be computed')
 
     def _held(self, reason) -> FilteredCommand:
-        """Return the last command, ``held``, with the reason no step was computed."""
+        """Return the last command, refused (``held``), with the reason no step was computed."""
         return FilteredCommand(np.array(self._position), np.array(self._velocity),
-                               np.array(self._acceleration), False, True,
+                               np.array(self._acceleration), False,
                                Finding(findings.STREAM_HELD, reason))
 
     def _new_aim(self, plan) -> bool:
@@ -368,7 +425,8 @@ class CommandFilter:
         settled = (plan.final and plan.target is self._target
                    and plan.time >= plan.trajectory.duration)
         return FilteredCommand(np.array(self._position), np.array(self._velocity),
-                               np.array(self._acceleration), settled, False, finding)
+                               np.array(self._acceleration), settled,
+                               warnings=() if finding is None else (finding,))
 
     def _refusal(self, lengths) -> Optional[Finding]:
         """Say why leg lengths cannot be a target, or return ``None``."""
@@ -384,6 +442,13 @@ class CommandFilter:
         if violations:
             return findings.out_of_limits('the target lengths are', violations)
         return None
+
+
+def _finite_seconds(time) -> Optional[float]:
+    """Return ``time`` as a float if it is a finite real number (not a bool), else ``None``."""
+    if isinstance(time, bool) or not isinstance(time, (int, float, np.integer, np.floating)):
+        return None
+    return float(time) if math.isfinite(time) else None
 
 
 class _Plan:

@@ -247,11 +247,12 @@ MotionSettings = settings_class(
     'Trajectories and paths received by trajectory_node: checking, retiming, playing.')
 StreamingSettings = settings_class(
     'StreamingSettings', STREAMING_PARAMETERS, "ik_node's streamed, jerk-limited commands.")
-MotionCueingSettings = settings_class(
-    'MotionCueingSettings', MOTION_CUEING_PARAMETERS,
-    "motion_cueing_node's washout, limit margins and input checks, as parameters (degrees "
-    'where named); :meth:`stewart_kinematics.cueing.CueingSettings.from_parameters` turns them '
-    "into the core's settings.")
+CueingParameterSettings = settings_class(
+    'CueingParameterSettings', MOTION_CUEING_PARAMETERS,
+    "motion_cueing_node's washout, limit margins and input checks, as the node declares its "
+    "parameters (degrees where named); not the motion cueing's own settings, "
+    ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
+    ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.')
 
 # The nodes' settings: the groups each node declares, in order.
 IkNodeSettings = node_settings_class(
@@ -266,7 +267,7 @@ FkNodeSettings = node_settings_class(
     queue=QueueSettings)
 MotionCueingNodeSettings = node_settings_class(
     'MotionCueingNodeSettings', "motion_cueing_node's settings.", geometry=GeometrySettings,
-    frames=FrameSettings, cueing=MotionCueingSettings, queue=QueueSettings)
+    frames=FrameSettings, cueing=CueingParameterSettings, queue=QueueSettings)
 TrajectoryNodeSettings = node_settings_class(
     'TrajectoryNodeSettings', "trajectory_node's settings.", geometry=GeometrySettings,
     actuators=ActuatorSettings, frames=FrameSettings, ramp=RampSettings, motion=MotionSettings,

@@ -31,13 +31,15 @@ a platform moves continuously, and falls back to the home pose when that fails; 
 and restarts, and ``anchor_pose`` makes it start from a known pose. What to publish and what to
 refuse is decided by :class:`stewart_kinematics.PoseTracker` (lengths out of the limits, lengths
 that neither start solves, a solution whose pose is not fixed to pose_tolerance, out of the limits,
-or in another assembly mode); the node converts the messages, publishes, and counts each refusal
-and each warning (near a singularity) with the core's reason on the log and ``/diagnostics``.
+or in another assembly mode), and so are the tool frame's pose and twist it publishes (in the base
+frame and in ``estimated_pose_frame``); the node converts the messages, publishes, and counts each
+refusal and each warning (near a singularity) with the core's reason on the log and
+``/diagnostics``.
 
 Every ``assembly_mode_margin_period`` seconds the distance from the last solution to the
 nearest other real assembly mode within the limits is computed in a worker process (a thread
 would hold up the message callbacks: it shares the interpreter lock)
-(:class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`, only when the
+(:class:`stewart_kinematics.workers.margin_monitor.AssemblyModeMarginMonitor`, only when the
 lengths changed) and reported with the other statuses, WARN when below
 ``assembly_mode_margin_warning``. With ``refuse_ambiguous_start`` the tracker refuses a first
 solution (after a start or reset_tracker) when the lengths allow several modes within the
@@ -60,15 +62,9 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
-from stewart_kinematics.analysis.assembly_modes import AssemblyModeMarginMonitor
-from stewart_kinematics.decisions.pose_tracker import (
-    ambiguity_status,
-    margin_status,
-    PoseTracker,
-)
+from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
-from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     FkNodeSettings,
@@ -77,6 +73,8 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     SolverSettings,
 )
+from stewart_kinematics.pose_decisions.pose_tracker import PoseTracker
+from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status, margin_status
 from stewart_kinematics.ros.interfaces import FK_NODE
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
@@ -98,6 +96,7 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
+from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 
 
 class FkNode(Node):
@@ -110,12 +109,11 @@ class FkNode(Node):
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
-        self.tracker = PoseTracker(self.geometry, settings.solver)
-        # Replaced whole when a tool frame parameter changes: one tree per message.
-        self.frames = frames_from_settings(settings.frames)
-        self.estimated_pose_frame = (settings.fk_frames.estimated_pose_frame
-                                     or self.frames.base_frame)
-        self.frames.reference(self.estimated_pose_frame)   # a ValueError stops the start
+        # Its frame tree is replaced whole when a tool frame parameter changes: one tree per
+        # message. A ValueError (an estimated_pose_frame it cannot place) stops the start.
+        self.tracker = PoseTracker(self.geometry, settings.solver,
+                                   frames_from_settings(settings.frames),
+                                   settings.fk_frames.estimated_pose_frame)
         depth = settings.queue.queue_depth
         self.pose_publisher = create_output_publisher(self, FK_NODE['estimated_pose'], depth)
         self.stamped_publisher = create_output_publisher(
@@ -124,7 +122,8 @@ class FkNode(Node):
         self.tf = TransformBroadcaster(self, dynamic=FK_NODE['/tf'], static=FK_NODE[
             '/tf_static']) if settings.fk_frames.publish_tf else None
         if self.tf is not None:
-            self.tf.send_static(self.frames.static_transforms(), self.get_clock().now().to_msg())
+            self.tf.send_static(self.tracker.frames.static_transforms(),
+                                self.get_clock().now().to_msg())
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
@@ -153,12 +152,12 @@ class FkNode(Node):
         """Pass a solver parameter (already validated) to the tracker; take a new tool frame."""
         self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
-            old = self.frames
-            self.frames = frames_from_settings(self.settings.frames)
+            old = self.tracker.frames
+            self.tracker.set_frames(frames_from_settings(self.settings.frames))
             if self.tf is not None:
-                if old.tool_frame != self.frames.tool_frame:
+                if old.tool_frame != self.tracker.frames.tool_frame:
                     self.tf.forget_static(old.tool_frame)
-                self.tf.send_static(self.frames.static_transforms(),
+                self.tf.send_static(self.tracker.frames.static_transforms(),
                                     self.get_clock().now().to_msg())
         if name in SolverSettings.names():
             self.tracker.configure(self.settings.solver)
@@ -172,13 +171,8 @@ class FkNode(Node):
         The latest margin goes to the tracker, which may flag its estimate ambiguous (another
         mode near) or re-anchor (no other mode the platform could be in).
         """
-        monitor, tracker = self.margin.monitor, self.tracker
-        monitor.request(tracker.last_pose, tracker.last_lengths, tag=tracker.accepted_count)
-        if monitor.latest is None or monitor.latest_tag is None:
-            return
-        if tracker.note_margin(monitor.latest, monitor.latest_tag, monitor.warning_distance,
-                               monitor.latest_lengths):
-            self.get_logger().info(f'estimate unambiguous again: {tracker.anchored_by}')
+        if self.tracker.follow_margin(self.margin.monitor):
+            self.get_logger().info(f'estimate unambiguous again: {self.tracker.anchored_by}')
 
     def destroy_node(self):
         """Stop the margin's worker process, then the node."""
@@ -204,7 +198,7 @@ class FkNode(Node):
         A joint state that names none of this platform's joints belongs to another (two
         hexapods may share one ``joint_states``): it is skipped, and not counted.
         """
-        if not any(name in message.name for name in self.actuators.joint_names):
+        if not self.actuators.concerns(message.name):
             return
         self.joint_state_accounting.receive()
         try:
@@ -215,7 +209,7 @@ class FkNode(Node):
         estimate = self.estimate(lengths, message.header, self.joint_state_accounting,
                                  velocities)
         if estimate.twist is not None:
-            self.twist_publisher.publish(twist_to_message(self.tool_twist(estimate.twist)))
+            self.twist_publisher.publish(twist_to_message(estimate.tool_twist))
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""
@@ -226,12 +220,7 @@ class FkNode(Node):
             self.velocity_accounting.reject(twist.refusal)
             return
         self.velocity_accounting.publish(self.twist_publisher,
-                                         twist_to_message(self.tool_twist(twist.twist)))
-
-    def tool_twist(self, twist):
-        """Move the platform origin's twist at the last pose to the tool frame's origin."""
-        return self.frames.tool_twist_from_platform(
-            twist, euler_zyx_to_matrix(self.tracker.last_pose[3:]))
+                                         twist_to_message(twist.tool_twist))
 
     def on_reset_tracker(self, request: Trigger.Request, response: Trigger.Response):
         """Forget the last solution: the next solve starts from the home pose."""
@@ -248,8 +237,8 @@ class FkNode(Node):
         point, orientation = message.pose.position, message.pose.orientation
         anchor = self.tracker.anchor_tool_pose(
             (point.x, point.y, point.z),
-            (orientation.x, orientation.y, orientation.z, orientation.w), self.frames,
-            message.header.frame_id)
+            (orientation.x, orientation.y, orientation.z, orientation.w),
+            frame_id=message.header.frame_id)
         for warning in anchor.warnings:
             accounting.warn(warning)
         if not anchor.accepted:
@@ -277,9 +266,7 @@ class FkNode(Node):
         if not estimate.accepted:
             accounting.reject(estimate.refusal)
             return estimate
-        frames = self.frames
-        accounting.publish(self.pose_publisher,
-                           pose_to_message(frames.tool_pose_vector(estimate.pose)))
+        accounting.publish(self.pose_publisher, pose_to_message(estimate.tool_pose))
         # The other forms only for a subscriber, as ik_node's.
         stamped = self.stamped_publisher.get_subscription_count() > 0
         broadcast = self.tf is not None and self.tf.has_listeners()
@@ -288,10 +275,10 @@ class FkNode(Node):
         stamp = header.stamp if header is not None else self.get_clock().now().to_msg()
         if stamped:
             self.stamped_publisher.publish(PoseStamped(
-                header=Header(stamp=stamp, frame_id=self.estimated_pose_frame),
-                pose=pose_to_message(
-                    frames.tool_pose_vector(estimate.pose, self.estimated_pose_frame))))
+                header=Header(stamp=stamp, frame_id=estimate.pose_frame),
+                pose=pose_to_message(estimate.framed_tool_pose)))
         if broadcast:
+            frames = estimate.frames
             self.tf.send(frames.base_frame, frames.platform_frame,
                          Transform.from_pose(estimate.pose), stamp)
         return estimate

@@ -32,18 +32,20 @@ with ``command_rate``, streamed at that rate through the jerk-limited
 break a limit in red, even for a refused pose), ``workspace_markers`` (the boundary of the
 constant-orientation workspace at the home orientation, latched) and ``travel_ranges`` (the
 range left along each axis from the last accepted pose, about once a second), those two
-computed by :mod:`stewart_kinematics.ros.workspace_reporting` off the command path; and, if
+computed by :mod:`stewart_kinematics.ros.workspace_publishing` off the command path; and, if
 ``publish_commanded_tf`` is set, the commanded platform frame on ``/tf`` as
 ``<platform_frame>_commanded``.
 
 A change of the tool frame at run time applies from the next message on. What to command and
 what to refuse is decided by :class:`stewart_kinematics.CommandCheck` (the frame a pose is given
-in, a non-unit quaternion, a pose that breaks a limit: refused, never clamped; a twist beyond
-the leg velocity limit: refused, or scaled to it with ``twist_over_limit: 'scale'``) and, for
-streamed commands, by :class:`stewart_kinematics.CommandFilter` (every step within the stroke
-and the leg velocity, acceleration and jerk limits; reported on ``/diagnostics`` as the
-``command_stream`` input). The node converts the messages, publishes, and counts each refusal
-with the core's reason (:mod:`stewart_kinematics.ros.message_accounting`).
+in, a non-unit quaternion, the tool frame's pose and twist moved to the platform frame's, a
+pose that breaks a limit: refused, never clamped; a twist beyond the leg velocity limit:
+refused, or scaled to it with ``twist_over_limit: 'scale'``) and, for streamed commands, by
+:class:`stewart_kinematics.CommandFilter` (the stream starts at the first accepted pose; every
+step within the stroke and the leg velocity, acceleration and jerk limits; reported on
+``/diagnostics`` as the ``command_stream`` input). The node converts the messages, publishes,
+and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.
+message_accounting`).
 """
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
@@ -51,7 +53,6 @@ import numpy as np
 from rclpy.node import Node
 from std_msgs.msg import Header
 
-from stewart_kinematics.decisions.command_check import CommandCheck
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
@@ -62,9 +63,10 @@ from stewart_kinematics.parameters import (
     geometry_from_settings,
     IkNodeSettings,
 )
+from stewart_kinematics.pose_decisions.pose_commands import CommandCheck
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import IK_NODE
-from stewart_kinematics.ros.markers import platform_markers
+from stewart_kinematics.ros.markers import PlatformMarkerPublisher
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import joint_state_message, legs_to_message
 from stewart_kinematics.ros.node_main import (
@@ -74,7 +76,7 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings
 from stewart_kinematics.ros.transforms import TransformBroadcaster
-from stewart_kinematics.ros.workspace_reporting import WorkspaceReporter
+from stewart_kinematics.ros.workspace_publishing import WorkspacePublisher
 
 #: Suffix of the commanded platform frame's name on /tf.
 COMMANDED_SUFFIX = '_commanded'
@@ -98,15 +100,11 @@ class IkNode(Node):
         # Streaming: commands at command_rate toward the latest accepted pose, from the home
         # pose (where the platform is assumed to start), once a first pose is accepted.
         self.command_filter = None
-        self.streaming = False
         command_rate = settings.streaming.command_rate
         if command_rate > 0.0:
             self.command_filter = CommandFilter(actuator_limits, 1.0 / command_rate,
                                                 self.geometry.home_leg_lengths, self.geometry)
         self.base_frame = settings.frames.base_frame
-        marker_rate = settings.markers.marker_rate
-        self.marker_period_ns = 1e9 / marker_rate if marker_rate else None
-        self.last_marker_ns = None
         depth = settings.queue.queue_depth
         home_lengths = self.geometry.home_leg_lengths
         # Every command topic sends only the gate's verdicts, as messages of their numbers.
@@ -125,7 +123,9 @@ class IkNode(Node):
         #: The clock's origin of the stream's times, nanoseconds: seconds since it keep their
         #: digits (seconds since 1970 would round to a quarter of a microsecond).
         self.clock_origin_ns = self.get_clock().now().nanoseconds
-        self.marker_publisher = create_output_publisher(self, IK_NODE['platform_markers'], depth)
+        self.markers = PlatformMarkerPublisher(
+            self, create_output_publisher(self, IK_NODE['platform_markers'], depth),
+            self.geometry, self.base_frame, settings.markers.marker_rate)
         self.tf = TransformBroadcaster(self, dynamic=IK_NODE['/tf']) if (
             settings.ik_frames.publish_commanded_tf) else None
         diagnostics = NodeDiagnostics(self)
@@ -141,7 +141,7 @@ class IkNode(Node):
         create_input_subscription(self, IK_NODE['target_twist'], self.on_target_twist, depth)
         if self.command_filter is not None:
             self.create_timer(self.command_filter.period, self.publish_streamed_command)
-        self.workspace = WorkspaceReporter(
+        self.workspace = WorkspacePublisher(
             self, self.geometry, self.base_frame, settings.workspace.workspace_resolution,
             settings.workspace.travel_range_rate, lambda: self.check.last_pose, depth)
         self.get_logger().info(
@@ -188,9 +188,7 @@ class IkNode(Node):
             self.base_frame if header is None else header.frame_id)
         for warning in command.warnings:
             accounting.warn(warning)
-        if command.violations or command.accepted:
-            self.publish_markers(header, command.position, command.rotation,
-                                 command.legs_at_fault)
+        self.markers.show(command, None if header is None else header.stamp)
         if not command.accepted:
             accounting.reject(command.refusal)
             return
@@ -200,12 +198,9 @@ class IkNode(Node):
         if self.extensions_publisher.get_subscription_count():
             self.extensions_publisher.publish(command)
         if self.command_filter is not None:
-            refusal = self.command_filter.set_target(command.lengths)
-            if refusal is not None:
-                self.stream_accounting.warn(refusal)
-            if not self.streaming:
-                self.command_filter.start(self.stream_time())
-                self.streaming = True
+            target = self.command_filter.set_target(command.lengths, self.stream_time())
+            if not target.accepted:
+                self.stream_accounting.warn(target.refusal)
         elif self.joint_command_publisher.get_subscription_count():
             self.joint_command_publisher.publish(command, self.header_now(header))
         if self.tf is not None:
@@ -232,7 +227,7 @@ class IkNode(Node):
         not give within the limits is replaced by a braking command (counted as a rejection
         with ``command_braking``), never by holding the last command.
         """
-        if not self.streaming:
+        if not self.command_filter.started:
             return
         self.stream_accounting.receive()
         now = self.get_clock().now()
@@ -240,34 +235,12 @@ class IkNode(Node):
                      self.command_filter.send(self.stream_time(now)),
                      Header(stamp=now.to_msg(), frame_id=self.base_frame))
 
-    def publish_markers(self, header, position, rotation, legs_at_fault):
-        """
-        Publish the platform's markers, at most at marker_rate and only to a subscriber.
-
-        Refused poses are shown too, with the offending legs in red (``None`` among
-        ``legs_at_fault``: all six): what was asked, and why it was refused.
-        """
-        if self.marker_period_ns is None or self.marker_publisher.get_subscription_count() == 0:
-            return
-        now_ns = self.get_clock().now().nanoseconds
-        if self.last_marker_ns is not None and (
-                now_ns - self.last_marker_ns < self.marker_period_ns):
-            return
-        self.last_marker_ns = now_ns
-        self.marker_publisher.publish(platform_markers(
-            Header(stamp=self.header_now(header).stamp, frame_id=self.base_frame),
-            self.geometry, position, rotation, legs_at_fault,
-            self.get_namespace().strip('/') or 'stewart_platform'))
-
     def on_target_twist(self, message: Twist):
         """Publish the leg velocities of a tool-frame twist at the last accepted pose."""
         self.twist_accounting.receive()
         linear, angular = message.linear, message.angular
-        twist = (linear.x, linear.y, linear.z, angular.x, angular.y, angular.z)
-        if self.check.last_pose is not None:
-            # About the tool frame's origin, as every pose topic: moved to the platform's.
-            twist = self.frames.platform_twist_from_tool(twist, self.check.last_pose[1])
-        send_command(self.velocities_publisher, self.twist_accounting, self.check.twist(twist))
+        send_command(self.velocities_publisher, self.twist_accounting, self.check.tool_twist(
+            (linear.x, linear.y, linear.z, angular.x, angular.y, angular.z), self.frames))
 
 
 def main(args=None) -> int:

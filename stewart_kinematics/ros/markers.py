@@ -14,12 +14,13 @@
 """
 RViz markers of the platform: base, platform and the six legs, coloured by limit status.
 
-Builds a visualization_msgs/msg/MarkerArray from numpy arrays; the nodes publish it.
+Builds a visualization_msgs/msg/MarkerArray from numpy arrays; the nodes publish it, ik_node's
+platform markers through :class:`PlatformMarkerPublisher` (at most at ``marker_rate``).
 """
 
 from geometry_msgs.msg import Point
 import numpy as np
-from std_msgs.msg import ColorRGBA
+from std_msgs.msg import ColorRGBA, Header
 from visualization_msgs.msg import Marker, MarkerArray
 
 #: Colours (r, g, b, a): a leg within its limits, a leg that breaks one, base and platform.
@@ -77,6 +78,50 @@ def platform_markers(header, geometry, position, rotation, violating_legs=(),
         legs.colors += [colour, colour]
     return MarkerArray(markers=[outline(0, geometry.base_joints, BASE_COLOUR),
                                 outline(1, platform_joints, PLATFORM_COLOUR), legs])
+
+
+class PlatformMarkerPublisher:
+    """
+    ik_node's ``platform_markers``: the platform of a command, at most at ``marker_rate``.
+
+    Only while someone subscribes, paced by the node's clock. A refused command is shown too
+    when its limits were evaluated (the legs at fault in red: what was asked, and why it was
+    refused); one that could not be evaluated (a malformed or unreachable pose) is not.
+
+    :param node: the node (its clock and namespace).
+    :param publisher: the rclpy publisher of ``platform_markers``.
+    :param geometry: the platform.
+    :param base_frame: the frame of the markers.
+    :param marker_rate: hertz; 0 for no markers.
+    """
+
+    def __init__(self, node, publisher, geometry, base_frame: str, marker_rate: float):
+        self.node = node
+        self.publisher = publisher
+        self.geometry = geometry
+        self.base_frame = base_frame
+        self.period_ns = 1e9 / marker_rate if marker_rate > 0.0 else None
+        self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
+        #: When the markers were last published, nanoseconds of the node's clock, or ``None``.
+        self.last_ns = None
+
+    def show(self, command, stamp=None) -> None:
+        """
+        Publish the markers of a :class:`~stewart_kinematics.limits.LegCommand`, if due.
+
+        :param stamp: the markers' stamp (a builtin_interfaces/msg/Time), or ``None``: now.
+        """
+        if not (command.violations or command.accepted) or self.period_ns is None or (
+                self.publisher.get_subscription_count() == 0):
+            return
+        now = self.node.get_clock().now()
+        if self.last_ns is not None and now.nanoseconds - self.last_ns < self.period_ns:
+            return
+        self.last_ns = now.nanoseconds
+        self.publisher.publish(platform_markers(
+            Header(stamp=now.to_msg() if stamp is None else stamp, frame_id=self.base_frame),
+            self.geometry, command.position, command.rotation, command.legs_at_fault,
+            self.namespace))
 
 
 def workspace_markers(header, points, limits, namespace='stewart_platform') -> MarkerArray:

@@ -30,7 +30,6 @@ from std_msgs.msg import Float64MultiArray, MultiArrayDimension
 
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.arrays import preview
-from stewart_kinematics.model.kinematics import as_leg_lengths
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_quaternion,
     matrix_to_quaternion,
@@ -107,25 +106,23 @@ def legs_to_message(values) -> Float64MultiArray:
 
 def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
     """
-    Six leg lengths in metres from a std_msgs/msg/Float64MultiArray.
+    Six leg lengths in metres from a std_msgs/msg/Float64MultiArray, converted, not judged.
 
     ``layout.data_offset`` is honoured; the layout's dimensions are not required (a bare
-    ``data: [...]`` from ``ros2 topic pub`` is accepted).
+    ``data: [...]`` from ``ros2 topic pub`` is accepted). The values are checked once, where
+    they enter the core: :meth:`stewart_kinematics.PoseTracker.update` refuses lengths that are
+    not finite and positive (``invalid_lengths``).
 
-    :raises ValueError: if there are not exactly six values after the offset, or a value is
-        not finite and positive.
+    :raises ValueError: if there are not exactly six values after the offset.
     """
     data = message.data
     if not message.layout.data_offset and len(data) == 6:
-        # The common case, checked in floats (a sum is finite only when each term is).
-        values = list(data)
-        if math.isfinite(sum(values)) and min(values) > 0.0:
-            return np.array(values)
+        return np.array(data, dtype=float)
     data = np.asarray(data, dtype=float)[message.layout.data_offset:]
     if data.shape != (6,):
         raise ValueError(
             f'expected 6 leg lengths (leg 1..6, metres), got {data.size}: {preview(data)}')
-    return as_leg_lengths(data)
+    return data
 
 
 def joint_state_message(header, lengths, velocities=None,
@@ -156,9 +153,11 @@ def legs_from_joint_state(message: JointState,
     positions plus the actuator offsets.
 
     :returns: ``(lengths, velocities)``: metres, shape (6,); m/s, shape (6,) or ``None``.
-        The velocities are not checked: a driver that sends NaN velocities with good
-        positions still gives a pose, and the twist's own check refuses the velocities.
-    :raises ValueError: if a leg is missing, or a length is not finite and positive.
+        Neither is judged here: :meth:`stewart_kinematics.PoseTracker.update` checks the
+        lengths where they enter the core, and the twist's own check the velocities (a driver
+        that sends NaN velocities with good positions still gives a pose).
+    :raises ValueError: if a leg is missing or repeated, or the positions do not match the
+        names.
     """
     names = list(message.name)
     if len(message.position) != len(names):
@@ -169,7 +168,7 @@ def legs_from_joint_state(message: JointState,
     except ValueError as error:
         raise ValueError(f'joint state must give a position for each of '
                          f'{", ".join(actuators.joint_names)}: {error}') from error
-    lengths = as_leg_lengths(actuators.lengths(np.asarray(message.position, dtype=float)[order]))
+    lengths = actuators.lengths(np.asarray(message.position, dtype=float)[order])
     velocities = None
     if len(message.velocity) == len(names):
         velocities = np.asarray(message.velocity, dtype=float)[order]

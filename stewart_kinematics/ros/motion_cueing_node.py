@@ -34,9 +34,15 @@ its reason and the platform takes the step at rest (bad input eases it back to n
 stamp that does not move forward is refused and nothing is published. Every ``target_pose``
 is the command gate's verdict on its very numbers (every pose limit and the leg velocity and
 acceleration since the last command); one it refuses is replaced by a braking command
-(``command_braking``). When no message came for ``input_timeout`` seconds, the node eases the
-platform home on its own clock until it rests (``target_pose`` and ``cue_pose`` stamped now; no
-``perceived_accel`` then). Refusals and warnings are counted on ``/diagnostics``.
+(``command_braking``). When no message came for ``input_timeout`` seconds, the platform eases
+home on the node's clock until it rests (:meth:`stewart_kinematics.cueing.MotionCueing.watch`,
+called on a timer; ``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
+Refusals and warnings are counted on ``/diagnostics``.
+
+Parameters are declared as for the other nodes (a bad parameter file or a misspelt name stops
+the start with the reason). Every one is read-only but the tool frame's (``tool_frame``,
+``tool_frame_position``, ``tool_frame_orientation_deg``), which applies from the next command
+on.
 """
 
 from geometry_msgs.msg import AccelStamped, PoseStamped
@@ -47,7 +53,7 @@ from std_msgs.msg import Header
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.parameters import (
     frame_parameters_reason,
-    frames_from_parameters,
+    frames_from_settings,
     MotionCueingNodeSettings,
 )
 from stewart_kinematics.ros.command_publishing import send_command
@@ -60,10 +66,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_parameters
-
-#: Period of the input watchdog, seconds (at most; input_timeout / 2 when shorter).
-WATCHDOG_PERIOD = 0.02
+from stewart_kinematics.ros.ros_parameters import declare_settings
 
 
 class MotionCueingNode(Node):
@@ -71,11 +74,11 @@ class MotionCueingNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('motion_cueing_node', **kwargs)
-        values = declare_parameters(self, MotionCueingNodeSettings.specs(),
-                                    check=frame_parameters_reason)
-        self.settings = MotionCueingNodeSettings.from_values(values)
-        self.frames = frames_from_parameters(values)
-        self.cueing = MotionCueing.from_parameters(self.settings.as_values(), self.frames)
+        self.settings = declare_settings(self, MotionCueingNodeSettings,
+                                         on_change=self.on_parameter_change,
+                                         check=frame_parameters_reason, node_options=kwargs)
+        self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
+                                                   frames_from_settings(self.settings.frames))
         depth = self.settings.queue.queue_depth
         interface = MOTION_CUEING_NODE
         self.target_publisher = create_output_publisher(
@@ -90,15 +93,18 @@ class MotionCueingNode(Node):
         self.origin_ns = None
         #: The node clock's origin, nanoseconds: the commands' times are seconds since it.
         self.clock_origin_ns = self.get_clock().now().nanoseconds
-        self.last_input = None
-        self.last_rest = None
-        self.input_timeout = self.settings.cueing.input_timeout
-        if self.input_timeout > 0.0:
-            self.create_timer(min(WATCHDOG_PERIOD, self.input_timeout / 2.0), self.on_watchdog)
+        if self.cueing.watchdog_period is not None:
+            self.create_timer(self.cueing.watchdog_period, self.on_watchdog)
         self.get_logger().info(
             f'ready: cueing vehicle_imu into target_pose (head at '
             f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
             f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
+
+    def on_parameter_change(self, name, value):
+        """Take a validated run-time change (the tool frame: the others are read-only)."""
+        self.settings = self.settings.replace(**{name: value})
+        if name.startswith('tool_frame'):
+            self.cueing.set_frames(frames_from_settings(self.settings.frames))
 
     def on_imu(self, message: Imu):
         """
@@ -113,14 +119,13 @@ class MotionCueingNode(Node):
         if self.origin_ns is None:
             self.origin_ns = stamp_ns
         force, rate = message.linear_acceleration, message.angular_velocity
-        now = self.get_clock().now()
         result = self.cueing.cue((stamp_ns - self.origin_ns) * 1e-9,
                                  (force.x, force.y, force.z), (rate.x, rate.y, rate.z),
-                                 self.command_time(now), message.header.frame_id)
+                                 self.command_time(self.get_clock().now()),
+                                 message.header.frame_id)
         if result.command is None:   # a refused time: nothing moved
             self.accounting.reject(result.refusal)
             return
-        self.last_input = now
         if result.refusal is not None:
             # The sample is refused; the step taken at rest (easing home) is still sent.
             self.accounting.reject(result.refusal)
@@ -171,23 +176,11 @@ class MotionCueingNode(Node):
         return response
 
     def on_watchdog(self):
-        """Without input for input_timeout, ease the platform home until it rests."""
+        """Without input for input_timeout, ease the platform home until it rests (the core's)."""
         now = self.get_clock().now()
-        lost = self.last_input is not None and (
-            (now - self.last_input).nanoseconds * 1e-9 >= self.input_timeout)
-        if lost:
-            # Whatever comes next starts a new time line.
-            self.cueing.restart_time()
-        if not lost or self.cueing.settled():
-            self.last_rest = now
+        result = self.cueing.watch(self.command_time(now))
+        if result is None:
             return
-        dt = (now - self.last_rest).nanoseconds * 1e-9
-        self.last_rest = now
-        if dt <= 0.0:
-            return
-        result = self.cueing.rest(dt, self.command_time(now))
-        if not result.command.accepted:
-            return   # no time passed since the last command: nothing to send yet
         self.target_publisher.publish(result.command)
         # No sample to stamp the felt force with: only the pose, stamped now.
         self.publish_extras(result, now.to_msg(), perceived=False)

@@ -256,13 +256,33 @@ def parameter_file_problem(arguments: Sequence[str]) -> str:
     :param arguments: the process's command-line arguments.
     :returns: ``''``, or the first problem: one line, ``file:line: what is wrong``.
     """
+    specs = {spec.name: spec for spec in parameters.all_specs()}
     for option, value in _ros_options(arguments):
         if option == '--params-file' and os.path.isfile(value):
             try:
-                read_parameter_sections(value)
+                sections, lines = read_sections_and_lines(value)
             except ValueError as error:
                 return str(error)
+            # rcl refuses a list of mixed types ("Sequence should be of same type") before any
+            # node exists, in words that name no parameter and show a null as a string.
+            for section, values in sections.items():
+                for name, item in values.items():
+                    if _mixed_list(item):
+                        reason = (specs[name].type_reason(item) if name in specs else '') or (
+                            f"parameter '{name}' is a list of mixed types: rcl takes a list of "
+                            'one type')
+                        where = lines.get((section, name))
+                        return f'{value}:{where}: {reason}' if where else f'{value}: {reason}'
     return ''
+
+
+def _mixed_list(value) -> bool:
+    """Whether a value read from a file is a list of scalars of more than one rcl type."""
+    if not isinstance(value, list) or any(isinstance(item, (list, dict)) for item in value):
+        return False
+    kinds = {bool if isinstance(item, bool) else type(item) if not isinstance(item, str)
+             else str for item in value}
+    return len(kinds) > 1
 
 
 def _holds_marked_string(value) -> bool:

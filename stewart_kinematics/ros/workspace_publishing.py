@@ -17,17 +17,15 @@
 ik_node's workspace outputs, ``workspace_markers`` and ``travel_ranges``, off the command path.
 
 The core's :mod:`stewart_kinematics.analysis.workspace` does the work in a worker process of its
-own (:class:`WorkspaceWorker`): a thread would share the interpreter lock with the executor, and a
-measured 1 kHz command path waited up to tens of milliseconds for it on a busy machine. Each
-result is handed back to the node's executor as a task
+own (:class:`~stewart_kinematics.workers.workspace_worker.WorkspaceWorker`: a thread would share
+the interpreter lock with the executor, and a measured 1 kHz command path waited up to tens of
+milliseconds for it on a busy machine). Each result is handed back to the node's executor as a task
 (:func:`~stewart_kinematics.ros.node_main.hand_to_executor`; the EventsExecutor supports no
 guard condition), which only converts and publishes. So a 3 s workspace computation or a 0.2 s
 travel range never holds up a pose in the command stream, and at most one job of each kind is
 in flight: a travel range due while the last one is still running is skipped.
 """
 
-import multiprocessing
-import os
 import threading
 
 import numpy as np
@@ -35,15 +33,12 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
-from stewart_kinematics.analysis.worker_processes import exit_with_owner
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.markers import workspace_markers
 from stewart_kinematics.ros.node_main import create_output_publisher, hand_to_executor
+from stewart_kinematics.workers.workspace_worker import WorkspaceWorker
 
-#: Scheduling priority of the worker process below the node's (nice(2) increment): on a
-#: busy machine the operating system runs the command path first.
-WORKER_NICENESS = 10
 #: How often ik_node looks for a first subscriber of workspace_markers without travel
 #: ranges, seconds (with them, at each travel range).
 MARKER_CHECK_PERIOD = 1.0
@@ -63,7 +58,7 @@ def travel_ranges_to_message(ranges) -> Float64MultiArray:
     return message
 
 
-class WorkspaceReporter:
+class WorkspacePublisher:
     """
     Publish ``workspace_markers`` (latched) and ``travel_ranges`` for a node.
 
@@ -201,78 +196,3 @@ class WorkspaceReporter:
         self.node.destroy_timer(self.timer)
         # No cycle through the node is left for the garbage collector.
         self.last_pose = self.timer = None
-
-
-class WorkspaceWorker:
-    """
-    A process that runs functions of :mod:`stewart_kinematics.analysis.workspace` for one geometry.
-
-    Started with the ``forkserver`` method (a clean interpreter: forking a process that runs
-    DDS threads is unsafe), at a lower scheduling priority; jobs run one after the other;
-    each result, or the exception as a ``RuntimeError``, goes to ``on_result(tag, value)``,
-    called in a reader thread. Closing terminates the process at once, so a node never waits
-    for a computation to exit. A node that dies without closing it (SIGKILL) leaves it idle:
-    it then exits by itself within ``OWNER_CHECK_PERIOD``
-    (:mod:`stewart_kinematics.analysis.worker_processes`), and multiprocessing's forkserver and
-    resource tracker after it.
-
-    :param geometry: the :class:`stewart_kinematics.Geometry` of every job.
-    :param on_result: called with each job's tag and result.
-    """
-
-    def __init__(self, geometry, on_result):
-        context = multiprocessing.get_context('forkserver')
-        self.jobs, self.results = context.Queue(), context.Queue()
-        self.on_result = on_result
-        self.process = context.Process(
-            target=_serve, args=(geometry, self.jobs, self.results, os.getpid()),
-            name='workspace', daemon=True)
-        self.process.start()
-        self.reader = threading.Thread(target=self._read, name='workspace results',
-                                       daemon=True)
-        self.reader.start()
-
-    def submit(self, tag, function, *args, **kwargs):
-        """
-        Queue ``function(geometry, *args, **kwargs)``; ``tag`` names the job.
-
-        :param function: a function of :mod:`stewart_kinematics.analysis.workspace` (module-level:
-            it reaches the worker process pickled by its qualified name).
-        """
-        self.jobs.put((tag, function, args, kwargs))
-
-    def _read(self):
-        while True:
-            try:
-                item = self.results.get()
-            except (EOFError, OSError, TypeError, ValueError):
-                # The queue closed under the reader as the process exits.
-                return
-            if item is None:
-                return
-            self.on_result(*item)
-
-    def close(self):
-        """Terminate the process and the reader; jobs not finished are dropped."""
-        self.process.terminate()
-        self.results.put(None)
-        for channel in (self.jobs, self.results):
-            channel.cancel_join_thread()
-
-
-def _serve(geometry, jobs, results, node_pid):
-    """
-    Run jobs until the node terminates the process, or is gone (the worker process's main).
-
-    :param node_pid: the node's process: once it no longer exists, the worker exits.
-    """
-    # Below the node on a busy machine: the command path comes first.
-    os.nice(WORKER_NICENESS)
-    exit_with_owner(node_pid)
-    while True:
-        tag, function, args, kwargs = jobs.get()
-        try:
-            value = function(geometry, *args, **kwargs)
-        except Exception as error:   # sent back as text: any exception pickles as this one
-            value = RuntimeError(f'{type(error).__name__}: {error}')
-        results.put((tag, value))

@@ -20,7 +20,7 @@ Every pose the cueing outputs is judged by :func:`pose_violations` (one pose) or
 :func:`limit_margins`; when the limits model gains a limit (issue 18: leg collisions,
 leg velocity and acceleration), these three are the functions to repoint. The leg velocity and
 acceleration limits of :class:`~stewart_kinematics.ActuatorLimits` are kept by the follower in
-:mod:`.limiting`, step by step, and counted by :func:`leg_speed_violations`.
+:mod:`.cue_limiter`, step by step, and counted by :func:`leg_speed_violations`.
 
 Nothing here imports ROS.
 """
@@ -81,7 +81,7 @@ def leg_speed_violations(times, lengths, actuator_limits, tolerance=1e-9) -> dic
     Count the leg velocities and accelerations of a stream of leg lengths beyond the limits.
 
     Velocities are ``(l_k - l_(k-1)) / dt_k``; accelerations the change of velocity over
-    ``min(dt_k, (dt_(k-1) + dt_k) / 2)``, as the follower of :mod:`.limiting` bounds them.
+    ``min(dt_k, (dt_(k-1) + dt_k) / 2)``, as the follower of :mod:`.cue_limiter` bounds them.
 
     :param times: seconds, shape (N,), increasing.
     :param lengths: metres, shape (N, 6).

@@ -45,7 +45,7 @@ from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import as_poses
+from stewart_kinematics.model.inputs import as_poses
 
 #: The limits of a pose, in the order every check reports them.
 LIMIT_NAMES = ('leg_length_min', 'leg_length_max', 'base_joint_max_angle',

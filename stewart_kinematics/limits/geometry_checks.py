@@ -13,10 +13,10 @@
 # limitations under the License.
 
 """
-The checks of a geometry's limits as functions: :class:`~.model.LimitModel` of the geometry.
+The checks of a geometry's limits as functions: :class:`~.limit_model.LimitModel` of the geometry.
 
 For a caller that holds a :class:`stewart_kinematics.Geometry` and no model: each function
-calls the geometry's model (:meth:`~.model.LimitModel.of_geometry`, built once per geometry),
+calls the geometry's model (:meth:`~.limit_model.LimitModel.of_geometry`, built once per geometry),
 so there is one computation of every limit. Nothing here imports ROS.
 """
 
@@ -28,10 +28,10 @@ from stewart_kinematics import findings
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits.base import PoseLegs
 from stewart_kinematics.limits.joint_cones import JointCones
-from stewart_kinematics.limits.model import LimitChecks, LimitModel
+from stewart_kinematics.limits.limit_model import LimitChecks, LimitModel
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.arrays import as_float_array
-from stewart_kinematics.model.kinematics import as_leg_lengths, as_poses
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
 
 #: How many failing samples :func:`check_samples` lists in full.
 LISTED_FAILURES = 10

@@ -19,7 +19,7 @@ Two stages, each reported in the result:
 
 1. **Workspace scale** ``sigma`` in [0, 1]: the cue (the head's displacement and the rotation
    angles) is scaled toward neutral until its pose keeps every limit of the limits model drawn
-   in by the margins (:func:`~.limit_check.with_margins`). ``sigma`` falls at once when it must
+   in by the margins (:func:`~.limit_margins.with_margins`). ``sigma`` falls at once when it must
    and rises again no faster than ``workspace_recovery_rate``; the search runs only when the
    cue would leave the narrowed limits.
 2. **Follower**: the platform follows the scaled cue's pose within the actuators' leg velocity
@@ -34,7 +34,7 @@ Two stages, each reported in the result:
    equals the cue's); a cue too fast for the actuators is followed as closely as they allow,
    never with a jump and never frozen.
 
-The output pose is judged by the limits model (:mod:`.limit_check`): when it equals the cue's
+The output pose is judged by the limits model (:mod:`.limit_margins`): when it equals the cue's
 pose, that pose already passed the narrower limits; otherwise it is checked again. When no next
 pose keeps every limit, the legs brake at their limits (``command_braking``), never one step to
 rest; at rest, the platform stays. Nothing here imports ROS.
@@ -50,14 +50,12 @@ from typing import Tuple
 
 import numpy as np
 
-from stewart_kinematics.cueing.limit_check import limit_margins, pose_violations, with_margins
+from stewart_kinematics.cueing.limit_margins import limit_margins, pose_violations, with_margins
 from stewart_kinematics.findings import ACTUATOR_LIMITED, COMMAND_BRAKING, CUE_SCALED, Finding
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.kinematics import (
-    forward_kinematics,
-    inverse_kinematics,
-    twist_jacobian,
-)
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inverse import inverse_kinematics
+from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix, matrix_to_euler_zyx
 
 #: Share of the actuator limits the follower plans with; the rest absorbs the legs'
@@ -516,7 +514,7 @@ def _largest_allowed(geometry, make_poses, high, previous=0.0, home_allowed=Fals
     boundary.
 
     Regula falsi with the Illinois modification (Dahlquist and Bjorck, *Numerical Methods*,
-    section 6.2) on the continuous :func:`~.limit_check.limit_margins`. The first evaluation
+    section 6.2) on the continuous :func:`~.limit_margins.limit_margins`. The first evaluation
     (one call) tries ``previous`` (the last step's share), a little below it, and ``high``: on
     a boundary that moves slowly, as it does, the bracket is then narrow and two or three more
     evaluations suffice; else it widens down to 0. The share found moves smoothly as the cue

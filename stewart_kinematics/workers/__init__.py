@@ -13,14 +13,13 @@
 # limitations under the License.
 
 """
-The decisions the nodes take, as pure objects a Python user can call in a loop.
+Background workers: where the nodes' slow analyses run, off their message paths.
 
-:class:`~.command_check.CommandCheck` (ik_node: a commanded pose in, safe leg lengths or every
-reason out) and :class:`~.pose_tracker.PoseTracker` (fk_node: measured leg lengths in, a trusted
-pose or the reason out). Each returns a result that carries a
-:class:`~stewart_kinematics.findings.Finding` when it refuses.
+:mod:`.margin_monitor` computes the assembly-mode margin in a worker thread or process
+(fk_node's), :mod:`.workspace_worker` the workspace and travel ranges in a worker process
+(ik_node's), and :mod:`.owner_watch` ends a worker process once the process it works for is
+gone.
 
-May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.limits`,
-:mod:`stewart_kinematics.findings`, :mod:`stewart_kinematics.analysis.assembly_modes`. Nothing
-here imports ROS.
+May import: :mod:`stewart_kinematics.analysis`, numpy and the standard library. Nothing here
+imports ROS.
 """

@@ -27,6 +27,7 @@ Python user's own loop can::
     for warning in estimate.warnings:               # e.g. near a singularity
         print(warning)
     twist = tracker.twist(leg_velocities)           # at the last accepted pose
+    estimate.tool_pose, twist.tool_twist            # the tool frame's, as fk_node publishes
     estimate = tracker.update(lengths, velocities)  # a joint state: the pose and its twist
     tracker.reset()                                 # homing: the next solve starts from home
     if estimate.ambiguous:                          # maybe another assembly mode (a fold
@@ -38,10 +39,14 @@ to the home pose when that fails, and then refuses a solution that did not conve
 pose error bound exceeds ``pose_tolerance`` (near a singularity), that breaks a limit of the
 geometry, or that jumped to another assembly mode; an accepted solution near a singularity
 comes with a warning. With leg velocities too (a joint state), an accepted pose carries its
-twist, or a warning that says why there is none. Every limit is the limits model's
-(:class:`~stewart_kinematics.limits.LimitModel`). :func:`margin_status` decides what fk_node
-reports of the assembly-mode margin. Nothing raises for lengths it cannot use, and nothing
-here imports ROS.
+twist, or a warning that says why there is none. What fk_node publishes of an estimate is the
+tool frame's (:class:`~stewart_kinematics.FrameTree` given to the tracker): its pose in the base
+frame (:attr:`PoseEstimate.tool_pose`) and in the frame of the stamped pose
+(:attr:`PoseEstimate.framed_tool_pose`, ``estimated_pose_frame``), and its twist about the tool
+frame's origin (:attr:`PoseEstimate.tool_twist`, :attr:`TwistEstimate.tool_twist`). Every
+limit is the limits model's (:class:`~stewart_kinematics.limits.LimitModel`). What fk_node
+reports of the tracker on ``/diagnostics`` is :mod:`.tracker_status`'s. Nothing raises for
+lengths it cannot use, and nothing here imports ROS.
 
 Continuity proves the assembly mode only while the estimate stays away from singularities:
 where a fold is crossed, two modes meet, and the lengths cannot tell which one the platform
@@ -62,16 +67,13 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
-from stewart_kinematics.decisions.command_check import CommandCheck, LegCommand
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import (
-    as_leg_lengths,
-    as_poses,
-    forward_kinematics,
-    ForwardKinematicsResult,
-)
+from stewart_kinematics.model.forward import solve_trusted
+from stewart_kinematics.model.forward_result import ForwardKinematicsResult
+from stewart_kinematics.model.frames import FrameTree
+from stewart_kinematics.model.inputs import as_leg_lengths, as_poses
 from stewart_kinematics.model.rotations import (
     euler_zyx_to_matrix,
     matrix_to_euler_zyx,
@@ -79,6 +81,7 @@ from stewart_kinematics.model.rotations import (
 )
 from stewart_kinematics.model.velocities import platform_twist, SingularPoseError
 from stewart_kinematics.parameters.settings import SolverSettings
+from stewart_kinematics.pose_decisions.pose_commands import CommandCheck, LegCommand
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,6 +101,10 @@ class PoseEstimate(Decision):
     :param ambiguous: True while the tracker's estimates may be in another assembly mode than
         the platform (:attr:`PoseTracker.ambiguity`, then also among the warnings of an
         accepted pose): re-anchor the tracker.
+    :param frames: the tracker's :class:`~stewart_kinematics.FrameTree` (its tool frame) when
+        the estimate was made, or ``None``: the platform frame is the tool frame.
+    :param pose_frame: the frame :attr:`framed_tool_pose` is given in (the base frame or the
+        user frame; fk_node's ``estimated_pose_frame``).
     """
 
     pose: Optional[np.ndarray]
@@ -106,6 +113,27 @@ class PoseEstimate(Decision):
     solution: Optional[ForwardKinematicsResult] = None
     twist: Optional[np.ndarray] = None
     ambiguous: bool = False
+    frames: Optional[FrameTree] = None
+    pose_frame: str = ''
+
+    @property
+    def tool_pose(self) -> Optional[np.ndarray]:
+        """Return the tool frame's pose in the base frame (X, Y, Z, alpha, beta, gamma) or None."""
+        if self.pose is None or self.frames is None:
+            return self.pose
+        return self.frames.tool_pose_vector(self.pose)
+
+    @property
+    def framed_tool_pose(self) -> Optional[np.ndarray]:
+        """Return the tool frame's pose in :attr:`pose_frame` (metres, radians), or ``None``."""
+        if self.pose is None or self.frames is None:
+            return self.pose
+        return self.frames.tool_pose_vector(self.pose, self.pose_frame)
+
+    @property
+    def tool_twist(self) -> Optional[np.ndarray]:
+        """Return :attr:`twist` about the tool frame's origin (base frame), or ``None``."""
+        return _tool_twist(self.twist, self.pose, self.frames)
 
     @property
     def iterations(self) -> Optional[int]:
@@ -152,14 +180,30 @@ class TwistEstimate(Decision):
     """
     The platform twist of a set of leg velocities, or why none was given.
 
-    :param twist: ``[vx, vy, vz, wx, wy, wz]``, base frame, m/s and rad/s; ``None`` when
-        refused.
+    :param twist: ``[vx, vy, vz, wx, wy, wz]`` of the platform frame's origin, base frame,
+        m/s and rad/s; ``None`` when refused.
     :param refusal: why, or ``None`` when accepted.
+    :param pose: the platform pose the twist is at (the tracker's last pose), shape (6,).
+    :param frames: the tracker's frame tree, or ``None``.
     """
 
     twist: Optional[np.ndarray]
     refusal: Optional[Finding] = None
     warnings: Tuple[Finding, ...] = ()
+    pose: Optional[np.ndarray] = None
+    frames: Optional[FrameTree] = None
+
+    @property
+    def tool_twist(self) -> Optional[np.ndarray]:
+        """Return :attr:`twist` about the tool frame's origin (base frame), or ``None``."""
+        return _tool_twist(self.twist, self.pose, self.frames)
+
+
+def _tool_twist(twist, pose, frames):
+    """Return a platform origin's twist at ``pose`` about the tool frame's origin."""
+    if twist is None or frames is None or pose is None:
+        return twist
+    return frames.tool_twist_from_platform(twist, euler_zyx_to_matrix(pose[3:]))
 
 
 class PoseTracker:
@@ -174,11 +218,22 @@ class PoseTracker:
     :param geometry: the platform and its limits (:class:`stewart_kinematics.Geometry`).
     :param settings: the solver's tolerance, iterations and checks (fk_node's solver
         parameters); default: every default, ``SolverSettings()``.
+    :param frames: the :class:`~stewart_kinematics.FrameTree` whose tool frame the estimates
+        are published as, and whose frames a known pose may be given in
+        (:meth:`anchor_tool_pose`); default: ``FrameTree()`` (the platform frame is the tool).
+    :param pose_frame: the frame of :attr:`PoseEstimate.framed_tool_pose` (fk_node's
+        ``estimated_pose_frame``): ``''`` for the base frame, or the user frame.
+    :raises ValueError: for a ``pose_frame`` that ``frames`` cannot place.
     """
 
-    def __init__(self, geometry, settings: Optional[SolverSettings] = None):
+    def __init__(self, geometry, settings: Optional[SolverSettings] = None,
+                 frames: Optional[FrameTree] = None, pose_frame: str = ''):
         self.geometry = geometry
         self.settings = SolverSettings() if settings is None else settings
+        #: The frame tree of the outputs and of a known pose; the frame of the stamped pose
+        #: (its name: the base frame's for ``''``).
+        self.frames, self.pose_frame, self._pose_frame = FrameTree(), '', ''
+        self.set_frames(FrameTree() if frames is None else frames, pose_frame)
         #: The limits a solution must keep: the geometry's (stroke, cones, margin, collisions).
         self.limits = LimitModel.of_geometry(geometry)
         #: The pose the next solve starts from: the last accepted one, or home after a reset.
@@ -205,6 +260,22 @@ class PoseTracker:
         self._resolvable_from = 1
         #: Checks a known pose (frames, quaternion, limits) as ik_node checks a command.
         self._anchor_check = CommandCheck(geometry)
+
+    def set_frames(self, frames: FrameTree, pose_frame: Optional[str] = None) -> None:
+        """
+        Take a new frame tree (a tool frame changed at run time) from the next estimate on.
+
+        :param frames: a :class:`~stewart_kinematics.FrameTree`.
+        :param pose_frame: the frame of the stamped pose, ``''`` for the base frame; ``None``
+            keeps the one set.
+        :raises ValueError: for a frame the tree cannot place (nothing changes then).
+        """
+        if not isinstance(frames, FrameTree):
+            raise TypeError(f'frames must be a FrameTree, got {type(frames).__name__}')
+        pose_frame = self._pose_frame if pose_frame is None else pose_frame
+        frames.reference(pose_frame)   # raises for a frame poses cannot be given in
+        self.frames, self._pose_frame = frames, pose_frame
+        self.pose_frame = pose_frame or frames.base_frame
 
     def configure(self, settings: SolverSettings):
         """
@@ -284,13 +355,13 @@ class PoseTracker:
 
         :param position: the tool frame's origin in ``frame_id``, metres, three numbers.
         :param quaternion: its orientation ``(x, y, z, w)``.
-        :param frames: the :class:`stewart_kinematics.FrameTree`, or ``None``: the pose is the
-            platform frame's, in the base frame.
+        :param frames: the :class:`stewart_kinematics.FrameTree`, or ``None``: the tracker's
+            own (:attr:`frames`).
         :param frame_id: the frame the pose is given in.
         :returns: a :class:`PoseAnchor`.
         """
-        return self._take_anchor(self._anchor_check.tool_pose(position, quaternion, frames,
-                                                              frame_id))
+        return self._take_anchor(self._anchor_check.tool_pose(
+            position, quaternion, self.frames if frames is None else frames, frame_id))
 
     def _take_anchor(self, command: LegCommand) -> PoseAnchor:
         """Anchor at the pose of a command the limits accepted, or refuse it."""
@@ -298,9 +369,9 @@ class PoseTracker:
             return PoseAnchor(None, refusal=command.refusal, warnings=command.warnings)
         pose = np.concatenate([command.position, matrix_to_euler_zyx(command.rotation)])
         # The pose solves its own lengths at once: a solution to start from, with its sign.
-        solution = forward_kinematics(self.geometry, command.lengths, pose,
-                                      tolerance=self.settings.tolerance,
-                                      max_iterations=self.settings.max_iterations)
+        # The command's lengths and pose were checked where the pose entered (CommandCheck).
+        solution = solve_trusted(self.geometry, command.lengths.tolist(), pose,
+                                 self.settings.tolerance, self.settings.max_iterations)
         self.last_pose, self.last_lengths = solution.pose, command.lengths
         self.last_solution = solution if solution.converged else None
         self._start_check = None
@@ -361,6 +432,25 @@ class PoseTracker:
                      'limits')
         return True
 
+    def follow_margin(self, monitor) -> bool:
+        """
+        One round of the assembly-mode margin: ask for the last pose's, take the latest one.
+
+        fk_node calls it every ``assembly_mode_margin_period``: the monitor computes the
+        margin of the last accepted pose in the background (only when the lengths changed),
+        and the latest margin it reported goes to :meth:`note_margin`, which may flag the
+        estimate ambiguous or re-anchor the tracker.
+
+        :param monitor: an :class:`~stewart_kinematics.analysis.assembly_modes.
+            AssemblyModeMarginMonitor` of this tracker's geometry.
+        :returns: whether the latest margin cleared the ambiguity.
+        """
+        monitor.request(self.last_pose, self.last_lengths, tag=self.accepted_count)
+        if monitor.latest is None or monitor.latest_tag is None:
+            return False
+        return self.note_margin(monitor.latest, monitor.latest_tag, monitor.warning_distance,
+                                monitor.latest_lengths)
+
     def update(self, lengths, velocities=None) -> PoseEstimate:
         """
         Estimate the pose of measured leg lengths, or refuse them with the reason.
@@ -370,6 +460,10 @@ class PoseTracker:
             accepted pose carries its twist (:meth:`twist`), or a warning saying why not; the
             pose is published either way.
         :returns: a :class:`PoseEstimate`; an accepted one becomes the last solution.
+
+        The lengths are checked here, once, where they enter the core (fk_node only converts a
+        message's numbers): refused with ``invalid_lengths`` unless six finite, positive
+        numbers, then solved without a second check.
         """
         try:
             lengths = as_leg_lengths(lengths)
@@ -388,7 +482,8 @@ class PoseTracker:
         if evidence is not None:
             self._flag(*evidence, self.accepted_count + 1)
         if refusal is not None:
-            return PoseEstimate(None, refusal, solution=solution, ambiguous=self.ambiguous)
+            return PoseEstimate(None, refusal, solution=solution, ambiguous=self.ambiguous,
+                                frames=self.frames, pose_frame=self.pose_frame)
         warnings = ()
         if solution.condition > self.settings.near_singularity_condition:
             warnings = (Finding(
@@ -406,7 +501,8 @@ class PoseTracker:
             estimate = self.twist(velocities)
             twist = estimate.twist
             warnings += () if estimate.accepted else (estimate.refusal,)
-        return PoseEstimate(solution.pose, None, warnings, solution, twist, self.ambiguous)
+        return PoseEstimate(solution.pose, None, warnings, solution, twist, self.ambiguous,
+                            self.frames, self.pose_frame)
 
     def twist(self, velocities) -> TwistEstimate:
         """
@@ -432,7 +528,8 @@ class PoseTracker:
         margin = self.singularity_margin
         try:
             return TwistEstimate(platform_twist(self.geometry, self.last_pose, velocities,
-                                                max_condition=margin))
+                                                max_condition=margin),
+                                 pose=self.last_pose, frames=self.frames)
         except SingularPoseError as error:
             return TwistEstimate(None, Finding(
                 findings.NEAR_SINGULARITY,
@@ -457,16 +554,18 @@ class PoseTracker:
         """
         Solve from the last solution (with its Jacobian), then from home if that fails.
 
+        :param lengths: the six lengths :meth:`update` checked where they entered: solved
+            without a second check (:func:`~stewart_kinematics.model.forward.solve_trusted`,
+            the same solve as ``forward_kinematics``).
         :returns: the solution, and whether it came from the fallback start at home.
         """
-        options = {'tolerance': self.settings.tolerance,
-                   'max_iterations': self.settings.max_iterations}
+        options = (self.settings.tolerance, self.settings.max_iterations)
+        target = lengths.tolist()
         start = self.last_solution if self.last_solution is not None else self.last_pose
-        solution = forward_kinematics(self.geometry, lengths, start, **options)
+        solution = solve_trusted(self.geometry, target, start, *options)
         if not solution.converged and not np.array_equal(self.last_pose,
                                                          self.geometry.home_pose):
-            return forward_kinematics(self.geometry, lengths, self.geometry.home_pose,
-                                      **options), True
+            return solve_trusted(self.geometry, target, self.geometry.home_pose, *options), True
         return solution, False
 
     def _fold_evidence(self, solution, refusal, fell_back):
@@ -645,84 +744,3 @@ def euler_angle_change_bound(angles_a, angles_b) -> float:
         difference = abs(a - b) % (2.0 * math.pi)
         bound += min(difference, 2.0 * math.pi - difference)
     return bound
-
-
-@dataclass(frozen=True)
-class MarginStatus:
-    """
-    What fk_node reports of the assembly-mode margin: a warning or not, a sentence, the values.
-
-    :param warning: an ``assembly_mode_margin`` finding when the margin deserves a warning
-        (another mode closer than the warning distance, or a search that was incomplete),
-        else ``None``.
-    :param message: the status sentence.
-    :param values: ``(key, value)`` pairs: the margin, its parts, the modes, the cost.
-    """
-
-    warning: Optional[Finding]
-    message: str
-    values: Tuple[Tuple[str, str], ...] = ()
-
-
-def margin_status(monitor) -> MarginStatus:
-    """
-    Decide what to report of the latest assembly-mode margin of a monitor.
-
-    :param monitor: an
-        :class:`stewart_kinematics.analysis.assembly_modes.AssemblyModeMarginMonitor`.
-    :returns: a :class:`MarginStatus`; its warning, if any, is what the node counts and logs.
-    """
-    too_close = monitor.warning()
-    margin = monitor.latest
-    if margin is None:
-        return MarginStatus(None, 'no solution yet, or not computed yet')
-    if too_close:
-        message = too_close
-    elif margin.nearest is None:
-        message = 'no other assembly mode within the limits'
-    else:
-        message = (f'nearest other assembly mode within the limits: {margin.position:.4g} m and '
-                   f'{math.degrees(margin.angle):.4g} deg away')
-    if not margin.complete:
-        message += f'; the search was incomplete: {margin.reason}'
-    values = (('margin_position_m', f'{margin.position:.6g}'),
-              ('margin_angle_deg', f'{math.degrees(margin.angle):.6g}'),
-              ('margin_distance_m', f'{margin.distance:.6g}'),
-              ('modes_within_limits', str(margin.modes_within_limits)),
-              ('search_complete', str(margin.complete)),
-              ('computed_in_ms', f'{monitor.latest_seconds * 1e3:.1f}'))
-    warning = (Finding(findings.ASSEMBLY_MODE_MARGIN, message, values)
-               if too_close or not margin.complete else None)
-    return MarginStatus(warning, message, values)
-
-
-@dataclass(frozen=True)
-class AmbiguityStatus:
-    """
-    What fk_node reports of the tracker's ambiguity: a warning or not, a sentence, the values.
-
-    :param warning: the tracker's ``ambiguous_estimate`` finding while it holds, else ``None``.
-    :param message: the status sentence.
-    :param values: ``(key, value)`` pairs: whether ambiguous, how and when last anchored, the
-        cause.
-    """
-
-    warning: Optional[Finding]
-    message: str
-    values: Tuple[Tuple[str, str], ...] = ()
-
-
-def ambiguity_status(tracker: PoseTracker) -> AmbiguityStatus:
-    """
-    Decide what to report of a tracker's ambiguity: WARN with its finding while it holds.
-
-    :param tracker: a :class:`PoseTracker`.
-    """
-    values = (('ambiguous', str(tracker.ambiguous)), ('anchored_by', tracker.anchored_by),
-              ('poses_since_anchor', str(tracker.poses_since_anchor)))
-    ambiguity = tracker.ambiguity
-    if ambiguity is None:
-        return AmbiguityStatus(None, 'the estimate follows one assembly mode since the last '
-                               f'anchor ({tracker.anchored_by})', values)
-    return AmbiguityStatus(ambiguity, ambiguity.message, values + tuple(
-        pair for pair in ambiguity.details if pair[0] != 'anchored_by'))

@@ -30,9 +30,10 @@ in a Python user's own control loop alike::
 
 ik_node calls :meth:`CommandCheck.tool_pose` with the numbers of a message: the frame it is
 given in is accepted or refused there, a non-unit quaternion normalised with a warning, and
-the tool frame's pose turned into the platform's. Every limit is the limits model's
-(:class:`~stewart_kinematics.limits.LimitModel`): the pose limits for a pose, the leg velocity
-limit for a twist (refused, or scaled down uniformly to the limit, never beyond it).
+the tool frame's pose turned into the platform's; and :meth:`CommandCheck.tool_twist` with a
+twist about the tool frame's origin, moved there to the platform's. Every limit is the limits
+model's (:class:`~stewart_kinematics.limits.LimitModel`): the pose limits for a pose, the leg
+velocity limit for a twist (refused, or scaled down uniformly to the limit, never beyond it).
 
 It never raises for input it cannot use and never returns an infinite, NaN or zero length: a
 malformed or unreachable pose, or one that breaks a limit of the geometry, comes back refused
@@ -53,14 +54,14 @@ from stewart_kinematics.limits.command_gate import (
     CommandGate,
     LegCommand,
     LegVelocityCommand,
-    platform_of_tool_message,
+    platform_of_unit_quaternion,
     SETPOINT,
 )
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.kinematics import twist_jacobian
+from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import (
-    euler_zyx_to_matrix,
+    euler_zyx_matrix_entries,
     normalize_quaternion,
 )
 
@@ -181,9 +182,9 @@ class CommandCheck:
                                 (('quaternion_norm', f'{norm:.9g}'),)),)
         try:
             # As the gate reads a pose message: the same conversion for what is received and
-            # for what a node sends on (a cue pose, a played trajectory).
-            position, rotation = platform_of_tool_message(position, quaternion, frames,
-                                                          frame_id)
+            # for what a node sends on (a cue pose, a played trajectory); the quaternion was
+            # checked above, once.
+            position, rotation = platform_of_unit_quaternion(position, unit, frames, frame_id)
         except ValueError as error:
             return LegCommand(None, refusal=Finding(findings.WRONG_FRAME, str(error)),
                               warnings=warnings)
@@ -207,7 +208,9 @@ class CommandCheck:
                 findings.INVALID_POSE,
                 f'a pose must be six finite numbers [X, Y, Z, alpha, beta, gamma] (metres, '
                 f'radians), got {preview(pose)}'))
-        return self._command(pose[:3], euler_zyx_to_matrix(pose[3:]))
+        # The angles were checked above, once: the matrix of euler_zyx_to_matrix, unchecked.
+        rotation = np.array(euler_zyx_matrix_entries(*pose[3:].tolist())).reshape(3, 3)
+        return self._command(pose[:3], rotation)
 
     def _command(self, position, rotation) -> LegCommand:
         """Decide on a valid position (3,) and rotation matrix (3, 3): the gate's verdict."""
@@ -226,28 +229,43 @@ class CommandCheck:
         ``twist_over_limit='scale'`` the whole twist is scaled down by the one factor that puts
         the fastest leg at the limit (a ``twist_scaled`` warning): never beyond it.
 
-        :param twist: ``[vx, vy, vz, wx, wy, wz]``, base frame, m/s and rad/s, shape (6,).
+        :param twist: ``[vx, vy, vz, wx, wy, wz]`` of the platform frame's origin, base frame,
+            m/s and rad/s, shape (6,).
         :returns: a :class:`LegVelocityCommand`; refused (code ``invalid_twist``,
             ``no_pose_yet`` or ``too_fast``) rather than raised.
         """
-        try:
-            twist = as_float_array(twist, 'twist')
-        except ValueError as error:
-            return LegVelocityCommand(None, Finding(findings.INVALID_TWIST, str(error)))
-        if twist.shape != (6,) or not np.all(np.isfinite(twist)):
-            return LegVelocityCommand(None, Finding(
-                findings.INVALID_TWIST,
-                f'a twist must be six finite numbers [vx, vy, vz, wx, wy, wz] (m/s, rad/s), '
-                f'got {preview(twist)}'))
-        if not np.all(np.abs(twist) <= TWIST_COMPONENT_MAX):
-            return LegVelocityCommand(None, Finding(
-                findings.INVALID_TWIST,
-                f'a twist component beyond {TWIST_COMPONENT_MAX:g} m/s or rad/s is no motion of '
-                f'a platform, got {twist.tolist()}'))
+        twist, refusal = _twist_refusal(twist)
+        if refusal is not None:
+            return refusal
         if self.last_pose is None:
-            return LegVelocityCommand(None, Finding(
-                findings.NO_POSE_YET,
-                'no pose accepted yet, so no Jacobian to apply the twist at'))
+            return _no_pose_yet()
+        return self._leg_velocities(twist)
+
+    def tool_twist(self, twist, frames=None) -> LegVelocityCommand:
+        """
+        ik_node's decision on a twist of the tool frame: :meth:`twist` about the tool point.
+
+        The twist is the velocity of the tool frame's origin and the angular velocity (base
+        frame), as every pose topic is about the tool frame's point; it is checked as given,
+        then moved to the platform frame's origin at the last accepted pose
+        (:meth:`~stewart_kinematics.FrameTree.platform_twist_from_tool`) and decided there.
+
+        :param twist: ``[vx, vy, vz, wx, wy, wz]``, base frame, m/s and rad/s, shape (6,).
+        :param frames: the :class:`stewart_kinematics.FrameTree` whose tool frame the twist is
+            about, or ``None``: the platform frame's.
+        :returns: a :class:`LegVelocityCommand`, as :meth:`twist`.
+        """
+        twist, refusal = _twist_refusal(twist)
+        if refusal is not None:
+            return refusal
+        if self.last_pose is None:
+            return _no_pose_yet()
+        if frames is not None:
+            twist = frames.platform_twist_from_tool(twist, self.last_pose[1])
+        return self._leg_velocities(twist)
+
+    def _leg_velocities(self, twist) -> LegVelocityCommand:
+        """Decide on a valid platform twist at the last accepted pose."""
         velocities = twist_jacobian(self.geometry, *self.last_pose) @ twist
         scale = self.limits.leg_velocity_scale(velocities)
         if scale == 1.0:
@@ -265,6 +283,31 @@ class CommandCheck:
             + '; '.join(map(str, violations)),
             (('scale', f'{scale:.6g}'),) + findings.violation_details(violations))
         return self.gate.leg_velocities(velocities * scale, self.last_lengths, scale, (warning,))
+
+
+def _twist_refusal(twist):
+    """Return ``(twist as floats, None)``, or ``(None, the refused command)`` of a bad twist."""
+    try:
+        twist = as_float_array(twist, 'twist')
+    except ValueError as error:
+        return None, LegVelocityCommand(None, Finding(findings.INVALID_TWIST, str(error)))
+    if twist.shape != (6,) or not np.all(np.isfinite(twist)):
+        return None, LegVelocityCommand(None, Finding(
+            findings.INVALID_TWIST,
+            f'a twist must be six finite numbers [vx, vy, vz, wx, wy, wz] (m/s, rad/s), '
+            f'got {preview(twist)}'))
+    if not np.all(np.abs(twist) <= TWIST_COMPONENT_MAX):
+        return None, LegVelocityCommand(None, Finding(
+            findings.INVALID_TWIST,
+            f'a twist component beyond {TWIST_COMPONENT_MAX:g} m/s or rad/s is no motion of '
+            f'a platform, got {twist.tolist()}'))
+    return twist, None
+
+
+def _no_pose_yet() -> LegVelocityCommand:
+    """Return the refusal of a twist before any pose was accepted."""
+    return LegVelocityCommand(None, Finding(
+        findings.NO_POSE_YET, 'no pose accepted yet, so no Jacobian to apply the twist at'))
 
 
 def _invalid_pose(position, rotation) -> str:
