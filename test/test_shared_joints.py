@@ -45,7 +45,7 @@ from stewart_kinematics.analysis import homotopy
 from stewart_kinematics.analysis.calibration import calibrate, parameter_layout
 from stewart_kinematics.limits import LEG_PAIRS, LegCollision, PoseLegs, segment_distances
 from stewart_kinematics.model.geometry import SHARED_JOINT_TOLERANCE
-from stewart_kinematics.model.kinematics import jacobian_condition
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core

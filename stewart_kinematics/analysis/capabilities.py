@@ -65,7 +65,7 @@ from stewart_kinematics.model.geometry import (
     SharedJoint,
     SIDES,
 )
-from stewart_kinematics.model.kinematics import jacobian_condition
+from stewart_kinematics.model.jacobians import jacobian_condition
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import geometry_from_settings, GeometrySettings
 
