@@ -49,6 +49,7 @@ setup(
             'ramp_demo = stewart_kinematics.tools.ramp_demo:main',
             'stewart_calibrate = stewart_kinematics.tools.calibrate:main',
             'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
+            'stewart_geometry = stewart_kinematics.tools.geometry_report:main',
             'stewart_cueing = stewart_kinematics.tools.cueing_report:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
         ],

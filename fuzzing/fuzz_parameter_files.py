@@ -340,6 +340,7 @@ def tool_commands(path: Path, directory: Path) -> dict:
                                         str(directory / 'poses.csv')],
         'stewart_cueing': layered + ['--csv', str(samples), '--no-figures', '--quiet',
                                      '--output', str(directory / 'cueing')],
+        'stewart_geometry': layered + ['--volume-resolution-mm', '100'],
     }
 
 

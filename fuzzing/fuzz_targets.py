@@ -50,15 +50,24 @@ def parameter_files(node: str, directory: Optional[Path] = None) -> List[Path]:
 
     Its own: every other file of ``config/`` with a section for the node by name (such as
     ``table3_ramp.yaml`` for trajectory_node), so a node added later with its own file is
-    started as its documentation starts it.
+    started as its documentation starts it; but not a file of another platform (one that
+    sets joints, such as ``platform_6_3.yaml``), which replaces the geometry rather than adds
+    to it.
     """
     directory = directory or config_directory()
     files = [directory / name for name in GEOMETRY_FILES]
     for path in sorted(directory.glob('*.yaml')):
+        sections = read_parameter_sections(path)
         if path.name not in GEOMETRY_FILES and any(
-                key.strip('/') == node for key in read_parameter_sections(path)):
+                key.strip('/') == node for key in sections) and not _sets_joints(sections):
             files.append(path)
     return files
+
+
+def _sets_joints(sections) -> bool:
+    """Whether a file's sections (name -> parameters) set a platform's joints."""
+    return any(name in parameters for parameters in sections.values()
+               for name in ('base_joints', 'platform_joints'))
 
 
 def plausible_hints(files, node: str) -> Plausible:

@@ -105,7 +105,7 @@ quiet_pip install --requirement requirements.txt
 # .venv/lib/stewart_kinematics/ instead. --no-build-isolation builds with the pinned setuptools.
 quiet_pip install --no-deps --no-build-isolation --use-pep517 --editable .
 
-for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate stewart_workspace; do
+for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate stewart_workspace stewart_geometry; do
     [[ -x "${venv}/bin/${script}" ]] || fail "console script ${venv}/bin/${script} is missing after the install"
 done
 "${root}/scripts/build_tf2_msgs.sh" "${venv}"

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Kinematics of a 6-6 Gough-Stewart platform, with ROS 2 nodes around it.
+Kinematics of Gough-Stewart platforms (6-6, 6-3, 3-3), with ROS 2 nodes around them.
 
 The core (this package's root modules) imports only numpy and PyYAML (toppra and ruckig
 for timed motion, imported where used); the ROS nodes live in

@@ -274,6 +274,32 @@ ACTUATOR_LIMITED = _register(
     'followed as closely as they allow (or braked, or headed home).')
 
 
+# The geometry report (stewart_geometry) ---------------------------------------------------
+
+_by_report = '`geometry_report` (`stewart_geometry`)'
+LIMIT_BROKEN_AT_HOME = _register(
+    'limit_broken_at_home', 'warning', _by_report,
+    'The home pose breaks a limit (the stroke, the singularity margin): the geometry is '
+    'refused and no node starts with these files until the home pose or the limit changes.')
+LEGS_COLLIDE_AT_HOME = _register(
+    'legs_collide_at_home', 'warning', _by_report,
+    'Two legs that share no joint come closer than `2 * leg_radius` at home (the geometry is '
+    'refused), or, without `leg_radius`, their axes come within 1 % of the platform radius: '
+    'a leg or joint is probably misplaced, or two joints meant to be one are not.')
+NEAR_SINGULAR_HOME = _register(
+    'near_singular_home', 'warning', _by_report,
+    'The condition number at home is above 20 or above half of `max_jacobian_condition`: a '
+    'home pose near a singularity (for example a 3-3 platform turned 90 degrees).')
+JOINTS_NEARLY_SHARED = _register(
+    'joints_nearly_shared', 'warning', _by_report,
+    'Two joints of the base or of the platform lie within 1 % of its size but count as two: '
+    'if they are one joint shared by two legs, give both legs the same coordinates.')
+OTHER_MODE_WITHIN_LIMITS = _register(
+    'other_mode_within_limits', 'warning', _by_report,
+    "Another assembly mode has home's leg lengths and keeps every limit: the leg lengths "
+    'alone do not tell the two apart (see the assembly-mode guard of fk_node).')
+
+
 def codes_table() -> str:
     """
     Return the documentation's table of every code: code, kind, who emits it, what it means.

@@ -71,6 +71,33 @@ HOME = TABLE_3[0]
 TABLE_3_END = TABLE_3[-1]
 
 
+def joints_on_a_circle(radius, angles_deg):
+    """Joints ``(r cos a, r sin a, 0)`` on a circle of ``radius`` metres, one per angle (deg)."""
+    return np.array([(radius * math.cos(math.radians(angle)),
+                      radius * math.sin(math.radians(angle)), 0.0) for angle in angles_deg])
+
+
+#: The example designs of config/platform_6_3.yaml and platform_3_3.yaml, from their drawings:
+#: the base of the paper's size (radius 0.225 m; joints in pairs 35 degrees apart around 60,
+#: -60 and 180 degrees, or at those three angles), the platform joints on a circle of 0.15 m
+#: at 120, 0 and -120 degrees, each shared by two legs; home 0.7 m above the base, level.
+DESIGN_BASE_ANGLES_DEG = {'6-3': (77.5, 42.5, -42.5, -77.5, -162.5, 162.5),
+                          '3-3': (60.0, 60.0, -60.0, -60.0, 180.0, 180.0)}
+DESIGN_PLATFORM_ANGLES_DEG = (120.0, 0.0, 0.0, -120.0, -120.0, 120.0)
+DESIGN_HOME = (0.0, 0.0, 0.7, 0.0, 0.0, 0.0)
+#: The pairs of legs that share a joint in each design, by side.
+DESIGN_SHARED = {
+    '6-3': {'base': (), 'platform': ((1, 6), (2, 3), (4, 5))},
+    '3-3': {'base': ((1, 2), (3, 4), (5, 6)), 'platform': ((1, 6), (2, 3), (4, 5))},
+}
+
+
+def design_joints(design):
+    """Return the base and platform joints (6, 3) of an example design, '6-3' or '3-3'."""
+    return (joints_on_a_circle(0.225, DESIGN_BASE_ANGLES_DEG[design]),
+            joints_on_a_circle(0.15, DESIGN_PLATFORM_ANGLES_DEG))
+
+
 def paper_geometry(**changes):
     """Build the paper's platform (home pose: Table 3's first row), with optional changes."""
     from stewart_kinematics.model.geometry import Geometry

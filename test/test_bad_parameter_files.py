@@ -64,10 +64,10 @@ def joints_on_a_line():
     return [float(v) for i in range(6) for v in (0.05 * i - 0.1, 0.025 * i - 0.05, 0.0)]
 
 
-def platform_with_joint_1_on_joint_2():
-    """Return the paper's platform joints with p_1 moved onto p_2 (flat list, metres)."""
+def platform_with_joints_1_and_3_on_joint_2():
+    """Return the paper's platform joints with p_1 and p_3 moved onto p_2 (flat list, metres)."""
     joints = platform_parameters()['platform_joints']
-    return joints[3:6] + joints[3:]
+    return joints[3:6] * 3 + joints[9:]
 
 
 #: (case id, {parameter: bad value or REMOVED}, words the log must contain).
@@ -87,8 +87,10 @@ BAD_GEOMETRY = [
     ('NaN in the platform joints',
      {'platform_joints': [float('nan')] + platform_parameters()['platform_joints'][1:]},
      ["'platform_joints' must be finite"]),
-    ('coincident platform joints', {'platform_joints': platform_with_joint_1_on_joint_2()},
-     ['platform_joints: joints 1 and 2 coincide']),
+    ('three legs on one platform joint',
+     {'platform_joints': platform_with_joints_1_and_3_on_joint_2()},
+     ['platform_joints: joints 1, 2 and 3 coincide (3 legs on one point); a joint may be '
+      'shared by 2 legs at most']),
     ('collinear base joints', {'base_joints': joints_on_a_line()},
      ['base_joints: the six joints are collinear']),
     ('leg_length_max zero', {'leg_length_max': 0.0},

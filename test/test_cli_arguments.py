@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pytest
 
-from stewart_kinematics.tools import calibrate, ramp_demo, workspace_report
+from stewart_kinematics.tools import calibrate, geometry_report, ramp_demo, workspace_report
 import yaml
 
 pytestmark = pytest.mark.core
@@ -52,7 +52,8 @@ def load_example_script():
 EXAMPLE = load_example_script()
 #: Every command-line tool: name -> main(argv).
 TOOLS = {'stewart_workspace': workspace_report.main, 'stewart_calibrate': calibrate.main,
-         'ramp_demo': ramp_demo.main, 'calibration_example': EXAMPLE.main}
+         'ramp_demo': ramp_demo.main, 'calibration_example': EXAMPLE.main,
+         'stewart_geometry': geometry_report.main}
 
 
 class _Parsed(Exception):
@@ -110,6 +111,8 @@ def test_no_numeric_option_is_a_bare_float_or_int(tool, monkeypatch):
      'argument --pose: must be a number'),
     ('stewart_workspace', ['--params-file', PLATFORM, '--pose', '0', '0', '0.4', '0', '0',
                            '400'], 'argument --pose: the angles must be in [-180, 180]'),
+    ('stewart_geometry', ['--params-file', PLATFORM, '--volume-resolution-mm', '-1'],
+     'argument --volume-resolution-mm: must be in [5, 200]'),
     ('ramp_demo', ['--row-period', '0'], 'argument --row-period: must be in [0.001, 60]'),
     ('ramp_demo', ['--timeout', '-5'], 'argument --timeout'),
     ('ramp_demo', ['--config-dir', '/no/such/folder'], 'argument --config-dir'),

@@ -20,6 +20,7 @@ name would go unnoticed at start-up: these tests compare every name in the files
 parameter specs and check that each value the files give is the value the node ends up with.
 """
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -62,6 +63,9 @@ NODE_FILES = {
     'motion_cueing_node': (MotionCueingNode, ('paper_platform.yaml', 'example_limits.yaml',
                                               'motion_cueing.yaml')),
 }
+#: The platform designs that share joints, each one file for every node (geometry, limits and
+#: trajectory_node's ramp), and the design its geometry must be.
+DESIGN_FILES = {'platform_6_3.yaml': '6-3', 'platform_3_3.yaml': '3-3'}
 
 
 def load(path):
@@ -177,9 +181,37 @@ def test_every_wildcard_parameter_is_declared_by_a_node_that_takes_the_file():
                 f'{file_name}: /** parameter {name} is declared by none of {takers}')
 
 
+@pytest.mark.parametrize('node_name', sorted(NODE_FILES))
+@pytest.mark.parametrize('file_name', sorted(DESIGN_FILES))
+def test_node_starts_with_a_design_file_alone(nodes, node_name, file_name):
+    """Each node starts with a 6-3 or 3-3 file alone; every value it sets is applied."""
+    path = CONFIG_DIRECTORY / file_name
+    node = NODE_FILES[node_name][0](cli_args=['--ros-args', '--params-file', str(path)])
+    nodes.append(node)
+    seen = file_view([path], node_name)
+    declared = names_of(NODE_SPECS[node_name])
+    assert {'base_joints', 'platform_joints'} <= set(seen) & declared
+    for name, value in seen.items():
+        if name in declared:
+            assert node.get_parameter(name).value == value, name
+    if hasattr(node, 'geometry'):
+        assert node.geometry.design == DESIGN_FILES[file_name]
+
+
+@pytest.mark.parametrize('file_name', sorted(DESIGN_FILES))
+def test_design_files_load_as_their_design(file_name):
+    """load_geometry reads each design file; its home pose keeps the file's own limits."""
+    geometry = load_geometry(CONFIG_DIRECTORY / file_name)
+    assert geometry.design == DESIGN_FILES[file_name]
+    assert len(geometry.shared_joints) == 12 - sum(map(int, geometry.design.split('-')))
+    assert geometry.leg_length_min < geometry.home_leg_lengths.min()
+    assert geometry.home_leg_lengths.max() < geometry.leg_length_max
+    assert geometry.leg_radius > 0.0 and math.isfinite(geometry.max_jacobian_condition)
+
+
 def test_every_config_file_is_taken_by_a_node():
-    """No config file is left out of the node start-up test above."""
-    used = {name for _, names in NODE_FILES.values() for name in names}
+    """No config file is left out of the node start-up tests above."""
+    used = {name for _, names in NODE_FILES.values() for name in names} | set(DESIGN_FILES)
     assert {path.name for path in CONFIG_FILES} <= used
 
 

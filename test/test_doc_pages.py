@@ -40,7 +40,7 @@ def test_leg_lengths_example_is_the_home_pose():
 
 def test_links_between_pages_name_existing_pages():
     """Every relative link of a page names a page or a figure of doc/ (Sphinx checks anchors)."""
-    for page in DOC.glob('*.md'):
+    for page in DOC.rglob('*.md'):
         text = page.read_text(encoding='utf-8')
         for target in re.findall(r'\]\(((?!https?:)[^)#\s]+)(?:#[^)]*)?\)', text):
-            assert (DOC / target).exists(), f'{page.name}: {target}'
+            assert (page.parent / target).exists(), f'{page.relative_to(DOC)}: {target}'

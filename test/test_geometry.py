@@ -149,11 +149,21 @@ def test_non_finite_value_raises_naming_the_array(name, bad):
         paper_geometry(**{name: value})
 
 
-def test_coincident_joints_raise_naming_the_joints():
-    """Two base joints at the same place raise ValueError naming both."""
+def test_two_coincident_joints_are_one_joint_shared_by_two_legs():
+    """Two base joints at the same place are one joint that legs 2 and 5 share."""
     base = BASE_M.copy()
     base[4] = base[1]
-    with pytest.raises(ValueError, match=r'base_joints: joints 2 and 5 coincide'):
+    geometry = paper_geometry(base_joints=base)
+    assert [(joint.side, joint.legs) for joint in geometry.shared_joints] == [('base', (2, 5))]
+    assert geometry.design == '5-6'
+
+
+def test_three_coincident_joints_raise_naming_the_joints():
+    """Three base joints at the same place raise ValueError naming them: two legs at most."""
+    base = BASE_M.copy()
+    base[[0, 4]] = base[1]
+    with pytest.raises(ValueError, match=r'base_joints: joints 1, 2 and 5 coincide \(3 legs on '
+                                         r'one point\); a joint may be shared by 2 legs at most'):
         paper_geometry(base_joints=base)
 
 

@@ -272,7 +272,8 @@ def test_a_geometry_with_bad_arrays_is_refused_naming_them(name, data):
 def test_a_degenerate_geometry_is_refused(first, second, name):
     joints = np.array(getattr(PAPER, name))
     if first != second:
-        joints[second] = joints[first]          # two joints coincide
+        third = next(k for k in range(6) if k not in (first, second))
+        joints[[second, third]] = joints[first]      # three joints coincide: one is shared
         assert_refused(lambda: replace(PAPER, **{name: joints}), (name, 'coincide'))
     line = np.outer(np.arange(6.0) + first, [0.1, 0.05 * (second + 1), 0.0])
     assert_refused(lambda: replace(PAPER, **{name: line}), (name, 'collinear'))

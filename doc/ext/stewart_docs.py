@@ -22,13 +22,18 @@ The documentation's own Sphinx extension: tables generated from the code, and co
   :mod:`stewart_kinematics.findings`.
 - ``{node-interface} NODE`` renders a node's topics and services from their declaration in
   :mod:`stewart_kinematics.ros.interfaces`.
+- ``{config-file} NAME`` shows the shipped parameter file ``config/NAME`` as it is, found from
+  the imported package (the source tree, or the installed ``share/stewart_kinematics/config``):
+  rosdoc2 builds a copy of this folder, where a relative include would not find it.
 - Every public name of the package root must be documented as ``stewart_kinematics.<name>``
   (:func:`public_names`): the build warns, and so fails under ``-W``, when one is missing.
 
 Loaded by ``doc/conf.py``'s ``setup()``.
 """
 
+from pathlib import Path
 import re
+import sys
 
 from docutils import nodes
 from docutils.statemachine import StringList
@@ -139,6 +144,38 @@ class NodeInterfaceTable(MarkdownDirective):
                       markdown_table(NODE_INTERFACES[node]))
 
 
+def config_file(name: str) -> Path:
+    """
+    Find a shipped parameter file: beside the imported package, or where it is installed.
+
+    :raises KeyError: naming the places searched.
+    """
+    import stewart_kinematics
+    places = [Path(stewart_kinematics.__file__).resolve().parent.parent / 'config',
+              Path(sys.prefix) / 'share' / PACKAGE / 'config']
+    for place in places:
+        if (place / name).is_file():
+            return place / name
+    raise KeyError(f'no config file {name!r} in {", ".join(map(str, places))}')
+
+
+class ConfigFile(SphinxDirective):
+    """``{config-file} NAME``: the parameter file ``config/NAME``, as a YAML block."""
+
+    required_arguments = 1
+
+    def run(self):
+        """Return the file's text as a literal block."""
+        try:
+            path = config_file(self.arguments[0])
+        except KeyError as error:
+            raise self.error(f'{self.name}: {error}') from error
+        self.env.note_dependency(str(path))
+        text = path.read_text(encoding='utf-8')
+        block = nodes.literal_block(text, text, language='yaml')
+        return [block]
+
+
 def check_public_names(app, env):
     """Warn about every public name of the package root that no page documents."""
     objects = env.get_domain('py').objects
@@ -153,5 +190,6 @@ def setup(app):
     app.add_directive('parameter-table', ParameterTable)
     app.add_directive('refusal-codes', RefusalCodes)
     app.add_directive('node-interface', NodeInterfaceTable)
+    app.add_directive('config-file', ConfigFile)
     app.connect('env-check-consistency', check_public_names)
     return {'version': '1', 'parallel_read_safe': True, 'parallel_write_safe': True}

@@ -26,7 +26,15 @@ frame, as :class:`~stewart_kinematics.Geometry` takes poses) actuator i reads
 Gauge: the base frame and the platform frame are the frames the poses are measured in (a laser
 tracker, CMM or camera registered to reference marks on the base, and a target fixed to the
 platform). With full poses measured, the legs decouple: each leg's seven parameters are fitted
-to that leg's N readings, and all 42 are identifiable from enough varied poses. What a set of
+to that leg's N readings, and all 42 are identifiable from enough varied poses.
+
+Shared joints (6-3 and 3-3 platforms, :attr:`~stewart_kinematics.Geometry.shared_joints`) are
+one point: the two legs that share a joint share its three coordinates, which are fitted once
+(:class:`ParameterLayout`; a 6-3 platform has 33 free parameters, a 3-3 one 24). Split, they
+could drift apart and the calibrated platform would be a 6-6 one that the built machine is
+not. Legs tied by a shared joint are fitted together (a 3-3 platform's six legs are one
+block); the tie only removes parameters, so poses that determine the 42 of the untied model
+determine the tied ones too. What a set of
 poses cannot determine is stated from the singular values of the scaled identification
 Jacobian (:func:`identifiability`): for example poses that never rotate the platform cannot tell
 a base joint from its platform joint (``b_i + d`` and ``p_i + d`` fit alike), and the offset of
@@ -68,7 +76,8 @@ from stewart_kinematics.parameters import (
 
 #: Parameters of one leg: base joint (3), platform joint (3), actuator offset (1).
 PARAMETERS_PER_LEG = 7
-#: All parameters: 18 base joint coordinates, 18 platform joint coordinates, 6 offsets.
+#: All parameters: 18 base joint coordinates, 18 platform joint coordinates, 6 offsets (fewer
+#: are free where legs share a joint: see ParameterLayout).
 PARAMETER_COUNT = 6 * PARAMETERS_PER_LEG
 #: Fewer poses than this leave no redundancy to estimate the noise with (7 parameters per leg).
 MIN_POSES = PARAMETERS_PER_LEG + 1
@@ -101,24 +110,117 @@ class CalibrationError(ValueError):
 
 
 @dataclass(frozen=True)
+class ParameterLayout:
+    """
+    Which of the 42 parameters are free: a joint that two legs share is one point.
+
+    :param index: shape (42,): for each parameter in :data:`PARAMETER_NAMES` order, its column
+        among the free parameters (two legs' coordinates of a shared joint, one column).
+    :param names: the free parameters' names: ``b1.x`` as in :data:`PARAMETER_NAMES`, and
+        ``b1,2.x`` for the base joint that legs 1 and 2 share (``p`` for the platform's).
+    :param blocks: the legs (1..6) fitted together: legs tied by shared joints, each leg alone
+        on a 6-6 platform. The identification Jacobian is block diagonal by them.
+    """
+
+    index: np.ndarray
+    names: Tuple[str, ...]
+    blocks: Tuple[Tuple[int, ...], ...]
+
+    @property
+    def count(self) -> int:
+        """Return the number of free parameters (42 on a 6-6 platform, 24 on a 3-3 one)."""
+        return len(self.names)
+
+    @property
+    def tied(self) -> Tuple[str, ...]:
+        """Return the names of the free parameters that stand for a shared joint's coordinates."""
+        return tuple(name for name in self.names if ',' in name)
+
+    def columns(self, block: Tuple[int, ...]) -> np.ndarray:
+        """Return the free columns of a block's parameters, ascending."""
+        return np.unique(self.index[_LEG_COLUMNS[np.array(block) - 1]])
+
+    def expand(self, free) -> np.ndarray:
+        """Return the 42 parameters of the free ones (a shared joint's copied to both legs)."""
+        return np.asarray(free)[..., self.index]
+
+    def reduce(self, parameters) -> np.ndarray:
+        """Return the free parameters of 42 (a shared joint: the lower leg's coordinates)."""
+        first = np.array([np.flatnonzero(self.index == column)[0]
+                          for column in range(self.count)])
+        return np.asarray(parameters, dtype=float)[first]
+
+    def tie(self, jacobian) -> np.ndarray:
+        """Return the identification Jacobian (rows, 42) in the free parameters (rows, n)."""
+        tied = np.zeros((jacobian.shape[0], self.count))
+        for column, free in enumerate(self.index):
+            tied[:, free] += jacobian[:, column]
+        return tied
+
+
+def parameter_layout(geometry: Geometry) -> ParameterLayout:
+    """
+    Return the free parameters of a geometry: its shared joints tied, the rest one each.
+
+    >>> from stewart_kinematics import load_geometry
+    >>> from stewart_kinematics.analysis.calibration import parameter_layout
+    >>> layout = parameter_layout(load_geometry('config/platform_3_3.yaml'))
+    >>> layout.count, layout.blocks
+    (24, ((1, 2, 3, 4, 5, 6),))
+    >>> layout.tied[:4]
+    ('b1,2.x', 'b1,2.y', 'b1,2.z', 'b3,4.x')
+    """
+    owner = np.arange(PARAMETER_COUNT)
+    component = list(range(6))
+    for joint in geometry.shared_joints:
+        first, second = joint.legs[0] - 1, joint.legs[1] - 1
+        offset = 0 if joint.side == 'base' else 18
+        owner[offset + 3 * second:offset + 3 * second + 3] = owner[
+            offset + 3 * first:offset + 3 * first + 3]
+        old, new = component[second], component[first]
+        component = [new if c == old else c for c in component]
+    representatives, index = np.unique(owner, return_inverse=True)
+    names = []
+    for representative in representatives:
+        legs = [column // 3 % 6 + 1 for column in np.flatnonzero(owner == representative)]
+        name = PARAMETER_NAMES[representative]
+        if len(legs) > 1:
+            name = name[0] + ','.join(map(str, legs)) + name[name.index('.'):]
+        names.append(name)
+    blocks = {}
+    for leg, c in enumerate(component):
+        blocks.setdefault(c, []).append(leg + 1)
+    return ParameterLayout(index=index, names=tuple(names),
+                           blocks=tuple(tuple(legs) for legs in blocks.values()))
+
+
+@dataclass(frozen=True)
 class Combination:
     """
     A parameter combination that a set of poses determines badly (or not at all).
 
-    :param leg: the leg, 1..6 (the legs decouple, so a combination belongs to one leg).
+    :param legs: the legs it belongs to, 1..6: one leg (the legs decouple), or the legs tied
+        by shared joints (see :class:`ParameterLayout`).
     :param coefficients: parameter name -> coefficient of the unit direction in scaled
         parameters (each column of the Jacobian divided by its norm), largest first.
     :param relative_singular_value: its singular value over the largest one of the scaled
         identification Jacobian; 0 when the poses cannot determine it at all.
     """
 
-    leg: int
+    legs: Tuple[int, ...]
     coefficients: Tuple[Tuple[str, float], ...]
     relative_singular_value: float
 
+    @property
+    def leg(self) -> int:
+        """Return the (first) leg it belongs to."""
+        return self.legs[0]
+
     def __str__(self):
         terms = ' '.join(f'{value:+.2f} {name}' for name, value in self.coefficients)
-        return (f'leg {self.leg}: {terms} '
+        legs = (f'leg {self.legs[0]}' if len(self.legs) == 1
+                else 'legs ' + ', '.join(map(str, self.legs)))
+        return (f'{legs}: {terms} '
                 f'(relative singular value {self.relative_singular_value:.1e})')
 
 
@@ -128,20 +230,24 @@ class Identifiability:
     What a set of poses can determine: singular values of the scaled identification Jacobian.
 
     The identification Jacobian holds ``d a_ki / d parameter`` for every pose k and leg i
-    (6N rows, 42 columns); each column is divided by its norm (all parameters are metres, the
-    scaling only removes the effect of how many poses and how the legs point).
+    (6N rows, a column per free parameter: 42 on a 6-6 platform); each column is divided by
+    its norm (all parameters are metres, the scaling only removes the effect of how many poses
+    and how the legs point).
 
-    :param singular_values: (6, 7), per leg, largest first (the Jacobian is block diagonal).
+    :param singular_values: per block of :attr:`blocks`, largest first (the Jacobian is block
+        diagonal): six arrays of 7 on a 6-6 platform.
+    :param blocks: the legs of each block, 1..6 (see :class:`ParameterLayout`).
     :param condition_number: largest over smallest singular value of the whole scaled Jacobian
         (``inf`` if a combination is undetermined).
-    :param weakest: the worst-determined combination of each leg, weakest leg first.
+    :param weakest: the worst-determined combination of each block, weakest first.
     :param undetermined: combinations whose relative singular value is below
         ``1 / max_condition``: the poses cannot determine them.
     :param position_spread: largest minus smallest of X, Y, Z over the poses, metres.
     :param angle_spread: the same for alpha, beta, gamma, radians.
     """
 
-    singular_values: np.ndarray
+    singular_values: Tuple[np.ndarray, ...]
+    blocks: Tuple[Tuple[int, ...], ...]
     condition_number: float
     weakest: Tuple[Combination, ...]
     undetermined: Tuple[Combination, ...]
@@ -192,7 +298,8 @@ class CalibrationResult:
     :param actuator_offsets: calibrated offsets o_1..o_6, metres.
     :param nominal: the nominal geometry the fit started from.
     :param nominal_offsets: the offsets the "before" residuals use, metres.
-    :param parameters: the 42 calibrated parameters, in :data:`PARAMETER_NAMES` order, metres.
+    :param parameters: the 42 calibrated parameters, in :data:`PARAMETER_NAMES` order, metres
+        (the two legs of a shared joint hold the same coordinates).
     :param standard_deviations: their standard deviations from the fit, metres.
     :param residuals_before: the nominal model's residuals, every pose.
     :param residuals_after: the calibrated model's residuals, every pose.
@@ -202,7 +309,8 @@ class CalibrationResult:
         counted), metres: the measurement noise as the fit sees it.
     :param identifiability: the identifiability of the inlier poses at the solution.
     :param iterations: residual evaluations of the final least-squares fit, summed over the
-        six legs.
+        blocks of legs.
+    :param layout: the free parameters: the shared joints tied (:class:`ParameterLayout`).
     """
 
     geometry: Geometry
@@ -218,6 +326,7 @@ class CalibrationResult:
     noise: float
     identifiability: Identifiability
     iterations: int
+    layout: ParameterLayout
 
     @property
     def condition_number(self) -> float:
@@ -274,7 +383,12 @@ class CalibrationResult:
             cells = [f'{change[column]:+9.3f}+-{deviation[column]:6.3f}'
                      for column in _LEG_COLUMNS[leg]]
             lines.append(f'{leg + 1:3d}   ' + ''.join(f'{cell:>17s}' for cell in cells))
-        lines += ['', 'worst-determined combination of each leg (scaled parameters):']
+        if self.layout.tied:
+            lines += ['', 'shared joints, fitted as one point each: ' + ', '.join(
+                sorted({name.split('.')[0] for name in self.layout.tied}))]
+        lines += ['', 'worst-determined combination of each '
+                  + ('leg' if len(self.layout.blocks) == 6 else 'block of legs')
+                  + ' (scaled parameters):']
         lines += [f'  {combination}' for combination in self.identifiability.weakest]
         return '\n'.join(lines)
 
@@ -295,7 +409,7 @@ def predict_actuator_positions(geometry: Geometry, actuator_offsets, poses) -> n
 
 def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) -> Identifiability:
     """
-    Tell what the poses can determine of the 42 parameters, at ``geometry``.
+    Tell what the poses can determine of the parameters, at ``geometry`` (shared joints tied).
 
     :param geometry: the platform (nominal, or calibrated).
     :param poses: the measurement poses, shape (N, 6), metres and radians.
@@ -305,7 +419,9 @@ def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) ->
     poses = np.atleast_2d(as_poses(poses))
     rotations = euler_zyx_to_matrix(poses[:, 3:])
     parameters = _parameter_vector(geometry, np.zeros(6))
-    return _identifiability(_jacobian(parameters, poses[:, :3], rotations), poses, max_condition)
+    layout = parameter_layout(geometry)
+    return _identifiability(layout.tie(_jacobian(parameters, poses[:, :3], rotations)), poses,
+                            max_condition, layout)
 
 
 def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None, *,
@@ -314,6 +430,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
               max_condition: float = 1e5, max_noise: float = 1e-3) -> CalibrationResult:
     """
     Identify the 36 joint coordinates and 6 actuator offsets from measured poses.
+
+    A joint that two legs share (:attr:`Geometry.shared_joints`) is one point, fitted once.
 
     :param nominal: the drawing's geometry: the starting point, and the home pose and limits
         that the calibrated geometry keeps.
@@ -369,21 +487,23 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         nominal_offsets = np.mean(
             _predict(_parameter_vector(nominal, np.zeros(6)), positions, rotations) - readings,
             axis=0)
-    start = _parameter_vector(nominal, nominal_offsets)
-    report = _identifiability(_jacobian(start, positions, rotations), poses, max_condition)
+    layout = parameter_layout(nominal)
+    start = layout.expand(layout.reduce(_parameter_vector(nominal, nominal_offsets)))
+    report = _identifiability(layout.tie(_jacobian(start, positions, rotations)), poses,
+                              max_condition, layout)
     if not report.identifiable:
         raise CalibrationError(report.problem())
 
     def fit(x0, mask, fit_loss, scale=1.0, tolerance=1e-8):
-        return _fit_legs(x0, positions[mask], rotations[mask], readings[mask], fit_loss, scale,
-                         tolerance)
+        return _fit_blocks(layout, x0, positions[mask], rotations[mask], readings[mask],
+                           fit_loss, scale, tolerance)
 
     def refuse_misfit(error, robust=False):
         if robust:  # a few gross outliers must not count: they are for the robust fit
             noise = _MAD_TO_SIGMA * float(np.median(np.abs(error)))
         else:
             noise = math.sqrt(float(np.sum(np.square(error)))
-                              / max(error.size - PARAMETER_COUNT, 1))
+                              / max(error.size - layout.count, 1))
         if not noise <= max_noise:
             raise CalibrationError(
                 f'the calibrated model leaves residuals of {noise * 1e3:.3g} mm (standard '
@@ -426,16 +546,17 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
     solution = fit(x, inliers, 'linear', tolerance=FINAL_TOLERANCE)
     parameters = solution.x
     inlier_report = _identifiability(
-        _jacobian(parameters, positions[inliers], rotations[inliers]), poses[inliers],
-        max_condition)
+        layout.tie(_jacobian(parameters, positions[inliers], rotations[inliers])),
+        poses[inliers], max_condition, layout)
     if not inlier_report.identifiable:
         raise CalibrationError('after removing the outlier poses '
                                f'{np.flatnonzero(~inliers).tolist()}: ' + inlier_report.problem())
     noise = refuse_misfit(solution.fun)
-    standard_deviations = np.empty(PARAMETER_COUNT)
-    for columns, block in zip(_LEG_COLUMNS, solution.leg_jacobians):
+    free_deviations = np.empty(layout.count)
+    for legs, block in zip(layout.blocks, solution.block_jacobians):
         covariance = np.linalg.pinv(block.T @ block)
-        standard_deviations[columns] = noise * np.sqrt(np.diag(covariance))
+        free_deviations[layout.columns(legs)] = noise * np.sqrt(np.diag(covariance))
+    standard_deviations = layout.expand(free_deviations)
     geometry = _geometry_of(nominal, parameters)
     return CalibrationResult(
         geometry=geometry, actuator_offsets=parameters[36:].copy(), nominal=nominal,
@@ -444,7 +565,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         residuals_before=_predict(start, positions, rotations) - readings,
         residuals_after=_predict(parameters, positions, rotations) - readings,
         inliers=inliers, outliers=tuple(int(index) for index in np.flatnonzero(~inliers)),
-        noise=noise, identifiability=inlier_report, iterations=int(solution.nfev))
+        noise=noise, identifiability=inlier_report, iterations=int(solution.nfev),
+        layout=layout)
 
 
 @dataclass(frozen=True)
@@ -519,6 +641,10 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
             f'{2 * count} needed to choose {count}: widen the ranges or draw more candidates')
     parameters = _parameter_vector(geometry, np.zeros(6))
     jac = _jacobian(parameters, pool[:, :3], euler_zyx_to_matrix(pool[:, 3:]))
+    # The poses are chosen for the untied model (each leg's 7 parameters), which bounds the
+    # tied one of shared joints from below; their quality is that of the tied model.
+    layout = parameter_layout(geometry)
+    tied = layout.tie(jac)
     # Per candidate and leg, the row of the leg's 7 parameters: (C, 6, 7).
     rows = np.stack([jac[leg::6, columns] for leg, columns in enumerate(_LEG_COLUMNS)], axis=1)
     information = np.zeros((6, PARAMETERS_PER_LEG, PARAMETERS_PER_LEG))
@@ -552,10 +678,11 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
     poses = pool[chosen]
 
     def quality(indices):
-        block = jac.reshape(-1, 6, PARAMETER_COUNT)[indices].reshape(-1, PARAMETER_COUNT)
-        smallest = min(np.linalg.svd(block[leg::6][:, columns], compute_uv=False)[-1]
-                       for leg, columns in enumerate(_LEG_COLUMNS))
-        return smallest, _identifiability(block, pool[indices], math.inf).condition_number
+        block = tied.reshape(-1, 6, layout.count)[indices].reshape(-1, layout.count)
+        smallest = min(np.linalg.svd(_block_rows(block, layout, legs), compute_uv=False)[-1]
+                       for legs in layout.blocks)
+        return smallest, _identifiability(block, pool[indices], math.inf,
+                                          layout).condition_number
 
     random_quality = np.array([
         quality(generator.choice(pool.shape[0], count, replace=False))
@@ -635,38 +762,55 @@ def _geometry_of(nominal: Geometry, parameters) -> Geometry:
 class _Fit:
     x: np.ndarray
     fun: np.ndarray
-    leg_jacobians: Tuple[np.ndarray, ...]
+    block_jacobians: Tuple[np.ndarray, ...]
     nfev: int
 
 
-def _fit_legs(x0, positions, rotations, readings, loss, scale, tolerance) -> _Fit:
+def _fit_blocks(layout, x0, positions, rotations, readings, loss, scale, tolerance) -> _Fit:
     """
-    Fit each leg's seven parameters to its own readings: the legs decouple.
+    Fit each block's parameters to its legs' readings: the blocks decouple.
 
-    Six problems of N x 7 instead of one of 6N x 42 (block diagonal): far less work, and
-    matrices too small for a multi-threaded BLAS to stall on (it did, 10x, on a busy machine).
+    On a 6-6 platform, six problems of N x 7 instead of one of 6N x 42 (block diagonal): far
+    less work, and matrices too small for a multi-threaded BLAS to stall on (it did, 10x, on
+    a busy machine). Legs that share a joint form one block, its coordinates fitted once.
+
+    :param x0: the 42 parameters to start from (a shared joint's equal for both legs).
+    :returns: the 42 parameters fitted (``x``), the residuals (N * 6, pose by leg), each
+        block's Jacobian in its free parameters, and the evaluations.
     """
-    x = np.array(x0, dtype=float)
+    free = layout.reduce(x0)
+    count = positions.shape[0]
     fun = np.empty(readings.shape)
     jacobians = []
     evaluations = 0
     # Plain fits: MINPACK's Levenberg-Marquardt (compiled, fastest on small dense problems);
     # robust losses need the trust-region reflective method.
     method = 'lm' if loss == 'linear' else 'trf'
-    for leg, columns in enumerate(_LEG_COLUMNS):
-        def residuals(values, leg=leg):
-            return _leg_lengths(values, positions, rotations) - values[6] - readings[:, leg]
+    for legs in layout.blocks:
+        columns = layout.columns(legs)
+        # Each leg's seven parameters, as positions among the block's columns.
+        locals_ = [np.searchsorted(columns, layout.index[_LEG_COLUMNS[leg - 1]])
+                   for leg in legs]
 
-        def jac(values):
-            return _leg_jacobian(values, positions, rotations)
-        solution = least_squares(residuals, x[columns], jac=jac, loss=loss, f_scale=scale,
+        def residuals(values, legs=legs, locals_=locals_):
+            return np.concatenate([
+                _leg_lengths(values[local], positions, rotations) - values[local[6]]
+                - readings[:, leg - 1] for leg, local in zip(legs, locals_)])
+
+        def jac(values, locals_=locals_, width=columns.size):
+            block = np.zeros((len(locals_) * count, width))
+            for k, local in enumerate(locals_):
+                block[k * count:(k + 1) * count, local] = _leg_jacobian(
+                    values[local], positions, rotations)
+            return block
+        solution = least_squares(residuals, free[columns], jac=jac, loss=loss, f_scale=scale,
                                  x_scale='jac', method=method, ftol=tolerance, xtol=tolerance,
-                                 gtol=tolerance, max_nfev=MAX_EVALUATIONS)
-        x[columns] = solution.x
-        fun[:, leg] = solution.fun
+                                 gtol=tolerance, max_nfev=MAX_EVALUATIONS * len(legs))
+        free[columns] = solution.x
+        fun[:, np.array(legs) - 1] = solution.fun.reshape(len(legs), count).T
         jacobians.append(jac(solution.x))
         evaluations += solution.nfev
-    return _Fit(x, fun.ravel(), tuple(jacobians), evaluations)
+    return _Fit(layout.expand(free), fun.ravel(), tuple(jacobians), evaluations)
 
 
 def _leg_vectors(values, positions, rotations):
@@ -704,25 +848,38 @@ def _jacobian(parameters, positions, rotations):
     return jac.reshape(count * 6, PARAMETER_COUNT)
 
 
-def _identifiability(jac, poses, max_condition) -> Identifiability:
+def _block_rows(jac, layout, legs):
+    """Return a block's rows and columns of a tied Jacobian (6N, n): (N * legs, columns)."""
+    rows = jac.reshape(-1, 6, layout.count)[:, np.array(legs) - 1]
+    return rows.reshape(-1, layout.count)[:, layout.columns(legs)]
+
+
+def _identifiability(jac, poses, max_condition, layout) -> Identifiability:
+    """
+    Tell what a tied identification Jacobian (6N, layout.count) determines, block by block.
+
+    :param layout: the free parameters (:func:`parameter_layout`).
+    """
     norms = np.linalg.norm(jac, axis=0)
     scaled = jac / np.where(norms > 0.0, norms, 1.0)
-    singular_values = np.empty((6, PARAMETERS_PER_LEG))
+    singular_values = []
     directions = []
-    for leg, columns in enumerate(_LEG_COLUMNS):
-        _, values, right = np.linalg.svd(scaled[leg::6][:, columns])
-        if values.size < PARAMETERS_PER_LEG:
-            values = np.concatenate([values, np.zeros(PARAMETERS_PER_LEG - values.size)])
-        singular_values[leg] = values
+    for legs in layout.blocks:
+        block = _block_rows(scaled, layout, legs)
+        _, values, right = np.linalg.svd(block)
+        if values.size < block.shape[1]:
+            values = np.concatenate([values, np.zeros(block.shape[1] - values.size)])
+        singular_values.append(values)
         directions.append(right)
-    largest = float(np.max(singular_values))
-    smallest = float(np.min(singular_values))
+    largest = float(max(np.max(values) for values in singular_values))
+    smallest = float(min(np.min(values) for values in singular_values))
     condition = largest / smallest if smallest > largest * 1e-300 else math.inf
-    combinations = []
+    weakest = []
     undetermined = []
-    for leg, columns in enumerate(_LEG_COLUMNS):
-        relative = singular_values[leg] / largest
-        vectors = directions[leg].copy()
+    for legs, values, vectors in zip(layout.blocks, singular_values, directions):
+        columns = layout.columns(legs)
+        relative = values / largest
+        vectors = vectors.copy()
         null = relative * max_condition < 1.0
         if np.count_nonzero(null) > 1:
             # Any basis of a null space fits; show the one with a unit coefficient on one
@@ -730,22 +887,23 @@ def _identifiability(jac, poses, max_condition) -> Identifiability:
             basis = vectors[null]
             _, _, pivots = qr(basis, pivoting=True)
             vectors[null] = np.linalg.solve(basis[:, pivots[:basis.shape[0]]], basis)
-        for index in range(PARAMETERS_PER_LEG):
+        combinations = []
+        for index in range(columns.size):
             vector = vectors[index] / np.linalg.norm(vectors[index])
             if vector[np.argmax(np.abs(vector))] < 0.0:
                 vector = -vector
             # Largest first; equal ones (to the digits shown) in parameter order.
             order = np.lexsort((np.arange(vector.size), -np.round(np.abs(vector), 2)))
-            terms = tuple((PARAMETER_NAMES[columns[j]], float(vector[j])) for j in order
+            terms = tuple((layout.names[columns[j]], float(vector[j])) for j in order
                           if abs(vector[j]) >= 0.1)
-            combinations.append(Combination(leg + 1, terms, float(relative[index])))
+            combinations.append(Combination(tuple(legs), terms, float(relative[index])))
             if null[index]:
                 undetermined.append(combinations[-1])
-    weakest = tuple(sorted(
-        (combinations[PARAMETERS_PER_LEG * (leg + 1) - 1] for leg in range(6)),
-        key=lambda combination: combination.relative_singular_value))
+        weakest.append(combinations[-1])
     return Identifiability(
-        singular_values=singular_values, condition_number=condition, weakest=weakest,
+        singular_values=tuple(singular_values), blocks=layout.blocks, condition_number=condition,
+        weakest=tuple(sorted(weakest, key=lambda combination:
+                             combination.relative_singular_value)),
         undetermined=tuple(undetermined), position_spread=np.ptp(poses[:, :3], axis=0),
         angle_spread=np.ptp(poses[:, 3:], axis=0))
 

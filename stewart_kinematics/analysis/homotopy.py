@@ -30,7 +30,7 @@ Every complex solution of six leg lengths, found by homotopy continuation; the m
    space of platforms) give the other 39. Once per geometry (about 0.03 s,
    :func:`geometry_start_system`): its 40 solutions tracked to the given geometry with random
    complex leg lengths near its home lengths; a degenerate geometry keeps fewer (the others go
-   to infinity).
+   to infinity): 16 for a 6-3 or 3-3 platform (joints shared by two legs).
 3. **Parameter homotopy** to the given lengths (:func:`path_ends`): the geometry's start
    solutions are tracked along ``gamma (1 - s) Q_start + s Q_target`` for s from 0 to 1 (only
    the lengths change; the "gamma trick": with a random complex gamma the path meets no

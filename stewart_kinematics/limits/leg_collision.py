@@ -17,7 +17,11 @@ Leg collisions: two legs may not come closer than their thickness.
 
 Each leg is a capsule of radius ``leg_radius`` around the segment from its base joint ``b_i``
 to its platform joint ``b_i + L_i`` (base frame); two legs collide when the distance between
-their segments is below ``2 * leg_radius``. All 15 pairs of every pose are checked at once.
+their segments is below ``2 * leg_radius``. All 15 pairs of every pose are checked at once,
+except the pairs that share a joint (a 6-3 or 3-3 platform's, see
+:attr:`stewart_kinematics.Geometry.shared_joints`): their capsules meet at that joint by
+design, so their distance is 0 at every pose; they are given an infinite distance (never
+broken), and the joint cones still bound how far each of them turns in the joint.
 
 The distance between two segments is the minimum of a convex quadratic over the unit square
 (Ericson, Real-Time Collision Detection, section 5.1.9): the parameters of the closest points
@@ -41,7 +45,7 @@ The distances are exact to 1e-13 of the leg length at every angle down to exactl
 
 import numpy as np
 
-from stewart_kinematics.limits.base import Bound, Limit, PAIR
+from stewart_kinematics.limits.base import Bound, LEG_PAIRS, Limit, PAIR
 
 #: The rows of the 15 pairs, legs 0..5: first and second leg of each (see LEG_PAIRS).
 FIRST, SECOND = np.triu_indices(6, 1)
@@ -56,6 +60,7 @@ class LegCollision(Limit):
     Evaluator of ``leg_collision``: the distance between the axes of each pair, shape (15, n).
 
     :param geometry: a :class:`stewart_kinematics.Geometry`; a ``leg_radius`` of 0 is not set.
+        Pairs that share a joint are not checked: their distance is ``inf``.
     """
 
     dear = True
@@ -65,10 +70,16 @@ class LegCollision(Limit):
         self.bounds = (Bound('leg_collision', 2.0 * radius, False, PAIR, 'm'),) if radius else ()
         offsets = geometry.base_joints[FIRST] - geometry.base_joints[SECOND]
         self._offsets = tuple(offsets[:, axis:axis + 1].copy() for axis in range(3))
+        #: The rows (of LEG_PAIRS) of the pairs that share a joint: never checked.
+        self.shared_rows = np.array(sorted(LEG_PAIRS.index(joint.legs)
+                                           for joint in geometry.shared_joints), dtype=int)
 
     def values(self, arrays):
-        """Return the distances between the legs' axes, metres, shape (15, n)."""
-        return (segment_distances(*arrays.vectors[:3], arrays.lengths, self._offsets),)
+        """Return the distances between the legs' axes, metres, (15, n); ``inf`` if shared."""
+        distances = segment_distances(*arrays.vectors[:3], arrays.lengths, self._offsets)
+        if self.shared_rows.size:
+            distances[self.shared_rows] = np.inf
+        return (distances,)
 
 
 def segment_distances(lx, ly, lz, lengths, offsets):

@@ -41,8 +41,8 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
     Build the geometry that parameter settings describe.
 
     :param settings: joints (flat lists, metres), home pose (metres, degrees) and limits.
-    :raises ValueError: if the geometry is not allowed (joints too close or collinear, a home
-        pose that breaks its own limits).
+    :raises ValueError: if the geometry is not allowed (a joint shared by three legs or more,
+        two legs sharing both joints, collinear joints, a home pose that breaks its own limits).
     """
     home_pose = np.concatenate([np.asarray(settings.home_position, dtype=float),
                                 np.radians(np.asarray(settings.home_orientation_deg))])

@@ -47,15 +47,17 @@ GEOMETRY_PARAMETERS = (
     ParameterSpec(
         'base_joints', DOUBLE_ARRAY,
         'Base joint centres b_1..b_6 in the base frame, metres, flattened as '
-        'x1, y1, z1, ..., x6, y6, z6',
+        'x1, y1, z1, ..., x6, y6, z6; two legs given the same coordinates share one joint '
+        '(6-3 and 3-3 platforms)',
         read_only=True, validators=(fixed_length(18), finite),
-        constraints='18 finite values; 6 distinct, non-collinear joints'),
+        constraints='18 finite values; not collinear; a joint shared by 2 legs at most'),
     ParameterSpec(
         'platform_joints', DOUBLE_ARRAY,
         'Platform joint centres p_1..p_6 in the platform frame, metres, flattened as '
-        'x1, y1, z1, ..., x6, y6, z6',
+        'x1, y1, z1, ..., x6, y6, z6; two legs given the same coordinates share one joint '
+        '(6-3 and 3-3 platforms)',
         read_only=True, validators=(fixed_length(18), finite),
-        constraints='18 finite values; 6 distinct, non-collinear joints'),
+        constraints='18 finite values; not collinear; a joint shared by 2 legs at most'),
     ParameterSpec(
         'home_position', DOUBLE_ARRAY,
         'Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; '
