@@ -62,7 +62,6 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
-from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.parameters import (

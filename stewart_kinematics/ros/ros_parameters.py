@@ -44,7 +44,6 @@ from rclpy.parameter import Parameter
 from stewart_kinematics import parameters
 from stewart_kinematics.parameters.files import (
     parse_rcl_yaml,
-    read_parameter_sections,
     read_sections_and_lines,
     section_applies,
 )
