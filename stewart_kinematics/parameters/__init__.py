@@ -17,7 +17,9 @@ The parameters: every ROS parameter declared once, the parameter files, and what
 
 :mod:`.spec` (one parameter's declaration, with the validators of
 :mod:`stewart_kinematics.model.validators`), :mod:`.declarations` (every
-parameter of the package, by group), :mod:`.files` (parameter files read as rcl reads them),
+parameter of the package, by group), :mod:`.settings` (the typed settings of each group and
+node, generated from the declarations by scripts/generate_settings.py; their behaviour in
+:mod:`.settings_base`), :mod:`.files` (parameter files read as rcl reads them),
 :mod:`.rcl_yaml` (the package's one YAML reader, with its limits), :mod:`.builders` (the
 geometry and frames from parameter values) and :mod:`.tables` (the documentation's parameter
 tables).
@@ -75,15 +77,14 @@ from stewart_kinematics.parameters.settings import (
     MarkerSettings,
     MotionCueingNodeSettings,
     MotionSettings,
-    NodeSettings,
     QueueSettings,
     RampSettings,
-    Settings,
     SolverSettings,
     StreamingSettings,
     TrajectoryNodeSettings,
     WorkspaceSettings,
 )
+from stewart_kinematics.parameters.settings_base import NodeSettings, Settings
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DistinctNames,
