@@ -217,7 +217,7 @@ class ParameterFuzzer:
                 return current * rng.choice((0.5, 0.9, 1.1, 2.0)) if current else 0.01
             return rng.choice(HOSTILE_DOUBLES)
         if kind == parameters.STRING:
-            choices = list(spec.constraints.split("'")[1::2])
+            choices = string_choices(spec)
             if plausible:
                 return rng.choice(choices + ['fuzz_tool', current or ''])
             return rng.choice(HOSTILE_STRINGS + ('stewart_base', 'stewart_platform'))
@@ -255,12 +255,19 @@ def _as_checked(spec, value):
     return value
 
 
+def string_choices(spec: parameters.ParameterSpec) -> list:
+    """Return the values a string parameter's spec names: its choices, and '' if allowed."""
+    choices = [choice for validator in spec.validators if isinstance(validator, parameters.OneOf)
+               for choice in validator.allowed]
+    return choices + ([''] if not spec.check('') else [])
+
+
 def start_variant(rng: random.Random, share: float = 0.5) -> Dict[str, object]:
     """
     Draw start-up values for some read-only parameters of the package (not the platform's).
 
     Each read-only parameter outside :data:`FIXED_AT_START` gets, with probability ``share``, a
-    value its spec allows: the other boolean, another of the quoted choices of a string, or a
+    value its spec allows: the other boolean, another of the choices of a string, or a
     number near its default (twice, half, or 10 or 100 where the default is 0: a rate that turns
     a feature on). A node ignores the parameters it does not declare.
 
@@ -274,8 +281,7 @@ def start_variant(rng: random.Random, share: float = 0.5) -> Dict[str, object]:
         if spec.value_type == parameters.BOOL:
             candidates = [not default]
         elif spec.value_type == parameters.STRING:
-            candidates = [choice for choice in spec.constraints.split("'")[1::2]
-                          if choice != default]
+            candidates = [choice for choice in string_choices(spec) if choice != default]
         elif spec.value_type == parameters.DOUBLE and isinstance(default, float) and (
                 math.isfinite(default)):
             candidates = [default * 2.0, default / 2.0] if default else [10.0, 100.0]

@@ -12,10 +12,17 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Each node offers exactly the topics and services its declaration in ros/interfaces.py names."""
+"""
+Each node offers exactly the topics and services its declaration in ros/interfaces.py names.
+
+With the QoS declared there: each publisher's, subscription's and service's actual profile is
+the declared one (at a queue_depth other than any fixed depth, so a depth taken from elsewhere
+shows).
+"""
 
 import pytest
 
+from stewart_kinematics.ros import interfaces
 from stewart_kinematics.ros.interfaces import (
     FK_NODE,
     IK_NODE,
@@ -23,6 +30,7 @@ from stewart_kinematics.ros.interfaces import (
     MOTION_CUEING_NODE,
     NODE_INTERFACES,
     PUBLISHER,
+    Qos,
     SERVICE,
     SUBSCRIPTION,
     TRAJECTORY_NODE,
@@ -32,6 +40,8 @@ pytestmark = pytest.mark.node
 
 #: What rclpy gives every node: its log, parameter events and parameter services.
 RCLPY_TOPICS = {'/rosout', '/parameter_events'}
+#: The queue_depth the nodes run with here: no declared fixed depth is 7.
+QUEUE_DEPTH = 7
 
 
 def node_class(name):
@@ -51,14 +61,22 @@ def absolute(name):
 
 @pytest.mark.parametrize('interface', [IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE],
                          ids=lambda interface: interface.node)
-def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directory, interface):
+def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directory, tmp_path,
+                                                             interface):
     """Every optional endpoint on: the node's publishers, subscriptions and services."""
     arguments = ['--ros-args']
     for name in ('paper_platform.yaml', 'solver.yaml', 'table3_ramp.yaml'):
         arguments += ['--params-file', str(config_directory / name)]
+    # The node's own section, last: it wins over the files' sections for the node.
+    depth_file = tmp_path / 'queue_depth.yaml'
+    depth_file.write_text(f'{interface.node}:\n  ros__parameters:\n'
+                          f'    queue_depth: {QUEUE_DEPTH}\n', encoding='utf-8')
+    arguments += ['--params-file', str(depth_file)]
     arguments += ['-p', 'publish_commanded_tf:=true'] if interface is IK_NODE else []
     node = node_class(interface.node)(cli_args=arguments)
     try:
+        assert node.get_parameter('queue_depth').value == QUEUE_DEPTH
+
         def declared(kind):
             return {absolute(endpoint.name): endpoint.type_name
                     for endpoint in interface.of_kind(kind)}
@@ -77,8 +95,77 @@ def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directo
                 for service in node.services
                 if not absolute(service.srv_name).startswith(parameter_services)
                 } == declared(SERVICE)
+
+        def actual(entities, name_of):
+            return {name_of(entity): entity.qos_profile for entity in entities}
+
+        def declared_qos(kind):
+            return {absolute(endpoint.name): endpoint.qos.profile(QUEUE_DEPTH)
+                    for endpoint in interface.of_kind(kind)}
+
+        assert actual(node.subscriptions, lambda entity: entity.topic_name) == declared_qos(
+            SUBSCRIPTION)
+        assert {name: profile for name, profile in actual(
+            node.publishers, lambda entity: entity.topic_name).items()
+            if name not in RCLPY_TOPICS} == declared_qos(PUBLISHER)
+        assert {name: profile for name, profile in actual(
+            node.services, lambda entity: absolute(entity.srv_name)).items()
+            if not name.startswith(parameter_services)} == declared_qos(SERVICE)
     finally:
         node.destroy_node()
+
+
+def test_an_override_in_one_node_leaves_the_next_node_its_declared_qos(ros, config_directory):
+    """
+    Give each endpoint a profile of its own: rclpy applies qos_overrides to it, in place.
+
+    A profile shared by every node of a process (the /tf one was a module constant) took one
+    node's override into the next node's publisher; each endpoint now gets a profile of its own.
+    """
+    from stewart_kinematics.ros.fk_node import FkNode
+    base = ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml')]
+    first = FkNode(cli_args=base + ['-p', 'qos_overrides./tf.publisher.depth:=5'])
+    second = FkNode(cli_args=base + ['-r', '__node:=fk_node_b'])
+    try:
+        def tf_depth(node):
+            return next(publisher.qos_profile.depth for publisher in node.publishers
+                        if publisher.topic_name == '/tf')
+        assert tf_depth(first) == 5
+        assert tf_depth(second) == interfaces.TF.depth == 100
+    finally:
+        first.destroy_node()
+        second.destroy_node()
+
+
+def test_a_declared_qos_prints_itself_and_builds_its_profile(ros):
+    """What the documentation shows, and the rclpy profile the nodes create endpoints with."""
+    from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+    assert str(interfaces.QUEUE) == 'reliable, keep last `queue_depth`'
+    assert str(interfaces.TF_STATIC) == (
+        'reliable, transient local, keep last 1 (as tf2_ros static broadcasts)')
+    assert str(Qos(reliability='best_effort', history='keep_all')) == 'best effort, keep all'
+    assert interfaces.QUEUE.profile(queue_depth=3) == QoSProfile(
+        depth=3, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_LAST)
+    assert interfaces.LATCHED.profile(queue_depth=3) == QoSProfile(
+        depth=1, reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_LAST)
+    from rclpy.qos import qos_profile_services_default
+    assert interfaces.SERVICE_QOS.profile() == qos_profile_services_default
+    with pytest.raises(ValueError, match='give queue_depth'):
+        interfaces.QUEUE.profile()
+
+
+@pytest.mark.parametrize('changes, message', [
+    ({'reliability': 'reliabel'}, 'reliability must be one of reliable, best_effort'),
+    ({'durability': 'latched'}, 'durability must be one of volatile, transient_local'),
+    ({'depth': 0}, 'depth must be a positive integer'),
+    ({'depth': True}, 'depth must be a positive integer'),
+    ({'depth': 'queue'}, 'depth must be a positive integer'),
+])
+def test_a_qos_declaration_refuses_what_rclpy_would_not_take(changes, message):
+    with pytest.raises(ValueError, match=message):
+        Qos(**changes)
 
 
 def test_every_declared_type_imports_and_every_name_is_unique():

@@ -148,10 +148,13 @@ def test_a_home_pose_where_legs_collide_is_refused_naming_the_pairs():
     assert reference.paper_geometry(leg_radius=0.025).leg_radius == 0.025
 
 
-@pytest.mark.parametrize('radius', [-0.01, math.nan, math.inf, 1e308 * 10.0])
-def test_a_leg_radius_that_is_no_radius_is_refused(radius):
-    """Negative, NaN or infinite radii are refused, naming the parameter."""
-    with pytest.raises(ValueError, match='leg_radius must be finite and >= 0'):
+@pytest.mark.parametrize('radius, message', [
+    (-0.01, r'leg_radius must be in \[0, 1\], got -0.01'), (1.5, r'must be in \[0, 1\], got 1.5'),
+    (math.nan, 'leg_radius must be finite, got nan'), (math.inf, 'leg_radius must be finite'),
+    (1e308 * 10.0, 'leg_radius must be finite')])
+def test_a_leg_radius_that_is_no_radius_is_refused(radius, message):
+    """Negative, NaN, infinite or beyond a metre (the parameter's range): refused, named."""
+    with pytest.raises(ValueError, match=message):
         reference.paper_geometry(leg_radius=radius)
 
 

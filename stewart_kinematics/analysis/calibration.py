@@ -523,6 +523,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         refuse_misfit(rough.fun, robust=True)
         rough = rough.x
         for _ in range(2):
+            if not np.any(inliers):
+                break   # every pose an outlier: refused just below, with the reason
             error = _predict(rough, positions, rotations) - readings
             sigma = _MAD_TO_SIGMA * np.median(np.abs(error[inliers]))
             scale = max(sigma, min_outlier_residual)

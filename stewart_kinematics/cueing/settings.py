@@ -19,7 +19,10 @@ One frozen :class:`CueingSettings`, in SI units (radians, not degrees), validate
 :meth:`CueingSettings.from_parameters` builds it from the ROS parameter values declared in
 :data:`stewart_kinematics.parameters.MOTION_CUEING_PARAMETERS` (where angles are in degrees and
 say so in their names; :class:`stewart_kinematics.parameters.CueingParameterSettings` holds them
-as the node declares them).
+as the node declares them). Those declarations are the one source of each setting's default and
+allowed values: a field's default is its parameter's (converted to radians), and a value is
+checked by its parameter's validators (their bounds converted to radians), so the settings and
+the parameters cannot differ.
 
 Defaults are the classical washout's of the literature (Reid and Nahon 1985, UTIAS Report 296;
 Nahon and Reid 1990, J. Guidance 13(2)): a third-order translational high-pass (second order at
@@ -35,6 +38,8 @@ import math
 from typing import Tuple
 
 from stewart_kinematics.model.arrays import preview
+from stewart_kinematics.model.validators import first_reason
+from stewart_kinematics.parameters.declarations import MOTION_CUEING_PARAMETERS
 
 #: Standard gravity, m/s^2: the specific force an accelerometer at rest reads on z.
 STANDARD_GRAVITY = 9.80665
@@ -51,6 +56,52 @@ DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_an
                  'imu_orientation_rpy')
 #: Fields that are names.
 _NAMES = ('vehicle_frame', 'imu_frame')
+#: The parameter of each field: ``<name>_deg`` for a field in radians, else its own name.
+_SPECS = {spec.name.removesuffix('_deg') if spec.name.removesuffix('_deg') in DEGREE_FIELDS
+          else spec.name: spec for spec in MOTION_CUEING_PARAMETERS}
+#: The rules of each field: its parameter's validators, their bounds in radians where the
+#: parameter is in degrees.
+_RULES = {name: tuple(rule.converted(math.radians) for rule in spec.validators)
+          if name in DEGREE_FIELDS else spec.validators for name, spec in _SPECS.items()}
+
+
+def _default(name: str):
+    """Return the default of a field: its parameter's, in radians where that is in degrees."""
+    value = _SPECS[name].default
+    if name in DEGREE_FIELDS:
+        return tuple(map(math.radians, value)) if name in _VECTORS else math.radians(value)
+    return tuple(value) if isinstance(value, list) else value
+
+
+def _converted(name: str, value):
+    """
+    Return a field's value as the settings hold it (a tuple of floats, a float, ...).
+
+    :raises ValueError: naming the field, for a value of the wrong kind (its range is checked
+        after, by its parameter's rules).
+    """
+    if name in _VECTORS:
+        try:
+            return tuple(float(entry) for entry in value)
+        except (TypeError, ValueError):
+            raise ValueError(f'{name} must be {_VECTORS[name]} numbers, got '
+                             f'{preview(value)}') from None
+    if name in _NAMES:
+        if not isinstance(value, str):
+            raise ValueError(f'{name} must be a frame name, got {preview(value)}')
+        return value
+    if name == 'tilt_complementary':
+        if not isinstance(value, bool):
+            raise ValueError(f'{name} must be true or false, got {preview(value)}')
+        return value
+    if name.endswith('_order'):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ValueError(f'{name} must be an integer, got {preview(value)}')
+        return value
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f'{name} must be a number, got {preview(value)}') from None
 
 
 @dataclass(frozen=True)
@@ -110,100 +161,48 @@ class CueingSettings:
     :raises ValueError: naming the setting, for a value out of its range or of the wrong size.
     """
 
-    translation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
-    translation_input_limit: float = math.inf
-    translation_order: int = 3
-    translation_frequency: Tuple[float, ...] = (2.5, 2.5, 4.0)
-    translation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)
-    translation_break_frequency: Tuple[float, ...] = (0.25, 0.25, 0.25)
-    tilt_scale: Tuple[float, ...] = (0.5, 0.5)
-    tilt_complementary: bool = False
-    tilt_order: int = 2
-    tilt_frequency: float = 5.0
-    tilt_damping: float = 1.0
-    tilt_rate_max: float = math.radians(3.0)
-    tilt_acceleration_max: float = math.radians(10.0)
-    tilt_max: float = math.radians(15.0)
-    rotation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
-    rotation_order: int = 2
-    rotation_frequency: Tuple[float, ...] = (1.0, 1.0, 1.0)
-    rotation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)
-    head_position: Tuple[float, ...] = (0.0, 0.0, 0.5)
-    follower_frequency: float = 10.0
-    workspace_recovery_rate: float = 0.5
-    leg_length_margin: float = 0.01
-    joint_angle_margin: float = math.radians(2.0)
-    condition_margin: float = 0.9
-    max_input_gap: float = 0.1
-    max_specific_force: float = 100.0
-    max_angular_velocity: float = 20.0
+    translation_scale: Tuple[float, ...] = _default('translation_scale')
+    translation_input_limit: float = _default('translation_input_limit')
+    translation_order: int = _default('translation_order')
+    translation_frequency: Tuple[float, ...] = _default('translation_frequency')
+    translation_damping: Tuple[float, ...] = _default('translation_damping')
+    translation_break_frequency: Tuple[float, ...] = _default('translation_break_frequency')
+    tilt_scale: Tuple[float, ...] = _default('tilt_scale')
+    tilt_complementary: bool = _default('tilt_complementary')
+    tilt_order: int = _default('tilt_order')
+    tilt_frequency: float = _default('tilt_frequency')
+    tilt_damping: float = _default('tilt_damping')
+    tilt_rate_max: float = _default('tilt_rate_max')
+    tilt_acceleration_max: float = _default('tilt_acceleration_max')
+    tilt_max: float = _default('tilt_max')
+    rotation_scale: Tuple[float, ...] = _default('rotation_scale')
+    rotation_order: int = _default('rotation_order')
+    rotation_frequency: Tuple[float, ...] = _default('rotation_frequency')
+    rotation_damping: Tuple[float, ...] = _default('rotation_damping')
+    head_position: Tuple[float, ...] = _default('head_position')
+    follower_frequency: float = _default('follower_frequency')
+    workspace_recovery_rate: float = _default('workspace_recovery_rate')
+    leg_length_margin: float = _default('leg_length_margin')
+    joint_angle_margin: float = _default('joint_angle_margin')
+    condition_margin: float = _default('condition_margin')
+    max_input_gap: float = _default('max_input_gap')
+    max_specific_force: float = _default('max_specific_force')
+    max_angular_velocity: float = _default('max_angular_velocity')
     gravity: float = STANDARD_GRAVITY
-    vehicle_frame: str = 'base_link'
-    imu_frame: str = ''
-    imu_orientation_rpy: Tuple[float, ...] = (0.0, 0.0, 0.0)
-    input_timeout: float = 0.5
+    vehicle_frame: str = _default('vehicle_frame')
+    imu_frame: str = _default('imu_frame')
+    imu_orientation_rpy: Tuple[float, ...] = _default('imu_orientation_rpy')
+    input_timeout: float = _default('input_timeout')
 
     def __post_init__(self):
         for item in fields(self):
-            value = getattr(self, item.name)
-            if item.name in _VECTORS:
-                try:
-                    value = tuple(float(entry) for entry in value)
-                except (TypeError, ValueError):
-                    raise ValueError(f'{item.name} must be {_VECTORS[item.name]} numbers, got '
-                                     f'{preview(value)}') from None
-                if len(value) != _VECTORS[item.name] or not all(map(math.isfinite, value)):
-                    raise ValueError(f'{item.name} must be {_VECTORS[item.name]} finite '
-                                     f'numbers, got {preview(list(value))}')
-            elif item.name in _NAMES:
-                if not isinstance(value, str):
-                    raise ValueError(f'{item.name} must be a frame name, got {preview(value)}')
-            elif item.name == 'tilt_complementary':
-                if not isinstance(value, bool):
-                    raise ValueError(f'{item.name} must be true or false, got {preview(value)}')
-            elif item.name.endswith('_order'):
-                if isinstance(value, bool) or not isinstance(value, int):
-                    raise ValueError(f'{item.name} must be an integer, got {preview(value)}')
-            else:
-                try:
-                    value = float(value)
-                except (TypeError, ValueError):
-                    raise ValueError(f'{item.name} must be a number, got '
-                                     f'{preview(value)}') from None
-                if not math.isfinite(value) and not (
-                        item.name == 'translation_input_limit' and value == math.inf):
-                    raise ValueError(f'{item.name} must be finite, got {value!r}')
+            value = _converted(item.name, getattr(self, item.name))
             object.__setattr__(self, item.name, value)
-        self._check_ranges()
-
-    def _check_ranges(self):
-        orders = {'translation_order': (2, 3), 'tilt_order': (1, 2), 'rotation_order': (1, 2)}
-        for name, allowed in orders.items():
-            if getattr(self, name) not in allowed:
-                raise ValueError(f'{name} must be one of {allowed}, got {getattr(self, name)!r}')
-        positive = ('translation_frequency', 'translation_damping', 'translation_break_frequency',
-                    'tilt_frequency', 'tilt_damping', 'tilt_rate_max', 'tilt_acceleration_max',
-                    'tilt_max', 'rotation_frequency', 'rotation_damping', 'follower_frequency',
-                    'workspace_recovery_rate', 'max_input_gap', 'max_specific_force',
-                    'translation_input_limit',
-                    'max_angular_velocity', 'gravity')
-        for name in positive:
-            values = getattr(self, name)
-            items = values if isinstance(values, tuple) else (values,)
-            if not all(value > 0.0 for value in items):
-                raise ValueError(f'{name} must be positive, got {values!r}')
-        for name in ('translation_scale', 'tilt_scale', 'rotation_scale'):
-            if not all(0.0 <= value <= 10.0 for value in getattr(self, name)):
-                raise ValueError(f'{name} must be in [0, 10], got {getattr(self, name)!r}')
-        bounded = {'tilt_max': (0.0, math.radians(45.0)),
-                   'leg_length_margin': (0.0, 1.0),
-                   'joint_angle_margin': (0.0, math.radians(45.0)),
-                   'condition_margin': (0.0, 1.0),
-                   'input_timeout': (0.0, 3600.0)}
-        for name, (low, high) in bounded.items():
-            value = getattr(self, name)
-            if not low <= value <= high or (name == 'condition_margin' and value == 0.0):
-                raise ValueError(f'{name} must be in [{low:g}, {high:g}], got {value!r}')
+            reason = first_reason(_RULES.get(item.name, ()), item.name, value)
+            if reason:
+                raise ValueError(reason)
+        if not (math.isfinite(self.gravity) and self.gravity > 0.0):
+            raise ValueError(f'gravity must be positive and finite (m/s^2), got {self.gravity!r}')
 
     @classmethod
     def from_parameters(cls, values: dict) -> 'CueingSettings':

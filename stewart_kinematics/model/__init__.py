@@ -22,7 +22,9 @@ and the kinematics, one concern per module: the argument checks (:mod:`.inputs`,
 :mod:`.arrays`), the leg formulas (:mod:`.formulas`), inverse kinematics (:mod:`.inverse`), the
 Jacobians and their conditioning (:mod:`.jacobians`), forward kinematics (:mod:`.forward`: the
 solver in :mod:`.forward_solver`, its start table in :mod:`.start_table`, its result in
-:mod:`.forward_result`, the result's error bound in :mod:`.error_bound`).
+:mod:`.forward_result`, the result's error bound in :mod:`.error_bound`). The rules a value
+must keep, as data that checks and describes itself (:mod:`.validators`), and the allowed
+values of each limit (:mod:`.limit_bounds`), shared with the parameter specs.
 
 May import: numpy and the standard library only. Nothing here imports ROS or another folder of
 the package.

@@ -34,7 +34,9 @@ from typing import Sequence, Tuple
 
 import numpy as np
 
+from stewart_kinematics.model import limit_bounds
 from stewart_kinematics.model.arrays import as_float_array, preview
+from stewart_kinematics.model.validators import first_reason
 
 #: Default joint names of the legs, leg 1..6.
 DEFAULT_JOINT_NAMES = ('leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6')
@@ -61,8 +63,10 @@ class ActuatorLimits:
             if value.shape != ():
                 raise ValueError(f'leg_{name} must be one number, got {preview(value)}')
             value = float(value)
-            if not value > 0.0:
-                raise ValueError(f'leg_{name} must be positive (.inf for no limit), got {value!r}')
+            # The rule of the parameter leg_<name> (model/limit_bounds.py): > 0, .inf allowed.
+            reason = first_reason(limit_bounds.LEG_RATE_MAX, f'leg_{name}', value)
+            if reason:
+                raise ValueError(f'{reason} (.inf for no limit)')
             object.__setattr__(self, name, value)
 
     @property

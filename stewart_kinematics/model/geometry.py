@@ -36,8 +36,10 @@ from typing import NamedTuple, Tuple
 
 import numpy as np
 
+from stewart_kinematics.model import limit_bounds
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.validators import first_reason
 
 #: Two joints of the base (or of the platform) no farther apart than this fraction of the
 #: size of their set (:func:`joint_set_scale`) are one joint, shared by two legs: 1e-9 of 0.2 m
@@ -67,6 +69,19 @@ class SharedJoint(NamedTuple):
         return f'legs {self.legs[0]} and {self.legs[1]} share a {self.side} joint'
 
 
+#: The rules of each limit: those of its parameter, angles converted to radians.
+_LIMIT_RULES = {
+    'leg_length_min': limit_bounds.LEG_LENGTH_MIN,
+    'leg_length_max': limit_bounds.LEG_LENGTH_MAX,
+    'base_joint_max_angle': tuple(rule.converted(math.radians)
+                                  for rule in limit_bounds.JOINT_MAX_ANGLE_DEG),
+    'platform_joint_max_angle': tuple(rule.converted(math.radians)
+                                      for rule in limit_bounds.JOINT_MAX_ANGLE_DEG),
+    'max_jacobian_condition': limit_bounds.MAX_JACOBIAN_CONDITION,
+    'leg_radius': limit_bounds.LEG_RADIUS,
+}
+
+
 @dataclass(frozen=True, eq=False)
 class Geometry:
     """
@@ -83,14 +98,15 @@ class Geometry:
     :param max_jacobian_condition: largest allowed condition number of the dimensionless
         Jacobian (:func:`stewart_kinematics.model.jacobians.jacobian_condition`), >= 1
         (``inf`` for no limit): the singularity margin.
-    :param leg_radius: radius of each leg, metres, >= 0 (0 for no collision check): a leg is a
-        capsule of this radius around the segment from its base joint to its platform joint,
-        and two legs collide where their segments come closer than ``2 * leg_radius``.
+    :param leg_radius: radius of each leg, metres, in [0, 1] (0 for no collision check): a leg
+        is a capsule of this radius around the segment from its base joint to its platform
+        joint, and two legs collide where their segments come closer than ``2 * leg_radius``.
     :raises ValueError: if an array has the wrong shape or a non-finite value, three or more
         joints of the base or of the platform coincide (a joint is shared by two legs at
         most), two legs share both their joints, the joints of the base or of the platform
-        are collinear, a limit is out of its range, or the home pose breaks a limit (two legs
-        that collide there included, named).
+        are collinear, a limit is out of its range (the range of its parameter,
+        :mod:`stewart_kinematics.model.limit_bounds`), or the home pose breaks a limit (two
+        legs that collide there included, named).
 
     Derived on construction: :attr:`home_leg_lengths`, :attr:`home_leg_directions`,
     :attr:`platform_radius`, :attr:`shared_joints` and :attr:`design`.
@@ -143,27 +159,13 @@ class Geometry:
             SharedJoint(side, pair) for side in SIDES for pair in shared[side]))
         object.__setattr__(self, 'design', '-'.join(
             str(6 - len(shared[side])) for side in SIDES))
-        low, high = (_checked_number('leg_length_min', self.leg_length_min),
-                     _checked_number('leg_length_max', self.leg_length_max))
-        if not (math.isfinite(low) and 0.0 <= low < high) or math.isnan(high):
+        # The limits' rules are the parameters' (model/limit_bounds.py), angles in radians here.
+        for name, rules in _LIMIT_RULES.items():
+            object.__setattr__(self, name, _checked_limit(name, getattr(self, name), rules))
+        if not self.leg_length_min < self.leg_length_max:
             raise ValueError(
-                'leg length limits must satisfy 0 <= leg_length_min < leg_length_max, '
-                f'got leg_length_min={low!r}, leg_length_max={high!r}')
-        object.__setattr__(self, 'leg_length_min', low)
-        object.__setattr__(self, 'leg_length_max', high)
-        for name in ('base_joint_max_angle', 'platform_joint_max_angle'):
-            angle = _checked_number(name, getattr(self, name))
-            if not 0.0 < angle <= math.pi:
-                raise ValueError(f'{name} must be in (0, pi] radians, got {angle!r}')
-            object.__setattr__(self, name, angle)
-        condition = _checked_number('max_jacobian_condition', self.max_jacobian_condition)
-        if not condition >= 1.0:
-            raise ValueError(f'max_jacobian_condition must be >= 1, got {condition!r}')
-        object.__setattr__(self, 'max_jacobian_condition', condition)
-        radius = float(self.leg_radius)
-        if not 0.0 <= radius < math.inf:
-            raise ValueError(f'leg_radius must be finite and >= 0 (metres), got {radius!r}')
-        object.__setattr__(self, 'leg_radius', radius)
+                'leg length limits must satisfy leg_length_min < leg_length_max, got '
+                f'leg_length_min={self.leg_length_min!r}, leg_length_max={self.leg_length_max!r}')
 
         # Derived once: every IK request and limit check uses them.
         from stewart_kinematics import limits
@@ -184,11 +186,14 @@ class Geometry:
                              + '; '.join(str(v) for v in home_violations))
 
 
-def _checked_number(name, value) -> float:
-    """Return a limit as a float, or refuse what is not one number, naming it."""
+def _checked_limit(name, value, rules) -> float:
+    """Return a limit as a float, or refuse what is not one number its rules allow, naming it."""
     array = as_float_array(value, name)
     if array.shape != ():
         raise ValueError(f'{name} must be one number, got {preview(value)}')
+    reason = first_reason(rules, name, float(array))
+    if reason:
+        raise ValueError(reason)
     return float(array)
 
 

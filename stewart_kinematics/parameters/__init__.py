@@ -15,8 +15,11 @@
 """
 The parameters: every ROS parameter declared once, the parameter files, and what they build.
 
-:mod:`.spec` (one parameter's declaration and the validators), :mod:`.declarations` (every
-parameter of the package, by group), :mod:`.files` (parameter files read as rcl reads them),
+:mod:`.spec` (one parameter's declaration, with the validators of
+:mod:`stewart_kinematics.model.validators`), :mod:`.declarations` (every
+parameter of the package, by group), :mod:`.settings` (the typed settings of each group and
+node, generated from the declarations by scripts/generate_settings.py; their behaviour in
+:mod:`.settings_base`), :mod:`.files` (parameter files read as rcl reads them),
 :mod:`.rcl_yaml` (the package's one YAML reader, with its limits), :mod:`.builders` (the
 geometry and frames from parameter values) and :mod:`.tables` (the documentation's parameter
 tables).
@@ -74,26 +77,33 @@ from stewart_kinematics.parameters.settings import (
     MarkerSettings,
     MotionCueingNodeSettings,
     MotionSettings,
-    NodeSettings,
     QueueSettings,
     RampSettings,
-    Settings,
     SolverSettings,
     StreamingSettings,
     TrajectoryNodeSettings,
     WorkspaceSettings,
 )
+from stewart_kinematics.parameters.settings_base import NodeSettings, Settings
 from stewart_kinematics.parameters.spec import (
     BOOL,
+    DistinctNames,
     DOUBLE,
     DOUBLE_ARRAY,
+    Finite,
+    FixedLength,
+    FrameName,
+    InRange,
     INTEGER,
+    NonEmpty,
     NullString,
+    OneOf,
     OutOfRangeNumber,
     ParameterSpec,
     STRING,
     STRING_ARRAY,
     Validator,
+    ZeroOrInRange,
 )
 from stewart_kinematics.parameters.tables import markdown_table
 
@@ -110,13 +120,17 @@ __all__ = [
     'check_values',
     'CueingParameterSettings',
     'defaults',
+    'DistinctNames',
     'DOUBLE',
     'DOUBLE_ARRAY',
+    'Finite',
+    'FixedLength',
     'FK_FRAME_PARAMETERS',
     'FkFrameSettings',
     'FkNodeSettings',
     'FRAME_PARAMETERS',
     'frame_parameters_reason',
+    'FrameName',
     'frames_from_parameters',
     'frames_from_settings',
     'FrameSettings',
@@ -127,6 +141,7 @@ __all__ = [
     'IK_FRAME_PARAMETERS',
     'IkFrameSettings',
     'IkNodeSettings',
+    'InRange',
     'INTEGER',
     'load_geometry',
     'load_settings',
@@ -134,18 +149,20 @@ __all__ = [
     'MARKER_PARAMETERS',
     'MarkerSettings',
     'MOTION_CUEING_PARAMETERS',
-    'MotionCueingNodeSettings',
     'MOTION_PARAMETERS',
+    'MotionCueingNodeSettings',
     'MotionSettings',
     'NodeSettings',
+    'NonEmpty',
     'NullString',
+    'OneOf',
     'OutOfRangeNumber',
+    'ParameterFileError',
     'ParameterSpec',
     'QUEUE_PARAMETERS',
     'QueueSettings',
     'RAMP_PARAMETERS',
     'RampSettings',
-    'ParameterFileError',
     'read_parameter_file',
     'read_parameter_files',
     'REPLACED_PARAMETERS',
@@ -160,4 +177,5 @@ __all__ = [
     'Validator',
     'WORKSPACE_PARAMETERS',
     'WorkspaceSettings',
+    'ZeroOrInRange',
 ]

@@ -24,22 +24,23 @@ documentation's parameter tables are generated from them
 import difflib
 import math
 
+from stewart_kinematics.model import limit_bounds
 from stewart_kinematics.parameters.spec import (
     BOOL,
-    distinct_names,
+    DistinctNames,
     DOUBLE,
     DOUBLE_ARRAY,
-    finite,
-    fixed_length,
-    frame_name,
-    in_range,
+    Finite,
+    FixedLength,
+    FrameName,
+    InRange,
     INTEGER,
-    non_empty,
-    one_of,
+    NonEmpty,
+    OneOf,
     ParameterSpec,
     STRING,
     STRING_ARRAY,
-    zero_or_in_range,
+    ZeroOrInRange,
 )
 
 
@@ -49,84 +50,71 @@ GEOMETRY_PARAMETERS = (
         'Base joint centres b_1..b_6 in the base frame, metres, flattened as '
         'x1, y1, z1, ..., x6, y6, z6; two legs given the same coordinates share one joint '
         '(6-3 and 3-3 platforms)',
-        read_only=True, validators=(fixed_length(18), finite),
-        constraints='18 finite values; not collinear; a joint shared by 2 legs at most'),
+        read_only=True, validators=(FixedLength(18), Finite()),
+        note='not collinear; a joint shared by 2 legs at most'),
     ParameterSpec(
         'platform_joints', DOUBLE_ARRAY,
         'Platform joint centres p_1..p_6 in the platform frame, metres, flattened as '
         'x1, y1, z1, ..., x6, y6, z6; two legs given the same coordinates share one joint '
         '(6-3 and 3-3 platforms)',
-        read_only=True, validators=(fixed_length(18), finite),
-        constraints='18 finite values; not collinear; a joint shared by 2 legs at most'),
+        read_only=True, validators=(FixedLength(18), Finite()),
+        note='not collinear; a joint shared by 2 legs at most'),
     ParameterSpec(
         'home_position', DOUBLE_ARRAY,
         'Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; '
         'leg extensions are measured from it and forward kinematics starts from it',
-        read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
+        read_only=True, validators=(FixedLength(3), Finite())),
     ParameterSpec(
         'home_orientation_deg', DOUBLE_ARRAY,
         'Home orientation alpha, beta, gamma (R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
         default=[0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
-        constraints='3 values in [-180, 180]'),
+        validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
     ParameterSpec(
         'leg_length_min', DOUBLE,
         'Shortest allowed leg length (actuator fully retracted), metres; 0.0 for no limit',
-        default=0.0, read_only=True, validators=(finite, in_range(0.0, math.inf)),
-        constraints='>= 0, < leg_length_max'),
+        default=0.0, read_only=True, validators=limit_bounds.LEG_LENGTH_MIN,
+        note='< leg_length_max'),
     ParameterSpec(
         'leg_length_max', DOUBLE,
         'Longest allowed leg length (actuator fully extended), metres; .inf for no limit',
-        default=math.inf, read_only=True,
-        validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> leg_length_min; .inf allowed'),
+        default=math.inf, read_only=True, validators=limit_bounds.LEG_LENGTH_MAX,
+        note='> leg_length_min'),
     ParameterSpec(
         'base_joint_max_angle_deg', DOUBLE,
         'Largest angle between a leg and its home direction at the base joint (joint cone), '
         'degrees; 180.0 for no limit',
-        default=180.0, read_only=True,
-        validators=(finite, in_range(0.0, 180.0, low_inclusive=False)), constraints='in (0, 180]'),
+        default=180.0, read_only=True, validators=limit_bounds.JOINT_MAX_ANGLE_DEG),
     ParameterSpec(
         'platform_joint_max_angle_deg', DOUBLE,
         'Largest angle between a leg and its home direction at the platform joint, in the '
         'platform frame (joint cone), degrees; 180.0 for no limit',
-        default=180.0, read_only=True,
-        validators=(finite, in_range(0.0, 180.0, low_inclusive=False)), constraints='in (0, 180]'),
+        default=180.0, read_only=True, validators=limit_bounds.JOINT_MAX_ANGLE_DEG),
     ParameterSpec(
         'max_jacobian_condition', DOUBLE,
         'Singularity margin: largest condition number of the dimensionless Jacobian '
         "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
-        default=math.inf, read_only=True, validators=(in_range(1.0, math.inf),),
-        constraints='>= 1; .inf allowed'),
+        default=math.inf, read_only=True, validators=limit_bounds.MAX_JACOBIAN_CONDITION),
     ParameterSpec(
         'leg_radius', DOUBLE,
         'Radius of each leg, metres: a leg is a capsule of this radius around the segment from '
         'its base joint to its platform joint, and a pose where two legs come closer than '
         '2 * leg_radius is refused (leg_collision); 0.0 for no collision check',
-        default=0.0, read_only=True, validators=(finite, in_range(0.0, 1.0)),
-        constraints='in [0, 1]'),
+        default=0.0, read_only=True, validators=limit_bounds.LEG_RADIUS),
     ParameterSpec(
         'leg_velocity_max', DOUBLE,
         'Largest speed of a leg (actuator), metres per second: timed trajectories are refused '
         'or retimed to keep within it, streamed commands are limited to it; .inf for no limit',
-        default=math.inf, read_only=True,
-        validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> 0; .inf allowed'),
+        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
     ParameterSpec(
         'leg_acceleration_max', DOUBLE,
         'Largest acceleration of a leg, metres per second squared, as leg_velocity_max; '
         '.inf for no limit',
-        default=math.inf, read_only=True,
-        validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> 0; .inf allowed'),
+        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
     ParameterSpec(
         'leg_jerk_max', DOUBLE,
         'Largest jerk of a leg, metres per second cubed, for streamed commands (command_rate); '
         '.inf for no limit',
-        default=math.inf, read_only=True,
-        validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> 0; .inf allowed'),
+        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
 )
 
 
@@ -136,13 +124,13 @@ ACTUATOR_PARAMETERS = (
         'Names of the six leg actuators as prismatic joints, leg 1..6, on every JointState and '
         'JointTrajectory the package publishes or reads',
         default=['leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6'], read_only=True,
-        validators=(fixed_length(6), distinct_names), constraints='6 distinct, non-empty names'),
+        validators=(FixedLength(6), DistinctNames())),
     ParameterSpec(
         'actuator_offsets', DOUBLE_ARRAY,
         "Each actuator's zero as a leg length, metres, leg 1..6: an actuator position is its "
         'leg length minus its offset',
         default=[0.0, 0.0, 0.0, 0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(6), finite), constraints='6 finite values'),
+        validators=(FixedLength(6), Finite())),
 )
 
 SOLVER_PARAMETERS = (
@@ -150,42 +138,38 @@ SOLVER_PARAMETERS = (
         'tolerance', DOUBLE,
         'Newton-Raphson stops when every leg length of the solution is within this of the '
         'measured one, metres',
-        default=1e-12, validators=(finite, in_range(0.0, 1e-2, low_inclusive=False)),
-        constraints='in (0, 0.01]'),
+        default=1e-12, validators=(Finite(), InRange(0.0, 1e-2, low_inclusive=False))),
     ParameterSpec(
         'max_iterations', INTEGER,
         'Newton-Raphson iterations before a solve is reported as not converged',
-        default=50, validators=(in_range(1, 1000),), constraints='in [1, 1000]'),
+        default=50, validators=(InRange(1, 1000),)),
     ParameterSpec(
         'near_singularity_condition', DOUBLE,
         'A solution whose dimensionless Jacobian condition number exceeds this is published '
         'with a WARN status on /diagnostics: it lies near a singularity; leg velocities are '
         'not turned into a twist there (they would be amplified up to this many times)',
-        default=100.0, validators=(in_range(1.0, math.inf),), constraints='>= 1; .inf allowed'),
+        default=100.0, validators=(InRange(1.0, math.inf),)),
     ParameterSpec(
         'pose_tolerance', DOUBLE,
         'Largest accepted bound on the pose error of a solution, metres and radians: near a '
         'singularity leg lengths matched to the tolerance above fix the pose only loosely, and '
         'a solution whose first-order error bound exceeds this is refused; .inf for no check',
-        default=1e-9, validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> 0; .inf allowed'),
+        default=1e-9, validators=(InRange(0.0, math.inf, low_inclusive=False),)),
     ParameterSpec(
         'assembly_guard_length_change', DOUBLE,
         'Assembly-mode guard: when no leg changed by more than this since the last solution, '
         'metres, the new solution must lie within the two limits below of the last one',
-        default=0.005, validators=(finite, in_range(0.0, 1.0)), constraints='in [0, 1]'),
+        default=0.005, validators=(Finite(), InRange(0.0, 1.0))),
     ParameterSpec(
         'assembly_guard_position_change', DOUBLE,
         'Assembly-mode guard: largest move of the platform origin allowed for such a small '
         'change of the lengths, metres',
-        default=0.05, validators=(finite, in_range(0.0, 10.0, low_inclusive=False)),
-        constraints='in (0, 10]'),
+        default=0.05, validators=(Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
         'assembly_guard_angle_change_deg', DOUBLE,
         'Assembly-mode guard: largest rotation of the platform allowed for such a small '
         'change of the lengths, degrees',
-        default=10.0, validators=(finite, in_range(0.0, 180.0, low_inclusive=False)),
-        constraints='in (0, 180]'),
+        default=10.0, validators=(Finite(), InRange(0.0, 180.0, low_inclusive=False))),
     ParameterSpec(
         'refuse_ambiguous_start', BOOL,
         'After a start or reset_tracker, refuse to publish while more than one assembly mode '
@@ -193,7 +177,7 @@ SOLVER_PARAMETERS = (
         'last known pose (home, or the reset pose): the lengths alone do not tell which mode '
         'the platform is in. Costs one search for every mode (about 0.1 s) per new set of '
         'lengths until a pose is accepted',
-        default=False, constraints='any'),
+        default=False),
 )
 
 #: The assembly-mode margin that fk_node reports (see stewart_kinematics.analysis.assembly_modes).
@@ -204,15 +188,14 @@ ASSEMBLY_MODE_PARAMETERS = (
         '(the distance to the nearest other real mode within the limits, on /diagnostics), '
         'seconds; each runs in a worker process, and only when the lengths changed; 0.0 turns '
         'the margin off',
-        default=1.0, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
-        constraints='in [0, 3600]'),
+        default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 3600.0))),
     ParameterSpec(
         'assembly_mode_margin_warning', DOUBLE,
         'A margin below this gives a WARN status and a log line: another real assembly mode '
         'within the limits lies this close to the estimated pose, metres, as '
         'sqrt(position^2 + (rho angle)^2) with rho the RMS radius of the platform joints; '
         '0.0 for no warning',
-        default=0.05, validators=(finite, in_range(0.0, 100.0)), constraints='in [0, 100]'),
+        default=0.05, validators=(Finite(), InRange(0.0, 100.0))),
 )
 
 
@@ -225,50 +208,44 @@ FRAME_PARAMETERS = (
         'base_frame', STRING,
         'Name of the base frame: the parent of the platform on /tf, and the frame of stamped '
         'poses; a stamped target in a frame other than this one or user_frame is refused',
-        default='stewart_base', read_only=True, validators=(non_empty, frame_name),
-        constraints='a frame name'),
+        default='stewart_base', read_only=True, validators=(NonEmpty(), FrameName())),
     ParameterSpec(
         'platform_frame', STRING,
         'Name of the platform frame (the frame the platform joints are given in) on /tf',
-        default='stewart_platform', read_only=True, validators=(non_empty, frame_name),
-        constraints='a frame name'),
+        default='stewart_platform', read_only=True, validators=(NonEmpty(), FrameName())),
     ParameterSpec(
         'user_frame', STRING,
         "Name of a user frame fixed to the base (a work piece's frame), on /tf_static, in "
         "which stamped poses may be given; '' for none",
-        default='', read_only=True, validators=(frame_name,), constraints="a frame name or ''"),
+        default='', read_only=True, validators=(FrameName(),)),
     ParameterSpec(
         'user_frame_position', DOUBLE_ARRAY,
         'Origin of user_frame in the base frame, X, Y, Z, metres',
         default=[0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX)),
-        constraints='3 values in [-1000, 1000]'),
+        validators=(FixedLength(3), Finite(), InRange(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX))),
     ParameterSpec(
         'user_frame_orientation_deg', DOUBLE_ARRAY,
         'Orientation of user_frame in the base frame, alpha, beta, gamma '
         '(R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
         default=[0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
-        constraints='3 values in [-180, 180]'),
+        validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
     ParameterSpec(
         'tool_frame', STRING,
         "Name of the tool frame fixed to the platform, on /tf_static; '' leaves it unnamed "
         '(its pose below still applies)',
-        default='', validators=(frame_name,), constraints="a frame name or ''"),
+        default='', validators=(FrameName(),)),
     ParameterSpec(
         'tool_frame_position', DOUBLE_ARRAY,
         'Origin of the tool frame in the platform frame, X, Y, Z, metres: the pivot point. '
         'Commanded and estimated poses are those of the tool frame, so a pure rotation turns '
         'the platform about this point',
         default=[0.0, 0.0, 0.0],
-        validators=(fixed_length(3), finite, in_range(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX)),
-        constraints='3 values in [-1000, 1000]'),
+        validators=(FixedLength(3), Finite(), InRange(-FRAME_OFFSET_MAX, FRAME_OFFSET_MAX))),
     ParameterSpec(
         'tool_frame_orientation_deg', DOUBLE_ARRAY,
         'Orientation of the tool frame in the platform frame, alpha, beta, gamma '
         '(R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
-        default=[0.0, 0.0, 0.0], validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
-        constraints='3 values in [-180, 180]'),
+        default=[0.0, 0.0, 0.0], validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
 )
 
 #: fk_node's broadcast of the estimated pose.
@@ -281,8 +258,8 @@ FK_FRAME_PARAMETERS = (
     ParameterSpec(
         'estimated_pose_frame', STRING,
         "Frame of estimated_pose_stamped: base_frame or user_frame; '' means base_frame",
-        default='', read_only=True, validators=(frame_name,),
-        constraints="'', base_frame or user_frame"),
+        default='', read_only=True, validators=(FrameName(),),
+        note='base_frame or user_frame'),
 )
 
 #: ik_node's broadcast of the commanded pose.
@@ -298,8 +275,7 @@ MARKER_PARAMETERS = (
         'marker_rate', DOUBLE,
         'Highest rate of platform_markers, hertz: RViz needs no more, and a marker array per '
         'pose would cost a 1 kHz command stream; 0.0 turns the markers off',
-        default=30.0, read_only=True, validators=(finite, in_range(0.0, 1000.0)),
-        constraints='in [0, 1000]'),
+        default=30.0, read_only=True, validators=(Finite(), InRange(0.0, 1000.0))),
 )
 
 WORKSPACE_PARAMETERS = (
@@ -308,79 +284,68 @@ WORKSPACE_PARAMETERS = (
         'Grid step of the constant-orientation workspace (at the home orientation) that '
         'workspace_markers shows, metres; computed in a worker process once the topic has a '
         'subscriber, and again when this changes; 0.0 turns the markers off',
-        default=0.01, validators=(finite, zero_or_in_range(0.002, 0.1)),
-        constraints='0.0 or in [0.002, 0.1]'),
+        default=0.01, validators=(Finite(), ZeroOrInRange(0.002, 0.1))),
     ParameterSpec(
         'travel_range_rate', DOUBLE,
         'Rate of travel_ranges, the range left along each axis from the last accepted pose, '
         'hertz; computed in a worker process while the topic has a subscriber and the pose '
         'has moved; 0.0 turns them off',
-        default=1.0, read_only=True, validators=(finite, in_range(0.0, 10.0)),
-        constraints='in [0, 10]'),
+        default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 10.0))),
 )
 
 QUEUE_PARAMETERS = (
     ParameterSpec(
         'queue_depth', INTEGER,
         'Depth of the reliable, keep-last queues of every subscription and publisher, messages',
-        default=10, read_only=True, validators=(in_range(1, 10000),),
-        constraints='in [1, 10000]'),
+        default=10, read_only=True, validators=(InRange(1, 10000),)),
 )
 
 RAMP_PARAMETERS = (
     ParameterSpec(
         'position_start', DOUBLE_ARRAY, 'First row of the ramp: X, Y, Z in metres',
-        default=[0.0, 0.0, 0.4325], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
+        default=[0.0, 0.0, 0.4325], read_only=True, validators=(FixedLength(3), Finite())),
     ParameterSpec(
         'position_step', DOUBLE_ARRAY, 'Change of X, Y, Z from one row to the next, metres',
-        default=[0.01, 0.015, 0.01], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values; same number of steps on every axis'),
+        default=[0.01, 0.015, 0.01], read_only=True, validators=(FixedLength(3), Finite()),
+        note='same number of steps on every axis'),
     ParameterSpec(
         'position_end', DOUBLE_ARRAY, 'Last row of the ramp: X, Y, Z in metres',
-        default=[0.1, 0.15, 0.5325], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values'),
+        default=[0.1, 0.15, 0.5325], read_only=True, validators=(FixedLength(3), Finite())),
     ParameterSpec(
         'orientation_start_deg', DOUBLE_ARRAY,
         'First row of the ramp: alpha, beta, gamma in degrees',
         default=[0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
-        constraints='3 values in [-180, 180]'),
+        validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
     ParameterSpec(
         'orientation_step_deg', DOUBLE_ARRAY,
         'Change of alpha, beta, gamma from one row to the next, degrees',
-        default=[1.5, -1.5, 2.0], read_only=True, validators=(fixed_length(3), finite),
-        constraints='3 finite values; same number of steps on every axis'),
+        default=[1.5, -1.5, 2.0], read_only=True, validators=(FixedLength(3), Finite()),
+        note='same number of steps on every axis'),
     ParameterSpec(
         'orientation_end_deg', DOUBLE_ARRAY,
         'Last row of the ramp: alpha, beta, gamma in degrees',
         default=[15.0, -15.0, 20.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-180.0, 180.0)),
-        constraints='3 values in [-180, 180]'),
+        validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
     ParameterSpec(
         'mode', STRING,
         "'table': publish the table's rows, one every row_period; 'interpolate': sample the "
         "ramp in time, like the paper's clock-driven lookup tables, at publish_rate over "
         "duration; 'off': no ramp, only the trajectories received on pose_trajectory and "
         'pose_path',
-        default='table', read_only=True, validators=(one_of('table', 'interpolate', 'off'),),
-        constraints="'table', 'interpolate' or 'off'"),
+        default='table', read_only=True, validators=(OneOf('table', 'interpolate', 'off'),)),
     ParameterSpec(
         'row_period', DOUBLE, "Time between two rows in 'table' mode, seconds",
-        default=1.0, read_only=True, validators=(finite, in_range(1e-3, 3600.0)),
-        constraints='in [0.001, 3600]'),
+        default=1.0, read_only=True, validators=(Finite(), InRange(1e-3, 3600.0))),
     ParameterSpec(
         'publish_rate', DOUBLE,
         "Rate of the samples in 'interpolate' mode; for a received trajectory, rate of the "
         'points of leg_trajectory (every waypoint is a point too) and of the poses played on '
         'target_pose, hertz',
-        default=50.0, read_only=True, validators=(finite, in_range(1e-3, 1000.0)),
-        constraints='in [0.001, 1000]'),
+        default=50.0, read_only=True, validators=(Finite(), InRange(1e-3, 1000.0))),
     ParameterSpec(
         'duration', DOUBLE,
         "Time from the first row to the last in 'interpolate' mode, seconds",
-        default=10.0, read_only=True, validators=(finite, in_range(1e-3, 86400.0)),
-        constraints='in [0.001, 86400]'),
+        default=10.0, read_only=True, validators=(Finite(), InRange(1e-3, 86400.0))),
     ParameterSpec(
         'loop', BOOL, 'Start again from the first row after the last one',
         default=False, read_only=True),
@@ -389,13 +354,12 @@ RAMP_PARAMETERS = (
         'Time between min_subscribers being matched and the first pose, seconds: the '
         'subscribers match this publisher a moment after it matches them, and a pose sent '
         'before that would be lost',
-        default=0.5, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
-        constraints='in [0, 3600]'),
+        default=0.5, read_only=True, validators=(Finite(), InRange(0.0, 3600.0))),
     ParameterSpec(
         'min_subscribers', INTEGER,
         'Wait until this many subscriptions are matched on target_pose before playing, so '
         'that no pose is published to nobody',
-        default=0, read_only=True, validators=(in_range(0, 1000),), constraints='in [0, 1000]'),
+        default=0, read_only=True, validators=(InRange(0, 1000),)),
 )
 
 
@@ -412,14 +376,12 @@ MOTION_PARAMETERS = (
         'Fraction of the fastest speed: a trajectory is played 1 / speed_scale times as long '
         '(retimed: at speed_scale of the leg velocity limit, speed_scale^2 of the acceleration '
         'limit)',
-        default=1.0, validators=(finite, in_range(0.0, 1.0, low_inclusive=False)),
-        constraints='in (0, 1]'),
+        default=1.0, validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),
     ParameterSpec(
         'validation_rate', DOUBLE,
         'Samples per second at which a whole trajectory is checked against every limit before '
         'anything is published, hertz',
-        default=1000.0, validators=(finite, in_range(1.0, 100000.0)),
-        constraints='in [1, 100000]'),
+        default=1000.0, validators=(Finite(), InRange(1.0, 100000.0))),
     ParameterSpec(
         'play', BOOL,
         'Also play an accepted trajectory on target_pose at publish_rate, for the ik_node chain',
@@ -433,69 +395,60 @@ STREAMING_PARAMETERS = (
         'Rate of joint_commands, hertz: each command moves from the last toward the latest '
         'accepted target within leg_velocity_max, leg_acceleration_max and leg_jerk_max '
         '(ruckig; the first two must be set); 0.0: one command per accepted pose, unfiltered',
-        default=0.0, read_only=True, validators=(finite, in_range(0.0, 10000.0)),
-        constraints='in [0, 10000]'),
+        default=0.0, read_only=True, validators=(Finite(), InRange(0.0, 10000.0))),
     ParameterSpec(
         'twist_over_limit', STRING,
         'What ik_node does with a target_twist whose leg velocities exceed leg_velocity_max: '
         "'refuse' it (nothing published, code too_fast), or 'scale' the whole twist down "
         'uniformly until the fastest leg is at the limit (published, with a twist_scaled '
         'warning); never published beyond the limit',
-        default='refuse', read_only=True, validators=(one_of('refuse', 'scale'),),
-        constraints="'refuse' or 'scale'"),
+        default='refuse', read_only=True, validators=(OneOf('refuse', 'scale'),)),
 )
 
 
-#: motion_cueing_node: the classical washout, its limits and its input checks
-#: (stewart_kinematics.cueing.CueingSettings; the defaults are the literature's, the same as
-#: that class's, which a test checks; config/motion_cueing.yaml tunes them for the paper's
-#: platform).
+#: motion_cueing_node: the classical washout, its limits and its input checks; the defaults are
+#: the literature's (config/motion_cueing.yaml tunes them for the paper's platform), and
+#: stewart_kinematics.cueing.CueingSettings takes its defaults and bounds from these specs.
 MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'translation_scale', DOUBLE_ARRAY,
         'Gain on the specific force of the translational channel, x y z (vehicle frame: x '
         'forward, y left, z up)',
         default=[0.5, 0.5, 0.5], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 10.0)),
-        constraints='3 values in [0, 10]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'translation_input_limit', DOUBLE,
         "Soft limit of the translational channel's input, m/s^2 per axis: a = L tanh(a_in / L) "
         '(nonlinear scaling); .inf for none',
         default=math.inf, read_only=True,
-        validators=(in_range(0.0, math.inf, low_inclusive=False),),
-        constraints='> 0; .inf allowed'),
+        validators=(InRange(0.0, math.inf, low_inclusive=False),)),
     ParameterSpec(
         'translation_order', INTEGER,
         'Order of the translational high-pass: 3 returns the platform to neutral after a '
         'sustained acceleration, 2 keeps a displacement while it lasts',
-        default=3, read_only=True, validators=(in_range(2, 3),), constraints='2 or 3'),
+        default=3, read_only=True, validators=(OneOf(2, 3),)),
     ParameterSpec(
         'translation_frequency', DOUBLE_ARRAY,
         'Natural frequency of the second-order translational high-pass, rad/s, x y z',
         default=[2.5, 2.5, 4.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
-        constraints='3 values in (0, 100]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
     ParameterSpec(
         'translation_damping', DOUBLE_ARRAY,
         'Damping ratio of the translational high-pass, x y z; >= 1 never reverses through '
         'neutral after a step',
         default=[1.0, 1.0, 1.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 10.0, low_inclusive=False)),
-        constraints='3 values in (0, 10]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
         'translation_break_frequency', DOUBLE_ARRAY,
         'Frequency of the first-order part of the third-order translational high-pass, rad/s, '
         'x y z',
         default=[0.25, 0.25, 0.25], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
-        constraints='3 values in (0, 100]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_scale', DOUBLE_ARRAY,
         'Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll)',
         default=[0.5, 0.5], read_only=True,
-        validators=(fixed_length(2), finite, in_range(0.0, 10.0)),
-        constraints='2 values in [0, 10]'),
+        validators=(FixedLength(2), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'tilt_complementary', BOOL,
         'Use 1 - (the translational high-pass) as the tilt low-pass, per axis, instead of the '
@@ -503,136 +456,122 @@ MOTION_CUEING_PARAMETERS = (
         default=False, read_only=True),
     ParameterSpec(
         'tilt_order', INTEGER, 'Order of the tilt low-pass',
-        default=2, read_only=True, validators=(in_range(1, 2),), constraints='1 or 2'),
+        default=2, read_only=True, validators=(OneOf(1, 2),)),
     ParameterSpec(
         'tilt_frequency', DOUBLE, 'Cut-off of the tilt low-pass, rad/s',
         default=5.0, read_only=True,
-        validators=(finite, in_range(0.0, 100.0, low_inclusive=False)), constraints='in (0, 100]'),
+        validators=(Finite(), InRange(0.0, 100.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_damping', DOUBLE, 'Damping ratio of the tilt low-pass (order 2)',
         default=1.0, read_only=True,
-        validators=(finite, in_range(0.0, 10.0, low_inclusive=False)), constraints='in (0, 10]'),
+        validators=(Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_rate_max_deg', DOUBLE,
         'Largest tilt rate of tilt coordination, degrees per second (the threshold below which '
         'a rotation is not perceived)',
         default=3.0, read_only=True,
-        validators=(finite, in_range(0.0, 90.0, low_inclusive=False)), constraints='in (0, 90]'),
+        validators=(Finite(), InRange(0.0, 90.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_acceleration_max_deg', DOUBLE,
         'Largest tilt acceleration of tilt coordination, degrees per second squared (a smooth '
         'onset of the tilt)',
         default=10.0, read_only=True,
-        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
-        constraints='in (0, 1000]'),
+        validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_max_deg', DOUBLE, 'Largest tilt angle of tilt coordination, degrees',
         default=15.0, read_only=True,
-        validators=(finite, in_range(0.0, 45.0, low_inclusive=False)), constraints='in (0, 45]'),
+        validators=(Finite(), InRange(0.0, 45.0, low_inclusive=False))),
     ParameterSpec(
         'rotation_scale', DOUBLE_ARRAY, 'Gain on the angular velocity, roll pitch yaw',
         default=[0.5, 0.5, 0.5], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 10.0)),
-        constraints='3 values in [0, 10]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'rotation_order', INTEGER,
         'Order of the rotational high-pass: 2 returns the angle to neutral after a sustained '
         'rate',
-        default=2, read_only=True, validators=(in_range(1, 2),), constraints='1 or 2'),
+        default=2, read_only=True, validators=(OneOf(1, 2),)),
     ParameterSpec(
         'rotation_frequency', DOUBLE_ARRAY,
         'Natural frequency of the rotational high-pass, rad/s, roll pitch yaw',
         default=[1.0, 1.0, 1.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 100.0, low_inclusive=False)),
-        constraints='3 values in (0, 100]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
     ParameterSpec(
         'rotation_damping', DOUBLE_ARRAY,
         'Damping ratio of the rotational high-pass, roll pitch yaw',
         default=[1.0, 1.0, 1.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(0.0, 10.0, low_inclusive=False)),
-        constraints='3 values in (0, 10]'),
+        validators=(FixedLength(3), Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
         'head_position', DOUBLE_ARRAY,
         "The cueing reference point (the driver's head) in the platform frame, metres: the "
         "cue's rotations turn about it, and the perceived specific force is computed there",
         default=[0.0, 0.0, 0.5], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-10.0, 10.0)),
-        constraints='3 values in [-10, 10]'),
+        validators=(FixedLength(3), Finite(), InRange(-10.0, 10.0))),
     ParameterSpec(
         'follower_frequency', DOUBLE,
         'Bandwidth of the follower that brings the platform back onto the cue after the leg '
         'velocity or acceleration limits held it back, rad/s',
         default=10.0, read_only=True,
-        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
-        constraints='in (0, 1000]'),
+        validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
     ParameterSpec(
         'workspace_recovery_rate', DOUBLE,
         'Fastest rise of the workspace scale (the share of the cue kept inside the limits) '
         'back toward 1, per second',
         default=0.5, read_only=True,
-        validators=(finite, in_range(0.0, 1000.0, low_inclusive=False)),
-        constraints='in (0, 1000]'),
+        validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
     ParameterSpec(
         'leg_length_margin', DOUBLE,
         'The cue keeps this far inside each end of the stroke, metres (raised to the braking '
         'distance leg_velocity_max^2 / (2 leg_acceleration_max) when that is longer)',
-        default=0.01, read_only=True, validators=(finite, in_range(0.0, 1.0)),
-        constraints='in [0, 1]'),
+        default=0.01, read_only=True, validators=(Finite(), InRange(0.0, 1.0))),
     ParameterSpec(
         'joint_angle_margin_deg', DOUBLE,
         'The cue keeps this far inside each joint cone, degrees',
-        default=2.0, read_only=True, validators=(finite, in_range(0.0, 45.0)),
-        constraints='in [0, 45]'),
+        default=2.0, read_only=True, validators=(Finite(), InRange(0.0, 45.0))),
     ParameterSpec(
         'condition_margin', DOUBLE,
         'The cue keeps the Jacobian condition number below this share of '
         'max_jacobian_condition',
         default=0.9, read_only=True,
-        validators=(finite, in_range(0.0, 1.0, low_inclusive=False)), constraints='in (0, 1]'),
+        validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),
     ParameterSpec(
         'max_input_gap', DOUBLE,
         'A longer time between two vehicle_imu stamps counts as this long (the washout pauses, '
         'with an input_gap warning), seconds',
         default=0.1, read_only=True,
-        validators=(finite, in_range(0.0, 3600.0, low_inclusive=False)),
-        constraints='in (0, 3600]'),
+        validators=(Finite(), InRange(0.0, 3600.0, low_inclusive=False))),
     ParameterSpec(
         'max_specific_force', DOUBLE,
         'A larger specific force is refused as absurd (the platform eases to neutral), m/s^2',
         default=100.0, read_only=True,
-        validators=(finite, in_range(0.0, 1e4, low_inclusive=False)), constraints='in (0, 10000]'),
+        validators=(Finite(), InRange(0.0, 1e4, low_inclusive=False))),
     ParameterSpec(
         'max_angular_velocity', DOUBLE,
         'A larger angular velocity is refused as absurd (the platform eases to neutral), rad/s',
         default=20.0, read_only=True,
-        validators=(finite, in_range(0.0, 1e4, low_inclusive=False)), constraints='in (0, 10000]'),
+        validators=(Finite(), InRange(0.0, 1e4, low_inclusive=False))),
     ParameterSpec(
         'vehicle_frame', STRING,
         "The vehicle's body frame (x forward, y left, z up, REP 103): vehicle_imu in this frame "
         '(or with an empty frame_id) is cued as it is; a sample in a frame neither this nor '
         'imu_frame is refused with the reason',
-        default='base_link', read_only=True, validators=(non_empty, frame_name),
-        constraints='a frame name'),
+        default='base_link', read_only=True, validators=(NonEmpty(), FrameName())),
     ParameterSpec(
         'imu_frame', STRING,
         'Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed '
         "by imu_orientation_rpy_deg; '' for none",
-        default='', read_only=True, validators=(frame_name,),
-        constraints="a frame name or ''"),
+        default='', read_only=True, validators=(FrameName(),)),
     ParameterSpec(
         'imu_orientation_rpy_deg', DOUBLE_ARRAY,
         'Orientation of imu_frame in vehicle_frame: roll, pitch, yaw about the fixed x, y, z '
         'axes (R = Rz Ry Rx), degrees; [180.0, 0.0, 0.0] for an IMU in NED axes (x forward, y '
         'right, z down)',
         default=[0.0, 0.0, 0.0], read_only=True,
-        validators=(fixed_length(3), finite, in_range(-360.0, 360.0)),
-        constraints='3 values in [-360, 360]'),
+        validators=(FixedLength(3), Finite(), InRange(-360.0, 360.0))),
     ParameterSpec(
         'input_timeout', DOUBLE,
         'When no vehicle_imu message came for this long, the platform eases to neutral as if '
         'the vehicle were at rest, seconds (node clock); 0.0 turns this off',
-        default=0.5, read_only=True, validators=(finite, in_range(0.0, 3600.0)),
-        constraints='in [0, 3600]'),
+        default=0.5, read_only=True, validators=(Finite(), InRange(0.0, 3600.0))),
 )
 
 

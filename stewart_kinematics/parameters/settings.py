@@ -12,263 +12,794 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
+# GENERATED FILE: do not edit. Written by scripts/generate_settings.py from the parameter specs
+# of stewart_kinematics/parameters/declarations.py; after changing a spec, run
+#     .venv/bin/python scripts/generate_settings.py
+# (test/test_settings.py fails until this file is what the script writes).
+
 """
-Typed settings: frozen objects whose fields are the parameters of a group of specs.
+The settings classes, written out from the parameter specs: one per parameter group, one per node.
 
-A settings class is built from the specs of :mod:`stewart_kinematics.parameters.declarations`
-(the one declaration of each parameter), so its fields have the parameters' names, types and
-defaults, and every value is checked by the specs' validators when an object is made. A wrong
-name fails where it is written (``TypeError`` when building, ``AttributeError`` when reading),
-not later as a silent default::
-
-    >>> from stewart_kinematics.parameters import StreamingSettings
-    >>> StreamingSettings(command_rate=100.0).command_rate
-    100.0
-    >>> StreamingSettings(command_rate=-1.0)
-    Traceback (most recent call last):
-        ...
-    ValueError: parameter 'command_rate' must be in [0, 10000], got -1.0
-
-A node's settings (:class:`NodeSettings`) group those of the parameter groups it declares:
-``settings.streaming.command_rate``. Arrays are stored as tuples, so settings are immutable and
-hashable. Nothing here imports ROS.
+Generated (see the comment above): each field of a group is one parameter, with its type, its
+default and its description, unit and allowed values, so that an IDE and a type checker see
+every field; a field without a default is a required parameter. Each node's class has one field
+per group it declares. The behaviour (every value checked by its spec's validators when an
+object is made, :meth:`~stewart_kinematics.parameters.settings_base.Settings.from_values`,
+``replace``, ``as_values``) is that of the base classes in
+:mod:`stewart_kinematics.parameters.settings_base`.
 """
 
-import array
-import dataclasses
-from typing import Any, Dict, Mapping, Tuple
+from dataclasses import dataclass
+import math  # noqa: F401 - the defaults .inf are math.inf
+from typing import ClassVar, Tuple
 
-from stewart_kinematics.parameters.declarations import (
-    ACTUATOR_PARAMETERS,
-    ASSEMBLY_MODE_PARAMETERS,
-    FK_FRAME_PARAMETERS,
-    FRAME_PARAMETERS,
-    GEOMETRY_PARAMETERS,
-    IK_FRAME_PARAMETERS,
-    MARKER_PARAMETERS,
-    MOTION_CUEING_PARAMETERS,
-    MOTION_PARAMETERS,
-    QUEUE_PARAMETERS,
-    RAMP_PARAMETERS,
-    SOLVER_PARAMETERS,
-    STREAMING_PARAMETERS,
-    WORKSPACE_PARAMETERS,
-)
-from stewart_kinematics.parameters.spec import (
-    BOOL,
-    DOUBLE,
-    DOUBLE_ARRAY,
-    INTEGER,
-    ParameterSpec,
-    STRING,
-    STRING_ARRAY,
-)
-
-#: The Python type of each parameter type, for the settings' field annotations.
-_FIELD_TYPES = {
-    BOOL: bool,
-    INTEGER: int,
-    DOUBLE: float,
-    STRING: str,
-    DOUBLE_ARRAY: Tuple[float, ...],
-    STRING_ARRAY: Tuple[str, ...],
-}
+from stewart_kinematics.parameters import declarations
+from stewart_kinematics.parameters.settings_base import NodeSettings, Settings
+from stewart_kinematics.parameters.spec import ParameterSpec
 
 
-class Settings:
+@dataclass(frozen=True, kw_only=True)
+class GeometrySettings(Settings):
     """
-    Base of the settings classes that :func:`settings_class` builds from parameter specs.
+    One field per parameter of :data:`~stewart_kinematics.parameters.GEOMETRY_PARAMETERS`.
 
-    Build one with keyword arguments (``SolverSettings(tolerance=1e-10)``: the others take
-    their defaults) or from a mapping of parameter values that may hold other names too
-    (:meth:`from_values`). Every value is checked by its spec: ``ValueError`` names the
-    parameter, the value and what is allowed.
+    The platform: joints, home pose, and every limit (stroke, joint cones, singularity margin, leg
+    speed); :func:`~stewart_kinematics.parameters.builders.geometry_from_settings` builds the
+    Geometry.
     """
 
-    #: The specs of the fields, in order.
-    SPECS: Tuple[ParameterSpec, ...] = ()
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.GEOMETRY_PARAMETERS
 
-    def __post_init__(self):
-        for spec in self.SPECS:
-            value = getattr(self, spec.name)
-            if value is None and spec.default is not None:
-                value = spec.default   # None is a value nobody set: the default, as in a file
-                object.__setattr__(self, spec.name, value)
-            if isinstance(value, (list, array.array)):
-                value = tuple(value)
-                object.__setattr__(self, spec.name, value)
-            reason = spec.check(value)
-            if reason:
-                raise ValueError(reason)
-
-    @classmethod
-    def names(cls) -> Tuple[str, ...]:
-        """Return the parameter names of the fields, in order."""
-        return tuple(spec.name for spec in cls.SPECS)
-
-    @classmethod
-    def from_values(cls, values: Mapping[str, Any]) -> 'Settings':
-        """
-        Build the settings from parameter values: the names of this class, others ignored.
-
-        :param values: parameter name -> value, as a parameter file or a node gives them; a
-            missing optional parameter takes its default.
-        :raises ValueError: naming the parameter, if a value is not allowed or a required one
-            is missing.
-        """
-        for spec in cls.SPECS:
-            if spec.default is None and values.get(spec.name) is None:
-                raise ValueError(spec.check(None))
-        return cls(**{name: values[name] for name in cls.names() if name in values})
-
-    def replace(self, **changes) -> 'Settings':
-        """Return a copy with some fields changed, checked like a new object."""
-        return dataclasses.replace(self, **changes)
-
-    def as_values(self) -> Dict[str, Any]:
-        """Return parameter name -> value (arrays as lists, as a parameter file holds them)."""
-        return {name: list(value) if isinstance(value, tuple) else value
-                for name, value in ((name, getattr(self, name)) for name in self.names())}
-
-
-def settings_class(name: str, specs, doc: str) -> type:
+    base_joints: Tuple[float, ...]
     """
-    Build a frozen settings class with one field per spec (name, type and default).
-
-    :param name: the class name, such as ``'SolverSettings'``.
-    :param specs: the :class:`~stewart_kinematics.parameters.spec.ParameterSpec` of the fields.
-    :param doc: the class docstring: what the group configures.
-    """
-    fields = []
-    for spec in specs:
-        default = spec.default
-        if isinstance(default, list):
-            default = tuple(default)
-        options = {} if default is None else {'default': default}
-        fields.append((spec.name, _FIELD_TYPES[spec.value_type], dataclasses.field(**options)))
-    cls = dataclasses.make_dataclass(name, fields, bases=(Settings,), frozen=True, kw_only=True,
-                                     namespace={'SPECS': tuple(specs), '__doc__': doc})
-    cls.__module__ = __name__
-    return cls
-
-
-class NodeSettings:
-    """
-    Base of a node's settings: one :class:`Settings` object per parameter group it declares.
-
-    The groups are the fields of a subclass (a frozen dataclass), such as ``geometry`` and
-    ``streaming``; :data:`GROUPS` names the group classes in declaration order.
+    Base joint centres b_1..b_6 in the base frame, metres, flattened as x1, y1, z1, ..., x6, y6,
+    z6; two legs given the same coordinates share one joint (6-3 and 3-3 platforms). Allowed: 18
+    finite values; not collinear; a joint shared by 2 legs at most. Required. Read-only at run
+    time.
     """
 
-    #: Field name -> settings class, in the order the node declares them.
-    GROUPS: Dict[str, type] = {}
-
-    @classmethod
-    def specs(cls) -> Tuple[ParameterSpec, ...]:
-        """Return the specs of every parameter of the node, group by group."""
-        return tuple(spec for group in cls.GROUPS.values() for spec in group.SPECS)
-
-    @classmethod
-    def from_values(cls, values: Mapping[str, Any]) -> 'NodeSettings':
-        """Build every group from parameter values (see :meth:`Settings.from_values`)."""
-        return cls(**{field: group.from_values(values) for field, group in cls.GROUPS.items()})
-
-    def replace(self, **changes) -> 'NodeSettings':
-        """
-        Return a copy with some parameters changed, by parameter name, checked.
-
-        :raises ValueError: for a name that none of the node's groups has.
-        """
-        groups = {field: getattr(self, field) for field in self.GROUPS}
-        for name, value in changes.items():
-            field = next((field for field, group in self.GROUPS.items()
-                          if name in group.names()), None)
-            if field is None:
-                raise ValueError(f"unknown parameter '{name}' for {type(self).__name__}")
-            groups[field] = groups[field].replace(**{name: value})
-        return type(self)(**groups)
-
-    def as_values(self) -> Dict[str, Any]:
-        """Return parameter name -> value for every parameter of the node."""
-        values = {}
-        for field in self.GROUPS:
-            values.update(getattr(self, field).as_values())
-        return values
-
-
-def node_settings_class(name: str, doc: str, **groups) -> type:
+    platform_joints: Tuple[float, ...]
     """
-    Build a node's settings class: one field per parameter group.
-
-    :param name: the class name, such as ``'IkNodeSettings'``.
-    :param doc: the class docstring.
-    :param groups: field name -> settings class, in declaration order.
+    Platform joint centres p_1..p_6 in the platform frame, metres, flattened as x1, y1, z1, ...,
+    x6, y6, z6; two legs given the same coordinates share one joint (6-3 and 3-3 platforms).
+    Allowed: 18 finite values; not collinear; a joint shared by 2 legs at most. Required. Read-only
+    at run time.
     """
-    cls = dataclasses.make_dataclass(
-        name, [(field, group) for field, group in groups.items()], bases=(NodeSettings,),
-        frozen=True, kw_only=True, namespace={'GROUPS': dict(groups), '__doc__': doc})
-    cls.__module__ = __name__
-    return cls
+
+    home_position: Tuple[float, ...]
+    """
+    Home (neutral) position X, Y, Z of the platform frame in the base frame, metres; leg extensions
+    are measured from it and forward kinematics starts from it. Allowed: 3 finite values. Required.
+    Read-only at run time.
+    """
+
+    home_orientation_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Home orientation alpha, beta, gamma (R = Rz(gamma) Ry(beta) Rx(alpha)), degrees. Allowed: 3
+    values in [-180, 180]. Read-only at run time.
+    """
+
+    leg_length_min: float = 0.0
+    """
+    Shortest allowed leg length (actuator fully retracted), metres; 0.0 for no limit. Allowed:
+    finite, >= 0; < leg_length_max. Read-only at run time.
+    """
+
+    leg_length_max: float = math.inf
+    """
+    Longest allowed leg length (actuator fully extended), metres; .inf for no limit. Allowed: > 0;
+    .inf allowed; > leg_length_min. Read-only at run time.
+    """
+
+    base_joint_max_angle_deg: float = 180.0
+    """
+    Largest angle between a leg and its home direction at the base joint (joint cone), degrees;
+    180.0 for no limit. Allowed: in (0, 180]. Read-only at run time.
+    """
+
+    platform_joint_max_angle_deg: float = 180.0
+    """
+    Largest angle between a leg and its home direction at the platform joint, in the platform frame
+    (joint cone), degrees; 180.0 for no limit. Allowed: in (0, 180]. Read-only at run time.
+    """
+
+    max_jacobian_condition: float = math.inf
+    """
+    Singularity margin: largest condition number of the dimensionless Jacobian (1 is ideal, about
+    10 at the paper platform's home pose); .inf for no limit. Allowed: >= 1; .inf allowed.
+    Read-only at run time.
+    """
+
+    leg_radius: float = 0.0
+    """
+    Radius of each leg, metres: a leg is a capsule of this radius around the segment from its base
+    joint to its platform joint, and a pose where two legs come closer than 2 * leg_radius is
+    refused (leg_collision); 0.0 for no collision check. Allowed: in [0, 1]. Read-only at run time.
+    """
+
+    leg_velocity_max: float = math.inf
+    """
+    Largest speed of a leg (actuator), metres per second: timed trajectories are refused or retimed
+    to keep within it, streamed commands are limited to it; .inf for no limit. Allowed: > 0; .inf
+    allowed. Read-only at run time.
+    """
+
+    leg_acceleration_max: float = math.inf
+    """
+    Largest acceleration of a leg, metres per second squared, as leg_velocity_max; .inf for no
+    limit. Allowed: > 0; .inf allowed. Read-only at run time.
+    """
+
+    leg_jerk_max: float = math.inf
+    """
+    Largest jerk of a leg, metres per second cubed, for streamed commands (command_rate); .inf for
+    no limit. Allowed: > 0; .inf allowed. Read-only at run time.
+    """
 
 
-# The parameter groups, one settings class each (see declarations.py for every field's
-# meaning, unit and allowed values).
-GeometrySettings = settings_class(
-    'GeometrySettings', GEOMETRY_PARAMETERS,
-    'The platform: joints, home pose, and every limit (stroke, joint cones, singularity '
-    'margin, leg speed); :func:`~stewart_kinematics.parameters.builders.geometry_from_settings` '
-    'builds the Geometry.')
-ActuatorSettings = settings_class(
-    'ActuatorSettings', ACTUATOR_PARAMETERS,
-    'The actuators as a driver names them: joint names and zeros.')
-SolverSettings = settings_class(
-    'SolverSettings', SOLVER_PARAMETERS,
-    "The forward kinematics solver and the pose tracker's checks (fk_node).")
-AssemblyModeSettings = settings_class(
-    'AssemblyModeSettings', ASSEMBLY_MODE_PARAMETERS,
-    'The assembly-mode margin that fk_node reports.')
-FrameSettings = settings_class(
-    'FrameSettings', FRAME_PARAMETERS,
-    'The base, platform, user and tool frames; '
-    ':func:`~stewart_kinematics.parameters.builders.frames_from_settings` builds the FrameTree.')
-FkFrameSettings = settings_class(
-    'FkFrameSettings', FK_FRAME_PARAMETERS, "fk_node's broadcast of the estimated pose.")
-IkFrameSettings = settings_class(
-    'IkFrameSettings', IK_FRAME_PARAMETERS, "ik_node's broadcast of the commanded pose.")
-MarkerSettings = settings_class('MarkerSettings', MARKER_PARAMETERS, 'The RViz markers.')
-WorkspaceSettings = settings_class(
-    'WorkspaceSettings', WORKSPACE_PARAMETERS, "ik_node's workspace outputs.")
-QueueSettings = settings_class(
-    'QueueSettings', QUEUE_PARAMETERS, 'The queues of every subscription and publisher.')
-RampSettings = settings_class(
-    'RampSettings', RAMP_PARAMETERS, 'The Table 3 ramp and how trajectory_node plays it.')
-MotionSettings = settings_class(
-    'MotionSettings', MOTION_PARAMETERS,
-    'Trajectories and paths received by trajectory_node: checking, retiming, playing.')
-StreamingSettings = settings_class(
-    'StreamingSettings', STREAMING_PARAMETERS, "ik_node's streamed, jerk-limited commands.")
-CueingParameterSettings = settings_class(
-    'CueingParameterSettings', MOTION_CUEING_PARAMETERS,
-    "motion_cueing_node's washout, limit margins and input checks, as the node declares its "
-    "parameters (degrees where named); not the motion cueing's own settings, "
-    ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
-    ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.')
+@dataclass(frozen=True, kw_only=True)
+class ActuatorSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.ACTUATOR_PARAMETERS`.
 
-# The nodes' settings: the groups each node declares, in order.
-IkNodeSettings = node_settings_class(
-    'IkNodeSettings', "ik_node's settings.", geometry=GeometrySettings,
-    actuators=ActuatorSettings, frames=FrameSettings, ik_frames=IkFrameSettings,
-    markers=MarkerSettings, workspace=WorkspaceSettings, streaming=StreamingSettings,
-    queue=QueueSettings)
-FkNodeSettings = node_settings_class(
-    'FkNodeSettings', "fk_node's settings.", geometry=GeometrySettings,
-    actuators=ActuatorSettings, solver=SolverSettings, assembly_modes=AssemblyModeSettings,
-    frames=FrameSettings, fk_frames=FkFrameSettings, markers=MarkerSettings,
-    queue=QueueSettings)
-MotionCueingNodeSettings = node_settings_class(
-    'MotionCueingNodeSettings', "motion_cueing_node's settings.", geometry=GeometrySettings,
-    frames=FrameSettings, cueing=CueingParameterSettings, queue=QueueSettings)
-TrajectoryNodeSettings = node_settings_class(
-    'TrajectoryNodeSettings', "trajectory_node's settings.", geometry=GeometrySettings,
-    actuators=ActuatorSettings, frames=FrameSettings, ramp=RampSettings, motion=MotionSettings,
-    queue=QueueSettings)
+    The actuators as a driver names them: joint names and zeros.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.ACTUATOR_PARAMETERS
+
+    joint_names: Tuple[str, ...] = ('leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6')
+    """
+    Names of the six leg actuators as prismatic joints, leg 1..6, on every JointState and
+    JointTrajectory the package publishes or reads. Allowed: 6 distinct, non-empty names. Read-only
+    at run time.
+    """
+
+    actuator_offsets: Tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    """
+    Each actuator's zero as a leg length, metres, leg 1..6: an actuator position is its leg length
+    minus its offset. Allowed: 6 finite values. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class SolverSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.SOLVER_PARAMETERS`.
+
+    The forward kinematics solver and the pose tracker's checks (fk_node).
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.SOLVER_PARAMETERS
+
+    tolerance: float = 1e-12
+    """
+    Newton-Raphson stops when every leg length of the solution is within this of the measured one,
+    metres. Allowed: in (0, 0.01].
+    """
+
+    max_iterations: int = 50
+    """
+    Newton-Raphson iterations before a solve is reported as not converged. Allowed: in [1, 1000].
+    """
+
+    near_singularity_condition: float = 100.0
+    """
+    A solution whose dimensionless Jacobian condition number exceeds this is published with a WARN
+    status on /diagnostics: it lies near a singularity; leg velocities are not turned into a twist
+    there (they would be amplified up to this many times). Allowed: >= 1; .inf allowed.
+    """
+
+    pose_tolerance: float = 1e-09
+    """
+    Largest accepted bound on the pose error of a solution, metres and radians: near a singularity
+    leg lengths matched to the tolerance above fix the pose only loosely, and a solution whose
+    first-order error bound exceeds this is refused; .inf for no check. Allowed: > 0; .inf allowed.
+    """
+
+    assembly_guard_length_change: float = 0.005
+    """
+    Assembly-mode guard: when no leg changed by more than this since the last solution, metres, the
+    new solution must lie within the two limits below of the last one. Allowed: in [0, 1].
+    """
+
+    assembly_guard_position_change: float = 0.05
+    """
+    Assembly-mode guard: largest move of the platform origin allowed for such a small change of the
+    lengths, metres. Allowed: in (0, 10].
+    """
+
+    assembly_guard_angle_change_deg: float = 10.0
+    """
+    Assembly-mode guard: largest rotation of the platform allowed for such a small change of the
+    lengths, degrees. Allowed: in (0, 180].
+    """
+
+    refuse_ambiguous_start: bool = False
+    """
+    After a start or reset_tracker, refuse to publish while more than one assembly mode lies within
+    the limits and none within the two assembly-guard changes above of the last known pose (home,
+    or the reset pose): the lengths alone do not tell which mode the platform is in. Costs one
+    search for every mode (about 0.1 s) per new set of lengths until a pose is accepted.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class AssemblyModeSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.ASSEMBLY_MODE_PARAMETERS`.
+
+    The assembly-mode margin that fk_node reports.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.ASSEMBLY_MODE_PARAMETERS
+
+    assembly_mode_margin_period: float = 1.0
+    """
+    Time between two computations of the assembly-mode margin of the last solution (the distance to
+    the nearest other real mode within the limits, on /diagnostics), seconds; each runs in a worker
+    process, and only when the lengths changed; 0.0 turns the margin off. Allowed: in [0, 3600].
+    Read-only at run time.
+    """
+
+    assembly_mode_margin_warning: float = 0.05
+    """
+    A margin below this gives a WARN status and a log line: another real assembly mode within the
+    limits lies this close to the estimated pose, metres, as sqrt(position^2 + (rho angle)^2) with
+    rho the RMS radius of the platform joints; 0.0 for no warning. Allowed: in [0, 100].
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class FrameSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.FRAME_PARAMETERS`.
+
+    The base, platform, user and tool frames;
+    :func:`~stewart_kinematics.parameters.builders.frames_from_settings` builds the FrameTree.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.FRAME_PARAMETERS
+
+    base_frame: str = 'stewart_base'
+    """
+    Name of the base frame: the parent of the platform on /tf, and the frame of stamped poses; a
+    stamped target in a frame other than this one or user_frame is refused. Allowed: a frame name
+    (no spaces, no leading '/'). Read-only at run time.
+    """
+
+    platform_frame: str = 'stewart_platform'
+    """
+    Name of the platform frame (the frame the platform joints are given in) on /tf. Allowed: a
+    frame name (no spaces, no leading '/'). Read-only at run time.
+    """
+
+    user_frame: str = ''
+    """
+    Name of a user frame fixed to the base (a work piece's frame), on /tf_static, in which stamped
+    poses may be given; '' for none. Allowed: a frame name (no spaces, no leading '/') or ''.
+    Read-only at run time.
+    """
+
+    user_frame_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Origin of user_frame in the base frame, X, Y, Z, metres. Allowed: 3 values in [-1000, 1000].
+    Read-only at run time.
+    """
+
+    user_frame_orientation_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Orientation of user_frame in the base frame, alpha, beta, gamma (R = Rz(gamma) Ry(beta)
+    Rx(alpha)), degrees. Allowed: 3 values in [-180, 180]. Read-only at run time.
+    """
+
+    tool_frame: str = ''
+    """
+    Name of the tool frame fixed to the platform, on /tf_static; '' leaves it unnamed (its pose
+    below still applies). Allowed: a frame name (no spaces, no leading '/') or ''.
+    """
+
+    tool_frame_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Origin of the tool frame in the platform frame, X, Y, Z, metres: the pivot point. Commanded and
+    estimated poses are those of the tool frame, so a pure rotation turns the platform about this
+    point. Allowed: 3 values in [-1000, 1000].
+    """
+
+    tool_frame_orientation_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Orientation of the tool frame in the platform frame, alpha, beta, gamma (R = Rz(gamma) Ry(beta)
+    Rx(alpha)), degrees. Allowed: 3 values in [-180, 180].
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class FkFrameSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.FK_FRAME_PARAMETERS`.
+
+    fk_node's broadcast of the estimated pose.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.FK_FRAME_PARAMETERS
+
+    publish_tf: bool = True
+    """
+    Broadcast the estimated pose on /tf (base_frame -> platform_frame, with the stamp of the
+    lengths it comes from) and the user and tool frames on /tf_static. Read-only at run time.
+    """
+
+    estimated_pose_frame: str = ''
+    """
+    Frame of estimated_pose_stamped: base_frame or user_frame; '' means base_frame. Allowed: a
+    frame name (no spaces, no leading '/') or ''; base_frame or user_frame. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class IkFrameSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.IK_FRAME_PARAMETERS`.
+
+    ik_node's broadcast of the commanded pose.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.IK_FRAME_PARAMETERS
+
+    publish_commanded_tf: bool = False
+    """
+    Broadcast each accepted command on /tf as base_frame -> <platform_frame>_commanded. Read-only
+    at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class MarkerSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.MARKER_PARAMETERS`.
+
+    The RViz markers.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.MARKER_PARAMETERS
+
+    marker_rate: float = 30.0
+    """
+    Highest rate of platform_markers, hertz: RViz needs no more, and a marker array per pose would
+    cost a 1 kHz command stream; 0.0 turns the markers off. Allowed: in [0, 1000]. Read-only at run
+    time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class WorkspaceSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.WORKSPACE_PARAMETERS`.
+
+    ik_node's workspace outputs.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.WORKSPACE_PARAMETERS
+
+    workspace_resolution: float = 0.01
+    """
+    Grid step of the constant-orientation workspace (at the home orientation) that
+    workspace_markers shows, metres; computed in a worker process once the topic has a subscriber,
+    and again when this changes; 0.0 turns the markers off. Allowed: 0.0 or in [0.002, 0.1].
+    """
+
+    travel_range_rate: float = 1.0
+    """
+    Rate of travel_ranges, the range left along each axis from the last accepted pose, hertz;
+    computed in a worker process while the topic has a subscriber and the pose has moved; 0.0 turns
+    them off. Allowed: in [0, 10]. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class QueueSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.QUEUE_PARAMETERS`.
+
+    The queues of every subscription and publisher.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.QUEUE_PARAMETERS
+
+    queue_depth: int = 10
+    """
+    Depth of the reliable, keep-last queues of every subscription and publisher, messages. Allowed:
+    in [1, 10000]. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class RampSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.RAMP_PARAMETERS`.
+
+    The Table 3 ramp and how trajectory_node plays it.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.RAMP_PARAMETERS
+
+    position_start: Tuple[float, ...] = (0.0, 0.0, 0.4325)
+    """
+    First row of the ramp: X, Y, Z in metres. Allowed: 3 finite values. Read-only at run time.
+    """
+
+    position_step: Tuple[float, ...] = (0.01, 0.015, 0.01)
+    """
+    Change of X, Y, Z from one row to the next, metres. Allowed: 3 finite values; same number of
+    steps on every axis. Read-only at run time.
+    """
+
+    position_end: Tuple[float, ...] = (0.1, 0.15, 0.5325)
+    """Last row of the ramp: X, Y, Z in metres. Allowed: 3 finite values. Read-only at run time."""
+
+    orientation_start_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    First row of the ramp: alpha, beta, gamma in degrees. Allowed: 3 values in [-180, 180].
+    Read-only at run time.
+    """
+
+    orientation_step_deg: Tuple[float, ...] = (1.5, -1.5, 2.0)
+    """
+    Change of alpha, beta, gamma from one row to the next, degrees. Allowed: 3 finite values; same
+    number of steps on every axis. Read-only at run time.
+    """
+
+    orientation_end_deg: Tuple[float, ...] = (15.0, -15.0, 20.0)
+    """
+    Last row of the ramp: alpha, beta, gamma in degrees. Allowed: 3 values in [-180, 180].
+    Read-only at run time.
+    """
+
+    mode: str = 'table'
+    """
+    'table': publish the table's rows, one every row_period; 'interpolate': sample the ramp in
+    time, like the paper's clock-driven lookup tables, at publish_rate over duration; 'off': no
+    ramp, only the trajectories received on pose_trajectory and pose_path. Allowed: 'table',
+    'interpolate' or 'off'. Read-only at run time.
+    """
+
+    row_period: float = 1.0
+    """
+    Time between two rows in 'table' mode, seconds. Allowed: in [0.001, 3600]. Read-only at run
+    time.
+    """
+
+    publish_rate: float = 50.0
+    """
+    Rate of the samples in 'interpolate' mode; for a received trajectory, rate of the points of
+    leg_trajectory (every waypoint is a point too) and of the poses played on target_pose, hertz.
+    Allowed: in [0.001, 1000]. Read-only at run time.
+    """
+
+    duration: float = 10.0
+    """
+    Time from the first row to the last in 'interpolate' mode, seconds. Allowed: in [0.001, 86400].
+    Read-only at run time.
+    """
+
+    loop: bool = False
+    """Start again from the first row after the last one. Read-only at run time."""
+
+    start_delay: float = 0.5
+    """
+    Time between min_subscribers being matched and the first pose, seconds: the subscribers match
+    this publisher a moment after it matches them, and a pose sent before that would be lost.
+    Allowed: in [0, 3600]. Read-only at run time.
+    """
+
+    min_subscribers: int = 0
+    """
+    Wait until this many subscriptions are matched on target_pose before playing, so that no pose
+    is published to nobody. Allowed: in [0, 1000]. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class MotionSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.MOTION_PARAMETERS`.
+
+    Trajectories and paths received by trajectory_node: checking, retiming, playing.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.MOTION_PARAMETERS
+
+    retime: bool = False
+    """
+    Retime every received trajectory to the fastest timing within the leg velocity and acceleration
+    limits (toppra), instead of refusing one whose own timing breaks them; a path (pose_path) is
+    always retimed.
+    """
+
+    speed_scale: float = 1.0
+    """
+    Fraction of the fastest speed: a trajectory is played 1 / speed_scale times as long (retimed:
+    at speed_scale of the leg velocity limit, speed_scale^2 of the acceleration limit). Allowed: in
+    (0, 1].
+    """
+
+    validation_rate: float = 1000.0
+    """
+    Samples per second at which a whole trajectory is checked against every limit before anything
+    is published, hertz. Allowed: in [1, 100000].
+    """
+
+    play: bool = False
+    """Also play an accepted trajectory on target_pose at publish_rate, for the ik_node chain."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class StreamingSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.STREAMING_PARAMETERS`.
+
+    ik_node's streamed, jerk-limited commands.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.STREAMING_PARAMETERS
+
+    command_rate: float = 0.0
+    """
+    Rate of joint_commands, hertz: each command moves from the last toward the latest accepted
+    target within leg_velocity_max, leg_acceleration_max and leg_jerk_max (ruckig; the first two
+    must be set); 0.0: one command per accepted pose, unfiltered. Allowed: in [0, 10000]. Read-only
+    at run time.
+    """
+
+    twist_over_limit: str = 'refuse'
+    """
+    What ik_node does with a target_twist whose leg velocities exceed leg_velocity_max: 'refuse' it
+    (nothing published, code too_fast), or 'scale' the whole twist down uniformly until the fastest
+    leg is at the limit (published, with a twist_scaled warning); never published beyond the limit.
+    Allowed: 'refuse' or 'scale'. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class CueingParameterSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.MOTION_CUEING_PARAMETERS`.
+
+    motion_cueing_node's washout, limit margins and input checks, as the node declares its
+    parameters (degrees where named); not the motion cueing's own settings,
+    :class:`stewart_kinematics.cueing.CueingSettings` (SI units), which
+    :meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.MOTION_CUEING_PARAMETERS
+
+    translation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
+    """
+    Gain on the specific force of the translational channel, x y z (vehicle frame: x forward, y
+    left, z up). Allowed: 3 values in [0, 10]. Read-only at run time.
+    """
+
+    translation_input_limit: float = math.inf
+    """
+    Soft limit of the translational channel's input, m/s^2 per axis: a = L tanh(a_in / L)
+    (nonlinear scaling); .inf for none. Allowed: > 0; .inf allowed. Read-only at run time.
+    """
+
+    translation_order: int = 3
+    """
+    Order of the translational high-pass: 3 returns the platform to neutral after a sustained
+    acceleration, 2 keeps a displacement while it lasts. Allowed: 2 or 3. Read-only at run time.
+    """
+
+    translation_frequency: Tuple[float, ...] = (2.5, 2.5, 4.0)
+    """
+    Natural frequency of the second-order translational high-pass, rad/s, x y z. Allowed: 3 values
+    in (0, 100]. Read-only at run time.
+    """
+
+    translation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    """
+    Damping ratio of the translational high-pass, x y z; >= 1 never reverses through neutral after
+    a step. Allowed: 3 values in (0, 10]. Read-only at run time.
+    """
+
+    translation_break_frequency: Tuple[float, ...] = (0.25, 0.25, 0.25)
+    """
+    Frequency of the first-order part of the third-order translational high-pass, rad/s, x y z.
+    Allowed: 3 values in (0, 100]. Read-only at run time.
+    """
+
+    tilt_scale: Tuple[float, ...] = (0.5, 0.5)
+    """
+    Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll). Allowed: 2
+    values in [0, 10]. Read-only at run time.
+    """
+
+    tilt_complementary: bool = False
+    """
+    Use 1 - (the translational high-pass) as the tilt low-pass, per axis, instead of the classical
+    low-pass of tilt_order. Read-only at run time.
+    """
+
+    tilt_order: int = 2
+    """Order of the tilt low-pass. Allowed: 1 or 2. Read-only at run time."""
+
+    tilt_frequency: float = 5.0
+    """Cut-off of the tilt low-pass, rad/s. Allowed: in (0, 100]. Read-only at run time."""
+
+    tilt_damping: float = 1.0
+    """Damping ratio of the tilt low-pass (order 2). Allowed: in (0, 10]. Read-only at run time."""
+
+    tilt_rate_max_deg: float = 3.0
+    """
+    Largest tilt rate of tilt coordination, degrees per second (the threshold below which a
+    rotation is not perceived). Allowed: in (0, 90]. Read-only at run time.
+    """
+
+    tilt_acceleration_max_deg: float = 10.0
+    """
+    Largest tilt acceleration of tilt coordination, degrees per second squared (a smooth onset of
+    the tilt). Allowed: in (0, 1000]. Read-only at run time.
+    """
+
+    tilt_max_deg: float = 15.0
+    """
+    Largest tilt angle of tilt coordination, degrees. Allowed: in (0, 45]. Read-only at run time.
+    """
+
+    rotation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
+    """
+    Gain on the angular velocity, roll pitch yaw. Allowed: 3 values in [0, 10]. Read-only at run
+    time.
+    """
+
+    rotation_order: int = 2
+    """
+    Order of the rotational high-pass: 2 returns the angle to neutral after a sustained rate.
+    Allowed: 1 or 2. Read-only at run time.
+    """
+
+    rotation_frequency: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    """
+    Natural frequency of the rotational high-pass, rad/s, roll pitch yaw. Allowed: 3 values in (0,
+    100]. Read-only at run time.
+    """
+
+    rotation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    """
+    Damping ratio of the rotational high-pass, roll pitch yaw. Allowed: 3 values in (0, 10].
+    Read-only at run time.
+    """
+
+    head_position: Tuple[float, ...] = (0.0, 0.0, 0.5)
+    """
+    The cueing reference point (the driver's head) in the platform frame, metres: the cue's
+    rotations turn about it, and the perceived specific force is computed there. Allowed: 3 values
+    in [-10, 10]. Read-only at run time.
+    """
+
+    follower_frequency: float = 10.0
+    """
+    Bandwidth of the follower that brings the platform back onto the cue after the leg velocity or
+    acceleration limits held it back, rad/s. Allowed: in (0, 1000]. Read-only at run time.
+    """
+
+    workspace_recovery_rate: float = 0.5
+    """
+    Fastest rise of the workspace scale (the share of the cue kept inside the limits) back toward
+    1, per second. Allowed: in (0, 1000]. Read-only at run time.
+    """
+
+    leg_length_margin: float = 0.01
+    """
+    The cue keeps this far inside each end of the stroke, metres (raised to the braking distance
+    leg_velocity_max^2 / (2 leg_acceleration_max) when that is longer). Allowed: in [0, 1].
+    Read-only at run time.
+    """
+
+    joint_angle_margin_deg: float = 2.0
+    """
+    The cue keeps this far inside each joint cone, degrees. Allowed: in [0, 45]. Read-only at run
+    time.
+    """
+
+    condition_margin: float = 0.9
+    """
+    The cue keeps the Jacobian condition number below this share of max_jacobian_condition.
+    Allowed: in (0, 1]. Read-only at run time.
+    """
+
+    max_input_gap: float = 0.1
+    """
+    A longer time between two vehicle_imu stamps counts as this long (the washout pauses, with an
+    input_gap warning), seconds. Allowed: in (0, 3600]. Read-only at run time.
+    """
+
+    max_specific_force: float = 100.0
+    """
+    A larger specific force is refused as absurd (the platform eases to neutral), m/s^2. Allowed:
+    in (0, 10000]. Read-only at run time.
+    """
+
+    max_angular_velocity: float = 20.0
+    """
+    A larger angular velocity is refused as absurd (the platform eases to neutral), rad/s. Allowed:
+    in (0, 10000]. Read-only at run time.
+    """
+
+    vehicle_frame: str = 'base_link'
+    """
+    The vehicle's body frame (x forward, y left, z up, REP 103): vehicle_imu in this frame (or with
+    an empty frame_id) is cued as it is; a sample in a frame neither this nor imu_frame is refused
+    with the reason. Allowed: a frame name (no spaces, no leading '/'). Read-only at run time.
+    """
+
+    imu_frame: str = ''
+    """
+    Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed by
+    imu_orientation_rpy_deg; '' for none. Allowed: a frame name (no spaces, no leading '/') or ''.
+    Read-only at run time.
+    """
+
+    imu_orientation_rpy_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Orientation of imu_frame in vehicle_frame: roll, pitch, yaw about the fixed x, y, z axes (R =
+    Rz Ry Rx), degrees; [180.0, 0.0, 0.0] for an IMU in NED axes (x forward, y right, z down).
+    Allowed: 3 values in [-360, 360]. Read-only at run time.
+    """
+
+    input_timeout: float = 0.5
+    """
+    When no vehicle_imu message came for this long, the platform eases to neutral as if the vehicle
+    were at rest, seconds (node clock); 0.0 turns this off. Allowed: in [0, 3600]. Read-only at run
+    time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class IkNodeSettings(NodeSettings):
+    """ik_node's settings: one field per parameter group it declares, in that order."""
+
+    geometry: GeometrySettings
+    actuators: ActuatorSettings
+    frames: FrameSettings
+    ik_frames: IkFrameSettings
+    markers: MarkerSettings
+    workspace: WorkspaceSettings
+    streaming: StreamingSettings
+    queue: QueueSettings
+
+
+@dataclass(frozen=True, kw_only=True)
+class FkNodeSettings(NodeSettings):
+    """fk_node's settings: one field per parameter group it declares, in that order."""
+
+    geometry: GeometrySettings
+    actuators: ActuatorSettings
+    solver: SolverSettings
+    assembly_modes: AssemblyModeSettings
+    frames: FrameSettings
+    fk_frames: FkFrameSettings
+    markers: MarkerSettings
+    queue: QueueSettings
+
+
+@dataclass(frozen=True, kw_only=True)
+class MotionCueingNodeSettings(NodeSettings):
+    """motion_cueing_node's settings: one field per group it declares, in that order."""
+
+    geometry: GeometrySettings
+    frames: FrameSettings
+    cueing: CueingParameterSettings
+    queue: QueueSettings
+
+
+@dataclass(frozen=True, kw_only=True)
+class TrajectoryNodeSettings(NodeSettings):
+    """trajectory_node's settings: one field per group it declares, in that order."""
+
+    geometry: GeometrySettings
+    actuators: ActuatorSettings
+    frames: FrameSettings
+    ramp: RampSettings
+    motion: MotionSettings
+    queue: QueueSettings

@@ -13,23 +13,43 @@
 # limitations under the License.
 
 """
-The declaration of one ROS parameter, and the validators a declaration uses.
+The declaration of one ROS parameter, with the validators it uses.
 
 Each :class:`ParameterSpec` gives a parameter's name, type, default (``None``: required),
-description with its unit, read-only flag and validators. A validator takes ``(name, value)``
-and returns ``''`` when the value is allowed, else a sentence that names the parameter, the
-value and what is allowed. Nothing here imports ROS.
+description with its unit, read-only flag and validators: objects of
+:mod:`stewart_kinematics.model.validators` (re-exported here), each of which checks a value
+(``''`` when it is allowed, else a sentence that names the parameter, the value and what is
+allowed) and describes itself. A spec's :attr:`~ParameterSpec.constraints`, the allowed values
+in words that the documentation's tables and the ROS descriptors show, is composed from those
+descriptions, so it cannot say other than the check does::
+
+    >>> spec = ParameterSpec('head_position', DOUBLE_ARRAY, 'metres', default=[0.0, 0.0, 0.5],
+    ...                      validators=(FixedLength(3), Finite(), InRange(-10.0, 10.0)))
+    >>> spec.constraints
+    '3 values in [-10, 10]'
+    >>> spec.check([0.0, 0.0, 11.0])
+    "parameter 'head_position' must be in [-10, 10], got [0.0, 0.0, 11.0]"
+
+Nothing here imports ROS.
 """
 
 import array
 from dataclasses import dataclass
 import math
-from typing import Any, Callable, Tuple
+from typing import Any, Tuple
 
 from stewart_kinematics.model.arrays import preview
-
-
-Validator = Callable[[str, Any], str]
+from stewart_kinematics.model.validators import (
+    DistinctNames,
+    Finite,
+    FixedLength,
+    FrameName,
+    InRange,
+    NonEmpty,
+    OneOf,
+    Validator,
+    ZeroOrInRange,
+)
 
 
 class NullString(str):
@@ -84,8 +104,12 @@ class ParameterSpec:
     :param description: what it means, with its unit.
     :param default: value used when no parameter file sets it; ``None`` makes it required.
     :param read_only: True where a change at run time makes no sense (the geometry).
-    :param validators: checks run on every value, at start-up and on every run-time change.
-    :param constraints: the allowed values in words, for the documentation table.
+    :param validators: checks run on every value, at start-up and on every run-time change
+        (:class:`~stewart_kinematics.model.validators.Validator` objects, which describe
+        themselves for :attr:`constraints`).
+    :param note: what is allowed beyond what the validators say, in words, for a rule they
+        cannot check alone (between parameters, such as ``< leg_length_max``; or checked
+        where the value is used, such as joints that are not collinear); ``''`` for none.
     """
 
     name: str
@@ -94,7 +118,18 @@ class ParameterSpec:
     default: Any = None
     read_only: bool = False
     validators: Tuple[Validator, ...] = ()
-    constraints: str = ''
+    note: str = ''
+
+    @property
+    def constraints(self) -> str:
+        """
+        Return the allowed values in words: the validators' descriptions, then the note.
+
+        Phrased for the type (``'3 values in [-10, 10]'``, ``'> 0; .inf allowed'``,
+        ``"'refuse' or 'scale'"``); ``''`` when any value of the type is allowed.
+        """
+        parts = (describe(self.value_type, self.validators), self.note)
+        return '; '.join(part for part in parts if part)
 
     def check(self, value) -> str:
         """
@@ -188,83 +223,45 @@ def _marked_string_of(value, value_type: str):
     return None
 
 
-def fixed_length(length: int) -> Validator:
-    """Require an array of exactly ``length`` elements."""
-    def validate(name, value):
-        if len(value) != length:
-            return (f"parameter '{name}' must have exactly {length} elements, "
-                    f'got {len(value)}: {preview(list(value))}')
-        return ''
-    return validate
+def describe(value_type: str, validators) -> str:
+    """
+    Compose the descriptions of a parameter's validators into the allowed values, in words.
 
+    Numbers: ``'in (0, 100]'``; ``'finite, >= 0'`` (finite said only where no bound implies
+    it); ``'> 0; .inf allowed'`` (a bound open to infinity, without :class:`Finite`). Arrays:
+    ``'3 values in [-180, 180]'``, ``'18 finite values'``, ``'6 distinct, non-empty names'``.
+    Strings: ``"a frame name (no spaces, no leading '/') or ''"``, ``"'table' or 'off'"``.
 
-def finite(name, value) -> str:
-    """Require a finite number, or an array of finite numbers."""
-    values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
-    if not all(math.isfinite(item) for item in values):
-        return f"parameter '{name}' must be finite, got {preview(value)}"
-    return ''
-
-
-def in_range(low: float, high: float, *, low_inclusive: bool = True,
-             high_inclusive: bool = True) -> Validator:
-    """Require a number (or every element of an array) within ``[low, high]``."""
-    def validate(name, value):
-        values = value if isinstance(value, _PYTHON_TYPES[DOUBLE_ARRAY]) else [value]
-        for item in values:
-            above_low = item >= low if low_inclusive else item > low
-            below_high = item <= high if high_inclusive else item < high
-            if not (above_low and below_high):
-                interval = (('[' if low_inclusive else '(') + f'{low:g}, {high:g}'
-                            + (']' if high_inclusive else ')'))
-                return f"parameter '{name}' must be in {interval}, got {preview(value)}"
-        return ''
-    return validate
-
-
-def zero_or_in_range(low: float, high: float) -> Validator:
-    """Require 0 (a feature turned off) or a number within ``[low, high]``."""
-    within = in_range(low, high)
-
-    def validate(name, value):
-        if value == 0.0 or not within(name, value):
-            return ''
-        return (f"parameter '{name}' must be 0.0 or in [{low:g}, {high:g}], got "
-                f'{preview(value)}')
-    return validate
-
-
-def one_of(*allowed: str) -> Validator:
-    """Require one of the given strings."""
-    def validate(name, value):
-        if value not in allowed:
-            return f"parameter '{name}' must be one of {', '.join(allowed)}; got {preview(value)}"
-        return ''
-    return validate
-
-
-def distinct_names(name, value) -> str:
-    """Require non-empty, distinct strings (joint names)."""
-    if not all(value) or len(set(value)) != len(value):
-        return (f"parameter '{name}' must hold distinct, non-empty names, got "
-                f'{preview(list(value))}')
-    return ''
-
-
-#: The legs as the actuator interface sees them: shared by every JointState and
-
-
-def frame_name(name, value) -> str:
-    """Require a tf frame name: no spaces, no leading slash (tf2 refuses those)."""
-    if value.startswith('/') or any(character.isspace() for character in value):
-        return (f"parameter '{name}' must be a frame name without spaces or a leading '/', "
-                f'got {preview(value)}')
-    return ''
-
-
-def non_empty(name, value) -> str:
-    """Require a non-empty string."""
-    return '' if value else f"parameter '{name}' must not be empty"
-
-
-#: The frame tree (stewart_kinematics.model.frames): names, and the user and tool frames' poses.
+    :param value_type: the parameter's type (:data:`DOUBLE`, ...).
+    :param validators: its validators.
+    :returns: the text, or ``''`` when nothing but the type is required.
+    """
+    length = next((f'{rule.length} ' for rule in validators if isinstance(rule, FixedLength)),
+                  '')
+    kinds = {type(rule) for rule in validators}
+    words = [rule.describe() for rule in validators
+             if not isinstance(rule, (FixedLength, Finite, NonEmpty, FrameName, DistinctNames))]
+    if value_type in (STRING, STRING_ARRAY):
+        if FrameName in kinds:
+            words.insert(0, FrameName().describe() + ('' if NonEmpty in kinds else " or ''"))
+        elif NonEmpty in kinds:
+            words.insert(0, NonEmpty().describe())
+        if value_type == STRING_ARRAY:
+            names = DistinctNames().describe() if DistinctNames in kinds else 'names'
+            words.insert(0, (length + names).strip())
+        return ', '.join(words)
+    if value_type == BOOL:
+        return ', '.join(words)
+    # Numbers: a bound on both ends (or a list of values) already rules out NaN and infinity.
+    bounded = any(isinstance(rule, (OneOf, ZeroOrInRange)) or (
+        isinstance(rule, InRange) and -math.inf < rule.low and rule.high < math.inf)
+        for rule in validators)
+    finite = Finite in kinds and not bounded
+    if value_type == DOUBLE_ARRAY:
+        text = ' '.join([f'{length}{"finite " if finite else ""}values'] + words)
+    else:
+        text = ', '.join((['finite'] if finite else []) + words)
+    if Finite not in kinds and any(isinstance(rule, InRange) and rule.allows_infinity
+                                   for rule in validators):
+        text += '; .inf allowed'
+    return text

@@ -17,31 +17,116 @@ Every node's interface, declared once: its topics and services, their types, QoS
 
 The nodes create their publishers, subscriptions and services from these declarations
 (:func:`stewart_kinematics.ros.node_main.create_output_publisher` and its siblings take an
-:class:`Endpoint`), the tests check that a running node offers exactly what is declared, and
-the documentation's node tables are generated from them. Topic names are relative (namespaces
-and remaps apply), except the ROS-wide ``/tf``, ``/tf_static`` and ``/diagnostics``.
+:class:`Endpoint` and build its declared :class:`Qos`), the tests check that a running node
+offers exactly what is declared, with the declared QoS, and the documentation's node tables are
+generated from them. Topic names are relative (namespaces and remaps apply), except the
+ROS-wide ``/tf``, ``/tf_static`` and ``/diagnostics``.
 
 Message types are named as ROS names them (``geometry_msgs/msg/Pose``) and imported on first
-use, so this module imports no ROS package: the documentation reads it without rclpy, and
-``tf2_msgs`` stays optional.
+use, and a QoS is declared as data whose rclpy profile is built on demand
+(:meth:`Qos.profile`), so this module imports no ROS package: the documentation reads it
+without rclpy, and ``tf2_msgs`` stays optional.
 """
 
 from dataclasses import dataclass
 import importlib
-from typing import Tuple
+from typing import Optional, Tuple, Union
 
 #: Kinds of endpoint.
 SUBSCRIPTION = 'subscription'
 PUBLISHER = 'publisher'
 SERVICE = 'service'
 
-#: The QoS of the package's endpoints, in words (the nodes build the profiles).
-QUEUE = 'reliable, keep last queue_depth'
-LATCHED = 'reliable, transient local, depth 1 (latched)'
-TF = 'reliable, keep last 100 (as tf2_ros broadcasts)'
-TF_STATIC = 'reliable, transient local, keep last 1 (as tf2_ros static broadcasts)'
-DIAGNOSTICS = 'reliable, keep last 10'
-SERVICE_QOS = 'services default'
+#: A declared depth that is the node's ``queue_depth`` parameter (QUEUE_PARAMETERS).
+QUEUE_DEPTH = 'queue_depth'
+#: The policies a :class:`Qos` may declare, as rclpy's enums name them (lower case).
+RELIABILITIES = ('reliable', 'best_effort')
+DURABILITIES = ('volatile', 'transient_local')
+HISTORIES = ('keep_last', 'keep_all')
+
+
+@dataclass(frozen=True)
+class Qos:
+    """
+    A QoS profile, declared: the nodes create the endpoint with it, the docs print it.
+
+    Deadline, lifespan and liveliness are rclpy's defaults. The standard ``qos_overrides``
+    parameters may still change reliability, history and depth of a node's publishers and
+    subscriptions at start-up (see :mod:`stewart_kinematics.ros.node_main`).
+
+    :param reliability: ``'reliable'`` or ``'best_effort'``.
+    :param durability: ``'volatile'``, or ``'transient_local'`` (latched: a subscriber that
+        joins later gets the last messages kept).
+    :param history: ``'keep_last'`` (``depth`` messages) or ``'keep_all'``.
+    :param depth: messages kept, or :data:`QUEUE_DEPTH`: the node's ``queue_depth`` parameter.
+    :param note: where the profile comes from or what it is for, printed after it.
+
+    >>> print(Qos(durability='transient_local', depth=1, note='latched'))
+    reliable, transient local, keep last 1 (latched)
+    >>> print(Qos())
+    reliable, keep last `queue_depth`
+    """
+
+    reliability: str = 'reliable'
+    durability: str = 'volatile'
+    history: str = 'keep_last'
+    depth: Union[int, str] = QUEUE_DEPTH
+    note: str = ''
+
+    def __post_init__(self):
+        for name, allowed in (('reliability', RELIABILITIES), ('durability', DURABILITIES),
+                              ('history', HISTORIES)):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f'QoS {name} must be one of {", ".join(allowed)}, got '
+                                 f'{getattr(self, name)!r}')
+        if self.depth != QUEUE_DEPTH and not (
+                isinstance(self.depth, int) and not isinstance(self.depth, bool)
+                and self.depth >= 1):
+            raise ValueError(f'QoS depth must be a positive integer or {QUEUE_DEPTH!r}, got '
+                             f'{self.depth!r}')
+
+    def profile(self, queue_depth: Optional[int] = None):
+        """
+        Build the rclpy ``QoSProfile`` (a new one each call: rclpy's overrides change it).
+
+        rclpy is imported here, on first use, not by the module.
+
+        :param queue_depth: the node's ``queue_depth``, for a profile declared with
+            :data:`QUEUE_DEPTH`; ignored by the others.
+        :raises ValueError: for a profile of :data:`QUEUE_DEPTH` without ``queue_depth``.
+        """
+        from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+        depth = self.depth
+        if depth == QUEUE_DEPTH:
+            if queue_depth is None:
+                raise ValueError("this QoS keeps the queue_depth parameter's number of "
+                                 'messages: give queue_depth')
+            depth = queue_depth
+        return QoSProfile(reliability=ReliabilityPolicy[self.reliability.upper()],
+                          durability=DurabilityPolicy[self.durability.upper()],
+                          history=HistoryPolicy[self.history.upper()], depth=depth)
+
+    def __str__(self) -> str:
+        """Describe the profile as the documentation's tables show it."""
+        parts = [self.reliability.replace('_', ' ')]
+        if self.durability != 'volatile':
+            parts.append(self.durability.replace('_', ' '))
+        if self.history == 'keep_all':
+            parts.append('keep all')
+        else:
+            parts.append(f'keep last `{self.depth}`' if self.depth == QUEUE_DEPTH
+                         else f'keep last {self.depth}')
+        return ', '.join(parts) + (f' ({self.note})' if self.note else '')
+
+
+#: The QoS of the package's endpoints.
+QUEUE = Qos()
+LATCHED = Qos(durability='transient_local', depth=1, note='latched')
+TF = Qos(depth=100, note='as tf2_ros broadcasts')
+TF_STATIC = Qos(durability='transient_local', depth=1,
+                note='as tf2_ros static broadcasts')
+DIAGNOSTICS = Qos(depth=10)
+SERVICE_QOS = Qos(depth=10, note="rclpy's services default")
 
 
 @dataclass(frozen=True)
@@ -53,7 +138,7 @@ class Endpoint:
     :param kind: :data:`SUBSCRIPTION`, :data:`PUBLISHER` or :data:`SERVICE`.
     :param type_name: the message or service type, as ``package/msg/Name`` or
         ``package/srv/Name``.
-    :param qos: the QoS, in words (see the constants of this module).
+    :param qos: the :class:`Qos` it is created with (see the constants of this module).
     :param meaning: what it carries, with units and frames.
     :param condition: when the node has it (a parameter that turns it on), ``''``: always.
     :param commands: True for a publisher whose messages command actuators (directly, or
@@ -64,7 +149,7 @@ class Endpoint:
     name: str
     kind: str
     type_name: str
-    qos: str
+    qos: Qos
     meaning: str
     condition: str = ''
     commands: bool = False

@@ -45,8 +45,6 @@ REPORT_PERIOD = 1.0
 #: Hardware id of the statuses of a node in the root namespace; a namespaced node's is this
 #: followed by its namespace (``stewart_platform/platform_a``), one per platform.
 HARDWARE_ID = 'stewart_platform'
-#: Depth of the /diagnostics publisher's queue, arrays.
-DIAGNOSTICS_DEPTH = 10
 #: Longest log line, and longest string of a /diagnostics status (message, key, value), that a
 #: node's accounting emits, characters; a longer one is cut, ending with a note of how much.
 #: Above the longest reason the core writes itself (a pose that breaks every limit: 34
@@ -98,7 +96,7 @@ class NodeDiagnostics:
         self.reporters = []
         namespace = node.get_namespace()
         self.hardware_id = HARDWARE_ID + ('' if namespace == '/' else namespace)
-        self.publisher = create_output_publisher(node, DIAGNOSTICS_TOPIC, DIAGNOSTICS_DEPTH)
+        self.publisher = create_output_publisher(node, DIAGNOSTICS_TOPIC)
         node.create_timer(REPORT_PERIOD, self.publish_report)
 
     def accounting(self, input_topic: str) -> 'MessageAccounting':

@@ -27,9 +27,10 @@ whatever was asked (:func:`executor_for_nodes`): the events executor's timers do
 simulated clock.
 
 Every publisher, subscription and service of the package is created here, from its declaration
-in :mod:`stewart_kinematics.ros.interfaces`; publishers and subscriptions with
-``QoSOverridingOptions.with_default_policies()``: the standard ``qos_overrides.<topic>.
-<publisher|subscription>.<reliability|history|depth>`` parameters then apply to them.
+in :mod:`stewart_kinematics.ros.interfaces`, with the QoS declared there; publishers and
+subscriptions with ``QoSOverridingOptions.with_default_policies()``: the standard
+``qos_overrides.<topic>.<publisher|subscription>.<reliability|history|depth>`` parameters then
+apply to them.
 """
 
 import os
@@ -255,7 +256,7 @@ def hand_to_executor(node, callback) -> bool:
     return True
 
 
-def create_output_publisher(node, endpoint, qos, to_message=None):
+def create_output_publisher(node, endpoint, queue_depth=None, to_message=None):
     """
     Create a declared publisher (by default reliable, keep-last) without rclpy's event handlers.
 
@@ -269,8 +270,10 @@ def create_output_publisher(node, endpoint, qos, to_message=None):
     :class:`~stewart_kinematics.ros.command_publishing.CommandPublisher`: it publishes only the
     command gate's accepted verdicts, as messages built by ``to_message``.
 
-    :param endpoint: the publisher's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
-    :param qos: queue depth (messages), or a QoSProfile.
+    :param endpoint: the publisher's :class:`~stewart_kinematics.ros.interfaces.Endpoint`,
+        created with its declared QoS.
+    :param queue_depth: the node's ``queue_depth`` parameter, for an endpoint whose QoS keeps
+        that many messages (messages); the others ignore it.
     :param to_message: for a command topic, ``to_message(verdict, *extra) -> message``; must
         be ``None`` for any other.
     :raises ValueError: for a command topic without ``to_message``, or another with one.
@@ -279,13 +282,13 @@ def create_output_publisher(node, endpoint, qos, to_message=None):
         raise ValueError(f'{endpoint.name}: a topic that commands actuators needs to_message '
                          "to build its messages from the gate's verdicts, and no other takes one")
     publisher = node.create_publisher(
-        endpoint.message_type, endpoint.name, qos,
+        endpoint.message_type, endpoint.name, endpoint.qos.profile(queue_depth),
         event_callbacks=PublisherEventCallbacks(use_default_callbacks=False),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
     return CommandPublisher(publisher, endpoint, to_message) if endpoint.commands else publisher
 
 
-def create_input_subscription(node, endpoint, callback, qos):
+def create_input_subscription(node, endpoint, callback, queue_depth=None):
     """
     Create a declared subscription (by default reliable, keep-last) whose QoS may be overridden.
 
@@ -293,18 +296,21 @@ def create_input_subscription(node, endpoint, callback, qos):
     ``qos_overrides./joint_states.subscription.reliability: best_effort`` for a driver that
     publishes best effort. rclpy's default event handlers stay: a mismatch is logged.
 
-    :param endpoint: the subscription's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
-    :param qos: queue depth (messages), or a QoSProfile.
+    :param endpoint: the subscription's :class:`~stewart_kinematics.ros.interfaces.Endpoint`,
+        created with its declared QoS.
+    :param queue_depth: the node's ``queue_depth`` parameter, for an endpoint whose QoS keeps
+        that many messages (messages); the others ignore it.
     """
     return node.create_subscription(
-        endpoint.message_type, endpoint.name, callback, qos,
+        endpoint.message_type, endpoint.name, callback, endpoint.qos.profile(queue_depth),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
 
 
 def create_declared_service(node, endpoint, callback):
     """
-    Create a declared service.
+    Create a declared service, with its declared QoS.
 
     :param endpoint: the service's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     """
-    return node.create_service(endpoint.message_type, endpoint.name, callback)
+    return node.create_service(endpoint.message_type, endpoint.name, callback,
+                               qos_profile=endpoint.qos.profile())

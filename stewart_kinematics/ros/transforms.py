@@ -16,14 +16,15 @@
 The frame tree on ``/tf`` and ``/tf_static``, and frame transforms to and from messages.
 
 Broadcasts as tf2_ros's broadcasters do (same topics, message and QoS) without depending on
-tf2_ros: ``/tf`` reliable with depth 100, ``/tf_static`` reliable, transient local, depth 1,
-with every static transform of the node in each message. tf2_msgs comes with every ROS 2
+tf2_ros: ``/tf`` reliable with depth 100, ``/tf_static`` reliable, transient local, depth 1
+(the QoS declared in :mod:`stewart_kinematics.ros.interfaces`: :data:`~stewart_kinematics.ros.
+interfaces.TF` and :data:`~stewart_kinematics.ros.interfaces.TF_STATIC`), with every static
+transform of the node in each message. tf2_msgs comes with every ROS 2
 installation; where it is missing (ROS from PyPI wheels), nothing is broadcast and the node
 says so once in its log, the rest works as before.
 """
 
 from geometry_msgs.msg import Transform as TransformMessage, TransformStamped
-from rclpy.qos import DurabilityPolicy, QoSProfile
 from std_msgs.msg import Header
 
 from stewart_kinematics.model.frames import Transform
@@ -35,9 +36,6 @@ try:
 except ImportError:  # ROS from PyPI wheels: tf2_msgs is not among them
     TFMessage = None
 
-#: tf2_ros's DynamicBroadcasterQoS and StaticBroadcasterQoS.
-TF_QOS = QoSProfile(depth=100)
-TF_STATIC_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 #: What the log says once when tf2_msgs cannot be imported.
 TF2_MSGS_MISSING = (
     'tf2_msgs is not installed, so nothing is broadcast on /tf and /tf_static; every other '
@@ -76,9 +74,9 @@ class TransformBroadcaster:
                 node.get_logger().warning(TF2_MSGS_MISSING)
             return
         if dynamic is not None:
-            self._tf = create_output_publisher(node, dynamic, TF_QOS)
+            self._tf = create_output_publisher(node, dynamic)
         if static is not None:
-            self._tf_static = create_output_publisher(node, static, TF_STATIC_QOS)
+            self._tf_static = create_output_publisher(node, static)
 
     def has_listeners(self) -> bool:
         """Whether anyone subscribes ``/tf``: a 1 kHz stream then skips building transforms."""

@@ -29,7 +29,6 @@ in flight: a travel range due while the last one is still running is skipped.
 import threading
 
 import numpy as np
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64MultiArray, Header, MultiArrayDimension
 
 from stewart_kinematics.analysis import workspace
@@ -95,12 +94,9 @@ class WorkspacePublisher:
         self.markers_due = False
         #: The last travel range message and the pose it was computed from.
         self.travel = None
-        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # Without rclpy's default QoS event handlers, and one timer for both outputs: every
         # entity of a node adds to its executor's work at each message of the command stream.
-        self.marker_publisher = create_output_publisher(
-            node, IK_NODE['workspace_markers'], latched)
+        self.marker_publisher = create_output_publisher(node, IK_NODE['workspace_markers'])
         self.travel_publisher = create_output_publisher(node, IK_NODE['travel_ranges'], depth)
         self.travel_rate = travel_range_rate
         self.timer = node.create_timer(

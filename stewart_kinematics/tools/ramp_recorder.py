@@ -29,8 +29,9 @@ from rclpy.qos import QoSProfile
 from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64MultiArray
 
+from stewart_kinematics.ros import interfaces
 from stewart_kinematics.ros.message_conversions import leg_lengths_from_message, pose_from_message
-from stewart_kinematics.ros.transforms import TF_QOS, TF_STATIC_QOS, TFMessage
+from stewart_kinematics.ros.transforms import TFMessage
 
 #: Queue depth of the recorder's subscriptions: deep enough for a whole ramp.
 RECORD_DEPTH = 1000
@@ -59,8 +60,8 @@ class RampRecorder(Node):
             ('/diagnostics', DiagnosticArray, qos, None),
         ]
         if TFMessage is not None:
-            topics += [('/tf', TFMessage, TF_QOS, None),
-                       ('/tf_static', TFMessage, TF_STATIC_QOS, None)]
+            topics += [('/tf', TFMessage, interfaces.TF.profile(), None),
+                       ('/tf_static', TFMessage, interfaces.TF_STATIC.profile(), None)]
         if bag_path is None:
             topics = [entry for entry in topics if entry[3] is not None]
             self.bag = None
