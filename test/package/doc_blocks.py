@@ -27,7 +27,7 @@ import re
 import shlex
 from typing import List, Tuple
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / 'doc'
 HOW_TO = DOC / 'how-to'
 #: The marker of a runnable block: a MyST comment line right before its fence.
