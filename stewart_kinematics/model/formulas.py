@@ -166,9 +166,9 @@ def constants_of(geometry) -> GeometryConstants:
 
 
 # One pose, in float arithmetic: the same formulas as the batch path, which on one pose pays
-# numpy's per-call overhead (timeit, processor time, this machine: inverse kinematics 3.8 us
-# against 19 us, leg_lengths 4.0 against 30 us, twist_jacobian 6.2 against 41 us, a cold
-# forward kinematics solve 52 us against 660 us). Tests prove them equal to the batch path.
+# numpy's per-call overhead on each of its many small array operations, several times the
+# arithmetic itself (the one-pose timings: doc/benchmarks.md). Tests prove them equal to the
+# batch path.
 
 def single_legs(constants, position, rotation_entries):
     """:func:`legs_of` of one pose, in floats."""
