@@ -54,7 +54,7 @@ def legs_of(rotation_entries, x, y, z, joints, sqrt, with_vectors=True):
         frame) and base joint (base frame); for a batch, one entry of six arrays (6,).
     :param sqrt: ``math.sqrt`` or ``numpy.sqrt``.
     :param with_vectors: False for the lengths alone (inverse kinematics of one pose needs
-        only them: 0.3 us of its 4 us).
+        only them: a small part of its cost).
     :returns: per entry of ``joints``, ``(l, lx, ly, lz, ax, ay, az)``: length, leg vector and
         rotated platform joint, metres, base frame; or, without ``with_vectors``, ``l`` alone.
     """
