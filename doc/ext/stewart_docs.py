@@ -169,7 +169,7 @@ COLOUR_NAMES = {'green': (0.2, 0.8, 0.2), 'red': (0.9, 0.1, 0.1), 'grey': (0.5, 
 
 
 def colour_cell(colour) -> str:
-    """A table cell for a std_msgs/ColorRGBA: a swatch, the nearest name and the hex value."""
+    """Return a table cell for a std_msgs/ColorRGBA: a swatch, its nearest name, its hex."""
     rgb = (colour.r, colour.g, colour.b)
     name = min(COLOUR_NAMES, key=lambda key: sum((a - b) ** 2
                                                  for a, b in zip(COLOUR_NAMES[key], rgb)))
@@ -180,7 +180,7 @@ def colour_cell(colour) -> str:
 
 def marker_colours_table() -> str:
     """
-    The Markdown table of what each colour of ik_node's markers means.
+    Return the Markdown table of what each colour of ik_node's markers means.
 
     Read from the markers :mod:`stewart_kinematics.ros.markers` builds (the platform's, with
     one leg breaking a limit, and the workspace boundary's, with one point per limit), so the
@@ -256,7 +256,7 @@ class ConfigFile(SphinxDirective):
 
 def package_modules(package: str) -> list:
     """
-    The modules of a sub-package, in reading order: as its docstring first names them.
+    Return the modules of a sub-package in reading order: as its docstring first names them.
 
     A sub-package's docstring names its modules as ``:mod:`.name``` (or a class in one,
     ``:class:`~.name.Class```) in the order a reader meets them; the modules it does not name
@@ -277,8 +277,8 @@ def package_modules(package: str) -> list:
 def all_modules() -> list:
     """Every module and sub-package of the package, dotted, the root first, in reading order."""
     import stewart_kinematics
-    found = [info.name for info in pkgutil.walk_packages(stewart_kinematics.__path__,
-                                                          prefix=f'{PACKAGE}.')]
+    found = [info.name for info in
+             pkgutil.walk_packages(stewart_kinematics.__path__, prefix=f'{PACKAGE}.')]
     tops = sorted({name.split('.')[1] for name in found},
                   key=lambda top: (READING_ORDER.index(top) if top in READING_ORDER
                                    else len(READING_ORDER), top))
@@ -299,7 +299,7 @@ def definition_of(name: str) -> str:
 
 
 def one_line(text: str) -> str:
-    """The first sentence of a docstring, as Markdown for a table cell."""
+    """Return the first paragraph of a docstring, as Markdown for a table cell."""
     paragraph = inspect.cleandoc(text or '').split('\n\n')[0]
     sentence = ' '.join(paragraph.split())
     # reST roles and literals to Markdown code; a '|' would end the table cell.
@@ -308,7 +308,7 @@ def one_line(text: str) -> str:
 
 
 def public_api_table() -> str:
-    """The Markdown table of every public name of the root: link, kind, summary, module."""
+    """Return the Markdown table of every public name of the root: link, kind, summary, module."""
     import stewart_kinematics
     rows = []
     for name in public_names():
@@ -362,7 +362,7 @@ class ModuleReference(SphinxDirective):
 
 
 def module_namespace_setup(module: str) -> str:
-    """The doctest setup that gives an example its module's namespace, as Python's doctest."""
+    """Return the doctest setup that gives an example its module's namespace, as doctest does."""
     return ('import importlib as _importlib\n'
             f'globals().update(vars(_importlib.import_module({module!r})))\n')
 

@@ -40,7 +40,7 @@ NUMBER_WORDS = {3: 'three', 4: 'four', 5: 'five', 6: 'six'}
 
 
 def toctrees(page: Path) -> dict:
-    """The toctrees of a page: ``{caption: [entries]}`` (an uncaptioned one under '')."""
+    """Return the toctrees of a page: ``{caption: [entries]}`` (an uncaptioned one under '')."""
     found = {}
     text = page.read_text(encoding='utf-8')
     for body in re.findall(r'```\{toctree\}\n(.*?)```', text, re.DOTALL):

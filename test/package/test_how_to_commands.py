@@ -53,7 +53,7 @@ EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote pose
 
 
 def runnable_blocks():
-    """Every runnable block of the how-tos."""
+    """Return every runnable block of the how-tos."""
     found = [block for page in doc_blocks.how_to_pages()
              for block in doc_blocks.blocks(page, 'bash') if block.runnable]
     assert len(found) >= 3, 'fewer runnable blocks than the guides have'
@@ -61,7 +61,7 @@ def runnable_blocks():
 
 
 def scratch_environment(tmp_path):
-    """A scratch folder seeing config/ and scripts/, and an environment with the venv first."""
+    """Link config/ and scripts/ into a scratch folder; return an environment, venv first."""
     for name in ('config', 'scripts'):
         (tmp_path / name).symlink_to(ROOT / name)
     env = dict(os.environ)
@@ -87,7 +87,7 @@ def test_runnable_blocks_exit_0_with_the_output_their_page_describes(tmp_path, p
 
 
 def tool_commands():
-    """Every command of the how-tos that runs one of the package's tools: ``(page, words)``."""
+    """Return every command of the how-tos that runs a tool of the package: ``(page, words)``."""
     return [(block.page, words) for page in doc_blocks.how_to_pages()
             for block in doc_blocks.blocks(page, 'bash')
             for words in doc_blocks.commands(block) if words[0] in TOOLS]
@@ -111,7 +111,7 @@ def test_every_option_a_guide_gives_a_tool_is_one_it_has():
 
 
 def guide_commands():
-    """The joint_trajectory_controller guide's trajectory_node command and its path message."""
+    """Return the JTC guide's trajectory_node arguments and its path: topic, type, fields."""
     page = doc_blocks.HOW_TO / 'joint_trajectory_controller.md'
     commands = [words for block in doc_blocks.blocks(page, 'bash')
                 for words in doc_blocks.commands(block)]
@@ -141,7 +141,7 @@ def set_fields(message, values):
 
 
 def message_class(type_name):
-    """The message class of ``package/Name`` or ``package/msg/Name``."""
+    """Return the message class of ``package/Name`` or ``package/msg/Name``."""
     import importlib
     parts = type_name.split('/')
     return getattr(importlib.import_module(f'{parts[0]}.msg'), parts[-1])
@@ -149,7 +149,7 @@ def message_class(type_name):
 
 def jtc_refusals(message, joints, allow_nonzero_end_velocity=False):
     """
-    The reasons the Jazzy JointTrajectoryController would refuse ``message``; empty: accepted.
+    Return why the Jazzy JointTrajectoryController would refuse ``message``; empty: accepted.
 
     Rewritten from ``JointTrajectoryController::validate_trajectory_msg`` (ros2_controllers
     4.x) for a controller with ``allow_partial_joints_goal: false``, position command
@@ -184,7 +184,7 @@ def jtc_refusals(message, joints, allow_nonzero_end_velocity=False):
 
 
 def urdf_limits():
-    """The example URDF's position limits of each joint: ``{name: (lower, upper)}``."""
+    """Return the example URDF's position limits of each joint: ``{name: (lower, upper)}``."""
     robot = ElementTree.parse(ROOT / 'config' / 'ros2_control' / 'stewart_legs.urdf').getroot()
     return {joint.get('name'): (float(joint.find('limit').get('lower')),
                                 float(joint.find('limit').get('upper')))

@@ -31,13 +31,12 @@ import xml.etree.ElementTree as ElementTree
 import doc_blocks
 from numpy.testing import assert_allclose
 import pytest
-import yaml
-
 from stewart_kinematics import load_geometry
 from stewart_kinematics.parameters import (ActuatorSettings, FkNodeSettings, FrameSettings,
                                            IkNodeSettings, MotionCueingNodeSettings,
                                            TrajectoryNodeSettings)
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SERVICE
+import yaml
 
 pytestmark = pytest.mark.core
 
@@ -59,17 +58,17 @@ JTC = 'joint_trajectory_controller'
 
 
 def console_scripts():
-    """The package's console scripts, as setup.py declares them."""
+    """Return the package's console scripts, as setup.py declares them."""
     parser = configparser.ConfigParser()
     setup = (ROOT / 'setup.py').read_text(encoding='utf-8')
     scripts = setup.split("'console_scripts': [", 1)[1].split(']', 1)[0]
-    parser.read_string('[s]\n' + '\n'.join(line.strip().strip("',")
-                                          for line in scripts.splitlines() if '=' in line))
+    lines = [line.strip().strip("',") for line in scripts.splitlines() if '=' in line]
+    parser.read_string('[s]\n' + '\n'.join(lines))
     return set(parser['s'])
 
 
 def shell_commands():
-    """Every command of every bash block of the how-tos: ``(page, words)``."""
+    """Return every command of every bash block of the how-tos: ``(page, words)``."""
     found = []
     for page in doc_blocks.how_to_pages():
         for block in doc_blocks.blocks(page, 'bash'):
@@ -79,7 +78,7 @@ def shell_commands():
 
 
 def repository_path(word: str):
-    """A word naming a file of the repository (``config/...``, ``$SHARE/config/...``), or None."""
+    """Return the file of the repository a word names (``config/...``), or None."""
     for prefix in ('$SHARE/', '$(ros2 pkg prefix stewart_kinematics)/share/stewart_kinematics/'):
         word = word.removeprefix(prefix)
     if word.startswith(('config/', 'scripts/')):
@@ -88,7 +87,7 @@ def repository_path(word: str):
 
 
 def parameters(path: Path, node: str = '') -> dict:
-    """The parameters of a parameter file that a node gets: its ``/**`` and its own section."""
+    """Return the parameters a node gets from a file: its ``/**`` and its own section."""
     sections = yaml.safe_load(path.read_text(encoding='utf-8'))
     found = {}
     for key in ('/**', node, f'/{node}'):
@@ -132,7 +131,7 @@ def test_every_file_a_command_names_exists():
 
 
 def test_a_node_gets_only_parameters_it_declares_with_values_it_accepts():
-    """Each ``-p name:=value`` of a node is one of its parameters, and the value passes its check."""
+    """Each ``-p name:=value`` of a node is one of its parameters, with a value it accepts."""
     checked = 0
     for page, words in shell_commands():
         if words[0] not in NODE_SETTINGS:
@@ -193,7 +192,7 @@ def test_ros2_topic_and_service_commands_name_the_nodes_topics_and_types():
 
 
 def example_limits():
-    """The paper's platform with example_limits.yaml: the limits the ros2_control example uses."""
+    """Return the paper's platform with example_limits.yaml, as the ros2_control example."""
     files = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
     values = {**parameters(files[0]), **parameters(files[1])}
     return load_geometry(files), values
@@ -252,7 +251,7 @@ def test_urdf_example_fits_joint_names_limits_and_home():
 
 
 def rviz_displays():
-    """The displays of the shipped RViz configuration."""
+    """Return the visualization manager of the shipped RViz configuration."""
     config = yaml.safe_load((CONFIG / 'stewart_kinematics.rviz').read_text(encoding='utf-8'))
     return config['Visualization Manager']
 
