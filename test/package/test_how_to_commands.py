@@ -110,6 +110,11 @@ def test_every_option_a_guide_gives_a_tool_is_one_it_has():
                 assert word in helps[words[0]], f'{page}: {words[0]} has no {word}'
 
 
+def guide_text():
+    """Return the text of the joint_trajectory_controller guide."""
+    return (doc_blocks.HOW_TO / 'joint_trajectory_controller.md').read_text(encoding='utf-8')
+
+
 def guide_commands():
     """Return the JTC guide's trajectory_node arguments and its path: topic, type, fields."""
     page = doc_blocks.HOW_TO / 'joint_trajectory_controller.md'
@@ -248,3 +253,7 @@ def test_trajectory_node_as_the_guide_starts_it_feeds_the_jtc(client, start_node
     upper = np.array([limits[name][1] for name in trajectory.joint_names])
     assert np.all((positions >= lower) & (positions <= upper))
     assert len(trajectory.points) > len(values['poses'])
+    # The log line the guide shows, its '...' standing for any text.
+    shown = re.search(r'logs `(pose_path: [^`]+)`', ' '.join(guide_text().split())).group(1)
+    pattern = '.*'.join(re.escape(part) for part in shown.split('...'))
+    client.wait(lambda: re.search(pattern, node.output()), f'the log line {shown!r}', [node])
