@@ -49,7 +49,10 @@ JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
 #: What each runnable block's output must say, as its page says it: ``{page: [patterns]}``.
 EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote poses\.csv',
                                            r'calibrated +position +\d'],
-                   'how-to/motion_cueing.md': [r'zero limit violations: 0']}
+                   'how-to/motion_cueing.md': [r'zero limit violations: 0'],
+                   'how-to/own_platform.md': [r'Design: 6-3 \(legs 1 and 6, 2 and 3, 4 and 5',
+                                              r'Condition number at home: 6\.514\n',
+                                              r'Warnings: none']}
 
 
 def runnable_blocks():
