@@ -99,8 +99,12 @@ def test_installed_layout_is_what_ros2_run_needs(install_base):
     assert (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages' / PACKAGE).is_file()
     share = prefix / 'share' / PACKAGE
     assert filecmp.cmp(share / 'package.xml', ROOT / 'package.xml', shallow=False)
-    config = sorted(path.name for path in (ROOT / 'config').glob('*.yaml'))
-    assert sorted(path.name for path in (share / 'config').iterdir()) == config
+    config = sorted(str(path.relative_to(ROOT / 'config')) for path in (ROOT / 'config').rglob('*')
+                    if path.is_file())
+    assert {'paper_platform.yaml', 'stewart_kinematics.rviz',
+            'ros2_control/stewart_controllers.yaml'} <= set(config)
+    assert sorted(str(path.relative_to(share / 'config'))
+                  for path in (share / 'config').rglob('*') if path.is_file()) == config
     for name in config:
         assert filecmp.cmp(share / 'config' / name, ROOT / 'config' / name, shallow=False)
     launch_files = sorted(path.name for path in (ROOT / 'launch').glob('*.launch.py'))
