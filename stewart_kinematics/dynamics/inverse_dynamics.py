@@ -204,6 +204,8 @@ def _batch_forces(constants, poses, motions, mass_properties):
     """
     entries = _entries(np.ascontiguousarray(poses[:, 3:].T), np.cos, np.sin)
     lengths, vectors = batch_legs(constants, poses[:, :3], entries)
+    if not np.all(np.isfinite(lengths)):   # an overflow: refused as such by the caller
+        return np.full(poses.shape, math.nan)
     lengths = np.where(lengths == 0.0, 1.0, lengths)   # a zero row: singular, refused
     motion = tuple(np.ascontiguousarray(motions.T))
     gravity = mass_properties.gravity
@@ -218,7 +220,8 @@ def _batch_forces(constants, poses, motions, mass_properties):
     try:
         return np.linalg.solve(transposed, np.stack(wrench, axis=-1)[..., None])[..., 0]
     except np.linalg.LinAlgError:   # LAPACK found a pivot of 0: which pose has it
-        raise _Singular(int(np.flatnonzero(np.linalg.det(transposed) == 0.0)[0])) from None
+        singular = np.flatnonzero(~(np.linalg.det(transposed) != 0.0))
+        raise _Singular(int(singular[0]) if singular.size else 0) from None
 
 
 def _transposed_product(columns, forces):
