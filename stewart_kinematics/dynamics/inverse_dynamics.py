@@ -81,7 +81,7 @@ def leg_forces(geometry, poses, twists=None, accelerations=None, *,
     >>> payload = RigidBody(20.0, [0.0, 0.0, 0.1], name='payload')
     >>> leg_forces(geometry, [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0],
     ...            mass_properties=MassProperties(payload=payload)).round(2)
-    array([33.17, 33.17, 32.24, 33.17, 33.17, 33.17])
+    array([32.91, 33.73, 32.81, 33.39, 33.52, 32.95])
     """
     if not isinstance(mass_properties, MassProperties):
         raise ValueError(f'mass_properties must be a MassProperties, got '
