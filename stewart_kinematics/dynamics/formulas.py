@@ -76,7 +76,7 @@ def body_wrench(rotation_entries, motion, body, gravity):
 
 def leg_wrench(leg, motion, leg_bodies, gravity):
     """
-    What one leg's own mass adds to the wrench the legs exert: ``[G, r x G]``.
+    Return what one leg's own mass adds to the wrench the legs exert: ``[G, r x G]``.
 
     The leg runs from its base joint to its platform joint at ``r = R p`` from the platform's
     origin, which moves at ``V = v + w x r`` and accelerates at ``A = a + dw x r + w x (w x r)``.
@@ -91,8 +91,8 @@ def leg_wrench(leg, motion, leg_bodies, gravity):
 
     ``Q1 = m1 (d1 d2u/dt2 - g)``, ``Q2 = m2 (A - d2 d2u/dt2 - g)``, ``P = 1 - u u^T``.
 
-    :param leg: ``(l, lx, ly, lz, rx, ry, rz)`` of :func:`stewart_kinematics.model.formulas.legs_of`
-        (no length 0).
+    :param leg: ``(l, lx, ly, lz, rx, ry, rz)`` of
+        :func:`stewart_kinematics.model.formulas.legs_of` (no length 0).
     :param motion: see the module's docstring.
     :param leg_bodies: ``(m1, d1, m2, d2, I1 + I2)``: the lower and upper bodies' masses (kg)
         and distances from their joints (m), and the sum of their transverse inertias (kg m^2).

@@ -146,8 +146,9 @@ class LegBody:
     """
     One body of a leg: the lower one (a cylinder) or the upper one (a rod).
 
-    The lower body hangs on the base joint, the upper one on the platform joint. Its centre of mass is on the leg axis; it turns with the leg, whose spin about its own
-    axis is neglected, and has no inertia about that axis.
+    The lower body hangs on the base joint, the upper one on the platform joint. Its centre of
+    mass is on the leg axis; it turns with the leg, whose spin about its own axis is neglected,
+    and has no inertia about that axis.
 
     :param mass: kg, >= 0.
     :param center_of_mass: distance of the centre of mass from the body's own joint along the

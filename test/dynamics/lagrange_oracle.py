@@ -101,7 +101,7 @@ class Platform:
         return values
 
     def lengths(self, q):
-        """The six leg lengths at ``q``."""
+        """Return the six leg lengths at ``q``."""
         return self.positions(q)[9 + 3 * len(self.bodies) + 9::10]
 
     def kinetic_energy(self, q, dq):
@@ -144,10 +144,9 @@ class Platform:
             energy -= mass * sum(g * c for g, c in zip(self.gravity, now[index:index + 3]))
             index += 3
         for _ in range(6):
-            energy -= self.lower[0] * sum(g * c for g, c in zip(self.gravity,
-                                                                 now[index:index + 3]))
-            energy -= self.upper[0] * sum(g * c for g, c in zip(self.gravity,
-                                                                 now[index + 3:index + 6]))
+            lower, upper = now[index:index + 3], now[index + 3:index + 6]
+            energy -= self.lower[0] * sum(g * c for g, c in zip(self.gravity, lower))
+            energy -= self.upper[0] * sum(g * c for g, c in zip(self.gravity, upper))
             index += 10
         return energy
 
@@ -209,7 +208,7 @@ def angular_velocity(q, dq):
 
 
 def twist_and_acceleration(q, dq, ddq):
-    """The package's inputs of ``q(t) = q + dq t + ddq t^2 / 2`` at 0: twist and acceleration."""
+    """Return the twist and acceleration at 0 of ``q(t) = q + dq t + ddq t^2 / 2``."""
     omega = angular_velocity(q, dq)
     rate = derivative(lambda t: angular_velocity(
         [a + b * t + c * t * t / 2 for a, b, c in zip(q, dq, ddq)],

@@ -45,7 +45,7 @@ HOME = PAPER.home_pose
 
 
 def joint_on_its_base_joint():
-    """A level pose, and a leg of length 0 exactly in it (its platform joint on its base joint)."""
+    """Return a level pose with a leg of length 0 exactly (its platform joint on its base's)."""
     for leg, (base, joint) in enumerate(zip(PAPER.base_joints, PAPER.platform_joints)):
         position = base - joint
         for axis in range(3):   # a few ulps off, until position + joint rounds to the base joint

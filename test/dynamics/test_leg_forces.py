@@ -54,14 +54,14 @@ RELATIVE = 1e-9
 
 
 def mass_properties(legs=True, gravity=TILTED_GRAVITY):
-    """The package's masses of the bodies above."""
+    """Return the package's masses of the bodies above."""
     return MassProperties(platform=RigidBody(*PLATFORM), payload=RigidBody(*PAYLOAD),
                           leg_lower=LegBody(*LOWER) if legs else LegBody(),
                           leg_upper=LegBody(*UPPER) if legs else LegBody(), gravity=gravity)
 
 
 def oracle_platform(geometry, legs=True, gravity=TILTED_GRAVITY):
-    """The oracle's bodies: the same numbers, nothing else of the package."""
+    """Return the oracle's bodies: the same numbers, nothing else of the package."""
     return oracle.Platform(geometry.base_joints.tolist(), geometry.platform_joints.tolist(),
                            [PLATFORM, PAYLOAD], LOWER if legs else (0, 0, 0),
                            UPPER if legs else (0, 0, 0), gravity)
@@ -139,7 +139,7 @@ def test_power_balance_along_random_smooth_trajectories(seed):
 
 
 def newton_euler_wrench(pose, twist, acceleration, bodies, gravity):
-    """The wrench on platform and payload, body by body, about the platform origin (numpy)."""
+    """Return the wrench on platform and payload, body by body, about the platform origin."""
     rotation = euler_zyx_to_matrix(pose[3:])
     v, w, a, dw = twist[:3], twist[3:], acceleration[:3], acceleration[3:]
     del v

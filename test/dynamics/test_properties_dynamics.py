@@ -113,7 +113,7 @@ def test_the_static_forces_hold_the_weight(pose, masses):
        batch=st.booleans())
 def test_non_finite_values_are_refused_and_huge_ones_never_give_a_non_finite_force(
         pose, which, entry, bad, masses, batch):
-    """NaN and inf are refused naming the argument; 1e308 gives finite forces or a refusal."""
+    """Refuse NaN and inf naming the argument; 1e308 gives finite forces or a refusal."""
     arguments = {'poses': pose, 'twists': np.full(6, 0.1), 'accelerations': np.full(6, 1.0)}
     arguments[which] = np.where(np.arange(6) == entry, bad, arguments[which])
     if batch:
