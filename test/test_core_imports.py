@@ -41,6 +41,7 @@ MAY_IMPORT = {
     'findings': set(),
     'model': {'model'},
     'limits': {'model', 'limits', 'findings'},
+    'dynamics': {'model', 'dynamics'},
     'parameters': {'model', 'parameters'},
     'pose_decisions': {'model', 'limits', 'findings', 'parameters', 'pose_decisions',
                        'analysis.assembly_modes'},

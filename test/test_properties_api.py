@@ -23,6 +23,7 @@ until a property test covers it.
 
 import importlib
 from pathlib import Path
+import sys
 
 import pytest
 
@@ -36,9 +37,11 @@ TEST_DIRECTORY = Path(__file__).resolve().parent
 def covered_names():
     """Return public name -> the property tests that cover it."""
     covered = {}
-    for path in sorted(TEST_DIRECTORY.glob('test_properties_*.py')):
+    for path in sorted(TEST_DIRECTORY.rglob('test_properties_*.py')):
         if path.stem == Path(__file__).stem:
             continue
+        if str(path.parent) not in sys.path:   # a test folder pytest has not collected yet
+            sys.path.insert(0, str(path.parent))
         module = importlib.import_module(path.stem)
         for test_name, test in vars(module).items():
             if test_name.startswith('test_') and hasattr(test, 'hypothesis'):
