@@ -75,7 +75,7 @@ def refusal_codes() -> list:
     Every refusal or warning code the package can emit: ``(code, emitted by, meaning, kind)``.
 
     Read from the registry of :mod:`stewart_kinematics.findings` (:data:`CODES`), the one
-    place where a code is defined with its meaning; test/test_findings.py checks that every
+    place where a code is defined with its meaning; test/package/test_findings.py checks that every
     code the package emits is registered.
     """
     from stewart_kinematics.findings import CODES

@@ -34,8 +34,8 @@ import yaml
 
 pytestmark = pytest.mark.core
 
-RESOURCES = Path(__file__).resolve().parent / 'resources'
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+RESOURCES = Path(__file__).resolve().parents[1] / 'resources'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: End of the paper's Table 3: metres and degrees.
 TABLE_3_END = (0.1, 0.15, 0.5325, 15.0, -15.0, 20.0)
 
@@ -323,12 +323,12 @@ def test_a_start_with_one_reachable_mode_is_not_ambiguous(paper_with_limits):
 
 def test_doc_table_of_the_modes_at_the_end_of_table_3_is_current():
     import importlib.util
-    script = Path(__file__).resolve().parent.parent / 'scripts' / 'figures' / 'assembly_modes.py'
+    script = Path(__file__).resolve().parents[2] / 'scripts' / 'figures' / 'assembly_modes.py'
     spec = importlib.util.spec_from_file_location('assembly_modes_figure', script)
     figure = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(figure)
     markdown_table, table_3_end_modes = figure.markdown_table, figure.table_3_end_modes
-    page = (Path(__file__).resolve().parent.parent / 'doc' / 'assembly_modes.md').read_text(
+    page = (Path(__file__).resolve().parents[2] / 'doc' / 'assembly_modes.md').read_text(
         encoding='utf-8')
     _, modes = table_3_end_modes()
     assert markdown_table(modes) in page, (

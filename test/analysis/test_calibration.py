@@ -106,7 +106,7 @@ def nominal(config_directory_path):
 def config_directory_path():
     """Return the package's config/ folder (module scope)."""
     from pathlib import Path
-    return Path(__file__).resolve().parent.parent / 'config'
+    return Path(__file__).resolve().parents[2] / 'config'
 
 
 def held_out_errors(nominal, hexapod, result, count=300):

@@ -41,7 +41,7 @@ from stewart_kinematics.parameters import read_parameter_files
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = {'6-6': ['paper_platform.yaml', 'example_limits.yaml'], '6-3': ['platform_6_3.yaml'],
          '3-3': ['platform_3_3.yaml']}
 

@@ -40,7 +40,7 @@ pytestmark = pytest.mark.core
 def limited():
     """Return the paper's platform under the example limits."""
     from pathlib import Path
-    config = Path(__file__).resolve().parent.parent / 'config'
+    config = Path(__file__).resolve().parents[2] / 'config'
     return load_geometry([config / 'paper_platform.yaml', config / 'example_limits.yaml'])
 
 

@@ -35,7 +35,7 @@ from stewart_kinematics.limits import check_poses_array
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 G = 9.80665
 LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 

@@ -35,7 +35,7 @@ from stewart_kinematics.parameters import read_parameter_files
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 G = 9.80665
 VELOCITY_MAX, ACCELERATION_MAX = 0.05, 0.25   # config/example_limits.yaml
 

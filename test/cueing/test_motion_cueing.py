@@ -33,7 +33,7 @@ from stewart_kinematics.parameters import read_parameter_file
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / name for name in ('paper_platform.yaml', 'example_limits.yaml',
                                     'motion_cueing.yaml')]
 G = 9.80665

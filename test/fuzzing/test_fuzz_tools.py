@@ -87,7 +87,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: Every message type a declared node subscribes to, and a few more for the generic walk.
 TYPES = sorted({endpoint.message_type for interface in NODE_INTERFACES.values()
                 for endpoint in interface.of_kind(SUBSCRIPTION)} | {Imu, JointTrajectory},

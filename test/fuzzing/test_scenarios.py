@@ -43,7 +43,7 @@ from stewart_kinematics.ros.message_conversions import pose_trajectory_from_mess
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
 GEOMETRY = load_geometry(FILES)
 LIMITS = actuator_limits_from_settings(GeometrySettings.from_values(read_parameter_files(FILES)))

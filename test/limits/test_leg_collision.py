@@ -41,7 +41,7 @@ from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: How far the decision may be off, metres: no miss and no false alarm beyond this.
 DECISION_TOLERANCE = 1e-9
 

@@ -37,7 +37,7 @@ from stewart_kinematics.model.rotations import euler_zyx_to_matrix, zyx_entries
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 SPREAD = np.array([0.2, 0.2, 0.15, 0.7, 0.7, 1.2])
 SPEEDS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 

@@ -26,7 +26,7 @@ import pytest
 
 pytestmark = pytest.mark.lint
 
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 #: Output of colcon when it is run in this folder; folders starting with '.' or '_' are skipped
 #: too (.venv, .git, __pycache__), as the ament linters do.
 EXCLUDED_DIRECTORIES = {'build', 'install', 'log'}
@@ -63,7 +63,7 @@ def test_copyright(monkeypatch):
 @pytest.mark.linter
 def test_copyright_header():
     files = python_files()
-    assert Path('setup.py') in files and Path('test', 'test_copyright.py') in files
+    assert Path('setup.py') in files and Path('test', 'lint', 'test_copyright.py') in files
     missing = []
     for path in files:
         lines = (PACKAGE_ROOT / path).read_text(encoding='utf-8').splitlines()

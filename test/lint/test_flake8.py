@@ -23,7 +23,7 @@ import pytest
 
 pytestmark = pytest.mark.lint
 
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 
 #: ament_flake8 checks the working directory and skips folders whose names start with '.' or
 #: '_' (.venv, .git); a colcon build run in this folder leaves build/, install/, log/.

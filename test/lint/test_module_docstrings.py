@@ -22,7 +22,7 @@ import pytest
 
 pytestmark = pytest.mark.lint
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 MODULES = sorted(
     path for folder in ('stewart_kinematics', 'benchmarks', 'scripts', 'launch', 'test')
     for path in (ROOT / folder).rglob('*.py'))

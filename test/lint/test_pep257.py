@@ -21,7 +21,7 @@ import pytest
 
 pytestmark = pytest.mark.lint
 
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.linter

@@ -30,7 +30,7 @@ from stewart_kinematics.parameters import (
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 
 
 def test_example_limits_file_sets_finite_speed_limits():

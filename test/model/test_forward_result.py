@@ -97,7 +97,7 @@ def test_pose_error_bound_is_small_at_ordinary_poses_and_covers_the_error(geomet
     poses = np.concatenate([random_poses(300, seed=5), random_poses(5, seed=6, around=HOME,
                                                                     position_range=0.0)])
     # From home, whose last step typically lands far below the tolerance (a cold solve from
-    # the start table stops nearer it: median bound 3e-12, test/test_start_table.py).
+    # the start table stops nearer it: median bound 3e-12, test/model/test_start_table.py).
     result = forward_kinematics(geometry, inverse_kinematics(geometry, poses), HOME)
     assert np.all(result.converged)
     errors = [pose_error(found, truth) for found, truth in zip(result.pose, poses)]
@@ -127,7 +127,7 @@ def test_pose_error_bound_covers_the_error_near_the_singularity(geometry):
             assert result.converged and result.residual <= 1e-12
             error = min(pose_error(result.pose, truth), pose_error(result.pose, mirror.pose))
             assert result.condition > 1e5
-            # Too near the fold for a proof (test_pose_error_bound.py): inf, not a number
+            # Too near the fold for a proof (test_error_bound.py): inf, not a number
             # that the error beats.
             assert error <= result.pose_error_bound
             largest_error = max(largest_error, error)

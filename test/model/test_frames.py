@@ -35,7 +35,7 @@ from stewart_kinematics.parameters import frames_from_parameters
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: A tool 0.1 m above the platform frame's origin, tilted; a user frame beside the base.
 TOOL = Transform.from_pose([0.02, -0.01, 0.1, 0.1, -0.2, 0.3])
 USER = Transform.from_pose([0.5, -0.2, 0.05, 0.0, 0.0, math.pi / 2])

@@ -32,7 +32,7 @@ from stewart_kinematics.parameters import geometry_from_parameters, load_geometr
 
 pytestmark = pytest.mark.core
 
-PAPER_PLATFORM_YAML = Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml'
+PAPER_PLATFORM_YAML = Path(__file__).resolve().parents[2] / 'config' / 'paper_platform.yaml'
 
 BASE_M, PLATFORM_M = BASE_JOINTS, PLATFORM_JOINTS
 HOME_Z = HOME[2]

@@ -35,7 +35,7 @@ from stewart_kinematics.parameters import load_geometry
 pytestmark = pytest.mark.core
 
 GEOMETRY = load_geometry(
-    Path(__file__).resolve().parent.parent / 'config' / 'paper_platform.yaml')
+    Path(__file__).resolve().parents[2] / 'config' / 'paper_platform.yaml')
 POSES = np.array([
     [0.0, 0.0, 0.4325, 0.0, 0.0, 0.0],
     [0.05, 0.075, 0.4825, math.radians(7.5), math.radians(-7.5), math.radians(10.0)],

@@ -36,7 +36,7 @@ from stewart_kinematics.parameters import (
 
 pytestmark = pytest.mark.core
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG_DIRECTORY / 'paper_platform.yaml', CONFIG_DIRECTORY / 'example_limits.yaml']
 HOME = np.array([0.0, 0.0, 0.4325])
 

@@ -40,7 +40,7 @@ from stewart_kinematics.model.rotations import euler_zyx_to_matrix, rotation_vec
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 GEOMETRY = load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
 LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 HOME = GEOMETRY.home_pose

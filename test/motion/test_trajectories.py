@@ -59,7 +59,7 @@ def geometry(config_directory_path):
 def config_directory_path():
     """Return the shipped config/ folder."""
     from pathlib import Path
-    return Path(__file__).resolve().parent.parent / 'config'
+    return Path(__file__).resolve().parents[2] / 'config'
 
 
 def table_3_rows():

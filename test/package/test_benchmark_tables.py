@@ -29,7 +29,7 @@ import pytest
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / 'README.md').read_text(encoding='utf-8')
 #: The page that shows the benchmark's tables.
 PAGE = (ROOT / 'doc' / 'benchmarks.md').read_text(encoding='utf-8')

@@ -37,7 +37,7 @@ from std_msgs.msg import Float64MultiArray
 
 pytestmark = pytest.mark.process
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = 'stewart_kinematics'
 EXECUTABLES = ('ik_node', 'fk_node', 'trajectory_node')
 #: Seconds colcon may take; a build takes about 3 s.

@@ -37,7 +37,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 CONFIG_FILES = sorted(CONFIG_DIRECTORY.glob('*.yaml'))
 
 #: The parameters each node declares, as its constructor does.

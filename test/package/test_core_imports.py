@@ -28,7 +28,7 @@ import pytest
 
 pytestmark = pytest.mark.core
 
-PACKAGE = Path(__file__).resolve().parent.parent / 'stewart_kinematics'
+PACKAGE = Path(__file__).resolve().parents[2] / 'stewart_kinematics'
 #: The package's folders outside the core.
 NOT_CORE = ('ros', 'tools')
 CORE_MODULES = sorted(

@@ -24,7 +24,7 @@ from stewart_kinematics import load_geometry
 
 pytestmark = pytest.mark.node
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / 'doc'
 
 

@@ -39,7 +39,7 @@ import pytest
 
 pytestmark = pytest.mark.lint
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / 'doc'
 PACKAGE = 'stewart_kinematics'
 

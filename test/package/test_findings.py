@@ -30,7 +30,7 @@ from stewart_kinematics import findings
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = ROOT / 'stewart_kinematics'
 
 

@@ -48,7 +48,7 @@ from rclpy.validate_namespace import validate_namespace
 
 pytestmark = pytest.mark.node
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = 'stewart_kinematics'
 LAUNCH_FILE = ROOT / 'launch' / 'stewart_kinematics.launch.py'
 #: The modules the launch file may import: the stand-ins below, and the standard library's os.

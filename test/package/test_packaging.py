@@ -31,7 +31,7 @@ import pytest
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = 'stewart_kinematics'
 #: rosdep keys of the Python libraries the code may import (import name -> key). Every other
 #: import that is neither the standard library nor this package is taken for a ROS package

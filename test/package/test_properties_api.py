@@ -16,13 +16,14 @@
 No public name escapes the adversary: each one of the package root has a property test.
 
 The names are ``stewart_kinematics.__all__`` (the lazily imported calibration names among
-them); a property test is a hypothesis test in a test/test_properties_*.py module that names
+them); a property test is a hypothesis test in a test/*/test_properties_*.py module that names
 what it exercises with ``@covers(...)`` (test/properties.py). A new public name fails here
 until a property test covers it.
 """
 
 import importlib
 from pathlib import Path
+import sys
 
 import pytest
 
@@ -30,16 +31,28 @@ import stewart_kinematics
 
 pytestmark = pytest.mark.core
 
-TEST_DIRECTORY = Path(__file__).resolve().parent
+#: The test folder: the property tests live in the folders of the code they test.
+TEST_DIRECTORY = Path(__file__).resolve().parents[1]
+
+
+def property_module(path):
+    """Import a test module by its file, as pytest does (its basename is unique in test/)."""
+    if path.stem in sys.modules:
+        return sys.modules[path.stem]
+    sys.path.insert(0, str(path.parent))
+    try:
+        return importlib.import_module(path.stem)
+    finally:
+        sys.path.remove(str(path.parent))
 
 
 def covered_names():
     """Return public name -> the property tests that cover it."""
     covered = {}
-    for path in sorted(TEST_DIRECTORY.glob('test_properties_*.py')):
+    for path in sorted(TEST_DIRECTORY.rglob('test_properties_*.py')):
         if path.stem == Path(__file__).stem:
             continue
-        module = importlib.import_module(path.stem)
+        module = property_module(path)
         for test_name, test in vars(module).items():
             if test_name.startswith('test_') and hasattr(test, 'hypothesis'):
                 for name in getattr(test, 'covers', ()):

@@ -24,7 +24,7 @@ from reference import leg_lengths as reference_leg_lengths, rotation_zyx
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / 'README.md').read_text(encoding='utf-8')
 #: The README is the front door; the rest lives in doc/.
 MAX_LINES = 250

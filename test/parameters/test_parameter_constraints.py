@@ -39,7 +39,7 @@ from stewart_kinematics.parameters import all_specs, ParameterSpec
 
 pytestmark = pytest.mark.core
 
-DECLARATIONS = (Path(__file__).resolve().parent.parent / 'stewart_kinematics' / 'parameters'
+DECLARATIONS = (Path(__file__).resolve().parents[2] / 'stewart_kinematics' / 'parameters'
                 / 'declarations.py')
 NUMBER = r'-?(?:\d+(?:\.\d*)?(?:e[+-]?\d+)?|inf)'
 INTERVAL = re.compile(rf'^in ([\[(])({NUMBER}), ({NUMBER})([\])])$')

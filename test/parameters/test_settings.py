@@ -43,7 +43,7 @@ from stewart_kinematics.parameters.settings import (
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GROUP_CLASSES = [value for value in vars(settings_module).values()
                  if isinstance(value, type) and issubclass(value, Settings)
                  and value is not Settings]

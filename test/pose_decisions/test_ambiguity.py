@@ -56,7 +56,7 @@ from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 PAPER = load_geometry(CONFIG / 'paper_platform.yaml')
 LIMITED = load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
 HOME = np.array(TABLE_3[0])

@@ -31,7 +31,7 @@ from stewart_kinematics.pose_decisions import pose_tracker
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 TABLE_3_END = np.array([0.1, 0.15, 0.5325, math.radians(15.0), math.radians(-15.0),
                         math.radians(20.0)])
 

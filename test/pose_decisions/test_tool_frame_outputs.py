@@ -44,7 +44,7 @@ from stewart_kinematics.analysis.assembly_modes import AssemblyModeMargin
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 LIMITED = load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
 LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
 HOME = np.array(reference.HOME)

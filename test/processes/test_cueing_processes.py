@@ -116,7 +116,8 @@ def test_cue_drives_ik_node_within_the_stroke(client, start_node, config_directo
     assert moved > 0.02  # the cue did move the platform
     # The leg rates are those of the times the commands were sent (the node's clock), which
     # this burst does not show: they are checked exactly on a simulated clock driven in
-    # lockstep (test/test_cueing_node.py) and by the core (test/test_cueing_commands.py). Here:
+    # lockstep (test/ros/test_motion_cueing_node.py) and by the core
+    # (test/cueing/test_cueing_commands.py). Here:
     # the gate passed every command as the follower gave it (no braking, no refusal).
 
     def rejected(code):

@@ -53,7 +53,7 @@ pytestmark = pytest.mark.process
 EXIT_DEADLINE = 20.0
 #: Queue depth of the test's publishers and subscriptions.
 DEPTH = 10
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: Seconds between two publications of the same message while no answer came.
 REPUBLISH_PERIOD = 0.2
 #: A pose 2 cm above home, slightly turned: metres and radians.

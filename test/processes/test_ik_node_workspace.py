@@ -20,7 +20,7 @@ ik_node's workspace outputs, with ik_node started as a process.
 ``travel_ranges`` starts from the last accepted pose.
 
 The expected content is computed here with the core (:mod:`stewart_kinematics.analysis.workspace`),
-whose own accuracy test/test_workspace.py checks against independent computations.
+whose own accuracy test/analysis/test_workspace.py checks against independent computations.
 """
 
 import math
@@ -42,7 +42,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 pytestmark = pytest.mark.process
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
 GEOMETRY = load_geometry(FILES)
 #: Coarse grids: the markers take a fraction of a second to compute.

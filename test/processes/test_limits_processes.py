@@ -29,12 +29,12 @@ import math
 import subprocess
 
 from geometry_msgs.msg import Pose, Twist
+from helpers import pose_message, raw_pose_message, Recorder, stop_cleanly, trajectory_message
 import numpy as np
 import pytest
 import reference
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray
-from test_motion_processes import pose_message, Recorder, trajectory_message
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 pytestmark = pytest.mark.process
@@ -66,17 +66,8 @@ def twist_message(values):
     return message
 
 
-def raw_pose(position, quaternion=(0.0, 0.0, 0.0, 1.0)):
-    """geometry_msgs/msg/Pose with exactly these numbers, valid or not."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
-    o = message.orientation
-    o.x, o.y, o.z, o.w = quaternion
-    return message
-
-
 class Client(Recorder):
-    """test_motion_processes' Recorder, with /diagnostics counters by key."""
+    """helpers' Recorder, with /diagnostics counters by key."""
 
     def publish(self, topic, message):
         """Publish one message on ``topic``."""
@@ -90,14 +81,6 @@ class Client(Recorder):
         self.client.wait(found, f'{key} >= {count} in {status_name} on /diagnostics',
                          self.nodes)
         return {value.key: value.value for value in found()[-1].values}
-
-
-def stop_cleanly(process):
-    """Stop a node with SIGINT: exit code 0, no traceback; return its output."""
-    code = process.stop()
-    output = process.output()
-    assert code == 0 and 'Traceback' not in output, f'exit {code}:\n{output}'
-    return output
 
 
 def test_a_twist_beyond_the_velocity_limit_never_gives_leg_velocities_beyond_it(
@@ -210,10 +193,10 @@ def test_streamed_commands_survive_far_huge_and_non_finite_targets(
         topics.advertise(Pose, f'/{name}/target_pose')
         topics.subscribe(JointState, f'/{name}/joint_commands')
     topics.connect()
-    targets = [pose_message(TABLE_3[2]), raw_pose((1000.0, 0.0, 0.4325)),
-               raw_pose((math.nan, 0.0, 0.4325)), raw_pose((0.0, math.inf, 0.4325)),
-               raw_pose((1e200, 0.0, 0.4325)), raw_pose((0.0, 0.0, 0.4325), (0, 0, 0, math.nan)),
-               raw_pose((1e150, 1e150, 0.4325))]
+    targets = [pose_message(TABLE_3[2])] + [raw_pose_message(*numbers) for numbers in [
+        [(1000.0, 0.0, 0.4325)], [(math.nan, 0.0, 0.4325)], [(0.0, math.inf, 0.4325)],
+        [(1e200, 0.0, 0.4325)], [(0.0, 0.0, 0.4325), (0, 0, 0, math.nan)],
+        [(1e150, 1e150, 0.4325)]]]
     for target in targets:
         for name in nodes:
             topics.publish(f'/{name}/target_pose', target)

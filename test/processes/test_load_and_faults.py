@@ -44,11 +44,11 @@ import math
 import os
 from pathlib import Path
 import signal
-import threading
 import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Pose
+from helpers import fail_with_output, pose_message, SpinningClient, stop_cleanly
 import numpy as np
 import pytest
 from reference import quaternion_angle as rotation_angle, quaternion_from_euler as quaternion
@@ -57,17 +57,11 @@ from std_msgs.msg import Float64MultiArray
 from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.node_main import create_executor
-from stewart_kinematics.tools.node_processes import NodeProcess
 
 pytestmark = pytest.mark.process
 
 #: Seconds to wait for discovery or data.
 DEADLINE = 20.0
-#: Seconds to spin after discovery shows every side, before the first message (a reliable,
-#: volatile reader may match a writer a moment after the writer matched it).
-SETTLE_TIME = 0.5
-#: Seconds between two checks of a condition that the test waits for.
-POLL_PERIOD = 0.01
 #: Depth of every queue: the nodes' queue_depth parameter and the client's publishers and
 #: subscriptions. 2 s of messages at LOAD_RATE, so that a moment of CPU contention on a
 #: 2-core machine (the client and a node share it) delays messages instead of dropping them:
@@ -125,15 +119,6 @@ def to_si(pose_mm_deg):
 TABLE3 = tuple(
     to_si([start + row * step for start, step in zip(TABLE3_START_MM_DEG, TABLE3_STEP_MM_DEG)])
     for row in range(TABLE3_ROWS))
-
-
-def pose_message(pose):
-    """geometry_msgs/msg/Pose of a pose ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    (message.orientation.x, message.orientation.y,
-     message.orientation.z, message.orientation.w) = quaternion(*(float(v) for v in pose[3:]))
-    return message
 
 
 def pose_error(message, pose):
@@ -244,99 +229,18 @@ class DiagnosticsRecord:
         return statuses[-1] if statuses else None
 
 
-class SpinningClient:
-    """The test's node, spun by a background thread, with waits that fail with node output."""
-
-    def __init__(self, node):
-        """Spin ``node`` in a background thread until :meth:`close`."""
-        self.node = node
-        self.executor = create_executor()
-        self.executor.add_node(node)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._spin, name='client_spin', daemon=True)
-        self._thread.start()
-
-    def _spin(self):
-        while not self._stop.is_set():
-            self.executor.spin_once(timeout_sec=0.05)
-
-    def close(self):
-        """Stop spinning and destroy the node."""
-        self._stop.set()
-        self._thread.join()
-        self.executor.shutdown()
-        self.node.destroy_node()
-
-    def subscribe(self, message_type, topic, callback):
-        """Subscribe ``callback`` to ``topic``, reliable, depth :data:`QUEUE_DEPTH`."""
-        return self.node.create_subscription(message_type, topic, callback, QUEUE_DEPTH)
-
-    def publisher(self, message_type, topic):
-        """Return a publisher on ``topic``, reliable, depth :data:`QUEUE_DEPTH`."""
-        return self.node.create_publisher(message_type, topic, QUEUE_DEPTH)
-
-    def wait(self, condition, what, processes=(), timeout=DEADLINE, fail=True):
-        """
-        Wait until ``condition()`` holds, for ``timeout`` s at most or until a process exits.
-
-        :param what: the awaited condition in words, for the failure message.
-        :param processes: the NodeProcess instances that must keep running meanwhile.
-        :param fail: fail the test when the condition does not hold in time; else return.
-        :returns: whether the condition holds.
-        """
-        deadline = time.monotonic() + timeout
-        while not condition():
-            if time.monotonic() > deadline or not all(p.running() for p in processes):
-                break
-            time.sleep(POLL_PERIOD)
-        if condition():
-            return True
-        if fail:
-            fail_with_output(f'{what}: not within {timeout} s', processes)
-        return False
-
-    def settle(self):
-        """Let discovery finish on every side (a pause, never a wait for data)."""
-        time.sleep(SETTLE_TIME)
-
-
-def fail_with_output(message, processes):
-    """Fail the test with ``message`` and the exit code and output of each process."""
-    report = [message]
-    for process in processes:
-        code = process.stop()
-        report.append(f'--- {process.name} (exit code {code}) ---\n{process.output()}')
-    pytest.fail('\n'.join(report))
-
-
-def stop_cleanly(process):
-    """Stop a process with SIGINT and check that it exits 0 without a traceback."""
-    code = process.stop()
-    output = process.output()
-    assert code == 0, f'{process.name} exited {code}:\n{output}'
-    assert 'Traceback' not in output, output
-    return output
-
-
 @pytest.fixture
 def client(ros):
-    """Create a SpinningClient with a fresh node on the session's private domain."""
-    client = SpinningClient(ros.create_node('stewart_load_client'))
+    """
+    Create a SpinningClient with a fresh node on the session's private domain.
+
+    Spun by a thread of its own (not conftest's client, spun by the test's thread): the tests
+    publish at a steady rate meanwhile.
+    """
+    client = SpinningClient(ros.create_node('stewart_load_client'), create_executor(),
+                            QUEUE_DEPTH)
     yield client
     client.close()
-
-
-@pytest.fixture
-def start_node():
-    """
-    Provide a function that starts a console script with arguments as a NodeProcess.
-
-    Every process started is stopped (SIGINT, then kill) when the test ends, pass or fail.
-    """
-    with contextlib.ExitStack() as stack:
-        def start(executable, arguments=()):
-            return stack.enter_context(NodeProcess(executable, list(arguments)))
-        yield start
 
 
 @pytest.fixture

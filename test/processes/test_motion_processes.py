@@ -24,26 +24,19 @@ published positions: nothing is shared with the package's code.
 """
 
 
-from builtin_interfaces.msg import Duration
-from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import Pose, PoseStamped, Transform
+from geometry_msgs.msg import Pose, PoseStamped
+from helpers import pose_message, Recorder, trajectory_message
 from nav_msgs.msg import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 import reference
 from sensor_msgs.msg import JointState
-from trajectory_msgs.msg import (
-    JointTrajectory,
-    MultiDOFJointTrajectory,
-    MultiDOFJointTrajectoryPoint,
-)
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 import yaml
 
 pytestmark = pytest.mark.process
 
-CLIENT_DEPTH = 100
-SETTLE_TIME = 0.5
 VELOCITY_MAX, ACCELERATION_MAX, JERK_MAX = 0.05, 0.25, 2.5
 #: Rate of the points of leg_trajectory in these tests, hertz.
 POINT_RATE = 200.0
@@ -63,37 +56,6 @@ def read_geometry(path):
 def pose_lengths(geometry, pose):
     """Leg lengths ``|t + R p_i - b_i|`` of a pose for ``geometry = (base, platform)``, metres."""
     return np.array(reference.leg_lengths(pose, *geometry))
-
-
-def quaternion(alpha, beta, gamma):
-    """Quaternion ``(x, y, z, w)`` of ``Rz(gamma) Ry(beta) Rx(alpha)``, as floats."""
-    return tuple(float(value) for value in reference.quaternion_from_euler(alpha, beta, gamma))
-
-
-def pose_message(pose):
-    """geometry_msgs/msg/Pose of ``[X, Y, Z, alpha, beta, gamma]``."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    o = message.orientation
-    o.x, o.y, o.z, o.w = quaternion(*pose[3:])
-    return message
-
-
-def trajectory_message(times, poses):
-    """Build a MultiDOFJointTrajectory of one joint, the platform, through the poses."""
-    message = MultiDOFJointTrajectory(joint_names=['platform'])
-    message.header.frame_id = 'stewart_base'
-    for time, pose in zip(times, poses):
-        transform = Transform()
-        transform.translation.x, transform.translation.y, transform.translation.z = (
-            float(v) for v in pose[:3])
-        r = transform.rotation
-        r.x, r.y, r.z, r.w = quaternion(*pose[3:])
-        nanoseconds = int(round(time * 1e9))
-        message.points.append(MultiDOFJointTrajectoryPoint(
-            transforms=[transform], velocities=[], accelerations=[],
-            time_from_start=Duration(sec=nanoseconds // 10**9, nanosec=nanoseconds % 10**9)))
-    return message
 
 
 def path_message(poses):
@@ -117,52 +79,6 @@ def config_args(config_directory, *extra):
     """Return ROS arguments: the shipped platform and example limits, then ``extra``."""
     return ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
             '--params-file', str(config_directory / 'example_limits.yaml'), *extra]
-
-
-class Recorder:
-    """The client's subscriptions and publishers, with waits that name what they wait for."""
-
-    def __init__(self, client, nodes):
-        """Record on ``client``; fail a wait when one of ``nodes`` exits."""
-        self.client, self.nodes = client, nodes
-        self.received, self.subscriptions, self.publishers = {}, [], {}
-        self.statuses = []
-        self.subscriptions.append(client.node.create_subscription(
-            DiagnosticArray, '/diagnostics', lambda array: self.statuses.extend(array.status),
-            CLIENT_DEPTH))
-
-    def subscribe(self, message_type, topic):
-        """Collect the messages of ``topic`` in ``received[topic]``."""
-        self.received[topic] = []
-        self.subscriptions.append(self.client.node.create_subscription(
-            message_type, topic, self.received[topic].append, CLIENT_DEPTH))
-
-    def advertise(self, message_type, topic):
-        """Create a publisher on ``topic``."""
-        self.publishers[topic] = self.client.node.create_publisher(
-            message_type, topic, CLIENT_DEPTH)
-
-    def connect(self):
-        """Wait until every publisher and subscription (but /diagnostics) matched, settle."""
-        def connected():
-            return (all(p.get_subscription_count() >= 1 for p in self.publishers.values())
-                    and all(s.get_publisher_count() >= 1 for s in self.subscriptions[1:]))
-        self.client.wait(connected, 'every topic matched', self.nodes)
-        self.client.spin_for(SETTLE_TIME)
-
-    def wait_for(self, topic, count):
-        """Wait until ``count`` messages arrived on ``topic``."""
-        self.client.wait(lambda: len(self.received[topic]) >= count,
-                         f'{count} messages on {topic}', self.nodes)
-
-    def rejection(self, status_name, code):
-        """Wait for a /diagnostics status named ``status_name`` counting a ``code`` rejection."""
-        def found():
-            return [status for status in self.statuses if status.name == status_name
-                    and any(value.key == f'rejected {code}' for value in status.values)]
-        self.client.wait(found, f'a {code} rejection in {status_name} on /diagnostics',
-                         self.nodes)
-        return found()[-1]
 
 
 def test_trajectories_checked_timed_and_refused(client, start_node, config_directory):

@@ -30,21 +30,15 @@ the exit code and the log; ``benchmarks/motion_benchmark.py --node`` measures th
 import math
 import signal
 
-from builtin_interfaces.msg import Duration
 from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import Transform
+from helpers import trajectory_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 from rcl_interfaces.srv import GetParameters, SetParameters
 import reference
-
-from trajectory_msgs.msg import (
-    JointTrajectory,
-    MultiDOFJointTrajectory,
-    MultiDOFJointTrajectoryPoint,
-)
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 
 pytestmark = pytest.mark.process
 
@@ -65,26 +59,10 @@ def node_args(config_directory, namespace, *extra):
             *extra]
 
 
-def trajectory_message(times, poses):
-    """Build a MultiDOFJointTrajectory of one joint through ``[X, Y, Z, a, b, g]`` poses."""
-    message = MultiDOFJointTrajectory(joint_names=['platform'])
-    for time, pose in zip(times, poses):
-        transform = Transform()
-        transform.translation.x, transform.translation.y, transform.translation.z = (
-            float(v) for v in pose[:3])
-        r = transform.rotation
-        r.x, r.y, r.z, r.w = (float(v) for v in reference.quaternion_from_euler(*pose[3:]))
-        nanoseconds = int(round(time * 1e9))
-        message.points.append(MultiDOFJointTrajectoryPoint(
-            transforms=[transform], time_from_start=Duration(
-                sec=nanoseconds // 10 ** 9, nanosec=nanoseconds % 10 ** 9)))
-    return message
-
-
 def short_trajectory():
     """Home, 2 cm up, home, over 10 s."""
     return trajectory_message([0.0, 5.0, 10.0],
-                              [HOME, HOME + [0.0, 0.0, 0.02, 0.0, 0.0, 0.0], HOME])
+                              [HOME, HOME + [0.0, 0.0, 0.02, 0.0, 0.0, 0.0], HOME], frame_id='')
 
 
 def long_trajectory():
@@ -92,7 +70,7 @@ def long_trajectory():
     times = np.linspace(0.0, LONG_DURATION, LONG_WAYPOINTS)
     phase = 2.0 * math.pi * times / LONG_DURATION
     return trajectory_message(times, HOME + 0.01 * np.outer(
-        1.0 - np.cos(phase), [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]))
+        1.0 - np.cos(phase), [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]), frame_id='')
 
 
 class Session:
@@ -162,7 +140,8 @@ def test_a_time_of_2_to_the_31_seconds_is_refused_and_the_node_answers_on(
     session.add('/huge')
     session.connect()
     session.publishers['/huge'].publish(trajectory_message(
-        [0.0, 1.0, 2.0 ** 31 - 1.0], [HOME, HOME + [0.0, 0.0, 0.02, 0.0, 0.0, 0.0], HOME]))
+        [0.0, 1.0, 2.0 ** 31 - 1.0], [HOME, HOME + [0.0, 0.0, 0.02, 0.0, 0.0, 0.0], HOME],
+        frame_id=''))
     session.wait_count('/huge', 'rejected invalid_trajectory', 1)
     answer = session.call('/huge', 'get', GetParameters.Request(names=['retime']))
     assert answer.values[0].bool_value is True
@@ -222,7 +201,8 @@ def test_a_tool_frame_set_at_run_time_acts_like_one_set_at_start_up(
     tool_poses = HOME + [0.0, 0.0, 0.06, 0.0, 0.0, 0.0] + np.array(
         [[0.0] * 6, [0.01, 0.0, 0.01, 0.0, 0.03, 0.05], [0.0, -0.01, 0.0, 0.04, 0.0, 0.0]])
     for namespace in ('/start', '/changed'):
-        session.publishers[namespace].publish(trajectory_message([0.0, 4.0, 8.0], tool_poses))
+        session.publishers[namespace].publish(
+            trajectory_message([0.0, 4.0, 8.0], tool_poses, frame_id=''))
     client.wait(lambda: session.received['/start'] and session.received['/changed'],
                 'both leg_trajectory messages', nodes)
     first, second = session.received['/start'][0], session.received['/changed'][0]

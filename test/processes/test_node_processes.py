@@ -34,6 +34,7 @@ import subprocess
 import sys
 
 from geometry_msgs.msg import Pose
+from helpers import pose_message, raw_pose_message, stop_cleanly
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -66,25 +67,6 @@ TABLE3 = reference.TABLE_3
 HOME_POSE = TABLE3[0]
 
 
-def pose_message(pose, scale=1.0):
-    """geometry_msgs/msg/Pose of a pose in metres and radians; ``scale`` scales the quaternion."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = pose[:3]
-    x, y, z, w = (scale * v for v in quaternion(*pose[3:]))
-    message.orientation.x, message.orientation.y = x, y
-    message.orientation.z, message.orientation.w = z, w
-    return message
-
-
-def raw_pose_message(position, orientation_xyzw):
-    """geometry_msgs/msg/Pose with exactly the given numbers, valid or not."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = position
-    (message.orientation.x, message.orientation.y,
-     message.orientation.z, message.orientation.w) = orientation_xyzw
-    return message
-
-
 def message_position(message):
     """Position of a Pose as a tuple."""
     return (message.position.x, message.position.y, message.position.z)
@@ -110,15 +92,6 @@ def kinematics_arguments(config_directory):
 def warnings_in(output):
     """Return the lines of a node's output that rclpy logged at WARN level."""
     return '\n'.join(line for line in output.splitlines() if line.startswith('[WARN]'))
-
-
-def stop_cleanly(process):
-    """Stop a process with SIGINT and check that it exits 0 without a traceback."""
-    code = process.stop()
-    output = process.output()
-    assert code == 0, f'{process.name} exited {code}:\n{output}'
-    assert 'Traceback' not in output, output
-    return output
 
 
 def test_ik_and_fk_nodes_play_table3_without_loss(client, start_node, config_directory):

@@ -28,11 +28,11 @@ import math
 
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Pose, PoseStamped, Twist
+from helpers import CLIENT_DEPTH, pose_message, Recorder, SETTLE_TIME, stop_cleanly
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from reference import (
-    quaternion_from_euler as quaternion,
     quaternion_matrix,
     rotation_vector_matrix,
     rotation_zyx as rotation_matrix,
@@ -44,11 +44,6 @@ import yaml
 
 pytestmark = pytest.mark.process
 
-#: Seconds to spin after discovery shows every side, before the first message (a reliable,
-#: volatile reader may match a writer a moment after the writer matched it).
-SETTLE_TIME = 0.5
-#: Queue depth of the test client's publishers and subscriptions.
-CLIENT_DEPTH = 100
 #: The shipped base_frame of config/paper_platform.yaml.
 BASE_FRAME = 'stewart_base'
 LEG_NAMES = [f'leg_{leg}' for leg in range(1, 7)]
@@ -91,15 +86,6 @@ def finite_difference_leg_velocities(geometry, pose, twist):
     return (lengths_after(h) - lengths_after(-h)) / (2.0 * h)
 
 
-def pose_message(pose):
-    """geometry_msgs/msg/Pose of ``[X, Y, Z, alpha, beta, gamma]``."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    o = message.orientation
-    o.x, o.y, o.z, o.w = quaternion(*pose[3:])
-    return message
-
-
 def stamped(pose, seconds, nanoseconds, frame=BASE_FRAME):
     """geometry_msgs/msg/PoseStamped with a recognisable stamp."""
     return PoseStamped(header=Header(frame_id=frame, stamp=Time(sec=seconds, nanosec=nanoseconds)),
@@ -124,48 +110,25 @@ def endpoints(endpoint_infos):
     return {(info.node_namespace, info.node_name) for info in endpoint_infos}
 
 
-def stop_cleanly(process):
-    """Stop a node process with SIGINT and check that it exits 0 without a traceback."""
-    code = process.stop()
-    output = process.output()
-    assert code == 0 and 'Traceback' not in output, f'{process.name} exited {code}:\n{output}'
-
-
-class Chain:
+class Chain(Recorder):
     """ik_node and fk_node as processes, chained by joint_commands, and the client's endpoints."""
 
     def __init__(self, client, start_node, config_directory):
         """Start both nodes; topics are subscribed and advertised with :meth:`subscribe`."""
         files = ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
                  '--params-file', str(config_directory / 'solver.yaml')]
-        self.nodes = [
+        super().__init__(client, [
             start_node('ik_node', files),
             start_node('fk_node', files + ['-r', 'joint_states:=joint_commands',
                                            '-r', 'leg_lengths:=unused_lengths']),
-        ]
-        self.client = client
-        self.received = {}
-        self.subscriptions = []
-        self.publishers = {}
-
-    def subscribe(self, message_type, topic):
-        """Subscribe to a topic; its messages collect in ``received[topic]``."""
-        self.received[topic] = []
-        self.subscriptions.append(self.client.node.create_subscription(
-            message_type, topic, self.received[topic].append, CLIENT_DEPTH))
-
-    def advertise(self, message_type, topic):
-        """Create the client's publisher on a topic."""
-        self.publishers[topic] = self.client.node.create_publisher(
-            message_type, topic, CLIENT_DEPTH)
+        ])
 
     def connect(self):
         """Wait until every endpoint matches and fk_node reads joint_commands, then settle."""
         graph = self.client.node
 
         def connected():
-            return (all(p.get_subscription_count() >= 1 for p in self.publishers.values())
-                    and all(s.get_publisher_count() >= 1 for s in self.subscriptions)
+            return (self.matched()
                     and ('/', 'fk_node') in endpoints(
                         graph.get_subscriptions_info_by_topic('/joint_commands'))
                     and ('/', 'ik_node') in endpoints(
@@ -173,11 +136,6 @@ class Chain:
 
         self.client.wait(connected, 'ik_node and fk_node chained and matched', self.nodes)
         self.client.spin_for(SETTLE_TIME)
-
-    def wait_for(self, topic, count):
-        """Wait until ``count`` messages arrived on ``topic``."""
-        self.client.wait(lambda: len(self.received[topic]) >= count,
-                         f'{count} messages on {topic}', self.nodes)
 
 
 @pytest.fixture

@@ -22,19 +22,15 @@ and motion_cueing_node in ``/cue`` (vehicle motion in, poses out). Expected leg 
 from the joints read with PyYAML and the textbook leg formula of test/reference.py.
 """
 
-from builtin_interfaces.msg import Duration
-from geometry_msgs.msg import Pose, Transform
+from geometry_msgs.msg import Pose
+from helpers import pose_message, trajectory_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 import reference
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Float64MultiArray
-from trajectory_msgs.msg import (
-    JointTrajectory,
-    MultiDOFJointTrajectory,
-    MultiDOFJointTrajectoryPoint,
-)
+from trajectory_msgs.msg import JointTrajectory, MultiDOFJointTrajectory
 import yaml
 
 pytestmark = pytest.mark.process
@@ -59,35 +55,11 @@ def read_file(path):
             (parameters['leg_length_min'], parameters['leg_length_max']))
 
 
-def pose_message(pose):
-    """geometry_msgs/msg/Pose of ``[X, Y, Z, alpha, beta, gamma]``."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    o = message.orientation
-    o.x, o.y, o.z, o.w = (float(v) for v in reference.quaternion_from_euler(*pose[3:]))
-    return message
-
-
 def message_pose(message):
     """Return a Pose's position (3,) and rotation matrix (3, 3)."""
     o = message.orientation
     return (np.array([message.position.x, message.position.y, message.position.z]),
             reference.quaternion_matrix(o.x, o.y, o.z, o.w))
-
-
-def trajectory_message(times, poses):
-    """Build a MultiDOFJointTrajectory of the platform through the poses."""
-    message = MultiDOFJointTrajectory(joint_names=['platform'])
-    message.header.frame_id = 'stewart_base'
-    for time, pose in zip(times, poses):
-        transform = Transform()
-        transform.translation.x, transform.translation.y, transform.translation.z = (
-            float(v) for v in pose[:3])
-        r = transform.rotation
-        r.x, r.y, r.z, r.w = (float(v) for v in reference.quaternion_from_euler(*pose[3:]))
-        message.points.append(MultiDOFJointTrajectoryPoint(
-            transforms=[transform], time_from_start=Duration(sec=int(time))))
-    return message
 
 
 def imu(k):

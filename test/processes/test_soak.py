@@ -37,7 +37,7 @@ import pytest
 
 pytestmark = pytest.mark.process
 
-SOAK = Path(__file__).resolve().parent.parent / 'benchmarks' / 'soak.py'
+SOAK = Path(__file__).resolve().parents[2] / 'benchmarks' / 'soak.py'
 #: The 30 s soak: a kill every 7 s (SIGKILL and SIGTERM in turn), a flood every
 #: 10 s, a clock jump every 3 s (a hostile clock message at the fifth).
 ARGUMENTS = ['--seconds', '30', '--kill-every', '7', '--flood-every', '10', '--flood-seconds',

@@ -37,7 +37,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM_FILE = CONFIG_DIRECTORY / 'paper_platform.yaml'
 SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
 RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')

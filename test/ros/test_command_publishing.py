@@ -43,7 +43,7 @@ from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectory
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
          '--params-file', str(CONFIG / 'example_limits.yaml')]
 #: The topics that command actuators, node by node: what the interface table must declare.

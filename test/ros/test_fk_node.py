@@ -45,7 +45,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
 SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
 KINEMATICS_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', SOLVER_FILE]

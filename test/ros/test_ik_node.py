@@ -26,12 +26,13 @@ import math
 from pathlib import Path
 
 from geometry_msgs.msg import Pose
+from helpers import pose_message, raw_pose_message
 from numpy.testing import assert_allclose
 import pytest
 import rclpy
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from reference import leg_lengths as expected_lengths, quaternion_from_euler
+from reference import leg_lengths as expected_lengths
 from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros import ik_node
@@ -41,7 +42,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
 SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
 KINEMATICS_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', SOLVER_FILE]
@@ -66,20 +67,6 @@ def paper_joints():
     def triples(flat):
         return [flat[3 * i:3 * i + 3] for i in range(6)]
     return triples(parameters['base_joints']), triples(parameters['platform_joints'])
-
-
-def pose_message(position, quaternion):
-    """Build a Pose from a position and a quaternion (x, y, z, w)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
-    orientation = message.orientation
-    orientation.x, orientation.y, orientation.z, orientation.w = (float(v) for v in quaternion)
-    return message
-
-
-def message_of(pose, scale=1.0):
-    """Build the Pose message of (X, Y, Z, alpha, beta, gamma), quaternion times ``scale``."""
-    return pose_message(pose[:3], [scale * q for q in quaternion_from_euler(*pose[3:])])
 
 
 class Probe:
@@ -156,7 +143,7 @@ def test_leg_lengths_match_the_paper_equation(start, spin_until):
     home_lengths = expected_lengths(HOME)
     assert_allclose(node.geometry.home_leg_lengths, home_lengths, rtol=0.0, atol=1e-12)
     for count, pose in enumerate((HOME, TABLE3_END, TILTED), start=1):
-        send_and_wait(spin_until, executor, probe, message_of(pose), count)
+        send_and_wait(spin_until, executor, probe, pose_message(pose), count)
         lengths, extensions = probe.lengths[-1], probe.extensions[-1]
         assert_leg_layout(lengths)
         assert_leg_layout(extensions)
@@ -179,9 +166,9 @@ def test_home_lengths_are_the_documented_values(start):
 def test_quaternion_of_norm_two_is_normalised(start, spin_until):
     """A quaternion scaled to norm 2 gives the same lengths as the unit one."""
     node, probe, executor = start()
-    send_and_wait(spin_until, executor, probe, message_of(TILTED), 1)
-    send_and_wait(spin_until, executor, probe, message_of(TILTED, scale=2.0), 2)
-    send_and_wait(spin_until, executor, probe, message_of(TILTED, scale=-0.5), 3)
+    send_and_wait(spin_until, executor, probe, pose_message(TILTED), 1)
+    send_and_wait(spin_until, executor, probe, pose_message(TILTED, scale=2.0), 2)
+    send_and_wait(spin_until, executor, probe, pose_message(TILTED, scale=-0.5), 3)
     wanted = expected_lengths(TILTED)
     for message in probe.lengths:
         assert_allclose(message.data, wanted, rtol=0.0, atol=1e-12)
@@ -192,16 +179,16 @@ def test_bad_poses_are_rejected_and_the_node_keeps_working(start, spin_until):
     """Poses with NaN, infinity or a zero quaternion publish nothing and count as rejected."""
     node, probe, executor = start()
     bad = [
-        pose_message([math.nan, 0.0, 0.4325], [0.0, 0.0, 0.0, 1.0]),
-        pose_message([0.0, 0.0, math.inf], [0.0, 0.0, 0.0, 1.0]),
-        pose_message([0.0, 0.0, 0.4325], [0.0, 0.0, 0.0, 0.0]),
-        pose_message([0.0, 0.0, 0.4325], [0.0, math.nan, 0.0, 1.0]),
+        raw_pose_message([math.nan, 0.0, 0.4325], [0.0, 0.0, 0.0, 1.0]),
+        raw_pose_message([0.0, 0.0, math.inf], [0.0, 0.0, 0.0, 1.0]),
+        raw_pose_message([0.0, 0.0, 0.4325], [0.0, 0.0, 0.0, 0.0]),
+        raw_pose_message([0.0, 0.0, 0.4325], [0.0, math.nan, 0.0, 1.0]),
     ]
     for message in bad:
         probe.publisher.publish(message)
     # Messages from one publisher arrive in order: the good pose's answer comes after any
     # answer to the bad ones, so exactly one answer means the bad ones produced none.
-    send_and_wait(spin_until, executor, probe, message_of(TABLE3_END), 1)
+    send_and_wait(spin_until, executor, probe, pose_message(TABLE3_END), 1)
     assert (len(probe.lengths), len(probe.extensions)) == (1, 1)
     assert_allclose(probe.lengths[0].data, expected_lengths(TABLE3_END), rtol=0.0, atol=1e-12)
     assert counts(node) == (5, 1, 4)
@@ -214,9 +201,9 @@ def test_pose_out_of_reach_is_rejected(start, spin_until):
     assert (node.geometry.leg_length_min, node.geometry.leg_length_max) == (0.69, 0.73)
     assert max(expected_lengths(TABLE3_END)) > 0.73
     assert min(expected_lengths((0.0, 0.0, 0.40, 0.0, 0.0, 0.0))) < 0.69
-    probe.publisher.publish(message_of(TABLE3_END))
-    probe.publisher.publish(message_of((0.0, 0.0, 0.40, 0.0, 0.0, 0.0)))
-    send_and_wait(spin_until, executor, probe, message_of(HOME), 1)
+    probe.publisher.publish(pose_message(TABLE3_END))
+    probe.publisher.publish(pose_message((0.0, 0.0, 0.40, 0.0, 0.0, 0.0)))
+    send_and_wait(spin_until, executor, probe, pose_message(HOME), 1)
     assert (len(probe.lengths), len(probe.extensions)) == (1, 1)
     assert_allclose(probe.lengths[0].data, expected_lengths(HOME), rtol=0.0, atol=1e-12)
     assert counts(node) == (3, 1, 2)
@@ -227,7 +214,7 @@ def test_target_pose_remap(start, spin_until):
     node, probe, executor = start(
         target_topic='/other', cli_args=KINEMATICS_ARGS + ['-r', 'target_pose:=/other'])
     assert [s.topic_name for s in node.subscriptions][0] == '/other'
-    send_and_wait(spin_until, executor, probe, message_of(TILTED), 1)
+    send_and_wait(spin_until, executor, probe, pose_message(TILTED), 1)
     assert_allclose(probe.lengths[0].data, expected_lengths(TILTED), rtol=0.0, atol=1e-12)
 
 

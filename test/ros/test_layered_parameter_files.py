@@ -39,7 +39,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM = str(CONFIG / 'paper_platform.yaml')
 LIMITS = str(CONFIG / 'example_limits.yaml')
 SOLVER = str(CONFIG / 'solver.yaml')

@@ -42,7 +42,7 @@ pytestmark = pytest.mark.node
 
 #: Characters of the oversized finding.
 LONG = 10 ** 7
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 
 
 class RecordingLogger:

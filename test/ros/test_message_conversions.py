@@ -22,6 +22,7 @@ formula written out here, never with the package's own rotation functions.
 import math
 
 from geometry_msgs.msg import Pose, Quaternion
+from helpers import raw_pose_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -42,15 +43,6 @@ from stewart_kinematics.ros.message_conversions import (
 pytestmark = pytest.mark.node
 
 SQRT_HALF = 0.7071067811865476
-
-
-def pose_message(position, quaternion):
-    """Build a Pose from ``(x, y, z)`` and ``(qx, qy, qz, qw)``."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
-    orientation = message.orientation
-    orientation.x, orientation.y, orientation.z, orientation.w = (float(v) for v in quaternion)
-    return message
 
 
 def quaternion_of(message):
@@ -96,7 +88,7 @@ def test_hand_typed_quaternions_give_the_expected_angles():
         ([0.0, 0.0, 0.0, -1.0], [0.0, 0.0, 0.0]),
     ]
     for quaternion, angles in cases:
-        pose = pose_from_message(pose_message([0.5, -0.25, 0.125], quaternion))
+        pose = pose_from_message(raw_pose_message([0.5, -0.25, 0.125], quaternion))
         assert_allclose(pose, [0.5, -0.25, 0.125] + angles, atol=1e-15)
 
 
@@ -121,7 +113,7 @@ def test_message_round_trip_and_quaternion_sign(pose):
     """Message -> pose -> message keeps the rotation; q and -q decode to the same pose."""
     quaternion = quaternion_from_euler(*pose[3:])
     for sign in (1.0, -1.0):
-        message = pose_message(pose[:3], sign * quaternion)
+        message = raw_pose_message(pose[:3], sign * quaternion)
         decoded = pose_from_message(message)
         assert_allclose(decoded, pose, atol=1e-12)
         assert_allclose(quaternion_of(pose_to_message(decoded)), quaternion, atol=1e-12)
@@ -139,7 +131,7 @@ def test_w_is_never_negative():
 
 def test_position_quaternion_reports_the_norm_and_normalises():
     """A quaternion of norm 2 comes back unit, with the norm 2 reported for a warning."""
-    message = pose_message([0.1, 0.2, 0.3], [0.0, 0.0, 2.0 * SQRT_HALF, 2.0 * SQRT_HALF])
+    message = raw_pose_message([0.1, 0.2, 0.3], [0.0, 0.0, 2.0 * SQRT_HALF, 2.0 * SQRT_HALF])
     position, quaternion, norm = position_quaternion_from_message(message)
     assert_allclose(position, [0.1, 0.2, 0.3], atol=0.0)
     assert_allclose(quaternion, [0.0, 0.0, SQRT_HALF, SQRT_HALF], atol=1e-15)
@@ -153,13 +145,13 @@ def test_non_finite_position_is_refused(bad):
         position = [0.0, 0.0, 0.4]
         position[axis] = bad
         with pytest.raises(ValueError, match='position must be finite'):
-            pose_from_message(pose_message(position, [0.0, 0.0, 0.0, 1.0]))
+            pose_from_message(raw_pose_message(position, [0.0, 0.0, 0.0, 1.0]))
 
 
 def test_zero_quaternion_is_refused():
     """The all-zero quaternion (an uninitialised Pose) raises ValueError naming the cause."""
     with pytest.raises(ValueError, match='zero quaternion'):
-        pose_from_message(pose_message([0.0, 0.0, 0.4], [0.0, 0.0, 0.0, 0.0]))
+        pose_from_message(raw_pose_message([0.0, 0.0, 0.4], [0.0, 0.0, 0.0, 0.0]))
     with pytest.raises(ValueError, match='quaternion norm'):
         pose_from_message(Pose(orientation=Quaternion(x=0.0, y=0.0, z=0.0, w=0.0)))
 
@@ -167,7 +159,7 @@ def test_zero_quaternion_is_refused():
 def test_non_finite_quaternion_is_refused():
     """A NaN quaternion component raises ValueError about the quaternion."""
     with pytest.raises(ValueError, match='quaternion components must be finite'):
-        pose_from_message(pose_message([0.0, 0.0, 0.4], [0.0, math.nan, 0.0, 1.0]))
+        pose_from_message(raw_pose_message([0.0, 0.0, 0.4], [0.0, math.nan, 0.0, 1.0]))
 
 
 def test_legs_to_message_layout():

@@ -39,7 +39,7 @@ from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 ARGUMENTS = ['--ros-args', '--params-file', str(CONFIG / 'paper_platform.yaml'),
              '--params-file', str(CONFIG / 'example_limits.yaml'),
              '--params-file', str(CONFIG / 'motion_cueing.yaml')]

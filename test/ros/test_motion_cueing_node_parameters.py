@@ -37,7 +37,7 @@ from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
          '--params-file', str(CONFIG / 'example_limits.yaml'),
          '--params-file', str(CONFIG / 'motion_cueing.yaml')]

@@ -21,7 +21,7 @@ A probe node feeds the node's input topic and records its outputs and ``/diagnos
 (diagnostic_msgs/msg/DiagnosticArray). A refused message must publish no output; the node must
 pass on the core's finding (recorded here as the node hands it to its accounting), and the
 report on /diagnostics, one a second, must carry the counters, the counts by reason and the
-latest reason. The decisions themselves are tested without ROS in test_command_check.py and
+latest reason. The decisions themselves are tested without ROS in test_pose_commands.py and
 test_pose_tracker.py.
 
 The poses used against the limits were chosen with the values printed beside them; the
@@ -34,6 +34,7 @@ import threading
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Pose, Twist
+from helpers import pose_message, raw_pose_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -54,7 +55,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
 LIMITS_FILE = str(CONFIG_DIRECTORY / 'example_limits.yaml')
 SOLVER_FILE = str(CONFIG_DIRECTORY / 'solver.yaml')
@@ -91,20 +92,6 @@ IMPOSSIBLE_LENGTHS = [0.9, 0.65, 0.9, 0.65, 0.9, 0.65]
 
 
 # Messages and poses ---------------------------------------------------------------------------
-
-def pose_message(position, quaternion):
-    """Build a Pose from a position and a quaternion (x, y, z, w)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in position)
-    orientation = message.orientation
-    orientation.x, orientation.y, orientation.z, orientation.w = (float(v) for v in quaternion)
-    return message
-
-
-def message_of(pose, scale=1.0):
-    """Build the Pose message of (X, Y, Z, alpha, beta, gamma), quaternion times ``scale``."""
-    return pose_message(pose[:3], scale * quaternion_from_euler(*pose[3:]))
-
 
 def lengths_message(values):
     """Build a bare Float64MultiArray of leg lengths."""
@@ -252,10 +239,10 @@ def test_ik_refuses_poses_beyond_each_limit_and_says_why(start, spin_until):
     refusals, _ = record_findings(node)
     lengths, extensions = probe.received['leg_lengths'], probe.received['leg_extensions']
     for pose in (STROKE_POSE, CONE_POSE, SINGULAR_POSE):
-        probe.publisher.publish(message_of(pose))
+        probe.publisher.publish(pose_message(pose))
     # Poses from one publisher arrive in order: the answer to this good pose comes after any
     # answer to the three bad ones, so one answer of each kind means they produced none.
-    probe.publisher.publish(message_of(HOME))
+    probe.publisher.publish(pose_message(HOME))
     assert spin_until(executor, lambda: len(lengths) >= 1 and len(extensions) >= 1)
     assert (len(lengths), len(extensions)) == (1, 1)
     assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)
@@ -300,18 +287,18 @@ def test_ik_counts_every_message_as_one_output_or_one_rejection(start, spin_unti
     """NaN, infinity, zero and NaN quaternions, out of reach: counted refusals, throttled log."""
     node, probe, executor = start_ik(start)
     unit = [0.0, 0.0, 0.0, 1.0]
-    good = [message_of(HOME), message_of(TILTED), message_of(TABLE3_END)]
+    good = [pose_message(HOME), pose_message(TILTED), pose_message(TABLE3_END)]
     bad = [
-        ('position must be finite', pose_message([math.nan, 0.0, 0.4325], unit)),
-        ('position must be finite', pose_message([0.0, 0.0, math.inf], unit)),
-        ('position must be finite', pose_message([0.0, -math.inf, 0.4325], unit)),
-        ('zero quaternion', pose_message([0.0, 0.0, 0.4325], [0.0, 0.0, 0.0, 0.0])),
+        ('position must be finite', raw_pose_message([math.nan, 0.0, 0.4325], unit)),
+        ('position must be finite', raw_pose_message([0.0, 0.0, math.inf], unit)),
+        ('position must be finite', raw_pose_message([0.0, -math.inf, 0.4325], unit)),
+        ('zero quaternion', raw_pose_message([0.0, 0.0, 0.4325], [0.0, 0.0, 0.0, 0.0])),
         ('quaternion components must be finite',
-         pose_message([0.0, 0.0, 0.4325], [0.0, math.nan, 0.0, 1.0])),
+         raw_pose_message([0.0, 0.0, 0.4325], [0.0, math.nan, 0.0, 1.0])),
         ('quaternion components must be finite',
-         pose_message([0.0, 0.0, 0.4325], [math.inf, 0.0, 0.0, 1.0])),
-        ('out of the limits', message_of(STROKE_POSE)),
-        ('out of the limits', message_of((0.0, 0.0, 0.3, 0.0, 0.0, 0.0))),
+         raw_pose_message([0.0, 0.0, 0.4325], [math.inf, 0.0, 0.0, 1.0])),
+        ('out of the limits', pose_message(STROKE_POSE)),
+        ('out of the limits', pose_message((0.0, 0.0, 0.3, 0.0, 0.0, 0.0))),
     ]
     bad_messages = [message for _, message in bad]
     mixed = ([good[0]] + bad_messages[:3] + [good[1]] + bad_messages[3:6] + [good[2]]
@@ -349,7 +336,7 @@ def test_ik_normalises_a_non_unit_quaternion_and_warns_once(start, spin_until, c
     node, probe, executor = start_ik(start)
     lengths = probe.received['leg_lengths']
     for count, scale in enumerate((1.0, 2.0, 0.5, -3.0), start=1):
-        probe.publisher.publish(message_of(TILTED, scale=scale))
+        probe.publisher.publish(pose_message(TILTED, scale=scale))
         assert spin_until(executor, lambda: len(lengths) >= count), f'{len(lengths)} answers'
     for message in lengths[1:]:
         assert_allclose(message.data, lengths[0].data, rtol=0.0, atol=1e-12)
@@ -383,8 +370,8 @@ def test_ik_refuses_a_pose_with_a_zero_length_leg(start, spin_until, overrides):
     assert_allclose(np.array(JOINT_ON_JOINT_POSITION) + geometry.platform_joints[0],
                     geometry.base_joints[0], rtol=0.0, atol=0.0)
     lengths = probe.received['leg_lengths']
-    probe.publisher.publish(pose_message(JOINT_ON_JOINT_POSITION, [0.0, 0.0, 0.0, 1.0]))
-    probe.publisher.publish(message_of(TILTED))
+    probe.publisher.publish(raw_pose_message(JOINT_ON_JOINT_POSITION, [0.0, 0.0, 0.0, 1.0]))
+    probe.publisher.publish(pose_message(TILTED))
     assert spin_until(executor, lambda: len(lengths) >= 1)
     assert len(lengths) == 1
     assert_allclose(lengths[0].data, lengths_of(TILTED), rtol=0.0, atol=1e-12)
@@ -404,10 +391,10 @@ def test_ik_refuses_a_finite_pose_whose_leg_lengths_overflow(start, spin_until, 
     refusals, _ = record_findings(node)
     lengths = probe.received['leg_lengths']
     unit = [0.0, 0.0, 0.0, 1.0]
-    probe.publisher.publish(pose_message([0.0, 0.0, 1e200], unit))
-    probe.publisher.publish(pose_message([1e155, 0.0, 0.4325], unit))
+    probe.publisher.publish(raw_pose_message([0.0, 0.0, 1e200], unit))
+    probe.publisher.publish(raw_pose_message([1e155, 0.0, 0.4325], unit))
     # Poses from one publisher arrive in order: one answer to this one means none to those.
-    probe.publisher.publish(message_of(HOME))
+    probe.publisher.publish(pose_message(HOME))
     assert spin_until(executor, lambda: len(lengths) >= 1)
     assert len(lengths) == 1
     assert_allclose(lengths[0].data, node.geometry.home_leg_lengths, rtol=0.0, atol=1e-12)

@@ -34,7 +34,7 @@ from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 ARGUMENTS = ['--ros-args', '--params-file', str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
              '--params-file', str(CONFIG_DIRECTORY / 'example_limits.yaml')]
 #: Seconds to wait for an answer.

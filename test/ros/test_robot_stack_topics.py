@@ -33,7 +33,7 @@ from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 ARGS = ['--ros-args', '--params-file', str(CONFIG / 'paper_platform.yaml'),
         '--params-file', str(CONFIG / 'solver.yaml')]
 GEOMETRY = load_geometry(CONFIG / 'paper_platform.yaml')

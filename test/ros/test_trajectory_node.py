@@ -20,7 +20,7 @@ STEWART_EXECUTOR chooses the executor, as for the nodes (test/conftest.py).
 The node plays config/table3_ramp.yaml, with a short row period or duration given as
 parameter overrides; the received poses are compared with the paper's Table 3 typed here in
 millimetres and degrees, orientations as textbook quaternions. What the ramp plays when (rows,
-samples, loops) is RampPlayback's, tested without rclpy in test_ramp_playback.py; these tests
+samples, loops) is RampPlayback's, tested without rclpy in test_playback.py; these tests
 check that the node plays it on its timers and clock, and stops when it is over.
 """
 
@@ -42,7 +42,7 @@ import yaml
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 RAMP_FILE = str(CONFIG_DIRECTORY / 'table3_ramp.yaml')
 PLATFORM_FILE = str(CONFIG_DIRECTORY / 'paper_platform.yaml')
 RAMP_ARGS = ['--ros-args', '--params-file', PLATFORM_FILE, '--params-file', RAMP_FILE]

@@ -42,7 +42,7 @@ from trajectory_msgs.msg import (
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 ARGS = ['--ros-args', '--params-file', str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
         '--params-file', str(CONFIG_DIRECTORY / 'example_limits.yaml'), '-p', "mode:='off'",
         '-p', 'publish_rate:=20.0']

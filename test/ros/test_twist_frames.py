@@ -40,7 +40,7 @@ from stewart_kinematics.ros.node_main import create_executor
 
 pytestmark = pytest.mark.node
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 ARGS = ['--ros-args', '--params-file', str(CONFIG_DIRECTORY / 'paper_platform.yaml'),
         '--params-file', str(CONFIG_DIRECTORY / 'solver.yaml')]
 TOOL_POSITION = [0.03, -0.02, 0.08]

@@ -29,6 +29,7 @@ import subprocess
 import sys
 
 from geometry_msgs.msg import Pose
+from helpers import pose_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -62,24 +63,15 @@ def file_lengths(path, pose):
         np.reshape(parameters['platform_joints'], (6, 3))))
 
 
-def pose_message(pose):
-    """geometry_msgs/msg/Pose of ``[X, Y, Z, alpha, beta, gamma]`` (quaternion of ZYX)."""
-    message = Pose()
-    message.position.x, message.position.y, message.position.z = (float(v) for v in pose[:3])
-    o = message.orientation
-    o.x, o.y, o.z, o.w = (float(v) for v in reference.quaternion_from_euler(*pose[3:]))
-    return message
-
-
 #: The README's worked example, run as a script (it is no part of the installed package).
-EXAMPLE_SCRIPT = Path(__file__).resolve().parent.parent / 'scripts' / 'calibration_example.py'
+EXAMPLE_SCRIPT = Path(__file__).resolve().parents[2] / 'scripts' / 'calibration_example.py'
 
 
 @pytest.fixture(scope='module')
 def example(tmp_path_factory):
     """Write the worked example's files and calibrate from them with stewart_calibrate."""
     from pathlib import Path
-    config = Path(__file__).resolve().parent.parent / 'config'
+    config = Path(__file__).resolve().parents[2] / 'config'
     directory = tmp_path_factory.mktemp('calibration_example')
     code, out, err = run([sys.executable, str(EXAMPLE_SCRIPT),
                           str(directory), '--config-dir', str(config)], directory)
@@ -130,7 +122,7 @@ def test_calibration_cuts_the_pose_error_of_the_built_platform(example):
 def test_docs_worked_example_is_this_output(example):
     # The calibration page's excerpt of the worked example is the output of its commands.
     from pathlib import Path
-    page = (Path(__file__).resolve().parent.parent / 'doc' / 'calibration.md').read_text(
+    page = (Path(__file__).resolve().parents[2] / 'doc' / 'calibration.md').read_text(
         encoding='utf-8')
     excerpt = re.search(r'```text\n(poses: 50 measured.*?)```', page, re.DOTALL)
     assert excerpt, 'worked example excerpt not found in doc/calibration.md'

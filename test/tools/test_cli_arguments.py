@@ -33,7 +33,7 @@ import yaml
 
 pytestmark = pytest.mark.core
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 PLATFORM = str(ROOT / 'config' / 'paper_platform.yaml')
 LIMITS = str(ROOT / 'config' / 'example_limits.yaml')
 COARSE = ['--slice-resolution-mm', '20', '--volume-resolution-mm', '50',

@@ -32,7 +32,7 @@ import yaml
 
 pytestmark = pytest.mark.core
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 PLATFORM = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
             '--params-file', str(CONFIG / 'example_limits.yaml')]
 TUNED = PLATFORM + ['--params-file', str(CONFIG / 'motion_cueing.yaml')]

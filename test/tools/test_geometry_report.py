@@ -32,7 +32,7 @@ from stewart_kinematics.tools.node_processes import find_executable
 
 pytestmark = pytest.mark.process
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: Generous: the report takes about a second; a loaded machine may take many.
 DEADLINE = 120.0
 

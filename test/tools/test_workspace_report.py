@@ -32,7 +32,7 @@ import yaml
 
 pytestmark = pytest.mark.process
 
-CONFIG = Path(__file__).resolve().parent.parent / 'config'
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
 COARSE = ['--slice-resolution-mm', '8', '--volume-resolution-mm', '20',
           '--angle-resolution-deg', '1.0']

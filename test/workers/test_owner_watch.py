@@ -39,7 +39,7 @@ from visualization_msgs.msg import MarkerArray
 
 pytestmark = pytest.mark.process
 
-CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
+CONFIG_DIRECTORY = Path(__file__).resolve().parents[2] / 'config'
 #: Seconds the processes left behind have to exit.
 DEADLINE = 20.0
 
