@@ -40,7 +40,6 @@ from stewart_kinematics import forward_kinematics, inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros import fk_node
 from stewart_kinematics.ros.fk_node import FkNode
-from stewart_kinematics.ros.node_main import create_executor
 import yaml
 
 pytestmark = pytest.mark.node
@@ -95,36 +94,25 @@ class Probe:
 
 
 @pytest.fixture
-def start(ros, spin_until):
+def start(node_rig):
     """
     Return a starter of an FkNode and a Probe on one executor, connected both ways.
 
     The starter takes the node's keyword arguments (default: the config files) and returns
     ``(node, probe, executor)``.
     """
-    created = []
-    executor = create_executor()
-
     def start_nodes(**node_kwargs):
         node_kwargs.setdefault('cli_args', KINEMATICS_ARGS)
-        node = FkNode(**node_kwargs)
-        created.append(node)
+        node = node_rig.add(FkNode(**node_kwargs))
         probe = Probe()
-        created.append(probe.node)
-        executor.add_node(node)
-        executor.add_node(probe.node)
+        node_rig.add(probe.node)
         subscription = next(iter(node.subscriptions))
-
-        def connected():
-            return (probe.publisher.get_subscription_count() >= 1
-                    and subscription.get_publisher_count() >= 1
-                    and node.pose_publisher.get_subscription_count() >= 1)
-        assert spin_until(executor, connected), 'FK node and probe did not connect'
-        return node, probe, executor
-    yield start_nodes
-    executor.shutdown()
-    for node in created:
-        node.destroy_node()
+        node_rig.connect(lambda: (probe.publisher.get_subscription_count() >= 1
+                                  and subscription.get_publisher_count() >= 1
+                                  and node.pose_publisher.get_subscription_count() >= 1),
+                         'FK node and probe')
+        return node, probe, node_rig.executor
+    return start_nodes
 
 
 def send_and_wait(spin_until, executor, probe, message, answers):

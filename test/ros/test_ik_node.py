@@ -37,7 +37,6 @@ from std_msgs.msg import Float64MultiArray
 
 from stewart_kinematics.ros import ik_node
 from stewart_kinematics.ros.ik_node import IkNode
-from stewart_kinematics.ros.node_main import create_executor
 import yaml
 
 pytestmark = pytest.mark.node
@@ -89,37 +88,26 @@ class Probe:
 
 
 @pytest.fixture
-def start(ros, spin_until):
+def start(node_rig):
     """
     Return a starter of an IkNode and a Probe on one executor, connected both ways.
 
     The starter takes the node's keyword arguments (default: the config files) and the
     probe's target topic, and returns ``(node, probe, executor)``.
     """
-    created = []
-    executor = create_executor()
-
     def start_nodes(target_topic='target_pose', **node_kwargs):
         node_kwargs.setdefault('cli_args', KINEMATICS_ARGS)
-        node = IkNode(**node_kwargs)
-        created.append(node)
+        node = node_rig.add(IkNode(**node_kwargs))
         probe = Probe(target_topic)
-        created.append(probe.node)
-        executor.add_node(node)
-        executor.add_node(probe.node)
+        node_rig.add(probe.node)
         subscription = next(iter(node.subscriptions))
-
-        def connected():
-            return (probe.publisher.get_subscription_count() >= 1
-                    and subscription.get_publisher_count() >= 1
-                    and node.lengths_publisher.get_subscription_count() >= 1
-                    and node.extensions_publisher.get_subscription_count() >= 1)
-        assert spin_until(executor, connected), 'IK node and probe did not connect'
-        return node, probe, executor
-    yield start_nodes
-    executor.shutdown()
-    for node in created:
-        node.destroy_node()
+        node_rig.connect(lambda: (probe.publisher.get_subscription_count() >= 1
+                                  and subscription.get_publisher_count() >= 1
+                                  and node.lengths_publisher.get_subscription_count() >= 1
+                                  and node.extensions_publisher.get_subscription_count() >= 1),
+                         'IK node and probe')
+        return node, probe, node_rig.executor
+    return start_nodes
 
 
 def send_and_wait(spin_until, executor, probe, message, answers):

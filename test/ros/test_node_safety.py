@@ -173,40 +173,30 @@ def record_findings(node):
 
 
 @pytest.fixture
-def start(ros, spin_until):
+def start(node_rig):
     """
     Return a starter of a node and a Probe on one executor, with every topic connected.
 
     ``start_nodes(node_class, cli_args, overrides, input_type, input_topic, outputs)`` returns
     ``(node, probe, executor)``; ``overrides`` maps parameter names to values.
     """
-    created = []
-    executor = create_executor()
-
     def start_nodes(node_class, cli_args, overrides, input_type, input_topic, outputs):
         parameters = [Parameter(name, value=value) for name, value in overrides.items()]
-        node = node_class(cli_args=cli_args, parameter_overrides=parameters)
-        created.append(node)
+        node = node_rig.add(node_class(cli_args=cli_args, parameter_overrides=parameters))
         probe = Probe(input_type, input_topic, outputs)
-        created.append(probe.node)
-        executor.add_node(node)
-        executor.add_node(probe.node)
+        node_rig.add(probe.node)
         recorded = {'/' + topic for topic, _ in outputs}
         watched = [p for p in node.publishers if p.topic_name in recorded]
         assert len(watched) == len(recorded)
         watched.append(node.accounting.diagnostics.publisher)
         [subscription] = [s for s in node.subscriptions if s.topic_name == '/' + input_topic]
 
-        def connected():
-            return (probe.publisher.get_subscription_count() >= 1
-                    and subscription.get_publisher_count() >= 1
-                    and all(p.get_subscription_count() >= 1 for p in watched))
-        assert spin_until(executor, connected), 'node and probe did not connect'
-        return node, probe, executor
-    yield start_nodes
-    executor.shutdown()
-    for node in created:
-        node.destroy_node()
+        node_rig.connect(lambda: (probe.publisher.get_subscription_count() >= 1
+                                  and subscription.get_publisher_count() >= 1
+                                  and all(p.get_subscription_count() >= 1 for p in watched)),
+                         'node and probe')
+        return node, probe, node_rig.executor
+    return start_nodes
 
 
 def start_ik(start, overrides=None):

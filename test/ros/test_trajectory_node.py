@@ -36,7 +36,6 @@ from rclpy.parameter import Parameter
 from reference import quaternion_from_euler, TABLE_3
 
 from stewart_kinematics.ros import trajectory_node
-from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
 
@@ -87,29 +86,20 @@ class Probe:
 
 
 @pytest.fixture
-def start(ros):
+def start(node_rig):
     """
     Return a starter of a TrajectoryNode and a Probe on one executor.
 
     The starter takes the parameter overrides (on top of config/table3_ramp.yaml) and whether
     the probe subscribes at once, and returns ``(node, probe, executor)``.
     """
-    created = []
-    executor = create_executor()
-
     def start_nodes(overrides, subscribe=True):
         probe = Probe(subscribe)
-        created.append(probe.node)
+        node_rig.add(probe.node)
         parameters = [Parameter(name, value=value) for name, value in overrides.items()]
-        node = TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=parameters)
-        created.append(node)
-        executor.add_node(node)
-        executor.add_node(probe.node)
-        return node, probe, executor
-    yield start_nodes
-    executor.shutdown()
-    for node in created:
-        node.destroy_node()
+        node = node_rig.add(TrajectoryNode(cli_args=RAMP_ARGS, parameter_overrides=parameters))
+        return node, probe, node_rig.executor
+    return start_nodes
 
 
 def test_table_mode_plays_the_11_rows_in_order_then_stops(start, spin_until):
