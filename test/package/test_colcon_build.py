@@ -40,7 +40,7 @@ pytestmark = pytest.mark.process
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = 'stewart_kinematics'
 EXECUTABLES = ('ik_node', 'fk_node', 'trajectory_node')
-#: Seconds colcon may take; a build takes about 3 s.
+#: Seconds colcon may take: far more than this small package needs, for a loaded machine.
 BUILD_TIMEOUT = 120.0
 #: What a colcon build in the repository itself would leave there.
 BUILD_LEFTOVERS = ('build', 'install', 'log', f'{PACKAGE}.egg-info')

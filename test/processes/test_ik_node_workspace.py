@@ -45,7 +45,7 @@ pytestmark = pytest.mark.process
 CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
 GEOMETRY = load_geometry(FILES)
-#: Coarse grids: the markers take a fraction of a second to compute.
+#: Coarse grids: the markers are quick to compute.
 RESOLUTION, NEW_RESOLUTION = 0.02, 0.03
 ARGUMENTS = ['--ros-args', '--params-file', str(FILES[0]), '--params-file', str(FILES[1]),
              '-p', f'workspace_resolution:={RESOLUTION}', '-p', 'travel_range_rate:=5.0']

@@ -16,8 +16,8 @@
 trajectory_node as a process stays responsive whatever it is sent, and stops when asked.
 
 The inputs of issue 20: a trajectory whose last point is at 2^31 - 1 s (before, it killed the
-node, or hung it with retiming); a trajectory whose check takes seconds (before: 68 s inside
-the subscription callback, the node deaf meanwhile); SIGINT during that check; a tool frame
+node, or hung it with retiming); a trajectory whose check takes seconds (before: inside the
+subscription callback, the node deaf meanwhile); SIGINT during that check; a tool frame
 changed at run time (before: accepted, and not applied). The node is the console script with
 the shipped parameter files, as a user starts it; the test's own node talks to it over topics
 and its parameter services.

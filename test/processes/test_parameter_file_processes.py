@@ -45,7 +45,8 @@ from stewart_kinematics.tools.node_processes import find_executable
 
 pytestmark = pytest.mark.process
 
-#: Seconds each run may take: the hang was minutes, a refusal is under a second when idle.
+#: Seconds each run may take: far more than a refusal needs (it reads no further than the
+#: fault), far less than the hang it replaced (the reader expanded every alias).
 DEADLINE = 10.0
 #: Processes run at once (the machine's cores are shared).
 WORKERS = 3

@@ -33,7 +33,7 @@ from stewart_kinematics.tools.node_processes import find_executable
 pytestmark = pytest.mark.process
 
 CONFIG = Path(__file__).resolve().parents[2] / 'config'
-#: Generous: the report takes about a second; a loaded machine may take many.
+#: Generous: the report is short work, but a loaded machine may be many times slower.
 DEADLINE = 120.0
 
 

@@ -36,7 +36,7 @@ CONFIG = Path(__file__).resolve().parents[2] / 'config'
 FILES = [CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml']
 COARSE = ['--slice-resolution-mm', '8', '--volume-resolution-mm', '20',
           '--angle-resolution-deg', '1.0']
-#: Generous: a loaded machine runs the coarse report in a few seconds.
+#: Generous: coarse grids keep the report short, but a loaded machine may be many times slower.
 DEADLINE = 300.0
 
 
