@@ -32,8 +32,11 @@ nodes' output: :class:`helpers.TopicClient`). What tests build alike beyond fixt
 """
 
 import contextlib
+import io
 from pathlib import Path
 import time
+from types import SimpleNamespace
+from unittest import mock
 
 from helpers import DEADLINE, TopicClient
 import pytest
@@ -138,3 +141,36 @@ def start_node():
         def start(executable, arguments=(), env=None):
             return stack.enter_context(NodeProcess(executable, list(arguments), env))
         yield start
+
+
+@pytest.fixture(scope='session')
+def shipped_cueing_report(tmp_path_factory):
+    """
+    Run ``stewart_cueing --strict`` once a session: the four scenarios with the shipped tuning.
+
+    Their replay is the longest computation of the core tier, and two modules judge it:
+    test/tools/test_cueing_report.py the tool's exit code, output and figures, and
+    test/cueing/test_evaluation.py the evaluations the tool computed with the core's ``replay``
+    and ``evaluate`` (the same calls on the same files as a direct computation).
+
+    :returns: a namespace of ``exit_code``, ``output`` (stdout), ``folder`` (the outputs) and
+        ``evaluations`` (scenario name -> CueEvaluation).
+    """
+    from stewart_kinematics.tools import cueing_report
+    folder = tmp_path_factory.mktemp('cueing_report') / 'out'
+    runs = []
+    run = cueing_report.run
+
+    def recorded_run(options, stream=None):
+        runs.append(run(options, stream))
+        return runs[-1]
+
+    arguments = []
+    for name in ('paper_platform.yaml', 'example_limits.yaml', 'motion_cueing.yaml'):
+        arguments += ['--params-file', str(CONFIG_DIRECTORY / name)]
+    with mock.patch.object(cueing_report, 'run', recorded_run), \
+            contextlib.redirect_stdout(io.StringIO()) as output:
+        code = cueing_report.main(arguments + ['--output', str(folder), '--quiet', '--strict'])
+    [(results, _)] = runs
+    return SimpleNamespace(exit_code=code, output=output.getvalue(), folder=folder,
+                           evaluations=dict(results))

@@ -134,13 +134,13 @@ def test_strict_exits_3_when_a_target_is_missed(capsys, tmp_path):
     assert not list((tmp_path / 'out').glob('*.png'))
 
 
-def test_every_scenario_meets_its_targets_with_the_shipped_tuning(capsys, tmp_path):
-    """The documentation's run: all four scenarios, --strict, exit 0."""
-    assert main(TUNED + ['--output', str(tmp_path / 'out'), '--quiet', '--strict']) == 0
-    out = capsys.readouterr().out
+def test_every_scenario_meets_its_targets_with_the_shipped_tuning(shipped_cueing_report):
+    """The documentation's run: all four scenarios, --strict, exit 0 (run once: conftest)."""
+    assert shipped_cueing_report.exit_code == 0
+    out = shipped_cueing_report.output
     assert 'MISSED' not in out
     assert out.count('met    zero limit violations') == 4
-    assert sorted(path.name for path in (tmp_path / 'out').glob('*.png')) == [
+    assert sorted(path.name for path in shipped_cueing_report.folder.glob('*.png')) == [
         'acceleration_braking.png', 'lap.png', 'multi_sine.png', 'slalom.png']
 
 
