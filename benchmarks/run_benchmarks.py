@@ -69,7 +69,8 @@ PLATFORM_FILE = ROOT / 'config' / 'paper_platform.yaml'
 SOLVER_FILE = ROOT / 'config' / 'solver.yaml'
 RESULTS_FILE = Path(__file__).resolve().with_name('results.md')
 #: Every target the benchmark judges, in the order printed. The docs' target table is
-#: generated from the results and test/test_benchmark_tables.py checks it lists exactly these.
+#: generated from the results and test/package/test_benchmark_tables.py checks it lists
+#: exactly these.
 TARGETS = (
     'IK one pose >= 10x faster than basic-robotics SP.IK',
     'IK batch > 2 000 000 poses/s',

@@ -92,7 +92,7 @@ def refusal_codes() -> list:
     Every refusal or warning code the package can emit: ``(code, emitted by, meaning, kind)``.
 
     Read from the registry of :mod:`stewart_kinematics.findings` (:data:`CODES`), the one
-    place where a code is defined with its meaning; test/test_findings.py checks that every
+    place where a code is defined with its meaning; test/package/test_findings.py checks that every
     code the package emits is registered.
     """
     from stewart_kinematics.findings import CODES
@@ -376,7 +376,7 @@ def group_docstring_examples(app, doctree):
     block gets instead the group of its docstring (the documented object, or the module for a
     module's docstring), set up with a copy of the module's namespace: an example may use the
     names of its module unimported, and starts without the names of another docstring's
-    examples, exactly as ``python -m doctest`` and test/test_docs.py run it.
+    examples, exactly as ``python -m doctest`` and test/package/test_docs.py run it.
     """
     groups = {}
     module = None
