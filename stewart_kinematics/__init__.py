@@ -52,7 +52,7 @@ from stewart_kinematics.analysis.workspace import (
     workspace_volume,
 )
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits import LimitModel, PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.forward_result import ForwardKinematicsResult
@@ -142,6 +142,7 @@ __all__ = [
     'PoseAnchor',
     'PoseEstimate',
     'PoseTracker',
+    'PoseLimits',
     'PoseTrajectory',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',
