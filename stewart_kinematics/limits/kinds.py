@@ -68,6 +68,22 @@ def actuator_settings() -> Dict[str, LimitParameter]:
     return {parameter.setting_name: parameter for parameter in limit_parameters(ACTUATOR)}
 
 
+def limits_table() -> str:
+    """
+    Return the Markdown table of every kind of limit: its evaluator, parameters and meaning.
+
+    The safety page's table of limits (``{limit-table}`` of the documentation's extension).
+    """
+    rows = ['| Limit | Evaluator | Parameters | Meaning |', '| --- | --- | --- | --- |']
+    for kind in LIMIT_KINDS:
+        parameters = ', '.join(f'`{parameter.name}`' + (f' ({parameter.unit})'
+                                                         if parameter.unit else '')
+                               for parameter in kind.parameters)
+        rows.append(f'| {kind.title} | `{kind.evaluator}` (`{kind.name}`) | {parameters} | '
+                    f'{kind.meaning} |')
+    return '\n'.join(rows)
+
+
 #: The pose limits, in the order every check reports them (the kinds' bounds, as listed now).
 LIMIT_NAMES = pose_limit_names()
 #: The limits of leg states (lengths and their derivatives), in the order they are reported.
