@@ -26,8 +26,8 @@ import numpy as np
 import pytest
 import reference
 
-from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.limits import PoseLimits
+from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters import GEOMETRY_PARAMETERS
 

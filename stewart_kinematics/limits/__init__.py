@@ -30,11 +30,11 @@ the rotation entries of :mod:`stewart_kinematics.model.rotations`):
 :data:`~.kinds.LIMIT_KINDS` lists them, and everything that lists limits derives from it.
 :class:`~.settings.PoseLimits` holds the values of the pose limits (a geometry is given its
 own), :class:`stewart_kinematics.ActuatorLimits` those of the leg rates.
-:class:`~.limit_model.LimitModel` composes the evaluators of the limits that are set and gives every check: one pose, a
-batch, leg states (trajectories, streams, twists). :class:`~.command_gate.CommandGate` applies
-it to every command as it is sent to the actuators, and gives the verdict a node publishes.
-:mod:`.geometry_checks` has the same as functions of a geometry. :mod:`.base` holds what the
-evaluators share, :mod:`.violation` what they report.
+:class:`~.limit_model.LimitModel` composes the evaluators of the limits that are set and gives
+every check: one pose, a batch, leg states (trajectories, streams, twists).
+:class:`~.command_gate.CommandGate` applies it to every command as it is sent to the actuators, and
+gives the verdict a node publishes. :mod:`.geometry_checks` has the same as functions of a
+geometry. :mod:`.base` holds what the evaluators share, :mod:`.violation` what they report.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
 Nothing here imports ROS.

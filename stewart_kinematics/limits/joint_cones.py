@@ -104,7 +104,7 @@ def _evaluator(geometry, limits) -> JointCones:
 
 
 def _cone(joint: str, where: str) -> LimitParameter:
-    """The parameter of one joint's cone: degrees, in (0, 180], radians as its setting."""
+    """Return the parameter of one joint's cone: degrees, in (0, 180], radians as setting."""
     return LimitParameter(
         f'{joint}_joint_max_angle_deg', 'deg', 180.0,
         f'Largest angle between a leg and its home direction at the {joint} joint{where} '

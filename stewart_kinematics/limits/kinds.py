@@ -76,9 +76,9 @@ def limits_table() -> str:
     """
     rows = ['| Limit | Evaluator | Parameters | Meaning |', '| --- | --- | --- | --- |']
     for kind in LIMIT_KINDS:
-        parameters = ', '.join(f'`{parameter.name}`' + (f' ({parameter.unit})'
-                                                         if parameter.unit else '')
-                               for parameter in kind.parameters)
+        parameters = ', '.join(
+            f'`{parameter.name}`' + (f' ({parameter.unit})' if parameter.unit else '')
+            for parameter in kind.parameters)
         rows.append(f'| {kind.title} | `{kind.evaluator}` (`{kind.name}`) | {parameters} | '
                     f'{kind.meaning} |')
     return '\n'.join(rows)

@@ -108,7 +108,7 @@ KIND = LimitKind(
     title='Leg velocity, acceleration, jerk',
     meaning=('Of every sample of a trajectory (checked whole, or retimed to keep them: '
              'velocity and acceleration), of every streamed command (the jerk: a change of '
-             'acceleration over a command period), and (velocity) of a twist\'s leg '
+             "acceleration over a command period), and (velocity) of a twist's leg "
              'velocities. Trajectories retimed by toppra have piecewise constant accelerations '
              'and are not checked for jerk.'),
     evaluator='LegRate',

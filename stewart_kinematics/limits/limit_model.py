@@ -112,7 +112,7 @@ class LimitModel:
 
     @property
     def pose_limit_names(self):
-        """Names of the pose limits that are set, in report order (:data:`~stewart_kinematics.limits.kinds.LIMIT_NAMES`)."""
+        """Names of the pose limits that are set, in report order (``LIMIT_NAMES``)."""
         return tuple(bound.name for limit in self.pose_limits for bound in limit.bounds)
 
     def bound(self, name: str):

@@ -101,7 +101,7 @@ def proved_within(jacobians, bound: float) -> np.ndarray:
 
 
 def _narrowed(limits, margins) -> dict:
-    """The margin, if set, drawn in to its share ``margins.condition`` (never below 1)."""
+    """Draw the margin, if set, in to its share ``margins.condition`` (never below 1)."""
     if not math.isfinite(limits.max_jacobian_condition):
         return {}
     return {'max_jacobian_condition': max(1.0, limits.max_jacobian_condition * margins.condition)}
@@ -116,7 +116,7 @@ KIND = LimitKind(
     name='singularity',
     title='Singularity margin',
     meaning=('Condition number of the dimensionless Jacobian `[u_i, (R p_i x u_i) / rho]` '
-             '(`rho`: RMS radius of the platform joints). About 10 at the paper platform\'s '
+             "(`rho`: RMS radius of the platform joints). About 10 at the paper platform's "
              'home pose, 17 at the end of Table 3; it grows without bound near a singularity.'),
     evaluator='SingularityMargin',
     parameters=(

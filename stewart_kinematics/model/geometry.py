@@ -166,7 +166,8 @@ class Geometry:
         :raises ValueError: if it has no limits, or as the limits and the geometry do.
         """
         if self.limits is None:
-            raise ValueError('this geometry has no limits to change; give it limits=PoseLimits(...)')
+            raise ValueError('this geometry has no limits to change; give it '
+                             'limits=PoseLimits(...)')
         return dataclasses.replace(self, limits=self.limits.replace(**changes))
 
 

@@ -21,9 +21,8 @@ platform markers through :class:`PlatformMarkerPublisher` (at most at ``marker_r
 from geometry_msgs.msg import Point
 import numpy as np
 from std_msgs.msg import ColorRGBA, Header
-from visualization_msgs.msg import Marker, MarkerArray
-
 from stewart_kinematics.limits.kinds import pose_bounds
+from visualization_msgs.msg import Marker, MarkerArray
 
 #: Colours (r, g, b, a): a leg within its limits, a leg that breaks one, base and platform.
 LEG_OK = ColorRGBA(r=0.2, g=0.8, b=0.2, a=1.0)

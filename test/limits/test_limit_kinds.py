@@ -41,7 +41,6 @@ from stewart_kinematics.limits import (
     PoseLimits,
 )
 from stewart_kinematics.limits.base import Limit, PLATFORM
-from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.validators import InRange
 from stewart_kinematics.parameters.declarations import limit_specs
 
@@ -86,7 +85,7 @@ TOY = LimitKind(
 
 @pytest.fixture
 def toy(monkeypatch):
-    """The list of kinds with the toy kind appended: the one line a new kind adds."""
+    """Append the toy kind to the list of kinds: the one line a new kind adds."""
     monkeypatch.setattr(kinds, 'LIMIT_KINDS', kinds.LIMIT_KINDS + [TOY])
     return TOY
 
@@ -167,8 +166,8 @@ def test_everything_that_lists_limits_lists_it(toy):
     assert spec.default == math.inf and spec.description == TOY.parameters[0].description
     assert spec.check(-1.0) and not spec.check(2.0)
     table = kinds.limits_table()
-    assert '| Platform height | `PlatformHeight` (`platform_height`) | `platform_height_max` (m) |' \
-        in table
+    assert ('| Platform height | `PlatformHeight` (`platform_height`) | '
+            '`platform_height_max` (m) |') in table
 
 
 def test_the_cue_margins_keep_a_kind_that_declares_none(toy):
