@@ -48,6 +48,7 @@ class PoseLimits:
         the setting, the value and what is allowed.
 
     >>> import math
+    >>> from stewart_kinematics import PoseLimits
     >>> limits = PoseLimits(leg_length_max=0.9, base_joint_max_angle=math.radians(40.0))
     >>> limits.leg_length_max, limits.leg_length_min, limits.is_set('leg_radius')
     (0.9, 0.0, False)

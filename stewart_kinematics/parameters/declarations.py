@@ -44,7 +44,7 @@ from stewart_kinematics.parameters.spec import (
 )
 
 
-_GEOMETRY_PARAMETERS = (
+_JOINT_AND_HOME_SPECS = (
     ParameterSpec(
         'base_joints', DOUBLE_ARRAY,
         'Base joint centres b_1..b_6 in the base frame, metres, flattened as '
@@ -87,7 +87,7 @@ def limit_specs() -> tuple:
 
 
 #: The geometry's parameters: its joints and home pose, then every limit kind's.
-GEOMETRY_PARAMETERS = _GEOMETRY_PARAMETERS + limit_specs()
+GEOMETRY_PARAMETERS = _JOINT_AND_HOME_SPECS + limit_specs()
 
 
 ACTUATOR_PARAMETERS = (
