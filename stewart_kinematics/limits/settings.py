@@ -64,7 +64,7 @@ class PoseLimits:
         settings = kinds.pose_settings()
         unknown = sorted(set(values) - set(settings))
         if unknown:
-            raise ValueError(f'{unknown[0]} is not a pose limit; the pose limits are '
+            raise ValueError(f'{unknown[0]!r} is not a pose limit; the pose limits are '
                              f'{", ".join(settings)}')
         checked = {name: _checked(parameter, values.get(name, parameter.setting_default))
                    for name, parameter in settings.items()}

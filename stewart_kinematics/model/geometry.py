@@ -150,6 +150,9 @@ class Geometry:
         object.__setattr__(self, 'home_leg_directions', home_directions)
         object.__setattr__(self, 'platform_radius', joint_set_size(self.platform_joints))
         if self.limits is not None:
+            if not callable(getattr(self.limits, 'check_home', None)):
+                raise ValueError('limits must be a stewart_kinematics.PoseLimits or None, got '
+                                 f'a {type(self.limits).__name__}')
             self.limits.check_home(self)
 
     def __getattr__(self, name):

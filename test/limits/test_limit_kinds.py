@@ -117,7 +117,7 @@ def test_every_kind_declares_a_default_that_its_bounds_allow_and_that_sets_no_li
 def test_without_the_line_in_the_list_the_kind_is_unknown():
     """The toy kind is nowhere until listed: the settings refuse its name."""
     assert 'platform_height_max' not in kinds.pose_limit_names()
-    with pytest.raises(ValueError, match='platform_height_max is not a pose limit'):
+    with pytest.raises(ValueError, match="'platform_height_max' is not a pose limit"):
         PoseLimits(platform_height_max=1.0)
 
 
