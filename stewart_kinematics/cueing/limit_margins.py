@@ -17,8 +17,9 @@ The cueing's only calls into the limits model, and the margins the cue keeps ins
 
 Every pose the cueing outputs is judged by :func:`pose_violations` (one pose) or
 :func:`poses_allowed` (a batch), and the workspace boundary is found with
-:func:`limit_margins`; when the limits model gains a limit (issue 18: leg collisions,
-leg velocity and acceleration), these three are the functions to repoint. The leg velocity and
+:func:`limit_margins`, over every kind of limit of the limits model; each kind declares how
+the cue's margins narrow it (:attr:`stewart_kinematics.limits.LimitKind.narrowed`, used by
+:func:`with_margins`), so a kind added to the list needs no edit here. The leg velocity and
 acceleration limits of :class:`~stewart_kinematics.ActuatorLimits` are kept by the follower in
 :mod:`.cue_limiter`, step by step, and counted by :func:`leg_speed_violations`.
 
