@@ -25,7 +25,10 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        ('share/' + package_name + '/config', sorted(glob('config/*.yaml'))),
+        ('share/' + package_name + '/config',
+         sorted(glob('config/*.yaml')) + sorted(glob('config/*.rviz'))),
+        # Examples for ros2_control (doc/how-to/joint_trajectory_controller.md).
+        ('share/' + package_name + '/config/ros2_control', sorted(glob('config/ros2_control/*'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
     install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig'],

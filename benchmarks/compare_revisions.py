@@ -61,6 +61,51 @@ def import_baseline(checkout, directory):
     return importlib.import_module(BASELINE)
 
 
+def table3_ramp(package):
+    """Return a revision's Ramp of the paper's Table 3 (10 s, from home)."""
+    return package.Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01],
+                                   [0.1, 0.15, 0.5325], [0.0, 0.0, 0.0], [1.5, -1.5, 2.0],
+                                   [15.0, -15.0, 20.0])
+
+
+def build_node(package, node_class, namespace, parameter_files, *parameters):
+    """
+    Build a revision's node in this process, for the message benchmarks.
+
+    :param node_class: ``'ik_node.IkNode'`` or ``'fk_node.FkNode'``, in the package's ros/.
+    :param parameters: ``name:=value`` strings given with ``-p`` after the files.
+    """
+    module, name = node_class.split('.')
+    ros_module = importlib.import_module(f'{package.__name__}.ros.{module}')
+    arguments = ['--ros-args', '-r', f'__ns:=/{namespace}']
+    for path in parameter_files:
+        arguments += ['--params-file', str(path)]
+    for parameter in parameters:
+        arguments += ['-p', parameter]
+    return getattr(ros_module, name)(cli_args=arguments)
+
+
+def time_alternately(callbacks, messages, rounds, before_round=lambda: None):
+    """
+    Call every callback with every message, alternating message by message; seconds per call.
+
+    Which callback goes first swaps each round, so that all see the same load of a shared
+    machine. ``before_round()`` runs before each round (a tracker's reset).
+    """
+    clock = time.perf_counter
+    seconds = [[] for _ in callbacks]
+    for round_ in range(rounds):
+        order = list(range(len(callbacks)) if round_ % 2 == 0
+                     else reversed(range(len(callbacks))))
+        before_round()
+        for message in messages:
+            for k in order:
+                start = clock()
+                callbacks[k](message)
+                seconds[k].append(clock() - start)
+    return seconds
+
+
 def load_geometry_of(package, name):
     """``load_geometry`` of a revision: in its root, its parameters/ or its parameter_spec."""
     if hasattr(package, 'load_geometry'):

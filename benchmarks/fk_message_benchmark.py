@@ -42,9 +42,13 @@ from pathlib import Path
 import statistics
 import sys
 import tempfile
-import time
 
-from compare_revisions import import_baseline  # benchmarks/, the script's folder
+from compare_revisions import (  # benchmarks/, the script's folder
+    build_node,
+    import_baseline,
+    table3_ramp,
+    time_alternately,
+)
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -56,10 +60,8 @@ def length_sets(package, config):
     """Return {set name: (parameter file names, lengths (MESSAGES, 6))}."""
     limited = package.load_geometry([config / 'paper_platform.yaml',
                                      config / 'example_limits.yaml'])
-    ramp = package.Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
-                                   [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
-    table = package.inverse_kinematics(limited, ramp.sample(np.linspace(0.0, 10.0, MESSAGES),
-                                                            10.0))
+    table = package.inverse_kinematics(
+        limited, table3_ramp(package).sample(np.linspace(0.0, 10.0, MESSAGES), 10.0))
     paper = package.load_geometry(config / 'paper_platform.yaml')
     fold = np.tile(paper.home_pose, (MESSAGES, 1))
     fold[:, 5] = np.radians(np.linspace(0.0, -120.0, MESSAGES))
@@ -69,30 +71,18 @@ def length_sets(package, config):
     }
 
 
-def build_node(package, namespace, parameter_files):
+def fk_node(package, namespace, parameter_files):
     """Build a revision's fk_node with the parameter files, in ``namespace``, margin off."""
-    fk_node = __import__(f'{package.__name__}.ros.fk_node', fromlist=['FkNode'])
-    arguments = ['--ros-args', '-r', f'__ns:=/{namespace}']
-    for path in parameter_files:
-        arguments += ['--params-file', str(path)]
-    arguments += ['-p', 'assembly_mode_margin_period:=0.0']
-    return fk_node.FkNode(cli_args=arguments)
+    return build_node(package, 'fk_node.FkNode', namespace, parameter_files,
+                      'assembly_mode_margin_period:=0.0')
 
 
-def time_callbacks(nodes, messages, rounds):
-    """Call each node's on_leg_lengths with every message, alternating; seconds per call."""
-    clock = time.perf_counter
-    seconds = [[] for _ in nodes]
-    for round_ in range(rounds):
-        order = list(range(len(nodes)) if round_ % 2 == 0 else reversed(range(len(nodes))))
+def reset_trackers(nodes):
+    """Return a function that resets every node's pose tracker (each round starts cold)."""
+    def reset():
         for node in nodes:
             node.tracker.reset()
-        for message in messages:
-            for k in order:
-                start = clock()
-                nodes[k].on_leg_lengths(message)
-                seconds[k].append(clock() - start)
-    return seconds
+    return reset
 
 
 def main(argv=None) -> int:
@@ -113,10 +103,11 @@ def main(argv=None) -> int:
         with tempfile.TemporaryDirectory() as directory:
             old = import_baseline(old_root, directory)
             for name, (files, lengths) in length_sets(new, ROOT / 'config').items():
-                nodes = [build_node(old, 'old', [old_root / 'config' / f for f in files]),
-                         build_node(new, 'new', [ROOT / 'config' / f for f in files])]
+                nodes = [fk_node(old, 'old', [old_root / 'config' / f for f in files]),
+                         fk_node(new, 'new', [ROOT / 'config' / f for f in files])]
                 messages = [legs_to_message(values) for values in lengths]
-                seconds = time_callbacks(nodes, messages, options.rounds)
+                seconds = time_alternately([node.on_leg_lengths for node in nodes], messages,
+                                           options.rounds, reset_trackers(nodes))
                 flagged = bool(getattr(nodes[1].tracker, 'ambiguous', False))
                 baseline = statistics.median(seconds[0])
                 for label, times in zip(('old', 'new'), seconds):

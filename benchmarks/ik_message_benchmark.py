@@ -35,9 +35,13 @@ from pathlib import Path
 import statistics
 import sys
 import tempfile
-import time
 
-from compare_revisions import import_baseline  # benchmarks/, the script's folder
+from compare_revisions import (  # benchmarks/, the script's folder
+    build_node,
+    import_baseline,
+    table3_ramp,
+    time_alternately,
+)
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -47,35 +51,14 @@ MESSAGES = 1000
 
 def poses(package):
     """Return (accepted, refused) poses: the Table 3 ramp, and the same lowered 0.2 m."""
-    ramp = package.Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
-                                   [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
-    accepted = ramp.sample(np.linspace(0.0, 10.0, MESSAGES), 10.0)
+    accepted = table3_ramp(package).sample(np.linspace(0.0, 10.0, MESSAGES), 10.0)
     refused = accepted - [0.0, 0.0, 0.2, 0.0, 0.0, 0.0]      # every leg below leg_length_min
     return accepted, refused
 
 
-def build_node(package, namespace, parameter_files):
+def ik_node(package, namespace, parameter_files):
     """Build a revision's ik_node with the parameter files, in ``namespace``."""
-    ik_node = __import__(f'{package.__name__}.ros.ik_node', fromlist=['IkNode'])
-    arguments = ['--ros-args', '-r', f'__ns:=/{namespace}']
-    for path in parameter_files:
-        arguments += ['--params-file', str(path)]
-    return ik_node.IkNode(cli_args=arguments)
-
-
-def time_callbacks(nodes, messages, rounds):
-    """Call each node's on_target_pose with every message, alternating; seconds per call."""
-    clock = time.perf_counter
-    seconds = [[] for _ in nodes]
-    for round_ in range(rounds):
-        order = range(len(nodes)) if round_ % 2 == 0 else reversed(range(len(nodes)))
-        order = list(order)
-        for message in messages:
-            for k in order:
-                start = clock()
-                nodes[k].on_target_pose(message)
-                seconds[k].append(clock() - start)
-    return seconds
+    return build_node(package, 'ik_node.IkNode', namespace, parameter_files)
 
 
 def main(argv=None) -> int:
@@ -102,17 +85,18 @@ def main(argv=None) -> int:
             old_limits = [old_root / 'config' / 'paper_platform.yaml',
                           old_root / 'config' / 'example_limits.yaml']
             nodes = {
-                'old, example limits': build_node(old, 'old', old_limits),
-                'new, the same limits (leg_radius 0)': build_node(
+                'old, example limits': ik_node(old, 'old', old_limits),
+                'new, the same limits (leg_radius 0)': ik_node(
                     new, 'same', limits + [no_collision]),
-                'new, example limits with leg_radius 0.02 (collisions)': build_node(
+                'new, example limits with leg_radius 0.02 (collisions)': ik_node(
                     new, 'collisions', limits),
             }
             accepted, refused = poses(new)
             rows = []
             for kind, pose_set in (('accepted', accepted), ('refused', refused)):
                 messages = [pose_to_message(pose) for pose in pose_set]
-                seconds = time_callbacks(list(nodes.values()), messages, options.rounds)
+                seconds = time_alternately([node.on_target_pose for node in nodes.values()],
+                                           messages, options.rounds)
                 baseline = statistics.median(seconds[0])
                 for name, times in zip(nodes, seconds):
                     median = statistics.median(times)

@@ -69,7 +69,8 @@ PLATFORM_FILE = ROOT / 'config' / 'paper_platform.yaml'
 SOLVER_FILE = ROOT / 'config' / 'solver.yaml'
 RESULTS_FILE = Path(__file__).resolve().with_name('results.md')
 #: Every target the benchmark judges, in the order printed. The docs' target table is
-#: generated from the results and test/test_benchmark_tables.py checks it lists exactly these.
+#: generated from the results and test/package/test_benchmark_tables.py checks it lists
+#: exactly these.
 TARGETS = (
     'IK one pose >= 10x faster than basic-robotics SP.IK',
     'IK batch > 2 000 000 poses/s',
@@ -101,8 +102,8 @@ FINITE_DIFFERENCE_STEP = 1e-6
 #: along the platform's z axis, in the plane of the platform joints (five of the paper's six are
 #: at z = 0.275 m; p_3 is at 0.257 m, see doc/conventions.md), metres.
 PLATE_FRAME_OFFSET = 0.275
-#: Iteration cap of basic-robotics' compiled FK here (its own default, 10000, takes 30 ms on
-#: every pose it does not solve, which would not fit in the time budget).
+#: Iteration cap of basic-robotics' compiled FK here (its own default, 10000, runs every
+#: iteration on each pose it does not solve, which would not fit in the time budget).
 BASIC_ROBOTICS_MAX_ITERATIONS = 200
 #: basic-robotics' own FK tolerances (SP._tol_f on sum |l_i^2 - L_i^2| in m^2, SP._tol_a on the
 #: step), and the tighter one at which its poses are as accurate as ours (worst about 1e-11).

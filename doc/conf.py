@@ -17,8 +17,8 @@ Sphinx configuration of the stewart_kinematics documentation (MyST Markdown page
 
 Built two ways, from the same files:
 
-- here, by ``sphinx-build -W --keep-going doc OUT`` (test/test_docs.py, in the test command),
-  with the package importable from the venv;
+- here, by ``sphinx-build -W --keep-going doc OUT`` (test/package/test_docs.py, in the test
+  command), with the package importable from the venv;
 - on docs.ros.org, by rosdoc2 (``rosdoc2.yaml`` at the package root names this folder). rosdoc2
   copies this folder elsewhere and runs this file from its own wrapping ``conf.py``, so nothing
   here may rely on ``__file__``: the local extension (``ext/stewart_docs.py``) is found from

@@ -18,9 +18,9 @@ Write the settings classes out as code, from the parameter specs.
 stewart_kinematics/parameters/settings.py holds one frozen dataclass per parameter
 group (one typed field per parameter, with its default and its description, unit and allowed
 values as the field's docstring) and one per node (one field per group), so that an IDE and a
-type checker see every field. The file is checked in; test/test_settings.py regenerates it in
-memory and fails when it differs. Run after changing a spec in parameters/declarations.py, or a
-group below::
+type checker see every field. The file is checked in; test/parameters/test_settings.py
+regenerates it in memory and fails when it differs. Run after changing a spec in
+parameters/declarations.py, or a group below::
 
     .venv/bin/python scripts/generate_settings.py          # rewrite the file
     .venv/bin/python scripts/generate_settings.py --check  # exit 1 if it is out of date
@@ -148,7 +148,7 @@ HEADER = '''\
 # GENERATED FILE: do not edit. Written by scripts/generate_settings.py from the parameter specs
 # of stewart_kinematics/parameters/declarations.py; after changing a spec, run
 #     .venv/bin/python scripts/generate_settings.py
-# (test/test_settings.py fails until this file is what the script writes).
+# (test/parameters/test_settings.py fails until this file is what the script writes).
 
 """
 The settings classes, written out from the parameter specs: one per parameter group, one per node.

@@ -3,7 +3,7 @@
 # SPDX-License-Identifier: Apache-2.0
 #
 # Set up .venv/ if needed, then run every test (unit, node, multi-process, lint) from the
-# repository root. Arguments go to pytest (e.g. -q, -k ik, test/test_geometry.py); exits with
+# repository root. Arguments go to pytest (e.g. -q, -k ik, test/model/test_geometry.py); exits with
 # pytest's exit code.
 
 set -euo pipefail

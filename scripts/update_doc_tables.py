@@ -23,7 +23,7 @@ generated from the code when the documentation is built: nothing to copy for the
 
 Run after benchmarking: ``.venv/bin/python scripts/update_doc_tables.py``
 (``scripts/run_benchmarks.sh --update-docs`` runs it after the benchmark);
-test/test_benchmark_tables.py fails until the pages match.
+test/package/test_benchmark_tables.py fails until the pages match.
 """
 
 from pathlib import Path

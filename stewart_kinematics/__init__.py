@@ -51,6 +51,13 @@ from stewart_kinematics.analysis.workspace import (
     workspace_slice,
     workspace_volume,
 )
+from stewart_kinematics.dynamics import (
+    leg_forces,
+    LegBody,
+    MassProperties,
+    platform_wrench,
+    RigidBody,
+)
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import LimitModel, PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
@@ -121,16 +128,19 @@ __all__ = [
     'geometry_from_parameters',
     'inverse_kinematics',
     'jacobian',
+    'leg_forces',
     'leg_lengths',
     'leg_trajectory',
     'leg_vectors',
     'leg_velocities',
+    'LegBody',
     'LegCommand',
     'LegTrajectory',
     'LegVelocityCommand',
     'LimitModel',
     'load_geometry',
     'load_settings',
+    'MassProperties',
     'matrix_to_euler_zyx',
     'matrix_to_quaternion',
     'measurement_poses',
@@ -139,6 +149,7 @@ __all__ = [
     'plan_motion',
     'orientation_workspace',
     'platform_twist',
+    'platform_wrench',
     'PoseAnchor',
     'PoseEstimate',
     'PoseTracker',
@@ -148,6 +159,7 @@ __all__ = [
     'quaternion_to_matrix',
     'Ramp',
     'retime',
+    'RigidBody',
     'SingularPoseError',
     'SolverSettings',
     'StreamTarget',

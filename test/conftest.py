@@ -27,22 +27,24 @@ header says which, and an unknown name stops the session before any test.
 
 The multi-process tests share ``start_node`` (console scripts as child processes, stopped at the
 end of the test) and ``client`` (the test's own rclpy node, with waits that fail with the
-nodes' output).
+nodes' output: :class:`helpers.TopicClient`). What tests build alike beyond fixtures
+(messages, stopping a node cleanly, recording topics) is in test/helpers.py.
 """
 
 import contextlib
+import io
 from pathlib import Path
 import time
+from types import SimpleNamespace
+from unittest import mock
 
+from helpers import DEADLINE, TopicClient
 import pytest
 
 from stewart_kinematics.ros.node_main import create_executor, executor_name
 from stewart_kinematics.tools.node_processes import isolated_ros_environment, NodeProcess
 
 CONFIG_DIRECTORY = Path(__file__).resolve().parent.parent / 'config'
-#: Seconds a test waits for data: DDS discovery on loopback has multi-second tails.
-DEADLINE = 20.0
-
 #: The test tiers of pytest.ini: each test carries exactly one.
 TIERS = ('core', 'node', 'process', 'lint')
 
@@ -115,39 +117,6 @@ def spin_until():
     return spin
 
 
-class TopicClient:
-    """The test's own node and executor, with waits that fail with the nodes' output."""
-
-    def __init__(self, node, executor, spin_until):
-        """Wrap the test's node, the executor that spins it and conftest's spin_until."""
-        self.node = node
-        self.executor = executor
-        self._spin_until = spin_until
-
-    def wait(self, condition, what, processes=()):
-        """
-        Spin until ``condition()`` holds; fail after :data:`DEADLINE` s or when a process exits.
-
-        :param what: the awaited condition in words, for the failure message.
-        :param processes: the NodeProcess instances that must keep running meanwhile.
-        """
-        def done():
-            return condition() or not all(process.running() for process in processes)
-
-        self._spin_until(self.executor, done, DEADLINE)
-        if not condition():
-            report = [f'{what}: not within {DEADLINE} s']
-            for process in processes:
-                code = process.stop()
-                report.append(f'--- {process.name} (exit code {code}) ---\n{process.output()}')
-            pytest.fail('\n'.join(report))
-
-    def spin_for(self, seconds):
-        """Spin for ``seconds``: a settle time or a throttle window, never a wait for data."""
-        end = time.monotonic() + seconds
-        self._spin_until(self.executor, lambda: time.monotonic() >= end, seconds + 1.0)
-
-
 @pytest.fixture
 def client(ros, spin_until):
     """Create a TopicClient with a fresh node on the session's private domain."""
@@ -172,3 +141,36 @@ def start_node():
         def start(executable, arguments=(), env=None):
             return stack.enter_context(NodeProcess(executable, list(arguments), env))
         yield start
+
+
+@pytest.fixture(scope='session')
+def shipped_cueing_report(tmp_path_factory):
+    """
+    Run ``stewart_cueing --strict`` once a session: the four scenarios with the shipped tuning.
+
+    Their replay is the longest computation of the core tier, and two modules judge it:
+    test/tools/test_cueing_report.py the tool's exit code, output and figures, and
+    test/cueing/test_evaluation.py the evaluations the tool computed with the core's ``replay``
+    and ``evaluate`` (the same calls on the same files as a direct computation).
+
+    :returns: a namespace of ``exit_code``, ``output`` (stdout), ``folder`` (the outputs) and
+        ``evaluations`` (scenario name -> CueEvaluation).
+    """
+    from stewart_kinematics.tools import cueing_report
+    folder = tmp_path_factory.mktemp('cueing_report') / 'out'
+    runs = []
+    run = cueing_report.run
+
+    def recorded_run(options, stream=None):
+        runs.append(run(options, stream))
+        return runs[-1]
+
+    arguments = []
+    for name in ('paper_platform.yaml', 'example_limits.yaml', 'motion_cueing.yaml'):
+        arguments += ['--params-file', str(CONFIG_DIRECTORY / name)]
+    with mock.patch.object(cueing_report, 'run', recorded_run), \
+            contextlib.redirect_stdout(io.StringIO()) as output:
+        code = cueing_report.main(arguments + ['--output', str(folder), '--quiet', '--strict'])
+    [(results, _)] = runs
+    return SimpleNamespace(exit_code=code, output=output.getvalue(), folder=folder,
+                           evaluations=dict(results))

@@ -96,21 +96,21 @@ ORDER = 5
 #: estimate it (the distance to the nearest branch point, where the paths meet).
 TARGET_STEP_FRACTION = 0.02
 RADIUS_FRACTION = 0.5
-#: Newton corrector: the correction (relative to |z|) below which it has converged, and the
+#: Newton corrector: the correction (relative to ``|z|``) below which it has converged, and the
 #: most iterations per step.
 CORRECTOR_TOLERANCE = 1e-7
 CORRECTOR_ITERATIONS = 3
 #: A step is refused when the corrector's first correction is more than this fraction of the
 #: step itself: the guard against jumping to a neighbouring path.
 CORRECTOR_STEP_FRACTION = 0.05
-#: Below this (relative to |z|) a first correction is rounding noise, never a jump.
+#: Below this (relative to ``|z|``) a first correction is rounding noise, never a jump.
 CORRECTOR_FLOOR = 1e-8
 #: The largest step grows by STEP_GROWTH after an accepted step and shrinks to STEP_SHRINK
 #: times the step after a refused one.
 STEP_GROWTH = 2.0
 STEP_SHRINK = 0.5
 #: End game: Newton iterations polishing the ends at s = 1 at most, and the correction
-#: (relative to |z|) at which an end stops moving.
+#: (relative to ``|z|``) at which an end stops moving.
 END_ITERATIONS = 4
 END_TOLERANCE = 1e-14
 

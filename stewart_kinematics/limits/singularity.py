@@ -40,8 +40,8 @@ class SingularityMargin(Limit):
     """
     Evaluator of ``max_jacobian_condition``: one value per pose, shape (1, n).
 
-    A singular value decomposition a pose (about 20 us), so it is :attr:`dear`; with ``exact``
-    False, the poses that a cheaper test proves within the margin get NaN instead.
+    A singular value decomposition a pose (the dearest check), so it is :attr:`dear`; with
+    ``exact`` False, the poses that a cheaper test proves within the margin get NaN instead.
 
     :param geometry: a :class:`stewart_kinematics.Geometry`.
     :param allowed: the largest condition number, ``max_jacobian_condition``; ``inf`` (the

@@ -54,7 +54,7 @@ def legs_of(rotation_entries, x, y, z, joints, sqrt, with_vectors=True):
         frame) and base joint (base frame); for a batch, one entry of six arrays (6,).
     :param sqrt: ``math.sqrt`` or ``numpy.sqrt``.
     :param with_vectors: False for the lengths alone (inverse kinematics of one pose needs
-        only them: 0.3 us of its 4 us).
+        only them: a small part of its cost).
     :returns: per entry of ``joints``, ``(l, lx, ly, lz, ax, ay, az)``: length, leg vector and
         rotated platform joint, metres, base frame; or, without ``with_vectors``, ``l`` alone.
     """
@@ -166,9 +166,9 @@ def constants_of(geometry) -> GeometryConstants:
 
 
 # One pose, in float arithmetic: the same formulas as the batch path, which on one pose pays
-# numpy's per-call overhead (timeit, processor time, this machine: inverse kinematics 3.8 us
-# against 19 us, leg_lengths 4.0 against 30 us, twist_jacobian 6.2 against 41 us, a cold
-# forward kinematics solve 52 us against 660 us). Tests prove them equal to the batch path.
+# numpy's per-call overhead on each of its many small array operations, several times the
+# arithmetic itself (the one-pose timings: doc/benchmarks.md). Tests prove them equal to the
+# batch path.
 
 def single_legs(constants, position, rotation_entries):
     """:func:`legs_of` of one pose, in floats."""

@@ -59,8 +59,8 @@ class ForwardKinematicsResult:
     :param reason: ``''`` where converged, else why not (iteration limit, singular Jacobian,
         divergence).
 
-    Three more figures are computed on first access (a singular value decomposition, about
-    40 us, and a determinant, that a solve does not pay for) and kept: :attr:`condition`,
+    Three more figures are computed on first access (a singular value decomposition and a
+    determinant, that a solve does not pay for) and kept: :attr:`condition`,
     :attr:`pose_error_bound` and :attr:`jacobian_sign`.
     """
 
@@ -116,7 +116,7 @@ class ForwardKinematicsResult:
         changes only where the path crosses a singularity (``det J = 0``), so two solutions of
         opposite signs are not joined by a path that avoids one. The determinant of the
         dimensionless twist Jacobian (:func:`jacobian_condition`'s: the same sign as the twist
-        Jacobian's, whose rotation columns are divided by a positive ``rho``), about 4 us; 0
+        Jacobian's, whose rotation columns are divided by a positive ``rho``); 0
         where a leg has zero length. Near a singularity (condition numbers of 1e13 and more)
         rounding may give either sign. An int for one solve, an array (N,) for a batch.
         """

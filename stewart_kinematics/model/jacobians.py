@@ -181,8 +181,8 @@ def single_singular_values(jacobian, zero_row):
     """
     :func:`dimensionless_singular_values` of one pose, six floats: a list, largest first.
 
-    One SVD of :func:`single_dimensionless_jacobian`'s answer (12 us against 50 us on the
-    array path, with :attr:`ForwardKinematicsResult.pose_error_bound`). test_fk_result.py
+    One SVD of :func:`single_dimensionless_jacobian`'s answer (a fraction of the array path's
+    cost, with :attr:`ForwardKinematicsResult.pose_error_bound`). test_forward_result.py
     proves the two equal, singular poses and zero rows included.
     """
     values = np.linalg.svd(jacobian, compute_uv=False).tolist()

@@ -44,7 +44,7 @@ from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTraje
 BASE_GRIDPOINTS = 300
 #: ... and this many more per radian that the legs' path turns (in leg space) ...
 GRIDPOINTS_PER_RADIAN = 40
-#: ... and at most this many (the cost of toppra grows with them: about 40 us each).
+#: ... and at most this many (toppra's time grows in proportion to them).
 MAX_GRIDPOINTS = 1500
 #: Waypoints are gridpoints too when there are at most this many.
 MAX_WAYPOINT_GRIDPOINTS = 250

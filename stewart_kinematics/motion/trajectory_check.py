@@ -49,7 +49,7 @@ SPEED_LIMITS = ('leg_velocity_max', 'leg_acceleration_max')
 #: Default sampling rate of the whole-trajectory check, hertz.
 DEFAULT_VALIDATION_RATE = 1000.0
 #: Samples checked at once: bounds the memory of a long trajectory's check, and the time
-#: between two looks at the cancel flag (about 10 ms on an idle machine).
+#: between two looks at the cancel flag (one chunk's vectorised check).
 CHECK_CHUNK = 2500
 #: Most samples a check takes (a few seconds of work); a trajectory that needs more is
 #: refused with a reason instead (``complete`` False).

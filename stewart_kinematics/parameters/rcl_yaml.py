@@ -53,8 +53,8 @@ import yaml
 #: walk of the values (flattening, matching) far from Python's recursion limit of 1000.
 MAX_DEPTH = 64
 #: Most values (scalars and collections) in one file. The package's largest file holds a few
-#: hundred; a million reads in about 0.7 s with libyaml, and a hostile file cannot make the
-#: reader build more.
+#: hundred; the cap bounds the reader's work and memory far above that, so that a hostile
+#: file cannot make the reader build more.
 MAX_VALUES = 1_000_000
 #: Largest file read, in bytes: a parameter file is kilobytes (a robot description inlined as
 #: a string, the largest value seen in ROS parameter files, is at most a few megabytes).
@@ -73,7 +73,7 @@ _STRING_TAG = 'tag:yaml.org,2002:str'
 _INT64_MIN, _INT64_MAX = -2 ** 63, 2 ** 63 - 1
 #: An integer as C's strtol reads it with base 0: decimal, 0x hexadecimal or 0 octal.
 _INTEGER = re.compile(r'\s*[+-]?(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)\Z')
-#: libyaml's parser where PyYAML has it (rcl's own, and 20 times faster), else PyYAML's.
+#: libyaml's parser where PyYAML has it (rcl's own, and compiled: much faster), else PyYAML's.
 _LOADER = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)
 #: Longest text of a value or key quoted in a message.
 _PREVIEW_CHARACTERS = 60

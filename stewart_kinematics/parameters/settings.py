@@ -15,7 +15,7 @@
 # GENERATED FILE: do not edit. Written by scripts/generate_settings.py from the parameter specs
 # of stewart_kinematics/parameters/declarations.py; after changing a spec, run
 #     .venv/bin/python scripts/generate_settings.py
-# (test/test_settings.py fails until this file is what the script writes).
+# (test/parameters/test_settings.py fails until this file is what the script writes).
 
 """
 The settings classes, written out from the parameter specs: one per parameter group, one per node.

@@ -78,8 +78,8 @@ EXECUTOR_OPTION = '--executor'
 #: EventsExecutor drives timers from its own timer manager, which does not follow a simulated
 #: clock (rclcpp's has the same limit, ros2/rclcpp#2457): under processor load, a timer of the
 #: simulated clock fired once too often and then skipped the next tick, so trajectory_node
-#: published a sample twice and not the next one (test/test_sim_time.py failed 5 of 14 runs
-#: with two busy processes beside it, and none of 8 on this executor).
+#: published a sample twice and not the next one (test/processes/test_sim_time.py failed 5 of
+#: 14 runs with two busy processes beside it, and none of 8 on this executor).
 SIM_TIME_EXECUTOR = 'single_threaded'
 
 

@@ -61,7 +61,7 @@ import yaml
 #: The CSV columns, in order.
 CSV_COLUMNS = ('time', 'specific_force_x', 'specific_force_y', 'specific_force_z',
                'angular_velocity_x', 'angular_velocity_y', 'angular_velocity_z')
-#: The node's name: the parameter files' sections read besides /**.
+#: The node's name: the parameter files' sections read besides ``/**``.
 NODE_NAME = 'motion_cueing_node'
 #: Targets (issue 23): correlation and delay on the multi-sine, return to neutral everywhere.
 CORRELATION_TARGET = 0.8

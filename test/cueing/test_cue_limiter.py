@@ -1,0 +1,174 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Every pose the motion cueing commands keeps the limits model and the actuators' speed limits.
+
+Hostile cues (the literature's gains on a platform with 0.05 m/s and 0.25 m/s^2 per leg,
+random steps of up to 8 m/s^2 and 0.5 rad/s, at 100 Hz and at a jittered 1 kHz) are checked
+here without the package's own checks: the poses by the limits model's array check, the leg
+velocities and accelerations by finite differences of the leg lengths written out below.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+
+from stewart_kinematics import ActuatorLimits, inverse_kinematics, load_geometry
+from stewart_kinematics.cueing import CueingSettings, MotionCueing
+from stewart_kinematics.cueing.cue_limiter import box_least_squares
+from stewart_kinematics.limits import check_poses_array
+
+pytestmark = pytest.mark.core
+
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
+G = 9.80665
+LIMITS = ActuatorLimits(velocity_max=0.05, acceleration_max=0.25, jerk_max=2.5)
+
+
+@pytest.fixture(scope='module')
+def geometry():
+    """Load the paper's platform with the example limits."""
+    return load_geometry([CONFIG / 'paper_platform.yaml', CONFIG / 'example_limits.yaml'])
+
+
+def hostile_input(times, seed):
+    """Random steps of specific force (+-8 m/s^2 x, y; +-3 z) and angular velocity, 0.2-2 s."""
+    rng = np.random.default_rng(seed)
+    force = np.tile([0.0, 0.0, G], (times.size, 1))
+    rates = np.zeros((times.size, 3))
+    start = 0.0
+    while start < times[-1]:
+        end = start + rng.uniform(0.2, 2.0)
+        held = (times >= start) & (times < end)
+        force[held] += rng.uniform([-8.0, -8.0, -3.0], [8.0, 8.0, 3.0])
+        rates[held] = rng.uniform(-0.5, 0.5, size=3)
+        start = end
+    return force, rates
+
+
+def drive(cueing, times, force, rates):
+    """Step through every sample; return poses, lengths and the steps."""
+    steps = [cueing.step(t, f, w) for t, f, w in zip(times, force, rates)]
+    return np.array([s.pose for s in steps]), np.array([s.lengths for s in steps]), steps
+
+
+def assert_within_every_limit(geometry, times, poses, lengths):
+    """Poses by the limits model; leg speeds by finite differences, both ways of timing them."""
+    checks = check_poses_array(geometry, poses)
+    assert np.all(checks.allowed), f'{np.count_nonzero(~checks.allowed)} poses out of limits'
+    assert_allclose(lengths, inverse_kinematics(geometry, poses), atol=1e-9)
+    steps = np.diff(times)
+    velocities = np.diff(lengths, axis=0) / steps[:, None]
+    assert np.max(np.abs(velocities)) <= 0.05 * (1.0 + 1e-9)
+    changes = np.abs(np.diff(velocities, axis=0))
+    assert np.max(changes / steps[1:, None]) <= 0.25 * (1.0 + 1e-9)
+    centred = 0.5 * (steps[1:] + steps[:-1])
+    assert np.max(changes / centred[:, None]) <= 0.25 * (1.0 + 1e-9)
+
+
+@pytest.mark.parametrize('rate, jitter, seed', [(100.0, 0.0, 1), (100.0, 0.0, 2),
+                                                (1000.0, 0.6, 3)])
+def test_hostile_cues_keep_every_limit(geometry, rate, jitter, seed):
+    """The literature's gains on this small platform: scaled and slowed, never out of limits."""
+    rng = np.random.default_rng(seed)
+    count = int(40.0 * rate) if rate < 500 else int(8.0 * rate)
+    steps = (1.0 + jitter * rng.uniform(-1.0, 1.0, size=count)) / rate
+    times = np.cumsum(steps)
+    force, rates = hostile_input(times, seed)
+    cueing = MotionCueing(geometry, CueingSettings(), LIMITS)
+    poses, lengths, results = drive(cueing, times, force, rates)
+    assert_within_every_limit(geometry, times, poses, lengths)
+    assert min(s.workspace_scale for s in results) < 1.0 or rate > 500
+    assert min(s.acceleration_scale for s in results) < 1.0
+    assert not any(w.code == 'limits_held' for s in results for w in s.warnings)
+
+
+def test_platform_returns_home_after_hostile_cues(geometry):
+    """After 30 s of hostile input and 40 s at rest the platform is home (no freeze)."""
+    times = np.arange(1, 7001) * 0.01
+    force, rates = hostile_input(times, 7)
+    force[times > 30.0] = [0.0, 0.0, G]
+    rates[times > 30.0] = 0.0
+    cueing = MotionCueing(geometry, CueingSettings(), LIMITS)
+    poses, lengths, _ = drive(cueing, times, force, rates)
+    assert_within_every_limit(geometry, times, poses, lengths)
+    assert np.linalg.norm(poses[-1, :3] - geometry.home_pose[:3]) < 1e-3
+    assert np.max(np.abs(poses[-1, 3:] - geometry.home_pose[3:])) < math.radians(0.1)
+
+
+def test_cue_within_the_limits_is_followed_exactly(geometry):
+    """Small, slow cues: the pose is the cue's pose, nothing scaled or slowed."""
+    times = np.arange(1, 1001) * 0.01
+    force = np.tile([0.0, 0.0, G], (times.size, 1))
+    force[:, 0] += 0.5 * np.sin(2.0 * math.pi * 0.5 * times)
+    settings = CueingSettings(translation_scale=(0.2, 0.2, 0.2), tilt_scale=(0.1, 0.1))
+    cueing = MotionCueing(geometry, settings, LIMITS)
+    steps = [cueing.step(t, f, [0.0, 0.0, 0.0]) for t, f in zip(times, force)]
+    assert all(s.workspace_scale == 1.0 and s.acceleration_scale == 1.0 for s in steps[1:])
+    for step in steps[1:]:
+        assert_allclose(step.pose, step.target, atol=1e-12)
+        assert_allclose(step.pose, cueing.limiter.cue_poses(
+            step.displacement, step.angles), atol=1e-12)
+
+
+def test_rotation_turns_about_the_head(geometry):
+    """A pure tilt cue moves the platform origin so that the head stays put."""
+    settings = CueingSettings(head_position=(0.1, 0.0, 0.6))
+    cueing = MotionCueing(geometry, settings, LIMITS)
+    pose = cueing.limiter.cue_poses(np.zeros(3), np.array([0.05, -0.08, 0.1]))
+    rotation = cueing.limiter.home_rotation
+    head_home = geometry.home_pose[:3] + rotation @ settings.head_position
+    from reference import rotation_zyx
+    head_now = pose[:3] + rotation_zyx(*pose[3:]) @ settings.head_position
+    assert_allclose(head_now, head_home, atol=1e-15)
+
+
+def test_without_actuator_limits_the_cue_is_followed(geometry):
+    """No leg speed limits: only the workspace scale acts; the pose equals the scaled cue."""
+    times = np.arange(1, 1001) * 0.01
+    force, rates = hostile_input(times, 4)
+    cueing = MotionCueing(geometry, CueingSettings(), ActuatorLimits())
+    poses, _, steps = drive(cueing, times, force, rates)
+    assert np.all(check_poses_array(geometry, poses).allowed)
+    assert all(s.acceleration_scale == 1.0 for s in steps)
+    for step in steps[1:]:
+        assert_allclose(step.pose, step.target, atol=1e-12)
+
+
+def test_margins_too_wide_for_the_platform_are_refused(geometry):
+    """A stroke margin of 20 cm leaves nothing around home: refused, naming the margins."""
+    with pytest.raises(ValueError, match='leg_length_margin'):
+        MotionCueing(geometry, CueingSettings(leg_length_margin=0.2), LIMITS)
+
+
+def test_box_least_squares_matches_scipy():
+    """The follower's active-set solver against scipy.optimize.lsq_linear on random boxes."""
+    from scipy.optimize import lsq_linear
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        factor = rng.normal(size=(6, 6)) + 3.0 * np.eye(6)
+        metric = factor.T @ factor
+        target = rng.normal(size=6)
+        lower = rng.uniform(-1.0, 0.0, size=6)
+        upper = lower + rng.uniform(0.0, 1.0, size=6)
+        ours = box_least_squares(metric, target, lower, upper)
+        theirs = lsq_linear(factor, factor @ target, bounds=(lower, upper), tol=1e-14).x
+        assert np.all(ours >= lower) and np.all(ours <= upper)
+        cost = (ours - target) @ metric @ (ours - target)
+        best = (theirs - target) @ metric @ (theirs - target)
+        assert cost <= best + 1e-9 * max(1.0, best)

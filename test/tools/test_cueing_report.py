@@ -1,0 +1,151 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+``stewart_cueing``'s options, inputs and outputs, through its ``main()``.
+
+Bad options exit 2 naming the option before any work; an input file that cannot be used exits
+1 with the file, the line and the column; a good run writes the table, the numbers and the
+figures, and ``--strict`` exits 3 when a target is missed.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from stewart_kinematics.cueing.scenarios import scenario
+from stewart_kinematics.tools import cueing_report
+from stewart_kinematics.tools.cueing_report import CSV_COLUMNS, main
+import yaml
+
+pytestmark = pytest.mark.core
+
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
+PLATFORM = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
+            '--params-file', str(CONFIG / 'example_limits.yaml')]
+TUNED = PLATFORM + ['--params-file', str(CONFIG / 'motion_cueing.yaml')]
+
+
+def write_csv(path, rows, header=','.join(CSV_COLUMNS)):
+    """Write a CSV input with a comment, the header and ``rows``."""
+    lines = ['# recorded by a test', header] + [','.join(map(str, row)) for row in rows]
+    path.write_text('\n'.join(lines) + '\n', encoding='utf-8')
+    return path
+
+
+def scenario_rows(name, rate=50.0):
+    """Return the rows of a generated scenario, as a CSV would hold them."""
+    generated = scenario(name, rate)
+    return np.column_stack([generated.times + 100.0, generated.specific_force,
+                            generated.angular_velocity]).tolist()
+
+
+@pytest.mark.parametrize('arguments, option', [
+    (['--rate', '-5'], '--rate'), (['--rate', 'fast'], '--rate'),
+    (['--rate', 'nan'], '--rate'), (['--scenario', 'drift'], '--scenario'),
+    (['--csv', '/nonexistent/input.csv'], '--csv'),
+    (['--false-cue-threshold', '0'], '--false-cue-threshold'),
+    (['--settle-time', 'inf'], '--settle-time'),
+    (['--csv', __file__, '--scenario', 'lap'], '--scenario'),
+])
+def test_bad_options_exit_2_naming_the_option(capsys, tmp_path, arguments, option):
+    """Refuse the value naming the option (argparse); nothing is written."""
+    with pytest.raises(SystemExit) as raised:
+        main(TUNED + ['--output', str(tmp_path / 'out')] + arguments)
+    assert raised.value.code == 2
+    assert option in capsys.readouterr().err
+    assert not (tmp_path / 'out').exists()
+
+
+def test_output_that_is_a_file_exits_2_before_any_work(capsys, tmp_path):
+    """--output naming a file: refused before replaying anything."""
+    blocker = tmp_path / 'taken'
+    blocker.write_text('not a folder', encoding='utf-8')
+    with pytest.raises(SystemExit) as raised:
+        main(TUNED + ['--output', str(blocker)])
+    assert raised.value.code == 2
+    err = capsys.readouterr().err
+    assert '--output' in err and 'not a folder' in err
+
+
+def test_params_file_is_required(capsys):
+    """Without a parameter file there is no platform: usage error naming the option."""
+    with pytest.raises(SystemExit) as raised:
+        main(['--scenario', 'lap'])
+    assert raised.value.code == 2
+    assert '--params-file' in capsys.readouterr().err
+
+
+def test_csv_input_is_replayed_and_reported(capsys, tmp_path):
+    """A CSV of the multi-sine (stamps from 100 s): table, numbers, figure, progress."""
+    path = write_csv(tmp_path / 'drive.csv', scenario_rows('multi_sine'))
+    output = tmp_path / 'out'
+    assert main(TUNED + ['--csv', str(path), '--output', str(output)]) == 0
+    captured = capsys.readouterr()
+    assert '100% drive.csv' in captured.err
+    assert 'drive.csv: 1651 samples' in captured.out
+    assert (output / 'drive.png').stat().st_size > 10000
+    table = (output / 'cueing_results.md').read_text(encoding='utf-8')
+    assert table.splitlines()[2].startswith('| drive.csv | 0 |')
+    numbers = yaml.safe_load((output / 'cueing_results.yaml').read_text(encoding='utf-8'))
+    assert numbers['drive.csv']['specific_force']['x']['correlation'] > 0.8
+    assert numbers['drive.csv']['targets']['zero limit violations'] is True
+
+
+@pytest.mark.parametrize('rows, header, fragment', [
+    ([[0.0, 0, 0, 9.8, 0, 0, 0]] * 3, 'time,ax,ay,az,wx,wy,wz', 'the header must be'),
+    ([[0.0, 0, 0, 9.8, 0, 0, 0], [0.01, 0, 'nan', 9.8, 0, 0, 0], [0.02, 0, 0, 9.8, 0, 0, 0]],
+     None, 'line 4: specific_force_y must be a finite number'),
+    ([[0.0, 0, 0, 9.8, 0, 0, 0], [0.01, 0, 0, 9.8, 0, 0]], None, 'line 4: expected 7 values'),
+    ([[0.0, 0, 0, 9.8, 0, 0, 0], [0.0, 0, 0, 9.8, 0, 0, 0], [0.1, 0, 0, 9.8, 0, 0, 0]], None,
+     'times must increase'),
+    ([[0.0, 0, 0, 9.8, 0, 0, 0], [0.01, 500.0, 0, 9.8, 0, 0, 0],
+      [0.02, 0, 0, 9.8, 0, 0, 0]], None, 'beyond 100 m/s^2'),
+    ([[0.0, 0, 0, 9.8, 0, 0, 0]], None, 'at least 3 samples'),
+])
+def test_unusable_csv_exits_1_saying_where(capsys, tmp_path, rows, header, fragment):
+    """A bad header, a bad value, a short row, a repeated time, an absurd force, too short."""
+    path = write_csv(tmp_path / 'bad.csv', rows, header or ','.join(CSV_COLUMNS))
+    assert main(TUNED + ['--csv', str(path), '--output', str(tmp_path / 'out'),
+                         '--quiet']) == 1
+    err = capsys.readouterr().err
+    assert fragment in err and 'bad.csv' in err
+
+
+def test_strict_exits_3_when_a_target_is_missed(capsys, tmp_path):
+    """The literature's defaults on this platform return too slowly: --strict says so."""
+    code = main(PLATFORM + ['--scenario', 'acceleration_braking', '--output',
+                            str(tmp_path / 'out'), '--no-figures', '--quiet', '--strict'])
+    assert code == 3
+    out = capsys.readouterr().out
+    assert 'MISSED within 1 mm and 0.1 deg of neutral' in out
+    assert not list((tmp_path / 'out').glob('*.png'))
+
+
+def test_every_scenario_meets_its_targets_with_the_shipped_tuning(shipped_cueing_report):
+    """The documentation's run: all four scenarios, --strict, exit 0 (run once: conftest)."""
+    assert shipped_cueing_report.exit_code == 0
+    out = shipped_cueing_report.output
+    assert 'MISSED' not in out
+    assert out.count('met    zero limit violations') == 4
+    assert sorted(path.name for path in shipped_cueing_report.folder.glob('*.png')) == [
+        'acceleration_braking.png', 'lap.png', 'multi_sine.png', 'slalom.png']
+
+
+def test_markdown_table_shows_unknowns_as_dashes():
+    """Show NaN correlations (a constant axis) and delays beyond the window as such."""
+    assert cueing_report._number(math.nan) == '-'
+    assert cueing_report._number(math.inf, '.0f') == '> 500'
+    assert cueing_report._number(-math.inf, '.0f') == '< -500'
