@@ -31,7 +31,6 @@ limits < 1 s; the full ``stewart_workspace`` report < 30 s.
 """
 
 import argparse
-import dataclasses
 import math
 import os
 from pathlib import Path
@@ -84,8 +83,8 @@ def rate_target(wall_rate, cpu_rate, target=1e6):
 def core_rows(rows):
     """Limit checks per second, with their baselines, and the travel ranges."""
     geometry = load_geometry(FILES)
-    no_margin = dataclasses.replace(geometry, max_jacobian_condition=math.inf)
-    no_collision = dataclasses.replace(no_margin, leg_radius=0.0)
+    no_margin = geometry.with_limits(max_jacobian_condition=math.inf)
+    no_collision = no_margin.with_limits(leg_radius=0.0)
     rng = np.random.default_rng(1)
     poses = geometry.home_pose + rng.uniform(-1.0, 1.0, (1_000_000, 6)) * SPREAD
 

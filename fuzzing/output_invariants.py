@@ -207,7 +207,7 @@ class OutputInvariants:
         self.actuators = actuators
         #: Every frame tree the node may have had while publishing (a change is asynchronous).
         self.frames = [frames]
-        self.stroke = (geometry.leg_length_min, geometry.leg_length_max)
+        self.stroke = (geometry.limits.leg_length_min, geometry.limits.leg_length_max)
         #: The topics (last name part) whose messages are a stamped command stream, checked
         #: across messages for their leg rates (jerk included: ik_node's stream limits it).
         self.streams = frozenset(streams)

@@ -148,8 +148,8 @@ class _Piece:
         """
         geometry = self.geometry
         if self.direction[2] > 0.0:
-            return float(np.max(lengths) - geometry.leg_length_max)
-        return float(geometry.leg_length_min - np.min(lengths))
+            return float(np.max(lengths) - geometry.limits.leg_length_max)
+        return float(geometry.limits.leg_length_min - np.min(lengths))
 
     def place(self, speed, share) -> float:
         """

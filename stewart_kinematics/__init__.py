@@ -59,7 +59,7 @@ from stewart_kinematics.dynamics import (
     RigidBody,
 )
 from stewart_kinematics.findings import Finding
-from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits import LimitModel, PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.forward_result import ForwardKinematicsResult
@@ -153,6 +153,7 @@ __all__ = [
     'PoseAnchor',
     'PoseEstimate',
     'PoseTracker',
+    'PoseLimits',
     'PoseTrajectory',
     'quaternion_to_euler_zyx',
     'quaternion_to_matrix',

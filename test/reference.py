@@ -99,11 +99,21 @@ def design_joints(design):
 
 
 def paper_geometry(**changes):
-    """Build the paper's platform (home pose: Table 3's first row), with optional changes."""
+    """
+    Build the paper's platform (home pose: Table 3's first row), with optional changes.
+
+    :param changes: Geometry's arguments, and the pose limits' settings (SI units, such as
+        ``leg_length_max``), which become its ``limits``.
+    """
+    from stewart_kinematics.limits import PoseLimits
+    from stewart_kinematics.limits.kinds import pose_settings
     from stewart_kinematics.model.geometry import Geometry
+    limits = {name: changes.pop(name) for name in list(changes) if name in pose_settings()}
     arguments = {'base_joints': BASE_JOINTS, 'platform_joints': PLATFORM_JOINTS,
                  'home_pose': HOME}
     arguments.update(changes)
+    if limits:
+        arguments['limits'] = PoseLimits(**limits)
     return Geometry(**arguments)
 
 

@@ -20,6 +20,8 @@ The documentation's own Sphinx extension: tables generated from the code, and co
   ...) from its specs when the site is built, so a page cannot drift from the declarations.
 - ``{refusal-codes}`` renders every code the package emits, from the registry of
   :mod:`stewart_kinematics.findings`.
+- ``{limit-table}`` renders every kind of limit (evaluator, parameters, meaning), from their
+  list, :data:`stewart_kinematics.limits.kinds.LIMIT_KINDS`.
 - ``{node-interface} NODE`` renders a node's topics and services from their declaration in
   :mod:`stewart_kinematics.ros.interfaces`.
 - ``{marker-colours}`` renders what the colours of ik_node's RViz markers mean, from the
@@ -105,6 +107,12 @@ def refusal_codes_table() -> str:
     return codes_table()
 
 
+def limit_table() -> str:
+    """Return the Markdown table of every kind of limit: :func:`~.limits.kinds.limits_table`."""
+    from stewart_kinematics.limits.kinds import limits_table
+    return limits_table()
+
+
 class MarkdownDirective(SphinxDirective):
     """A directive whose content is Markdown generated when the page is built."""
 
@@ -135,6 +143,14 @@ class ParameterTable(MarkdownDirective):
         if group not in parameter_groups():
             raise KeyError(f'no parameter group {group!r}; known: {sorted(parameter_groups())}')
         return parameter_table(group)
+
+
+class LimitTable(MarkdownDirective):
+    """``{limit-table}``: every kind of limit, from the list of kinds."""
+
+    def markdown(self) -> str:
+        """Render the table of limits."""
+        return limit_table()
 
 
 class RefusalCodes(MarkdownDirective):
@@ -439,6 +455,7 @@ def setup(app):
     """Register the directives and the completeness check."""
     app.add_directive('parameter-table', ParameterTable)
     app.add_directive('refusal-codes', RefusalCodes)
+    app.add_directive('limit-table', LimitTable)
     app.add_directive('node-interface', NodeInterfaceTable)
     app.add_directive('config-file', ConfigFile)
     app.add_directive('marker-colours', MarkerColours)

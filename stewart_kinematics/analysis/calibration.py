@@ -717,12 +717,7 @@ def calibrated_parameters(result: CalibrationResult, nominal_values: Optional[di
         values = {
             'home_position': geometry.home_pose[:3].tolist(),
             'home_orientation_deg': np.degrees(geometry.home_pose[3:]).tolist(),
-            'leg_length_min': geometry.leg_length_min,
-            'leg_length_max': geometry.leg_length_max,
-            'base_joint_max_angle_deg': math.degrees(geometry.base_joint_max_angle),
-            'platform_joint_max_angle_deg': math.degrees(geometry.platform_joint_max_angle),
-            'max_jacobian_condition': geometry.max_jacobian_condition,
-            'leg_radius': geometry.leg_radius,
+            **limits.limits_of(geometry).parameters(),
         }
     values['base_joints'] = [float(value) for value in geometry.base_joints.ravel()]
     values['platform_joints'] = [float(value) for value in geometry.platform_joints.ravel()]

@@ -56,7 +56,9 @@ from stewart_kinematics.analysis.workspace import (
     WorkspaceVolume,
 )
 from stewart_kinematics.limits.base import LEG_PAIRS, PoseLegs
+from stewart_kinematics.limits.kinds import pose_settings
 from stewart_kinematics.limits.leg_collision import LegCollision
+from stewart_kinematics.limits.settings import limits_of
 from stewart_kinematics.model.geometry import (
     Geometry,
     joint_separations,
@@ -79,14 +81,11 @@ HOME_CONDITION_WARNING = 20.0
 NEAR_FRACTION = 0.01
 #: Grid step of the workspace volume, metres: coarse and fast (well under a second).
 DEFAULT_VOLUME_RESOLUTION = 0.02
-#: The geometry's limit values that mean "no limit", by field of Geometry.
-NO_LIMITS = {'leg_length_min': 0.0, 'leg_length_max': math.inf,
-             'base_joint_max_angle': math.pi, 'platform_joint_max_angle': math.pi,
-             'max_jacobian_condition': math.inf, 'leg_radius': 0.0}
+#: The pose limits' values that mean "no limit", by setting of PoseLimits (their kinds').
+NO_LIMITS = {name: parameter.setting_default for name, parameter in pose_settings().items()}
 #: The same in parameter names and units (degrees for the cones).
-_NO_LIMIT_PARAMETERS = {'leg_length_min': 0.0, 'leg_length_max': math.inf,
-                        'base_joint_max_angle_deg': 180.0, 'platform_joint_max_angle_deg': 180.0,
-                        'max_jacobian_condition': math.inf, 'leg_radius': 0.0}
+_NO_LIMIT_PARAMETERS = {parameter.name: parameter.default
+                        for parameter in pose_settings().values()}
 
 
 @dataclass(frozen=True)
@@ -295,8 +294,8 @@ def geometry_report(geometry: Geometry, *,
     """
     if not isinstance(geometry, Geometry):
         raise ValueError(f'geometry must be a Geometry, got {type(geometry).__name__}')
-    limits = {name: getattr(geometry, name) for name in NO_LIMITS}
-    return _report(replace(geometry, **NO_LIMITS), limits, geometry, '',
+    limits = limits_of(geometry).values()
+    return _report(replace(geometry, limits=None), limits, geometry, '',
                    _resolution(volume_resolution))
 
 
@@ -318,10 +317,8 @@ def parameters_report(values: Mapping, *,
     """
     settings = GeometrySettings.from_values(values)
     bare = geometry_from_settings(settings.replace(**_NO_LIMIT_PARAMETERS))
-    limits = {name: getattr(settings, name) for name in (
-        'leg_length_min', 'leg_length_max', 'max_jacobian_condition', 'leg_radius')}
-    for name in ('base_joint_max_angle', 'platform_joint_max_angle'):
-        limits[name] = math.radians(getattr(settings, f'{name}_deg'))
+    limits = {name: parameter.setting_value(getattr(settings, parameter.name))
+              for name, parameter in pose_settings().items()}
     try:
         full, refusal = geometry_from_settings(settings), ''
     except ValueError as error:

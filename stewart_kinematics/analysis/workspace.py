@@ -43,7 +43,8 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
-from stewart_kinematics.limits import check_poses_array, LIMIT_NAMES
+from stewart_kinematics.limits import check_poses_array
+from stewart_kinematics.limits.kinds import pose_limit_names
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.inputs import as_poses
 from stewart_kinematics.model.jacobians import jacobian_condition
@@ -224,7 +225,7 @@ def travel_ranges(geometry, pose=None, *, span=DEFAULT_SPAN, step=DEFAULT_SCAN_S
     for axis in range(6):
         ends = []
         for ray in (2 * axis, 2 * axis + 1):
-            name = LIMIT_NAMES[limit[ray]] if stopped[ray] else None
+            name = pose_limit_names()[limit[ray]] if stopped[ray] else None
             ends += [inside[ray, axis] - start[axis], name,
                      int(leg[ray]) if stopped[ray] and leg[ray] else None]
         axes.append(AxisTravel(AXES[axis], UNITS[axis], float(ends[0]), float(ends[3]),
@@ -520,9 +521,10 @@ def _classify_chunk(geometry, poses, with_condition):
         empty = np.zeros(0, dtype=int)
         return _Classification(np.zeros(0, dtype=bool), empty, empty, np.zeros(0))
     checks = check_poses_array(geometry, poses, condition_of_refused=False)
-    scores = np.full((count, len(LIMIT_NAMES)), -np.inf)
-    legs = np.zeros((count, len(LIMIT_NAMES)), dtype=int)
-    for index, name in enumerate(LIMIT_NAMES):
+    names = pose_limit_names()
+    scores = np.full((count, len(names)), -np.inf)
+    legs = np.zeros((count, len(names)), dtype=int)
+    for index, name in enumerate(names):
         if name in checks.broken:
             scale = checks.model.bound(name).allowed or 1.0
             relative = np.where(checks.broken[name], checks.excess(name) / scale, -np.inf)

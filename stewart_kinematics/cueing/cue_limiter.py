@@ -52,6 +52,7 @@ import numpy as np
 
 from stewart_kinematics.cueing.limit_margins import limit_margins, pose_violations, with_margins
 from stewart_kinematics.findings import ACTUATOR_LIMITED, COMMAND_BRAKING, CUE_SCALED, Finding
+from stewart_kinematics.limits import limits_of
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.inverse import inverse_kinematics
@@ -130,8 +131,8 @@ class CueLimiter:
         self.cue_geometry = with_margins(geometry, self.leg_length_margin,
                                          settings.joint_angle_margin, settings.condition_margin)
         #: The limits a stopping pose is checked against: all but the stroke.
-        self._stop_geometry = dataclasses.replace(geometry, leg_length_min=0.0,
-                                                  leg_length_max=math.inf)
+        self._stop_geometry = dataclasses.replace(geometry, limits=limits_of(geometry).replace(
+            leg_length_min=0.0, leg_length_max=math.inf))
         #: Inside these limits (the margins twice over) a pose can stop inside the limits for
         #: sure; beyond them, where it stops is computed (:meth:`_keeps_limits`): a joint cone
         #: may change by more than its margin while the legs brake.
@@ -287,7 +288,7 @@ class CueLimiter:
         acceleration = self._acceleration_plan
         change = acceleration * span
         speed = self._velocity_plan
-        geometry = self.geometry
+        limits = limits_of(self.geometry)
         stroke = stroke and math.isfinite(acceleration)
         lower, upper = [], []
         for length, velocity in zip(self.lengths.tolist(), self.leg_velocities.tolist()):
@@ -295,12 +296,12 @@ class CueLimiter:
             high = min(speed, velocity + change)
             if stroke:
                 # v dt + v^2 / (2 a) <= room: one step, then braking at the planned rate.
-                if math.isfinite(geometry.leg_length_max):
-                    room = max(geometry.leg_length_max - length, 0.0)
+                if math.isfinite(limits.leg_length_max):
+                    room = max(limits.leg_length_max - length, 0.0)
                     high = max(low, min(high, acceleration * (
                         -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
-                if geometry.leg_length_min > 0.0:
-                    room = max(length - geometry.leg_length_min, 0.0)
+                if limits.leg_length_min > 0.0:
+                    room = max(length - limits.leg_length_min, 0.0)
                     low = min(high, max(low, -acceleration * (
                         -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
             lower.append(low)

@@ -17,8 +17,9 @@ The cueing's only calls into the limits model, and the margins the cue keeps ins
 
 Every pose the cueing outputs is judged by :func:`pose_violations` (one pose) or
 :func:`poses_allowed` (a batch), and the workspace boundary is found with
-:func:`limit_margins`; when the limits model gains a limit (issue 18: leg collisions,
-leg velocity and acceleration), these three are the functions to repoint. The leg velocity and
+:func:`limit_margins`, over every kind of limit of the limits model; each kind declares how
+the cue's margins narrow it (:attr:`stewart_kinematics.limits.LimitKind.narrowed`, used by
+:func:`with_margins`), so a kind added to the list needs no edit here. The leg velocity and
 acceleration limits of :class:`~stewart_kinematics.ActuatorLimits` are kept by the follower in
 :mod:`.cue_limiter`, step by step, and counted by :func:`leg_speed_violations`.
 
@@ -30,7 +31,14 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.limits import check_pose, check_poses_array, LimitModel
+from stewart_kinematics.limits import (
+    check_pose,
+    check_poses_array,
+    CueMargins,
+    LimitModel,
+    limits_of,
+)
+from stewart_kinematics.limits.kinds import pose_bounds
 
 
 def pose_violations(geometry, position, rotation) -> list:
@@ -58,19 +66,21 @@ def limit_margins(geometry, poses) -> np.ndarray:
     How far each pose is beyond its nearest limit: negative inside, zero on the boundary.
 
     The largest excess over every limit set in ``geometry`` (metres for the stroke, radians
-    for the joint cones, a share of ``max_jacobian_condition`` for the singularity margin);
-    continuous in the pose, so that the boundary can be found by root finding.
+    for the joint cones, a share of the allowed value for a bound its kind declares
+    ``relative``, such as ``max_jacobian_condition``); continuous in the pose, so that the
+    boundary can be found by root finding.
 
     :param poses: ``[X, Y, Z, alpha, beta, gamma]``, shape (N, 6).
     :returns: shape (N,); ``-inf`` where no limit is set.
     """
     checks = check_poses_array(geometry, poses)
     margins = np.full(len(checks), -np.inf)
+    relative = {bound.name for bound in pose_bounds() if bound.relative}
     for limit in checks.broken:
         excess = checks.excess(limit)
-        if limit == 'max_jacobian_condition':
-            excess = excess / geometry.max_jacobian_condition
-        else:
+        if limit in relative:
+            excess = excess / LimitModel.of_geometry(geometry).bound(limit).allowed
+        if excess.ndim > 1:
             excess = np.max(excess, axis=-1)
         margins = np.maximum(margins, np.where(np.isnan(excess), np.inf, excess))
     return margins
@@ -116,25 +126,18 @@ def with_margins(geometry, leg_length_margin: float, joint_angle_margin: float,
     """
     Return ``geometry`` with its set limits drawn in by the margins (unset limits stay unset).
 
+    Each kind of limit says how its values narrow
+    (:meth:`stewart_kinematics.limits.PoseLimits.narrowed`); the leg radius does not.
+
     :param leg_length_margin: metres off each end of the stroke.
     :param joint_angle_margin: radians off each joint cone.
     :param condition_margin: fraction of ``max_jacobian_condition`` kept.
     :raises ValueError: if the home pose breaks the narrowed limits (margins too wide for this
         platform), naming the margins.
     """
-    changes = {}
-    if geometry.leg_length_min > 0.0:
-        changes['leg_length_min'] = geometry.leg_length_min + leg_length_margin
-    if math.isfinite(geometry.leg_length_max):
-        changes['leg_length_max'] = geometry.leg_length_max - leg_length_margin
-    for name in ('base_joint_max_angle', 'platform_joint_max_angle'):
-        if getattr(geometry, name) < math.pi:
-            changes[name] = max(getattr(geometry, name) - joint_angle_margin, 1e-9)
-    if math.isfinite(geometry.max_jacobian_condition):
-        changes['max_jacobian_condition'] = max(
-            1.0, geometry.max_jacobian_condition * condition_margin)
+    margins = CueMargins(leg_length_margin, joint_angle_margin, condition_margin)
     try:
-        return dataclasses.replace(geometry, **changes)
+        return dataclasses.replace(geometry, limits=limits_of(geometry).narrowed(margins))
     except ValueError as error:
         raise ValueError(
             f'the cue margins (leg_length_margin {leg_length_margin:g} m, joint_angle_margin '

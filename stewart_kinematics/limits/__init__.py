@@ -15,9 +15,11 @@
 """
 The limits model: every reason a pose, or a motion, is not allowed, decided in one place.
 
-One evaluator per kind of limit, each checking one pose or arrays of poses through the
-core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.formulas`, the
-rotation entries of :mod:`stewart_kinematics.model.rotations`):
+One module per kind of limit, each declaring everything about it (a
+:class:`~.kind.LimitKind`: its parameters with their units, bounds and defaults, its evaluator,
+its label and colour) and holding its evaluator, which checks one pose or arrays of poses
+through the core's single formulas (the leg vectors of :mod:`stewart_kinematics.model.formulas`,
+the rotation entries of :mod:`stewart_kinematics.model.rotations`):
 
 - :mod:`.stroke`: ``leg_length_min``, ``leg_length_max`` (poses and leg lengths);
 - :mod:`.joint_cones`: ``base_joint_max_angle``, ``platform_joint_max_angle``;
@@ -25,11 +27,14 @@ rotation entries of :mod:`stewart_kinematics.model.rotations`):
 - :mod:`.leg_collision`: ``leg_collision``, legs as capsules of ``leg_radius``;
 - :mod:`.leg_rates`: ``leg_velocity_max``, ``leg_acceleration_max``, ``leg_jerk_max``.
 
-:class:`~.limit_model.LimitModel` composes those that are set and gives every check: one pose, a
-batch, leg states (trajectories, streams, twists). :class:`~.command_gate.CommandGate` applies
-it to every command as it is sent to the actuators, and gives the verdict a node publishes.
-:mod:`.geometry_checks` has the same as functions of a geometry. :mod:`.base` holds what the
-evaluators share, :mod:`.violation` what they report.
+:data:`~.kinds.LIMIT_KINDS` lists them, and everything that lists limits derives from it.
+:class:`~.settings.PoseLimits` holds the values of the pose limits (a geometry is given its
+own), :class:`stewart_kinematics.ActuatorLimits` those of the leg rates.
+:class:`~.limit_model.LimitModel` composes the evaluators of the limits that are set and gives
+every check: one pose, a batch, leg states (trajectories, streams, twists).
+:class:`~.command_gate.CommandGate` applies it to every command as it is sent to the actuators, and
+gives the verdict a node publishes. :mod:`.geometry_checks` has the same as functions of a
+geometry. :mod:`.base` holds what the evaluators share, :mod:`.violation` what they report.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
 Nothing here imports ROS.
@@ -54,25 +59,25 @@ from stewart_kinematics.limits.geometry_checks import (
     leg_length_violations,
 )
 from stewart_kinematics.limits.joint_cones import JointCones
+from stewart_kinematics.limits.kind import BoundLook, CueMargins, LimitKind, LimitParameter
+from stewart_kinematics.limits.kinds import LEG_STATE_LIMIT_NAMES, LIMIT_KINDS, LIMIT_NAMES
 from stewart_kinematics.limits.leg_collision import LegCollision, segment_distances
 from stewart_kinematics.limits.leg_rates import LegRate
-from stewart_kinematics.limits.limit_model import (
-    LEG_STATE_LIMIT_NAMES,
-    LIMIT_NAMES,
-    LimitChecks,
-    LimitModel,
-)
+from stewart_kinematics.limits.limit_model import LimitChecks, LimitModel
+from stewart_kinematics.limits.settings import limits_of, PoseLimits
 from stewart_kinematics.limits.singularity import SingularityMargin
 from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 
 __all__ = [
     'Bound',
+    'BoundLook',
     'check_pose',
     'check_poses',
     'check_poses_array',
     'check_samples',
     'CommandGate',
+    'CueMargins',
     'joint_angles',
     'JointCones',
     'LEG_PAIRS',
@@ -84,11 +89,16 @@ __all__ = [
     'LegVelocityCommand',
     'leg_length_violations',
     'Limit',
+    'LIMIT_KINDS',
     'LIMIT_NAMES',
     'LimitChecks',
+    'LimitKind',
+    'LimitParameter',
+    'limits_of',
     'LimitModel',
     'MOTION',
     'PoseLegs',
+    'PoseLimits',
     'segment_distances',
     'SETPOINT',
     'SingularityMargin',

@@ -60,6 +60,7 @@ from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.limits.limit_model import LimitModel
+from stewart_kinematics.limits.settings import limits_of
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.forward import forward_kinematics
@@ -254,6 +255,8 @@ class CommandGate:
             raise ValueError(f"sends must be 'legs' or 'poses', got {sends!r}")
         self.sends = sends
         self.geometry = geometry
+        #: The pose limits' settings: the stroke that braking and interpolation keep.
+        self._pose_limits = limits_of(geometry)
         self.actuator_limits = actuator_limits or ActuatorLimits()
         self.timing = timing
         self.frames = frames
@@ -597,7 +600,7 @@ class CommandGate:
         change = BRAKING_SHARE * self.actuator_limits.acceleration_max * span
         velocities = self._velocity - np.clip(self._velocity, -change, change)
         lengths = self._lengths + velocities * interval
-        low, high = self.geometry.leg_length_min, self.geometry.leg_length_max
+        low, high = self._pose_limits.leg_length_min, self._pose_limits.leg_length_max
         stopped = (lengths < low) | (lengths > high)
         lengths = np.clip(lengths, low, high)
         solution = self._solve(lengths)
@@ -665,8 +668,8 @@ class CommandGate:
                 'the leg velocities are', violations))
         lengths = np.asarray(lengths, dtype=float)
         acceleration = self.actuator_limits.acceleration_max
-        room = np.where(velocities > 0.0, self.geometry.leg_length_max - lengths,
-                        lengths - self.geometry.leg_length_min)
+        room = np.where(velocities > 0.0, self._pose_limits.leg_length_max - lengths,
+                        lengths - self._pose_limits.leg_length_min)
         stopping = (0.5 * velocities * velocities / acceleration if math.isfinite(acceleration)
                     else np.zeros(6))
         leaving = (velocities != 0.0) & ~(stopping < room) if math.isfinite(acceleration) else (
@@ -731,7 +734,7 @@ class CommandGate:
         """Return ``(point, finding)`` where the quintics between points leave the stroke."""
         if len(points.times) < 2:
             return None
-        low, high = self.geometry.leg_length_min, self.geometry.leg_length_max
+        low, high = self._pose_limits.leg_length_min, self._pose_limits.leg_length_max
         if low <= 0.0 and high == math.inf:
             return None
         lengths = points.lengths

@@ -28,7 +28,12 @@ import math
 import numpy as np
 
 from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+from stewart_kinematics.model.validators import Finite, InRange
+
+#: The names of the two cones, base joint then platform joint: their bounds and settings.
+CONES = ('base_joint_max_angle', 'platform_joint_max_angle')
 
 
 class JointCones(Limit):
@@ -38,21 +43,23 @@ class JointCones(Limit):
     Values in radians (violations in degrees); NaN for a leg of zero length, which has no
     direction and breaks every cone that is set.
 
-    :param geometry: a :class:`stewart_kinematics.Geometry`; a cone of pi is not set.
+    :param geometry: a :class:`stewart_kinematics.Geometry`: its home leg directions.
+    :param base_joint_max_angle: the base joint's cone, radians; pi (the default) is not set.
+    :param platform_joint_max_angle: the platform joint's cone, radians; pi is not set.
     """
 
-    def __init__(self, geometry):
+    def __init__(self, geometry, base_joint_max_angle: float = math.pi,
+                 platform_joint_max_angle: float = math.pi):
         home = geometry.home_leg_directions
         # Seen from the platform at home: R_home^T u_home, as rows.
         platform_home = home @ euler_zyx_to_matrix(geometry.home_pose[3:])
         self._home = tuple(home[:, axis:axis + 1].copy() for axis in range(3))
         self._platform_home = tuple(platform_home[:, axis:axis + 1].copy() for axis in range(3))
-        self._set = tuple(getattr(geometry, name) < math.pi for name in (
-            'base_joint_max_angle', 'platform_joint_max_angle'))
+        allowed = (base_joint_max_angle, platform_joint_max_angle)
+        self._set = tuple(angle < math.pi for angle in allowed)
         self.bounds = tuple(
-            Bound(name, getattr(geometry, name), True, LEG, 'deg', math.degrees(1.0))
-            for name, is_set in zip(('base_joint_max_angle', 'platform_joint_max_angle'),
-                                    self._set) if is_set)
+            Bound(name, angle, True, LEG, 'deg', math.degrees(1.0))
+            for name, angle, is_set in zip(CONES, allowed, self._set) if is_set)
 
     def angles(self, legs):
         """
@@ -84,3 +91,40 @@ def _angle(lx, ly, lz, hx, hy, hz):
     cy = lz * hx - lx * hz
     cz = lx * hy - ly * hx
     return np.arctan2(np.sqrt(cx * cx + cy * cy + cz * cz), lx * hx + ly * hy + lz * hz)
+
+
+def _narrowed(limits, margins) -> dict:
+    """Each cone that is set, drawn in by the angle margin (never to 0)."""
+    return {name: max(getattr(limits, name) - margins.angle, 1e-9) for name in CONES
+            if getattr(limits, name) < math.pi}
+
+
+def _evaluator(geometry, limits) -> JointCones:
+    return JointCones(geometry, limits.base_joint_max_angle, limits.platform_joint_max_angle)
+
+
+def _cone(joint: str, where: str) -> LimitParameter:
+    """Return the parameter of one joint's cone: degrees, in (0, 180], radians as setting."""
+    return LimitParameter(
+        f'{joint}_joint_max_angle_deg', 'deg', 180.0,
+        f'Largest angle between a leg and its home direction at the {joint} joint{where} '
+        '(joint cone), degrees; 180.0 for no limit',
+        (Finite(), InRange(0.0, 180.0, low_inclusive=False)),
+        setting=f'{joint}_joint_max_angle', to_setting=math.radians, to_parameter=math.degrees)
+
+
+#: The joint cones: their parameters (degrees; radians as settings), bounds and evaluator.
+KIND = LimitKind(
+    name='joint_cones',
+    title='Joint cones',
+    meaning=('Angle between each leg and its direction at the home pose, at the base joint '
+             '(base frame) and at the platform joint (platform frame): a joint is mounted '
+             'centred on its home direction. A leg of zero length has no direction and breaks '
+             'every cone set.'),
+    evaluator='JointCones',
+    parameters=(_cone('base', ''), _cone('platform', ', in the platform frame')),
+    bounds=(BoundLook('base_joint_max_angle', 'base joint cone', (0.17, 0.63, 0.17)),
+            BoundLook('platform_joint_max_angle', 'platform joint cone', (1.0, 0.5, 0.05))),
+    pose_evaluator=_evaluator,
+    narrowed=_narrowed,
+)

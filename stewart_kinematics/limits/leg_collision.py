@@ -46,6 +46,8 @@ The distances are exact to 1e-13 of the leg length at every angle down to exactl
 import numpy as np
 
 from stewart_kinematics.limits.base import Bound, LEG_PAIRS, Limit, PAIR
+from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
+from stewart_kinematics.model.validators import Finite, InRange
 
 #: The rows of the 15 pairs, legs 0..5: first and second leg of each (see LEG_PAIRS).
 FIRST, SECOND = np.triu_indices(6, 1)
@@ -59,14 +61,14 @@ class LegCollision(Limit):
     """
     Evaluator of ``leg_collision``: the distance between the axes of each pair, shape (15, n).
 
-    :param geometry: a :class:`stewart_kinematics.Geometry`; a ``leg_radius`` of 0 is not set.
-        Pairs that share a joint are not checked: their distance is ``inf``.
+    :param geometry: a :class:`stewart_kinematics.Geometry`. Pairs that share a joint are not
+        checked: their distance is ``inf``.
+    :param radius: ``leg_radius``, metres; 0 (the default) is not set.
     """
 
     dear = True
 
-    def __init__(self, geometry):
-        radius = geometry.leg_radius
+    def __init__(self, geometry, radius: float = 0.0):
         self.bounds = (Bound('leg_collision', 2.0 * radius, False, PAIR, 'm'),) if radius else ()
         offsets = geometry.base_joints[FIRST] - geometry.base_joints[SECOND]
         self._offsets = tuple(offsets[:, axis:axis + 1].copy() for axis in range(3))
@@ -179,3 +181,28 @@ def _clamp(values):
     """Clamp to [0, 1] in place: NaN becomes 0 (fmax ignores it), inf 1 and -inf 0."""
     np.fmax(values, 0.0, out=values)
     np.fmin(values, 1.0, out=values)
+
+
+def _evaluator(geometry, limits) -> LegCollision:
+    return LegCollision(geometry, limits.leg_radius)
+
+
+#: Leg collisions: their parameter (``leg_radius``), bound (``leg_collision``) and evaluator.
+KIND = LimitKind(
+    name='leg_collision',
+    title='Leg collisions',
+    meaning=('Each leg a capsule of this radius around its axis, the segment from its base '
+             'joint to its platform joint; two legs collide when their axes come closer than '
+             '`2 * leg_radius`. See below.'),
+    evaluator='LegCollision',
+    parameters=(
+        LimitParameter(
+            'leg_radius', 'm', 0.0,
+            'Radius of each leg, metres: a leg is a capsule of this radius around the segment '
+            'from its base joint to its platform joint, and a pose where two legs come closer '
+            'than 2 * leg_radius is refused (leg_collision); 0.0 for no collision check',
+            (Finite(), InRange(0.0, 1.0))),
+    ),
+    bounds=(BoundLook('leg_collision', 'leg collision', (0.55, 0.34, 0.29)),),
+    pose_evaluator=_evaluator,
+)

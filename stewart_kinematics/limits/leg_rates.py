@@ -27,6 +27,8 @@ import math
 import numpy as np
 
 from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.limits.kind import ACTUATOR, LimitKind, LimitParameter
+from stewart_kinematics.model.actuators import RATE_MAX_RULES
 
 #: Relative slack on a rate limit for sampled motion, for rounding only: a motion timed to meet
 #: a limit exactly (a retimed trajectory, a jerk-limited stream) reaches it to within a few units
@@ -55,10 +57,8 @@ class LegRate(Limit):
     @classmethod
     def all_of(cls, actuator_limits, slack: float = 0.0):
         """Return the velocity, acceleration and jerk evaluators of :class:`ActuatorLimits`."""
-        return (cls('leg_velocity_max', actuator_limits.velocity_max, 'velocities', 'm/s', slack),
-                cls('leg_acceleration_max', actuator_limits.acceleration_max, 'accelerations',
-                    'm/s^2', slack),
-                cls('leg_jerk_max', actuator_limits.jerk_max, 'jerks', 'm/s^3', slack))
+        return tuple(cls(name, getattr(actuator_limits, setting), quantity, unit, slack)
+                     for name, quantity, setting, unit, _ in RATES)
 
     def values(self, arrays):
         """Return ``|x|`` of the samples' quantity, (6, n)."""
@@ -87,3 +87,35 @@ class LegRate(Limit):
         while peak * factor > bound.allowed:
             factor = math.nextafter(factor, 0.0)
         return factor
+
+
+#: Each rate: (its name, the field of the samples, the setting of ActuatorLimits, unit, words).
+RATES = (('leg_velocity_max', 'velocities', 'velocity_max', 'm/s',
+          'Largest speed of a leg (actuator), metres per second: timed trajectories are refused '
+          'or retimed to keep within it, streamed commands are limited to it; .inf for no '
+          'limit'),
+         ('leg_acceleration_max', 'accelerations', 'acceleration_max', 'm/s^2',
+          'Largest acceleration of a leg, metres per second squared, as leg_velocity_max; '
+          '.inf for no limit'),
+         ('leg_jerk_max', 'jerks', 'jerk_max', 'm/s^3',
+          'Largest jerk of a leg, metres per second cubed, for streamed commands '
+          '(command_rate); .inf for no limit'))
+
+
+#: The leg rates: their parameters (kept by ActuatorLimits) and leg-state evaluators.
+KIND = LimitKind(
+    name='leg_rates',
+    title='Leg velocity, acceleration, jerk',
+    meaning=('Of every sample of a trajectory (checked whole, or retimed to keep them: '
+             'velocity and acceleration), of every streamed command (the jerk: a change of '
+             "acceleration over a command period), and (velocity) of a twist's leg "
+             'velocities. Trajectories retimed by toppra have piecewise constant accelerations '
+             'and are not checked for jerk.'),
+    evaluator='LegRate',
+    parameters=tuple(LimitParameter(name, unit, math.inf, words, RATE_MAX_RULES,
+                                    setting=setting, keeps=ACTUATOR)
+                     for name, _, setting, unit, words in RATES),
+    leg_state_names=tuple(name for name, *_ in RATES),
+    leg_state_evaluators=lambda limits, actuator_limits, slack: LegRate.all_of(
+        actuator_limits, slack),
+)

@@ -15,12 +15,13 @@
 """
 The limits model: every limit of a platform and its actuators, and every check made of them.
 
-A :class:`LimitModel` is built from a :class:`stewart_kinematics.Geometry` (where the platform
-may be: stroke, joint cones, singularity margin, leg collisions) and
-:class:`stewart_kinematics.ActuatorLimits` (how fast the legs may move: velocity, acceleration,
-jerk). It composes the evaluators of the limits that are set, one per kind
-(:mod:`.stroke`, :mod:`.joint_cones`, :mod:`.singularity`, :mod:`.leg_collision`,
-:mod:`.leg_rates`), and every check in the package goes through it::
+A :class:`LimitModel` is built from a :class:`stewart_kinematics.Geometry` with its
+:class:`~stewart_kinematics.limits.settings.PoseLimits` (where the platform may be: stroke,
+joint cones, singularity margin, leg collisions) and :class:`stewart_kinematics.ActuatorLimits`
+(how fast the legs may move: velocity, acceleration, jerk). It composes the evaluators of the
+limits that are set, one per kind, in the order of
+:data:`~stewart_kinematics.limits.kinds.LIMIT_KINDS`, and every check in the package goes
+through it::
 
     model = LimitModel(geometry, actuator_limits)
     model.check_pose(position, rotation)      # one pose: [Violation, ...], empty if allowed
@@ -28,7 +29,7 @@ jerk). It composes the evaluators of the limits that are set, one per kind
     checks.allowed, checks.violations(k)
     model.check_leg_states(lengths=..., velocities=..., accelerations=..., jerks=...)
 
-Adding a limit is adding an evaluator and listing it here. Nothing here imports ROS.
+Adding a limit is adding a kind to that list (see its module). Nothing here imports ROS.
 """
 
 import math
@@ -36,23 +37,15 @@ from typing import Dict, List, Optional
 
 import numpy as np
 
+from stewart_kinematics.limits import kinds
 from stewart_kinematics.limits.base import LEG, LegSamples, PAIR, PLATFORM, PoseLegs
-from stewart_kinematics.limits.joint_cones import JointCones
-from stewart_kinematics.limits.leg_collision import LegCollision
 from stewart_kinematics.limits.leg_rates import LegRate
 from stewart_kinematics.limits.singularity import SingularityMargin
-from stewart_kinematics.limits.stroke import Stroke
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.inputs import as_poses
 
-#: The limits of a pose, in the order every check reports them.
-LIMIT_NAMES = ('leg_length_min', 'leg_length_max', 'base_joint_max_angle',
-               'platform_joint_max_angle', 'max_jacobian_condition', 'leg_collision')
-#: The limits of leg states (lengths and their derivatives), in the order they are reported.
-LEG_STATE_LIMIT_NAMES = ('leg_length_min', 'leg_length_max', 'leg_velocity_max',
-                         'leg_acceleration_max', 'leg_jerk_max')
 #: Poses per block of a vectorised check: the temporaries of a block stay in the processor's
 #: cache (measured fastest between 512 and 2048).
 CHECK_BLOCK_SIZE = 1024
@@ -65,26 +58,39 @@ class LimitModel:
     """
     Every limit of a platform and its actuators: the evaluators of those that are set.
 
-    :param geometry: a :class:`stewart_kinematics.Geometry` (its stroke, joint cones,
-        singularity margin and ``leg_radius``), or ``None`` for leg-state limits alone.
+    :param geometry: a :class:`stewart_kinematics.Geometry`, or ``None`` for leg-state
+        limits alone.
     :param actuator_limits: leg velocity, acceleration and jerk limits; ``None``: none.
     :param rate_slack: relative slack on those limits, for the rounding of sampled motion
         (:data:`~stewart_kinematics.limits.leg_rates.RATE_SLACK` for a trajectory's samples or
         a stream's steps); 0 (the default) checks them strictly, as for a twist.
+    :param limits: the pose limits' :class:`~stewart_kinematics.limits.settings.PoseLimits`;
+        ``None`` (the default): the geometry's own (``geometry.limits``).
+
+    The evaluators are those of :data:`~stewart_kinematics.limits.kinds.LIMIT_KINDS`, in its
+    order: each kind's pose evaluator (of the geometry and the limits) and its leg-state
+    evaluators (of the limits and the actuator limits), those with a bound set.
     """
 
     def __init__(self, geometry=None, actuator_limits: Optional[ActuatorLimits] = None, *,
-                 rate_slack: float = 0.0):
+                 rate_slack: float = 0.0, limits=None):
         self.geometry = geometry
+        if limits is None and geometry is not None:
+            limits = geometry.limits
+        #: The pose limits' settings, or ``None`` for none.
+        self.limits = limits
         self.actuator_limits = actuator_limits or ActuatorLimits()
-        stroke = () if geometry is None else (Stroke.of(geometry),)
-        pose_limits = () if geometry is None else stroke + (
-            JointCones(geometry), SingularityMargin(geometry), LegCollision(geometry))
+        pose_limits, leg_state_limits = [], []
+        for kind in kinds.LIMIT_KINDS:
+            if kind.pose_evaluator is not None and geometry is not None and limits is not None:
+                pose_limits.append(kind.pose_evaluator(geometry, limits))
+            if kind.leg_state_evaluators is not None:
+                leg_state_limits += kind.leg_state_evaluators(limits, self.actuator_limits,
+                                                              rate_slack)
         #: The evaluators of the pose limits that are set, in report order.
         self.pose_limits = tuple(limit for limit in pose_limits if limit.bounds)
         #: The evaluators of the leg-state limits that are set, in report order.
-        self.leg_state_limits = tuple(limit for limit in stroke + LegRate.all_of(
-            self.actuator_limits, rate_slack) if limit.bounds)
+        self.leg_state_limits = tuple(limit for limit in leg_state_limits if limit.bounds)
         self._bounds = {bound.name: bound
                         for limit in self.pose_limits + self.leg_state_limits
                         for bound in limit.bounds}
@@ -106,7 +112,7 @@ class LimitModel:
 
     @property
     def pose_limit_names(self):
-        """Names of the pose limits that are set, in :data:`LIMIT_NAMES` order."""
+        """Names of the pose limits that are set, in report order (``LIMIT_NAMES``)."""
         return tuple(bound.name for limit in self.pose_limits for bound in limit.bounds)
 
     def bound(self, name: str):

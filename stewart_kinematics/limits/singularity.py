@@ -23,10 +23,14 @@ platform's home pose, ``inf`` at a singularity and for a leg of zero length. Not
 imports ROS.
 """
 
+import math
+
 import numpy as np
 
 from stewart_kinematics.limits.base import Bound, Limit, PLATFORM
+from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
 from stewart_kinematics.model.jacobians import conditions_of_jacobians, dimensionless_jacobians
+from stewart_kinematics.model.validators import InRange
 
 #: Relative rounding allowance of the pivots of the proof (see :func:`proved_within`).
 PIVOT_ROUNDING = 1e-13
@@ -39,14 +43,15 @@ class SingularityMargin(Limit):
     A singular value decomposition a pose (the dearest check), so it is :attr:`dear`; with
     ``exact`` False, the poses that a cheaper test proves within the margin get NaN instead.
 
-    :param geometry: a :class:`stewart_kinematics.Geometry`; a margin of ``inf`` is not set.
+    :param geometry: a :class:`stewart_kinematics.Geometry`.
+    :param allowed: the largest condition number, ``max_jacobian_condition``; ``inf`` (the
+        default) is not set.
     """
 
     dear = True
 
-    def __init__(self, geometry):
+    def __init__(self, geometry, allowed: float = math.inf):
         self._geometry = geometry
-        allowed = geometry.max_jacobian_condition
         self.bounds = (() if allowed == np.inf else
                        (Bound('max_jacobian_condition', allowed, True, PLATFORM, ''),))
 
@@ -93,3 +98,36 @@ def proved_within(jacobians, bound: float) -> np.ndarray:
         column = shifted[:, j + 1:, j] / np.where(pivot > 0.0, pivot, 1.0)[:, None]
         shifted[:, j + 1:, j + 1:] -= column[:, :, None] * shifted[:, None, j, j + 1:]
     return proved
+
+
+def _narrowed(limits, margins) -> dict:
+    """Draw the margin, if set, in to its share ``margins.condition`` (never below 1)."""
+    if not math.isfinite(limits.max_jacobian_condition):
+        return {}
+    return {'max_jacobian_condition': max(1.0, limits.max_jacobian_condition * margins.condition)}
+
+
+def _evaluator(geometry, limits) -> SingularityMargin:
+    return SingularityMargin(geometry, limits.max_jacobian_condition)
+
+
+#: The singularity margin: its parameter, bound and evaluator.
+KIND = LimitKind(
+    name='singularity',
+    title='Singularity margin',
+    meaning=('Condition number of the dimensionless Jacobian `[u_i, (R p_i x u_i) / rho]` '
+             "(`rho`: RMS radius of the platform joints). About 10 at the paper platform's "
+             'home pose, 17 at the end of Table 3; it grows without bound near a singularity.'),
+    evaluator='SingularityMargin',
+    parameters=(
+        LimitParameter(
+            'max_jacobian_condition', '', math.inf,
+            'Singularity margin: largest condition number of the dimensionless Jacobian '
+            "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
+            (InRange(1.0, math.inf),)),
+    ),
+    bounds=(BoundLook('max_jacobian_condition', 'singularity margin', (0.58, 0.4, 0.74),
+                      relative=True),),
+    pose_evaluator=_evaluator,
+    narrowed=_narrowed,
+)

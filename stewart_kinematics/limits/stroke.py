@@ -23,6 +23,8 @@ streamed commands). Nothing here imports ROS.
 import math
 
 from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
+from stewart_kinematics.model.validators import Finite, InRange
 
 
 class Stroke(Limit):
@@ -44,9 +46,9 @@ class Stroke(Limit):
             if is_set)
 
     @classmethod
-    def of(cls, geometry) -> 'Stroke':
-        """Return the stroke of a :class:`stewart_kinematics.Geometry`."""
-        return cls(geometry.leg_length_min, geometry.leg_length_max)
+    def of(cls, limits) -> 'Stroke':
+        """Return the stroke of a :class:`~stewart_kinematics.limits.settings.PoseLimits`."""
+        return cls(limits.leg_length_min, limits.leg_length_max)
 
     def values(self, arrays):
         """Return the leg lengths, (6, n), for each bound."""
@@ -56,3 +58,52 @@ class Stroke(Limit):
         """Whether six lengths (floats, ``sample['lengths']``) keep the stroke."""
         lengths = sample['lengths']
         return all(bound.holds(length) for bound in self.bounds for length in lengths)
+
+
+def _ordered(limits) -> str:
+    """Refuse a stroke whose ends are not in order, naming both."""
+    if limits.leg_length_min < limits.leg_length_max:
+        return ''
+    return ('leg length limits must satisfy leg_length_min < leg_length_max, got '
+            f'leg_length_min={limits.leg_length_min!r}, leg_length_max={limits.leg_length_max!r}')
+
+
+def _narrowed(limits, margins) -> dict:
+    """Each end of the stroke that is set, drawn in by the length margin."""
+    changes = {}
+    if limits.leg_length_min > 0.0:
+        changes['leg_length_min'] = limits.leg_length_min + margins.length
+    if math.isfinite(limits.leg_length_max):
+        changes['leg_length_max'] = limits.leg_length_max - margins.length
+    return changes
+
+
+def _evaluator(geometry, limits) -> Stroke:
+    return Stroke.of(limits)
+
+
+#: The stroke: its parameters, bounds and evaluators (a pose limit and a leg-state limit).
+KIND = LimitKind(
+    name='stroke',
+    title='Actuator stroke',
+    meaning='Every leg length within `[min, max]`.',
+    evaluator='Stroke',
+    parameters=(
+        LimitParameter(
+            'leg_length_min', 'm', 0.0,
+            'Shortest allowed leg length (actuator fully retracted), metres; 0.0 for no limit',
+            (Finite(), InRange(0.0, math.inf)), note='< leg_length_max'),
+        LimitParameter(
+            'leg_length_max', 'm', math.inf,
+            'Longest allowed leg length (actuator fully extended), metres; .inf for no limit',
+            (InRange(0.0, math.inf, low_inclusive=False),), note='> leg_length_min'),
+    ),
+    bounds=(BoundLook('leg_length_min', 'leg_length_min (stroke)', (0.12, 0.47, 0.71)),
+            BoundLook('leg_length_max', 'leg_length_max (stroke)', (0.84, 0.15, 0.16))),
+    pose_evaluator=_evaluator,
+    leg_state_names=('leg_length_min', 'leg_length_max'),
+    leg_state_evaluators=lambda limits, actuator_limits, slack: (
+        () if limits is None else (Stroke.of(limits),)),
+    rules=(_ordered,),
+    narrowed=_narrowed,
+)

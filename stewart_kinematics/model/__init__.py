@@ -23,8 +23,8 @@ and the kinematics, one concern per module: the argument checks (:mod:`.inputs`,
 Jacobians and their conditioning (:mod:`.jacobians`), forward kinematics (:mod:`.forward`: the
 solver in :mod:`.forward_solver`, its start table in :mod:`.start_table`, its result in
 :mod:`.forward_result`, the result's error bound in :mod:`.error_bound`). The rules a value
-must keep, as data that checks and describes itself (:mod:`.validators`), and the allowed
-values of each limit (:mod:`.limit_bounds`), shared with the parameter specs.
+must keep, as data that checks and describes itself (:mod:`.validators`); each limit kind
+declares its parameters' bounds with them (:mod:`stewart_kinematics.limits`).
 
 May import: numpy and the standard library only. Nothing here imports ROS or another folder of
 the package.

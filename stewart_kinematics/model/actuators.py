@@ -34,10 +34,14 @@ from typing import Sequence, Tuple
 
 import numpy as np
 
-from stewart_kinematics.model import limit_bounds
 from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.validators import first_reason
+from stewart_kinematics.model.validators import first_reason, InRange
 
+#: The allowed values of each leg rate limit (m/s, m/s^2, m/s^3): ``inf`` for no limit. The
+#: leg-rate limit kind (:mod:`stewart_kinematics.limits.leg_rates`) declares its parameters with
+#: these rules, which :class:`ActuatorLimits` checks, so a parameter file and a Python caller
+#: meet one rule.
+RATE_MAX_RULES = (InRange(0.0, math.inf, low_inclusive=False),)
 #: Default joint names of the legs, leg 1..6.
 DEFAULT_JOINT_NAMES = ('leg_1', 'leg_2', 'leg_3', 'leg_4', 'leg_5', 'leg_6')
 
@@ -63,8 +67,8 @@ class ActuatorLimits:
             if value.shape != ():
                 raise ValueError(f'leg_{name} must be one number, got {preview(value)}')
             value = float(value)
-            # The rule of the parameter leg_<name> (model/limit_bounds.py): > 0, .inf allowed.
-            reason = first_reason(limit_bounds.LEG_RATE_MAX, f'leg_{name}', value)
+            # The rule of the parameter leg_<name>: > 0, .inf allowed.
+            reason = first_reason(RATE_MAX_RULES, f'leg_{name}', value)
             if reason:
                 raise ValueError(f'{reason} (.inf for no limit)')
             object.__setattr__(self, name, value)

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The platform's geometry: joint positions, home pose, and where the platform may be (limits).
+The platform's geometry: joint positions and home pose, given its limits' settings.
 
 Frames: the base frame is fixed, with its origin on the base and z up; the platform frame moves
 with the platform. A pose ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) places the platform
@@ -28,18 +28,21 @@ Joints any farther apart are two joints, however close (a 6-6 platform that is n
 valid 6-6 platform). A joint shared by three or more legs, and two legs sharing both their
 joints (one leg twice), are refused. :attr:`Geometry.shared_joints` says which legs share which
 joint.
+
+Limits: the geometry holds geometry. Its limits are a settings object of their own, a
+:class:`stewart_kinematics.limits.PoseLimits`, given as ``limits`` and kept as a reference so
+that every object handed a geometry finds them; the values, their bounds and the home-pose check
+are the limits'. This module imports nothing outside model/.
 """
 
+import dataclasses
 from dataclasses import dataclass, field
 import math
-from typing import NamedTuple, Tuple
+from typing import Any, NamedTuple, Tuple
 
 import numpy as np
 
-from stewart_kinematics.model import limit_bounds
-from stewart_kinematics.model.arrays import as_float_array, preview
-from stewart_kinematics.model.rotations import euler_zyx_to_matrix
-from stewart_kinematics.model.validators import first_reason
+from stewart_kinematics.model.arrays import as_float_array
 
 #: Two joints of the base (or of the platform) no farther apart than this fraction of the
 #: size of their set (:func:`joint_set_scale`) are one joint, shared by two legs: 1e-9 of 0.2 m
@@ -69,19 +72,6 @@ class SharedJoint(NamedTuple):
         return f'legs {self.legs[0]} and {self.legs[1]} share a {self.side} joint'
 
 
-#: The rules of each limit: those of its parameter, angles converted to radians.
-_LIMIT_RULES = {
-    'leg_length_min': limit_bounds.LEG_LENGTH_MIN,
-    'leg_length_max': limit_bounds.LEG_LENGTH_MAX,
-    'base_joint_max_angle': tuple(rule.converted(math.radians)
-                                  for rule in limit_bounds.JOINT_MAX_ANGLE_DEG),
-    'platform_joint_max_angle': tuple(rule.converted(math.radians)
-                                      for rule in limit_bounds.JOINT_MAX_ANGLE_DEG),
-    'max_jacobian_condition': limit_bounds.MAX_JACOBIAN_CONDITION,
-    'leg_radius': limit_bounds.LEG_RADIUS,
-}
-
-
 @dataclass(frozen=True, eq=False)
 class Geometry:
     """
@@ -90,28 +80,22 @@ class Geometry:
     :param base_joints: b_1..b_6 in the base frame, metres, shape (6, 3).
     :param platform_joints: p_1..p_6 in the platform frame, metres, shape (6, 3).
     :param home_pose: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians) of the neutral pose.
-    :param leg_length_min: shortest allowed leg length, metres (0 for no limit).
-    :param leg_length_max: longest allowed leg length, metres (``inf`` for no limit).
-    :param base_joint_max_angle: largest angle between a leg and its home direction at the
-        base joint, radians, in (0, pi] (pi for no limit).
-    :param platform_joint_max_angle: the same at the platform joint, in the platform frame.
-    :param max_jacobian_condition: largest allowed condition number of the dimensionless
-        Jacobian (:func:`stewart_kinematics.model.jacobians.jacobian_condition`), >= 1
-        (``inf`` for no limit): the singularity margin.
-    :param leg_radius: radius of each leg, metres, in [0, 1] (0 for no collision check): a leg
-        is a capsule of this radius around the segment from its base joint to its platform
-        joint, and two legs collide where their segments come closer than ``2 * leg_radius``.
+    :param limits: where the platform may be, a :class:`stewart_kinematics.limits.PoseLimits`
+        (stroke, joint cones, singularity margin, leg radius: each checked there with the
+        bounds of its parameter); ``None`` (the default) for no pose limit. The geometry asks
+        it whether its home pose is allowed (``limits.check_home(geometry)``).
     :raises ValueError: if an array has the wrong shape or a non-finite value, three or more
         joints of the base or of the platform coincide (a joint is shared by two legs at
         most), two legs share both their joints, the joints of the base or of the platform
-        are collinear, a limit is out of its range (the range of its parameter,
-        :mod:`stewart_kinematics.model.limit_bounds`), or the home pose breaks a limit (two
-        legs that collide there included, named).
+        are collinear, or the home pose breaks a limit (two legs that collide there included,
+        named).
 
     Derived on construction: :attr:`home_leg_lengths`, :attr:`home_leg_directions`,
     :attr:`platform_radius`, :attr:`shared_joints` and :attr:`design`.
 
-    The limits are checked by :mod:`stewart_kinematics.limits`.
+    The limits' values read as the geometry's attributes too (``geometry.leg_length_max`` is
+    ``geometry.limits.leg_length_max``), and :meth:`with_limits` changes some: a thin path
+    kept for callers written when the values lived here.
 
     >>> from stewart_kinematics import load_geometry
     >>> geometry = load_geometry('config/paper_platform.yaml')
@@ -131,12 +115,7 @@ class Geometry:
     base_joints: np.ndarray
     platform_joints: np.ndarray
     home_pose: np.ndarray = field(default_factory=lambda: np.zeros(6))
-    leg_length_min: float = 0.0
-    leg_length_max: float = math.inf
-    base_joint_max_angle: float = math.pi
-    platform_joint_max_angle: float = math.pi
-    max_jacobian_condition: float = math.inf
-    leg_radius: float = 0.0
+    limits: Any = None
 
     def __post_init__(self):
         for name, shape in (('base_joints', (6, 3)), ('platform_joints', (6, 3)),
@@ -159,16 +138,7 @@ class Geometry:
             SharedJoint(side, pair) for side in SIDES for pair in shared[side]))
         object.__setattr__(self, 'design', '-'.join(
             str(6 - len(shared[side])) for side in SIDES))
-        # The limits' rules are the parameters' (model/limit_bounds.py), angles in radians here.
-        for name, rules in _LIMIT_RULES.items():
-            object.__setattr__(self, name, _checked_limit(name, getattr(self, name), rules))
-        if not self.leg_length_min < self.leg_length_max:
-            raise ValueError(
-                'leg length limits must satisfy leg_length_min < leg_length_max, got '
-                f'leg_length_min={self.leg_length_min!r}, leg_length_max={self.leg_length_max!r}')
-
         # Derived once: every IK request and limit check uses them.
-        from stewart_kinematics import limits
         from stewart_kinematics.model.inverse import leg_vectors_from_euler
         home_legs = leg_vectors_from_euler(self, self.home_pose)
         home_lengths = np.linalg.norm(home_legs, axis=-1)
@@ -179,22 +149,29 @@ class Geometry:
         object.__setattr__(self, 'home_leg_lengths', home_lengths)
         object.__setattr__(self, 'home_leg_directions', home_directions)
         object.__setattr__(self, 'platform_radius', joint_set_size(self.platform_joints))
-        home_violations = limits.check_pose(
-            self, self.home_pose[:3], euler_zyx_to_matrix(self.home_pose[3:]))
-        if home_violations:
-            raise ValueError('the home pose breaks the limits: '
-                             + '; '.join(str(v) for v in home_violations))
+        if self.limits is not None:
+            if not callable(getattr(self.limits, 'check_home', None)):
+                raise ValueError('limits must be a stewart_kinematics.PoseLimits or None, got '
+                                 f'a {type(self.limits).__name__}')
+            self.limits.check_home(self)
 
+    def __getattr__(self, name):
+        """Read a limit's value from :attr:`limits` (``geometry.leg_length_max``)."""
+        limits = self.__dict__.get('limits') if not name.startswith('_') else None
+        if limits is None:
+            raise AttributeError(f'{type(self).__name__!r} object has no attribute {name!r}')
+        return getattr(limits, name)
 
-def _checked_limit(name, value, rules) -> float:
-    """Return a limit as a float, or refuse what is not one number its rules allow, naming it."""
-    array = as_float_array(value, name)
-    if array.shape != ():
-        raise ValueError(f'{name} must be one number, got {preview(value)}')
-    reason = first_reason(rules, name, float(array))
-    if reason:
-        raise ValueError(reason)
-    return float(array)
+    def with_limits(self, **changes) -> 'Geometry':
+        """
+        Return this geometry with some of its limits changed (SI units, as :attr:`limits`).
+
+        :raises ValueError: if it has no limits, or as the limits and the geometry do.
+        """
+        if self.limits is None:
+            raise ValueError('this geometry has no limits to change; give it '
+                             'limits=PoseLimits(...)')
+        return dataclasses.replace(self, limits=self.limits.replace(**changes))
 
 
 def _checked_array(name, value, shape):

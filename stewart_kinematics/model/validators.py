@@ -26,11 +26,11 @@ each validator holds its rule as data (bounds, a length, the choices) and has tw
   drift from the check (:attr:`stewart_kinematics.parameters.ParameterSpec.constraints`
   composes a parameter's descriptions).
 
-The parameter specs (:mod:`stewart_kinematics.parameters.declarations`) hold these objects, and
-so do the checks of the geometry's limits (:mod:`.limit_bounds`): here, in model/, because
-model/ may import only model/ and the parameters may import model/. A validator checks a value
-of the right type (numbers, or a list of them; a string; a list of strings): the type is
-checked before it.
+The parameter specs (:mod:`stewart_kinematics.parameters.declarations`) hold these objects, and so
+do the limit kinds' parameters (:class:`stewart_kinematics.limits.LimitParameter`), which the limit
+settings check with: here, in model/, because every folder of the core may import it. A validator
+checks a value of the right type (numbers, or a list of them; a string; a list of strings): the
+type is checked before it.
 
 >>> bound = InRange(0.0, 10.0, low_inclusive=False)
 >>> bound.describe()

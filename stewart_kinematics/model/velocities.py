@@ -89,9 +89,9 @@ def platform_twist(geometry, poses, velocities, *, max_condition=None) -> np.nda
     velocities = as_poses(velocities, 'leg velocities')
     _check_counts(poses, velocities, 'leg velocities')
     if max_condition is None:
-        max_condition = (geometry.max_jacobian_condition
-                         if math.isfinite(geometry.max_jacobian_condition)
-                         else DEFAULT_MAX_TWIST_CONDITION)
+        # The geometry's limits (a limits.PoseLimits, or None) hold its singularity margin.
+        margin = math.inf if geometry.limits is None else geometry.limits.max_jacobian_condition
+        max_condition = margin if math.isfinite(margin) else DEFAULT_MAX_TWIST_CONDITION
     position, rotation = poses[..., :3], euler_zyx_to_matrix(poses[..., 3:])
     condition = np.atleast_1d(jacobian_condition(geometry, position, rotation))
     refused = np.flatnonzero(~(condition <= max_condition))

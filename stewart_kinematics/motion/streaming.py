@@ -60,7 +60,7 @@ import numpy as np
 
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.limits import CommandGate, LegCommand, LimitModel, MOTION
+from stewart_kinematics.limits import CommandGate, LegCommand, LimitModel, limits_of, MOTION
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
@@ -176,8 +176,8 @@ class CommandFilter:
         stopping = velocity * (velocity / acceleration + acceleration / jerk)
         #: Farthest aim from the current command, metres (see :data:`WINDOW_SECONDS`).
         self.window = max(velocity * WINDOW_SECONDS, 2.0 * stopping)
-        self._stroke = ((geometry.leg_length_min, geometry.leg_length_max) if geometry
-                        else (-math.inf, math.inf))
+        self._stroke = ((limits_of(geometry).leg_length_min, limits_of(geometry).leg_length_max)
+                        if geometry else (-math.inf, math.inf))
         #: The last check of each step as sent (:meth:`send`), or ``None`` without a geometry.
         self.gate = (CommandGate(geometry, actuator_limits, timing=MOTION, jerk=True)
                      if geometry is not None else None)

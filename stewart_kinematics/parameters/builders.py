@@ -21,11 +21,12 @@ functions take a mapping of parameter values instead, as a parameter file gives 
 here imports ROS.
 """
 
-import math
 from typing import Any, Mapping
 
 import numpy as np
 
+from stewart_kinematics.limits.kinds import actuator_settings, pose_settings
+from stewart_kinematics.limits.settings import PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
@@ -40,7 +41,8 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
     """
     Build the geometry that parameter settings describe.
 
-    :param settings: joints (flat lists, metres), home pose (metres, degrees) and limits.
+    :param settings: joints (flat lists, metres), home pose (metres, degrees) and limits (the
+        parameters of every pose limit kind, as their kinds declare them).
     :raises ValueError: if the geometry is not allowed (a joint shared by three legs or more,
         two legs sharing both joints, collinear joints, a home pose that breaks its own limits).
     """
@@ -50,19 +52,19 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
         base_joints=np.reshape(np.asarray(settings.base_joints, dtype=float), (6, 3)),
         platform_joints=np.reshape(np.asarray(settings.platform_joints, dtype=float), (6, 3)),
         home_pose=home_pose,
-        leg_length_min=settings.leg_length_min,
-        leg_length_max=settings.leg_length_max,
-        base_joint_max_angle=math.radians(settings.base_joint_max_angle_deg),
-        platform_joint_max_angle=math.radians(settings.platform_joint_max_angle_deg),
-        max_jacobian_condition=settings.max_jacobian_condition,
-        leg_radius=settings.leg_radius)
+        limits=pose_limits_from_settings(settings))
+
+
+def pose_limits_from_settings(settings: GeometrySettings) -> PoseLimits:
+    """Return the pose limits of the geometry settings: every pose limit kind's parameters."""
+    return PoseLimits.from_parameters({parameter.name: getattr(settings, parameter.name)
+                                       for parameter in pose_settings().values()})
 
 
 def actuator_limits_from_settings(settings: GeometrySettings) -> ActuatorLimits:
     """Return the legs' speed limits (``leg_velocity_max``, ...) of the geometry settings."""
-    return ActuatorLimits(velocity_max=settings.leg_velocity_max,
-                          acceleration_max=settings.leg_acceleration_max,
-                          jerk_max=settings.leg_jerk_max)
+    return ActuatorLimits(**{name: parameter.setting_value(getattr(settings, parameter.name))
+                             for name, parameter in actuator_settings().items()})
 
 
 def actuator_interface_from_settings(settings: ActuatorSettings) -> ActuatorInterface:

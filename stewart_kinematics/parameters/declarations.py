@@ -24,7 +24,7 @@ documentation's parameter tables are generated from them
 import difflib
 import math
 
-from stewart_kinematics.model import limit_bounds
+from stewart_kinematics.limits.kinds import limit_parameters
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DistinctNames,
@@ -44,7 +44,7 @@ from stewart_kinematics.parameters.spec import (
 )
 
 
-GEOMETRY_PARAMETERS = (
+_JOINT_AND_HOME_SPECS = (
     ParameterSpec(
         'base_joints', DOUBLE_ARRAY,
         'Base joint centres b_1..b_6 in the base frame, metres, flattened as '
@@ -69,53 +69,25 @@ GEOMETRY_PARAMETERS = (
         'Home orientation alpha, beta, gamma (R = Rz(gamma) Ry(beta) Rx(alpha)), degrees',
         default=[0.0, 0.0, 0.0], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0))),
-    ParameterSpec(
-        'leg_length_min', DOUBLE,
-        'Shortest allowed leg length (actuator fully retracted), metres; 0.0 for no limit',
-        default=0.0, read_only=True, validators=limit_bounds.LEG_LENGTH_MIN,
-        note='< leg_length_max'),
-    ParameterSpec(
-        'leg_length_max', DOUBLE,
-        'Longest allowed leg length (actuator fully extended), metres; .inf for no limit',
-        default=math.inf, read_only=True, validators=limit_bounds.LEG_LENGTH_MAX,
-        note='> leg_length_min'),
-    ParameterSpec(
-        'base_joint_max_angle_deg', DOUBLE,
-        'Largest angle between a leg and its home direction at the base joint (joint cone), '
-        'degrees; 180.0 for no limit',
-        default=180.0, read_only=True, validators=limit_bounds.JOINT_MAX_ANGLE_DEG),
-    ParameterSpec(
-        'platform_joint_max_angle_deg', DOUBLE,
-        'Largest angle between a leg and its home direction at the platform joint, in the '
-        'platform frame (joint cone), degrees; 180.0 for no limit',
-        default=180.0, read_only=True, validators=limit_bounds.JOINT_MAX_ANGLE_DEG),
-    ParameterSpec(
-        'max_jacobian_condition', DOUBLE,
-        'Singularity margin: largest condition number of the dimensionless Jacobian '
-        "(1 is ideal, about 10 at the paper platform's home pose); .inf for no limit",
-        default=math.inf, read_only=True, validators=limit_bounds.MAX_JACOBIAN_CONDITION),
-    ParameterSpec(
-        'leg_radius', DOUBLE,
-        'Radius of each leg, metres: a leg is a capsule of this radius around the segment from '
-        'its base joint to its platform joint, and a pose where two legs come closer than '
-        '2 * leg_radius is refused (leg_collision); 0.0 for no collision check',
-        default=0.0, read_only=True, validators=limit_bounds.LEG_RADIUS),
-    ParameterSpec(
-        'leg_velocity_max', DOUBLE,
-        'Largest speed of a leg (actuator), metres per second: timed trajectories are refused '
-        'or retimed to keep within it, streamed commands are limited to it; .inf for no limit',
-        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
-    ParameterSpec(
-        'leg_acceleration_max', DOUBLE,
-        'Largest acceleration of a leg, metres per second squared, as leg_velocity_max; '
-        '.inf for no limit',
-        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
-    ParameterSpec(
-        'leg_jerk_max', DOUBLE,
-        'Largest jerk of a leg, metres per second cubed, for streamed commands (command_rate); '
-        '.inf for no limit',
-        default=math.inf, read_only=True, validators=limit_bounds.LEG_RATE_MAX),
 )
+
+
+def limit_specs() -> tuple:
+    """
+    Return the specs of every limit kind's parameters, in the order of the kinds' list.
+
+    Each comes from its kind's :class:`~stewart_kinematics.limits.kind.LimitParameter` (name,
+    unit, default, description, bounds): a kind added to
+    :data:`~stewart_kinematics.limits.kinds.LIMIT_KINDS` gets its parameters here.
+    """
+    return tuple(
+        ParameterSpec(parameter.name, DOUBLE, parameter.description, default=parameter.default,
+                      read_only=True, validators=parameter.validators, note=parameter.note)
+        for parameter in limit_parameters())
+
+
+#: The geometry's parameters: its joints and home pose, then every limit kind's.
+GEOMETRY_PARAMETERS = _JOINT_AND_HOME_SPECS + limit_specs()
 
 
 ACTUATOR_PARAMETERS = (

@@ -68,7 +68,7 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.analysis.assembly_modes import start_ambiguity
 from stewart_kinematics.findings import Decision, Finding
-from stewart_kinematics.limits import LimitModel
+from stewart_kinematics.limits import LimitModel, limits_of
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.forward import solve_trusted
 from stewart_kinematics.model.forward_result import ForwardKinematicsResult
@@ -548,7 +548,7 @@ class PoseTracker:
         there is flagged ambiguous.
         """
         return min(self.settings.near_singularity_condition,
-                   self.geometry.max_jacobian_condition)
+                   limits_of(self.geometry).max_jacobian_condition)
 
     def _solve(self, lengths) -> Tuple[ForwardKinematicsResult, bool]:
         """

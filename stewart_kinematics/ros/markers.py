@@ -21,6 +21,7 @@ platform markers through :class:`PlatformMarkerPublisher` (at most at ``marker_r
 from geometry_msgs.msg import Point
 import numpy as np
 from std_msgs.msg import ColorRGBA, Header
+from stewart_kinematics.limits.kinds import pose_bounds
 from visualization_msgs.msg import Marker, MarkerArray
 
 #: Colours (r, g, b, a): a leg within its limits, a leg that breaks one, base and platform.
@@ -31,12 +32,9 @@ PLATFORM_COLOUR = ColorRGBA(r=0.3, g=0.5, b=0.9, a=0.8)
 #: Marker line widths, metres.
 LEG_WIDTH = 0.01
 OUTLINE_WIDTH = 0.006
-#: Workspace boundary points: one colour per limit, in LIMIT_NAMES order (stroke min, stroke
-#: max, base cone, platform cone, singularity margin, leg collision), as in the workspace
-#: figures.
-LIMIT_COLOURS = tuple(ColorRGBA(r=r, g=g, b=b, a=0.8) for r, g, b in (
-    (0.12, 0.47, 0.71), (0.84, 0.15, 0.16), (0.17, 0.63, 0.17), (1.0, 0.5, 0.05),
-    (0.58, 0.4, 0.74), (0.55, 0.34, 0.29)))
+#: Opacity of the workspace boundary points, whose colours are their limits' (as each kind
+#: declares them, :func:`stewart_kinematics.limits.kinds.pose_bounds`; as in the figures).
+LIMIT_ALPHA = 0.8
 #: Size of a workspace boundary point, metres.
 WORKSPACE_POINT_SIZE = 0.004
 
@@ -141,12 +139,14 @@ def workspace_markers(header, points, limits, namespace='stewart_platform') -> M
     markers = [clear]
     points = np.asarray(points, dtype=float)
     limits = np.asarray(limits)
-    for index, colour in enumerate(LIMIT_COLOURS):
+    for index, bound in enumerate(pose_bounds()):
         chosen = points[limits == index]
         if not len(chosen):
             continue
+        red, green, blue = bound.colour
         marker = Marker(header=header, ns=namespace, id=index, type=Marker.POINTS,
-                        action=Marker.ADD, color=colour)
+                        action=Marker.ADD,
+                        color=ColorRGBA(r=red, g=green, b=blue, a=LIMIT_ALPHA))
         marker.pose.orientation.w = 1.0
         marker.scale.x = marker.scale.y = WORKSPACE_POINT_SIZE
         marker.points = [Point(x=x, y=y, z=z) for x, y, z in chosen.tolist()]

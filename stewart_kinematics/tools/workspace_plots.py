@@ -28,12 +28,7 @@ matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 import numpy as np  # noqa: E402
 
-from stewart_kinematics.limits import LIMIT_NAMES  # noqa: E402
-
-#: One colour per limit, in LIMIT_NAMES order, for boundaries and legends.
-LIMIT_COLOURS = ('tab:blue', 'tab:red', 'tab:green', 'tab:orange', 'tab:purple', 'tab:brown')
-LIMIT_LABELS = ('leg_length_min (stroke)', 'leg_length_max (stroke)', 'base joint cone',
-                'platform joint cone', 'singularity margin', 'leg collision')
+from stewart_kinematics.limits.kinds import pose_bounds  # noqa: E402
 
 
 def write_workspace_figures(directory, slices, orientation_slices):
@@ -86,12 +81,13 @@ def _slices_figure(path, slices, title):
         u_scale, v_scale, u_label, v_label = _labels(result)
         axes.contourf(result.u * u_scale, result.v * v_scale, result.allowed.astype(float),
                       levels=[0.5, 1.5], colors=['0.88'])
-        for index, name in enumerate(LIMIT_NAMES):
+        # One colour and label per limit, as its kind declares them, in report order.
+        for index, bound in enumerate(pose_bounds()):
             chosen = result.boundary_limit == index
             if np.any(chosen):
                 axes.scatter(result.boundary[chosen, 0] * u_scale,
                              result.boundary[chosen, 1] * v_scale, s=2.0,
-                             color=LIMIT_COLOURS[index], label=LIMIT_LABELS[index])
+                             color=bound.colour, label=bound.label)
         axes.set_xlabel(u_label)
         axes.set_ylabel(v_label)
         axes.set_aspect('equal', adjustable='datalim')

@@ -242,9 +242,10 @@ def _slice_numbers(result):
 
 
 def _by_limit(limits_met):
-    from stewart_kinematics.limits import LIMIT_NAMES
-    counts = np.bincount(limits_met[limits_met >= 0], minlength=len(LIMIT_NAMES))
-    return {name: int(count) for name, count in zip(LIMIT_NAMES, counts) if count}
+    from stewart_kinematics.limits.kinds import pose_limit_names
+    names = pose_limit_names()
+    counts = np.bincount(limits_met[limits_met >= 0], minlength=len(names))
+    return {name: int(count) for name, count in zip(names, counts) if count}
 
 
 def _floats(values):

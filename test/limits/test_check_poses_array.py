@@ -47,8 +47,8 @@ def limited(config_directory):
 
 def tilted_geometry(limited):
     """Return the same platform with a rotated home pose and a tight singularity margin."""
-    return dataclasses.replace(
-        limited, home_pose=[0.01, -0.02, 0.45, 0.05, -0.04, 0.1], max_jacobian_condition=14.0)
+    return dataclasses.replace(limited, home_pose=[0.01, -0.02, 0.45, 0.05, -0.04, 0.1],
+                               limits=limited.limits.replace(max_jacobian_condition=14.0))
 
 
 def random_poses(geometry, count, seed):
@@ -128,15 +128,15 @@ def test_condition_only_where_the_other_limits_are_kept(limited):
 
 
 def test_only_the_limits_set_are_checked(limited):
-    stroke_only = dataclasses.replace(
-        limited, base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
+    stroke_only = limited.with_limits(
+        base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
         max_jacobian_condition=math.inf, leg_radius=0.0)
     checks = limits.check_poses_array(stroke_only, random_poses(stroke_only, 100, seed=15))
     assert list(checks.broken) == ['leg_length_min', 'leg_length_max']
     assert checks.base_angles is None and checks.condition is None
     with pytest.raises(KeyError, match='base_joint_max_angle is not set'):
         checks.excess('base_joint_max_angle')
-    unlimited = dataclasses.replace(stroke_only, leg_length_min=0.0, leg_length_max=math.inf)
+    unlimited = stroke_only.with_limits(leg_length_min=0.0, leg_length_max=math.inf)
     checks = limits.check_poses_array(unlimited, random_poses(unlimited, 10, seed=16))
     assert checks.broken == {} and checks.allowed.all()
 

@@ -20,7 +20,6 @@ The rates of a motion are checked against divided differences computed here inde
 limits; the trajectories' refusals reproduce the adversarial pass's defect (issue 27).
 """
 
-import dataclasses
 import math
 
 from hypothesis import given, strategies as st
@@ -205,7 +204,7 @@ def test_a_stop_in_one_step_is_refused_and_braking_keeps_the_limits():
 
 def test_braking_stops_a_leg_at_the_end_of_its_stroke_and_says_so():
     """A leg too fast to stop before leg_length_max stops there; the finding says so."""
-    geometry = dataclasses.replace(GEOMETRY, leg_length_max=GEOMETRY.home_leg_lengths[0] + 0.0062)
+    geometry = GEOMETRY.with_limits(leg_length_max=GEOMETRY.home_leg_lengths[0] + 0.0062)
     gate = CommandGate(geometry, LIMITS, timing=MOTION)
     home = geometry.home_leg_lengths
     gate.reset(time=0.0)
@@ -227,7 +226,7 @@ def test_braking_stops_a_leg_at_the_end_of_its_stroke_and_says_so():
 
 def test_a_motion_outside_its_limits_may_only_come_back():
     """After a braking command beyond a limit, commands no further out pass, further out not."""
-    geometry = dataclasses.replace(GEOMETRY, leg_length_max=GEOMETRY.home_leg_lengths[0] + 0.001)
+    geometry = GEOMETRY.with_limits(leg_length_max=GEOMETRY.home_leg_lengths[0] + 0.001)
     gate = CommandGate(geometry, LIMITS, timing=MOTION)
     home = geometry.home_leg_lengths
     # The platform rests 0.5 mm beyond the stroke on leg 1 (after braking that could not stop).
@@ -274,7 +273,7 @@ def test_leg_velocities_that_cannot_stop_inside_the_stroke_are_refused():
 
 def bulging_plan(validation_rate, publish_rate):
     """Issue 27's trajectory: two waypoints, a start velocity that bulges the path ~67 mm up."""
-    geometry = dataclasses.replace(GEOMETRY, leg_length_max=0.75)
+    geometry = GEOMETRY.with_limits(leg_length_max=0.75)
     planner = MotionPlanner(geometry, ActuatorLimits(10.0, 100.0),
                             validation_rate=validation_rate, publish_rate=publish_rate)
     quaternion = euler_zyx_to_quaternion([0.0, 0.0, 0.0])

@@ -35,7 +35,7 @@ import pytest
 import reference
 
 from stewart_kinematics import Geometry, load_geometry, Ramp
-from stewart_kinematics.limits import LEG_PAIRS, LimitModel, segment_distances
+from stewart_kinematics.limits import LEG_PAIRS, LimitModel, PoseLimits, segment_distances
 from stewart_kinematics.limits.leg_collision import FIRST, NEAR_PARALLEL, SECOND
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
@@ -54,9 +54,7 @@ def limited():
 
 def collisions_only(geometry, leg_radius):
     """Return the geometry with no limit but leg collisions of ``leg_radius``."""
-    return dataclasses.replace(geometry, leg_length_min=0.0, leg_length_max=math.inf,
-                               base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
-                               max_jacobian_condition=math.inf, leg_radius=leg_radius)
+    return dataclasses.replace(geometry, limits=PoseLimits(leg_radius=leg_radius))
 
 
 def reference_distances(geometry, poses):
@@ -221,7 +219,7 @@ def test_a_platform_joint_on_its_base_joint_is_a_point_not_a_failure():
     base = np.round(reference.BASE_JOINTS * scale) / scale
     platform = np.round(reference.PLATFORM_JOINTS * scale) / scale
     geometry = Geometry(base_joints=base, platform_joints=platform, home_pose=reference.HOME,
-                        leg_radius=0.001)
+                        limits=PoseLimits(leg_radius=0.001))
     position = base[0] - platform[0]                      # platform joint 1 on base joint 1
     model = LimitModel(geometry)
     legs = model.pose_legs(position, np.eye(3))

@@ -21,7 +21,6 @@ ones pass, a condition number proved within its margin) decide as the full check
 leg-state limits are exact, and no input an adversary would choose crashes a check.
 """
 
-import dataclasses
 import math
 from pathlib import Path
 
@@ -62,11 +61,11 @@ def test_the_model_holds_one_evaluator_per_limit_that_is_set(limited):
     assert [bound.name for limit in model.leg_state_limits for bound in limit.bounds] == [
         'leg_length_min', 'leg_length_max', 'leg_velocity_max', 'leg_acceleration_max',
         'leg_jerk_max']
-    bare = dataclasses.replace(limited, leg_length_min=0.0, leg_length_max=math.inf,
+    bare = limited.with_limits(leg_length_min=0.0, leg_length_max=math.inf,
                                base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
                                max_jacobian_condition=math.inf, leg_radius=0.0)
     assert LimitModel(bare).pose_limits == () and LimitModel(bare).leg_state_limits == ()
-    only_base = dataclasses.replace(bare, base_joint_max_angle=0.5)
+    only_base = bare.with_limits(base_joint_max_angle=0.5)
     assert LimitModel(only_base).pose_limit_names == ('base_joint_max_angle',)
     with pytest.raises(KeyError, match='leg_jerk_max is not set'):
         LimitModel(limited).bound('leg_jerk_max')
@@ -106,7 +105,7 @@ def test_every_evaluator_gives_a_pose_alone_what_it_gives_it_in_a_batch(limited)
 
 def test_the_cheap_paths_decide_as_the_full_check(limited):
     """Dear limits only where the cheap pass, and a margin proved without SVD: same decision."""
-    tight = dataclasses.replace(limited, max_jacobian_condition=14.0)
+    tight = limited.with_limits(max_jacobian_condition=14.0)
     model = LimitModel(tight)
     poses = random_poses(tight, 3000, seed=3)
     full = model.check_poses(poses)

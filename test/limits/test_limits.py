@@ -29,7 +29,7 @@ import pytest
 from reference import BASE_JOINTS, HOME, PLATFORM_JOINTS, rotation_zyx, TABLE_3_END
 
 from stewart_kinematics import limits
-from stewart_kinematics.limits import Violation
+from stewart_kinematics.limits import PoseLimits, Violation
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.inverse import leg_lengths
 from stewart_kinematics.model.jacobians import jacobian_condition
@@ -44,7 +44,7 @@ TABLE3_END = np.array(TABLE_3_END)
 def paper_geometry(home_pose=HOME, **limit_values):
     """Build the paper's platform with the given home pose and limits (radians for cones)."""
     return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=home_pose,
-                    **limit_values)
+                    limits=PoseLimits(**limit_values))
 
 
 def legs_by_hand(base, platform, position, rotation):
@@ -425,7 +425,7 @@ EXACT_ROTATIONS = [np.eye(3), np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0,
 def dyadic_geometry(**limit_values):
     """Return the paper's platform with dyadic joints and the given limits."""
     return Geometry(base_joints=DYADIC_BASE, platform_joints=DYADIC_PLATFORM, home_pose=HOME,
-                    **limit_values)
+                    limits=PoseLimits(**limit_values))
 
 
 def joint_on_its_base_joint(leg, rotation):

@@ -27,6 +27,7 @@ from numpy.testing import assert_allclose
 import pytest
 from reference import BASE_JOINTS, HOME, leg_lengths, paper_geometry, PLATFORM_JOINTS
 
+from stewart_kinematics.limits import LimitModel
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters import geometry_from_parameters, load_geometry
 
@@ -111,11 +112,13 @@ def test_home_leg_lengths_follow_home_orientation():
 
 
 def test_constructor_defaults():
-    """Without a home pose or limits, the home pose is zero and the limits are [0, inf]."""
+    """Without a home pose or limits, the home pose is zero and no limit is set."""
     geometry = Geometry(base_joints=BASE_M, platform_joints=PLATFORM_M)
     assert_allclose(geometry.home_pose, np.zeros(6), rtol=0.0, atol=0.0)
-    assert geometry.leg_length_min == 0.0
-    assert geometry.leg_length_max == math.inf
+    assert geometry.limits is None
+    assert LimitModel(geometry).pose_limits == () and LimitModel(geometry).leg_state_limits == ()
+    with pytest.raises(AttributeError, match='leg_length_max'):
+        geometry.leg_length_max
 
 
 @pytest.mark.parametrize('name, value', [

@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 import reference
 
+from stewart_kinematics.limits import PoseLimits
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters import GEOMETRY_PARAMETERS
@@ -55,7 +56,7 @@ def large_geometry(**limits):
     """Build the paper's platform scaled by SCALE, with the given limits."""
     return Geometry(reference.BASE_JOINTS * SCALE, reference.PLATFORM_JOINTS * SCALE,
                     np.concatenate([np.asarray(reference.HOME[:3]) * SCALE, reference.HOME[3:]]),
-                    **limits)
+                    limits=PoseLimits(**limits))
 
 
 def rule_refusal(build, argument, value):

@@ -59,6 +59,7 @@ from stewart_kinematics import (
     leg_vectors,
     leg_velocities,
     platform_twist,
+    PoseLimits,
     SingularPoseError,
     twist_jacobian,
 )
@@ -279,7 +280,7 @@ def test_a_degenerate_geometry_is_refused(first, second, name):
     assert_refused(lambda: replace(PAPER, **{name: line}), (name, 'collinear'))
 
 
-@covers('Geometry')
+@covers('Geometry', 'PoseLimits')
 @budget(40)
 @given(st.sampled_from([
     ('leg_length_min', -0.1), ('leg_length_min', math.nan), ('leg_length_max', 0.0),
@@ -290,7 +291,7 @@ def test_a_degenerate_geometry_is_refused(first, second, name):
     ('leg_length_max', 0.5)]))
 def test_limits_out_of_their_range_are_refused_naming_them(change):
     name, value = change
-    assert_refused(lambda: replace(PAPER, **{name: value}), (name, 'home pose'))
+    assert_refused(lambda: replace(PAPER, limits=PoseLimits(**{name: value})), (name, 'home pose'))
 
 
 @covers('forward_kinematics', 'ForwardKinematicsResult')

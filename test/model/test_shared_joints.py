@@ -159,7 +159,8 @@ def test_joints_count_as_one_only_within_the_tolerance(separation, design):
     shared = design_geometry('6-3')
     platform = shared.platform_joints.copy()
     platform[2] += [0.0, separation, 0.0]
-    nearly = replace(shared, platform_joints=platform, leg_radius=0.0)
+    nearly = replace(shared, platform_joints=platform,
+                     limits=shared.limits.replace(leg_radius=0.0))
     assert nearly.design == design
     assert (1, 6) in [joint.legs for joint in nearly.shared_joints]
     assert ((2, 3) in [joint.legs for joint in nearly.shared_joints]) == (design == '6-3')
@@ -167,9 +168,9 @@ def test_joints_count_as_one_only_within_the_tolerance(separation, design):
     # the home pose check names (legs that share a joint are not checked: they meet there).
     if design == '6-4':
         with pytest.raises(ValueError, match='legs 2 and 3: leg_collision'):
-            replace(nearly, leg_radius=0.02)
+            nearly.with_limits(leg_radius=0.02)
     else:
-        assert replace(nearly, leg_radius=0.02).leg_radius == 0.02
+        assert nearly.with_limits(leg_radius=0.02).leg_radius == 0.02
 
 
 def pairings():
@@ -294,9 +295,7 @@ def test_asymmetric_shared_designs_have_16_solutions(name, seed):
     drawn = design_geometry(name)
     geometry = replace(drawn, base_joints=moved_joints(drawn.base_joints, 0.02, generator),
                        platform_joints=moved_joints(drawn.platform_joints, 0.02, generator),
-                       leg_length_min=0.0, leg_length_max=math.inf,
-                       base_joint_max_angle=math.pi, platform_joint_max_angle=math.pi,
-                       max_jacobian_condition=math.inf, leg_radius=0.0)
+                       limits=None)
     assert geometry.design == name
     for pose in reference.random_poses(2, seed, geometry.home_pose, 0.08, 15.0):
         lengths = np.array(reference.leg_lengths(pose, geometry.base_joints,
@@ -339,7 +338,8 @@ def test_a_nearly_shared_platform_keeps_all_its_modes(separation):
     platform = shared.platform_joints.copy()
     platform[[2, 4, 5]] += [[0.0, separation, 0.0], [separation, 0.0, 0.0],
                             [0.0, 0.0, separation]]
-    geometry = replace(shared, platform_joints=platform, leg_radius=0.0)
+    geometry = replace(shared, platform_joints=platform,
+                       limits=shared.limits.replace(leg_radius=0.0))
     assert geometry.design == '6-6'
     pose = np.array(reference.DESIGN_HOME) + [0.03, 0.02, -0.02, 0.05, 0.1, -0.1]
     modes = assembly_modes(geometry, inverse_kinematics(geometry, pose), reference_pose=pose)
@@ -374,7 +374,7 @@ def test_other_pairs_of_a_shared_design_still_collide():
     """Legs 1 and 2 of the 6-3 (no joint shared) are 135 mm apart at home: thicker legs touch."""
     geometry = design_geometry('6-3')
     with pytest.raises(ValueError) as refused:
-        replace(geometry, leg_radius=0.07)
+        geometry.with_limits(leg_radius=0.07)
     message = str(refused.value)
     assert 'legs 1 and 2: leg_collision' in message and 'legs 3 and 4' in message
     assert 'legs 1 and 6' not in message and 'legs 2 and 3' not in message

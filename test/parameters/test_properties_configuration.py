@@ -221,7 +221,7 @@ def test_bad_parameter_values_are_refused_naming_the_parameter(tmp_path_factory,
     for files in ([platform, path], [path, platform]):
         assert_refused(lambda: load_geometry(files), ('leg_length_max',))
     assert_refused(lambda: load_geometry(path.parent / 'absent.yaml'), ('absent.yaml',))
-    assert PAPER.leg_length_max == math.inf
+    assert PAPER.limits is None
 
 
 @covers('load_settings')

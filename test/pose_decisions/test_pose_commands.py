@@ -26,7 +26,14 @@ from numpy.testing import assert_allclose
 import pytest
 import reference
 
-from stewart_kinematics import ActuatorLimits, CommandCheck, FrameTree, Geometry, Transform
+from stewart_kinematics import (
+    ActuatorLimits,
+    CommandCheck,
+    FrameTree,
+    Geometry,
+    PoseLimits,
+    Transform,
+)
 
 pytestmark = pytest.mark.core
 
@@ -51,7 +58,7 @@ EXAMPLE_LIMITS = {'leg_length_min': 0.65, 'leg_length_max': 0.9,
 def geometry(**limits):
     """Build the paper's platform with the given limits (cone angles in radians)."""
     return Geometry(base_joints=BASE, platform_joints=PLATFORM, home_pose=np.array(HOME),
-                    **limits)
+                    limits=PoseLimits(**limits))
 
 
 rotation_zyx = reference.rotation_zyx
