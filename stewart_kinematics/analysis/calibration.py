@@ -63,6 +63,21 @@ from stewart_kinematics.analysis.calibration_files import (  # noqa: F401
     write_measurements,
     write_parameter_file,
 )
+from stewart_kinematics.analysis.calibration_model import (  # noqa: F401 (public here too)
+    block_rows,
+    identification_jacobian,
+    LEG_COLUMNS,
+    leg_jacobian,
+    leg_lengths,
+    parameter_layout,
+    PARAMETER_COUNT,
+    PARAMETER_NAMES,
+    parameter_vector,
+    ParameterLayout,
+    PARAMETERS_PER_LEG,
+    predict_actuator_positions,
+    predicted_positions,
+)
 from stewart_kinematics.model.arrays import as_float_array, preview
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.model.inputs import as_poses
@@ -74,18 +89,8 @@ from stewart_kinematics.parameters import (
     GEOMETRY_PARAMETERS,
 )
 
-#: Parameters of one leg: base joint (3), platform joint (3), actuator offset (1).
-PARAMETERS_PER_LEG = 7
-#: All parameters: 18 base joint coordinates, 18 platform joint coordinates, 6 offsets (fewer
-#: are free where legs share a joint: see ParameterLayout).
-PARAMETER_COUNT = 6 * PARAMETERS_PER_LEG
 #: Fewer poses than this leave no redundancy to estimate the noise with (7 parameters per leg).
 MIN_POSES = PARAMETERS_PER_LEG + 1
-#: The names of the 42 parameters, in the order of :attr:`CalibrationResult.parameters`.
-PARAMETER_NAMES = tuple(
-    [f'b{leg}.{axis}' for leg in range(1, 7) for axis in 'xyz']
-    + [f'p{leg}.{axis}' for leg in range(1, 7) for axis in 'xyz']
-    + [f'o{leg}' for leg in range(1, 7)])
 #: Relative tolerances (ftol, xtol, gtol) of the final least-squares fit.
 FINAL_TOLERANCE = 1e-14
 #: The losses of scipy's least_squares: 'linear' is plain least squares, the others robust.
@@ -96,10 +101,6 @@ MAX_EVALUATIONS = 50
 E_OPTIMAL_SHORTLIST = 200
 #: MAD to standard deviation of a normal distribution.
 _MAD_TO_SIGMA = 1.4826
-#: Column positions of leg i's seven parameters in the 42-vector.
-_LEG_COLUMNS = np.array([[3 * leg, 3 * leg + 1, 3 * leg + 2,
-                          18 + 3 * leg, 18 + 3 * leg + 1, 18 + 3 * leg + 2, 36 + leg]
-                         for leg in range(6)])
 #: Spread below which the poses count as not rotating / not moving, for the error's hints.
 _STILL_ANGLE = 1e-3
 _STILL_POSITION = 1e-4
@@ -107,91 +108,6 @@ _STILL_POSITION = 1e-4
 
 class CalibrationError(ValueError):
     """The measurements cannot determine the parameters; the message says why."""
-
-
-@dataclass(frozen=True)
-class ParameterLayout:
-    """
-    Which of the 42 parameters are free: a joint that two legs share is one point.
-
-    :param index: shape (42,): for each parameter in :data:`PARAMETER_NAMES` order, its column
-        among the free parameters (two legs' coordinates of a shared joint, one column).
-    :param names: the free parameters' names: ``b1.x`` as in :data:`PARAMETER_NAMES`, and
-        ``b1,2.x`` for the base joint that legs 1 and 2 share (``p`` for the platform's).
-    :param blocks: the legs (1..6) fitted together: legs tied by shared joints, each leg alone
-        on a 6-6 platform. The identification Jacobian is block diagonal by them.
-    """
-
-    index: np.ndarray
-    names: Tuple[str, ...]
-    blocks: Tuple[Tuple[int, ...], ...]
-
-    @property
-    def count(self) -> int:
-        """Return the number of free parameters (42 on a 6-6 platform, 24 on a 3-3 one)."""
-        return len(self.names)
-
-    @property
-    def tied(self) -> Tuple[str, ...]:
-        """Return the names of the free parameters that stand for a shared joint's coordinates."""
-        return tuple(name for name in self.names if ',' in name)
-
-    def columns(self, block: Tuple[int, ...]) -> np.ndarray:
-        """Return the free columns of a block's parameters, ascending."""
-        return np.unique(self.index[_LEG_COLUMNS[np.array(block) - 1]])
-
-    def expand(self, free) -> np.ndarray:
-        """Return the 42 parameters of the free ones (a shared joint's copied to both legs)."""
-        return np.asarray(free)[..., self.index]
-
-    def reduce(self, parameters) -> np.ndarray:
-        """Return the free parameters of 42 (a shared joint: the lower leg's coordinates)."""
-        first = np.array([np.flatnonzero(self.index == column)[0]
-                          for column in range(self.count)])
-        return np.asarray(parameters, dtype=float)[first]
-
-    def tie(self, jacobian) -> np.ndarray:
-        """Return the identification Jacobian (rows, 42) in the free parameters (rows, n)."""
-        tied = np.zeros((jacobian.shape[0], self.count))
-        for column, free in enumerate(self.index):
-            tied[:, free] += jacobian[:, column]
-        return tied
-
-
-def parameter_layout(geometry: Geometry) -> ParameterLayout:
-    """
-    Return the free parameters of a geometry: its shared joints tied, the rest one each.
-
-    >>> from stewart_kinematics import load_geometry
-    >>> from stewart_kinematics.analysis.calibration import parameter_layout
-    >>> layout = parameter_layout(load_geometry('config/platform_3_3.yaml'))
-    >>> layout.count, layout.blocks
-    (24, ((1, 2, 3, 4, 5, 6),))
-    >>> layout.tied[:4]
-    ('b1,2.x', 'b1,2.y', 'b1,2.z', 'b3,4.x')
-    """
-    owner = np.arange(PARAMETER_COUNT)
-    component = list(range(6))
-    for joint in geometry.shared_joints:
-        first, second = joint.legs[0] - 1, joint.legs[1] - 1
-        offset = 0 if joint.side == 'base' else 18
-        owner[offset + 3 * second:offset + 3 * second + 3] = owner[
-            offset + 3 * first:offset + 3 * first + 3]
-        old, new = component[second], component[first]
-        component = [new if c == old else c for c in component]
-    representatives, index = np.unique(owner, return_inverse=True)
-    names = []
-    for representative in representatives:
-        legs = [column // 3 % 6 + 1 for column in np.flatnonzero(owner == representative)]
-        name = PARAMETER_NAMES[representative]
-        if len(legs) > 1:
-            name = name[0] + ','.join(map(str, legs)) + name[name.index('.'):]
-        names.append(name)
-    blocks = {}
-    for leg, c in enumerate(component):
-        blocks.setdefault(c, []).append(leg + 1)
-    return ParameterLayout(index=index, names=tuple(names),
-                           blocks=tuple(tuple(legs) for legs in blocks.values()))
 
 
 @dataclass(frozen=True)
@@ -376,12 +292,12 @@ class CalibrationResult:
                   '', 'parameter changes from nominal, millimetres (+- one standard deviation)',
                   'leg   ' + ''.join(f'{name:>17s}' for name in (
                       'b.x', 'b.y', 'b.z', 'p.x', 'p.y', 'p.z', 'offset'))]
-        nominal = _parameter_vector(self.nominal, self.nominal_offsets)
+        nominal = parameter_vector(self.nominal, self.nominal_offsets)
         change = (self.parameters - nominal) * 1e3
         deviation = self.standard_deviations * 1e3
         for leg in range(6):
             cells = [f'{change[column]:+9.3f}+-{deviation[column]:6.3f}'
-                     for column in _LEG_COLUMNS[leg]]
+                     for column in LEG_COLUMNS[leg]]
             lines.append(f'{leg + 1:3d}   ' + ''.join(f'{cell:>17s}' for cell in cells))
         if self.layout.tied:
             lines += ['', 'shared joints, fitted as one point each: ' + ', '.join(
@@ -391,20 +307,6 @@ class CalibrationResult:
                   + ' (scaled parameters):']
         lines += [f'  {combination}' for combination in self.identifiability.weakest]
         return '\n'.join(lines)
-
-
-def predict_actuator_positions(geometry: Geometry, actuator_offsets, poses) -> np.ndarray:
-    """
-    Predict actuator positions at poses: leg lengths minus the actuator offsets.
-
-    :param geometry: the platform.
-    :param actuator_offsets: o_1..o_6, metres, shape (6,).
-    :param poses: ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians), shape (N, 6).
-    :returns: metres, shape (N, 6).
-    """
-    parameters = _parameter_vector(geometry, actuator_offsets)
-    poses = np.atleast_2d(as_poses(poses))
-    return _predict(parameters, poses[:, :3], euler_zyx_to_matrix(poses[:, 3:]))
 
 
 def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) -> Identifiability:
@@ -418,10 +320,10 @@ def identifiability(geometry: Geometry, poses, *, max_condition: float = 1e5) ->
     """
     poses = np.atleast_2d(as_poses(poses))
     rotations = euler_zyx_to_matrix(poses[:, 3:])
-    parameters = _parameter_vector(geometry, np.zeros(6))
+    parameters = parameter_vector(geometry, np.zeros(6))
     layout = parameter_layout(geometry)
-    return _identifiability(layout.tie(_jacobian(parameters, poses[:, :3], rotations)), poses,
-                            max_condition, layout)
+    jacobian = identification_jacobian(parameters, poses[:, :3], rotations)
+    return _identifiability(layout.tie(jacobian), poses, max_condition, layout)
 
 
 def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None, *,
@@ -484,13 +386,13 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
             'poses spread over the workspace are usual')
     positions, rotations = poses[:, :3], euler_zyx_to_matrix(poses[:, 3:])
     if nominal_offsets is None:
+        nominal_parameters = parameter_vector(nominal, np.zeros(6))
         nominal_offsets = np.mean(
-            _predict(_parameter_vector(nominal, np.zeros(6)), positions, rotations) - readings,
-            axis=0)
+            predicted_positions(nominal_parameters, positions, rotations) - readings, axis=0)
     layout = parameter_layout(nominal)
-    start = layout.expand(layout.reduce(_parameter_vector(nominal, nominal_offsets)))
-    report = _identifiability(layout.tie(_jacobian(start, positions, rotations)), poses,
-                              max_condition, layout)
+    start = layout.expand(layout.reduce(parameter_vector(nominal, nominal_offsets)))
+    jacobian = identification_jacobian(start, positions, rotations)
+    report = _identifiability(layout.tie(jacobian), poses, max_condition, layout)
     if not report.identifiable:
         raise CalibrationError(report.problem())
 
@@ -525,11 +427,11 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         for _ in range(2):
             if not np.any(inliers):
                 break   # every pose an outlier: refused just below, with the reason
-            error = _predict(rough, positions, rotations) - readings
+            error = predicted_positions(rough, positions, rotations) - readings
             sigma = _MAD_TO_SIGMA * np.median(np.abs(error[inliers]))
             scale = max(sigma, min_outlier_residual)
             rough = fit(rough, inliers, loss, scale).x
-            error = _predict(rough, positions, rotations) - readings
+            error = predicted_positions(rough, positions, rotations) - readings
             sigma = _MAD_TO_SIGMA * np.median(np.abs(error))
             threshold = max(outlier_threshold * sigma, min_outlier_residual)
             inliers = np.max(np.abs(error), axis=1) <= threshold
@@ -548,7 +450,7 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
     solution = fit(x, inliers, 'linear', tolerance=FINAL_TOLERANCE)
     parameters = solution.x
     inlier_report = _identifiability(
-        layout.tie(_jacobian(parameters, positions[inliers], rotations[inliers])),
+        layout.tie(identification_jacobian(parameters, positions[inliers], rotations[inliers])),
         poses[inliers], max_condition, layout)
     if not inlier_report.identifiable:
         raise CalibrationError('after removing the outlier poses '
@@ -564,8 +466,8 @@ def calibrate(nominal: Geometry, poses, actuator_positions, nominal_offsets=None
         geometry=geometry, actuator_offsets=parameters[36:].copy(), nominal=nominal,
         nominal_offsets=np.asarray(nominal_offsets, dtype=float).copy(), parameters=parameters,
         standard_deviations=standard_deviations,
-        residuals_before=_predict(start, positions, rotations) - readings,
-        residuals_after=_predict(parameters, positions, rotations) - readings,
+        residuals_before=predicted_positions(start, positions, rotations) - readings,
+        residuals_after=predicted_positions(parameters, positions, rotations) - readings,
         inliers=inliers, outliers=tuple(int(index) for index in np.flatnonzero(~inliers)),
         noise=noise, identifiability=inlier_report, iterations=int(solution.nfev),
         layout=layout)
@@ -641,14 +543,14 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
         raise ValueError(
             f'only {pool.shape[0]} of {candidates} candidate poses are within the limits; '
             f'{2 * count} needed to choose {count}: widen the ranges or draw more candidates')
-    parameters = _parameter_vector(geometry, np.zeros(6))
-    jac = _jacobian(parameters, pool[:, :3], euler_zyx_to_matrix(pool[:, 3:]))
+    parameters = parameter_vector(geometry, np.zeros(6))
+    jac = identification_jacobian(parameters, pool[:, :3], euler_zyx_to_matrix(pool[:, 3:]))
     # The poses are chosen for the untied model (each leg's 7 parameters), which bounds the
     # tied one of shared joints from below; their quality is that of the tied model.
     layout = parameter_layout(geometry)
     tied = layout.tie(jac)
     # Per candidate and leg, the row of the leg's 7 parameters: (C, 6, 7).
-    rows = np.stack([jac[leg::6, columns] for leg, columns in enumerate(_LEG_COLUMNS)], axis=1)
+    rows = np.stack([jac[leg::6, columns] for leg, columns in enumerate(LEG_COLUMNS)], axis=1)
     information = np.zeros((6, PARAMETERS_PER_LEG, PARAMETERS_PER_LEG))
     regularisation = 1e-9 * np.eye(PARAMETERS_PER_LEG)
     chosen = []
@@ -681,7 +583,7 @@ def measurement_poses(geometry: Geometry, count: int, *, position_range=0.05,
 
     def quality(indices):
         block = tied.reshape(-1, 6, layout.count)[indices].reshape(-1, layout.count)
-        smallest = min(np.linalg.svd(_block_rows(block, layout, legs), compute_uv=False)[-1]
+        smallest = min(np.linalg.svd(block_rows(block, layout, legs), compute_uv=False)[-1]
                        for legs in layout.blocks)
         return smallest, _identifiability(block, pool[indices], math.inf,
                                           layout).condition_number
@@ -738,15 +640,6 @@ def _check_number(name, value, low, high, unit, low_inclusive=True):
         raise ValueError(f'{name} must be in {interval} ({unit}), got {value!r}')
 
 
-def _parameter_vector(geometry: Geometry, actuator_offsets) -> np.ndarray:
-    offsets = np.asarray(actuator_offsets, dtype=float)
-    if offsets.shape != (6,) or not np.all(np.isfinite(offsets)):
-        raise ValueError(f'actuator offsets must be 6 finite values (metres), got '
-                         f'{preview(offsets)}')
-    return np.concatenate([geometry.base_joints.ravel(), geometry.platform_joints.ravel(),
-                           offsets])
-
-
 def _geometry_of(nominal: Geometry, parameters) -> Geometry:
     try:
         return replace(nominal, base_joints=parameters[:18].reshape(6, 3),
@@ -786,18 +679,18 @@ def _fit_blocks(layout, x0, positions, rotations, readings, loss, scale, toleran
     for legs in layout.blocks:
         columns = layout.columns(legs)
         # Each leg's seven parameters, as positions among the block's columns.
-        locals_ = [np.searchsorted(columns, layout.index[_LEG_COLUMNS[leg - 1]])
+        locals_ = [np.searchsorted(columns, layout.index[LEG_COLUMNS[leg - 1]])
                    for leg in legs]
 
         def residuals(values, legs=legs, locals_=locals_):
             return np.concatenate([
-                _leg_lengths(values[local], positions, rotations) - values[local[6]]
+                leg_lengths(values[local], positions, rotations) - values[local[6]]
                 - readings[:, leg - 1] for leg, local in zip(legs, locals_)])
 
         def jac(values, locals_=locals_, width=columns.size):
             block = np.zeros((len(locals_) * count, width))
             for k, local in enumerate(locals_):
-                block[k * count:(k + 1) * count, local] = _leg_jacobian(
+                block[k * count:(k + 1) * count, local] = leg_jacobian(
                     values[local], positions, rotations)
             return block
         solution = least_squares(residuals, free[columns], jac=jac, loss=loss, f_scale=scale,
@@ -808,47 +701,6 @@ def _fit_blocks(layout, x0, positions, rotations, readings, loss, scale, toleran
         jacobians.append(jac(solution.x))
         evaluations += solution.nfev
     return _Fit(layout.expand(free), fun.ravel(), tuple(jacobians), evaluations)
-
-
-def _leg_vectors(values, positions, rotations):
-    # values: one leg's [b (3), p (3), o]; returns its leg vectors t + R p - b, (N, 3).
-    return np.einsum('kab,b->ka', rotations, values[3:6]) + positions - values[:3]
-
-
-def _leg_lengths(values, positions, rotations):
-    return np.linalg.norm(_leg_vectors(values, positions, rotations), axis=-1)
-
-
-def _leg_jacobian(values, positions, rotations):
-    # d|leg| / d b = -u; d|leg| / d p = R^T u; d a / d o = -1.
-    legs = _leg_vectors(values, positions, rotations)
-    directions = legs / np.linalg.norm(legs, axis=-1, keepdims=True)
-    jac = np.empty((positions.shape[0], PARAMETERS_PER_LEG))
-    jac[:, :3] = -directions
-    jac[:, 3:6] = np.einsum('kba,kb->ka', rotations, directions)
-    jac[:, 6] = -1.0
-    return jac
-
-
-def _predict(parameters, positions, rotations):
-    """Return the actuator positions (N, 6) of the 42 parameters at N poses."""
-    return np.stack([_leg_lengths(parameters[columns], positions, rotations)
-                     - parameters[columns[6]] for columns in _LEG_COLUMNS], axis=1)
-
-
-def _jacobian(parameters, positions, rotations):
-    """Return the identification Jacobian (6N, 42): leg blocks on its diagonal, row 6k + i."""
-    count = positions.shape[0]
-    jac = np.zeros((count, 6, PARAMETER_COUNT))
-    for leg, columns in enumerate(_LEG_COLUMNS):
-        jac[:, leg, columns] = _leg_jacobian(parameters[columns], positions, rotations)
-    return jac.reshape(count * 6, PARAMETER_COUNT)
-
-
-def _block_rows(jac, layout, legs):
-    """Return a block's rows and columns of a tied Jacobian (6N, n): (N * legs, columns)."""
-    rows = jac.reshape(-1, 6, layout.count)[:, np.array(legs) - 1]
-    return rows.reshape(-1, layout.count)[:, layout.columns(legs)]
 
 
 def _identifiability(jac, poses, max_condition, layout) -> Identifiability:
@@ -862,7 +714,7 @@ def _identifiability(jac, poses, max_condition, layout) -> Identifiability:
     singular_values = []
     directions = []
     for legs in layout.blocks:
-        block = _block_rows(scaled, layout, legs)
+        block = block_rows(scaled, layout, legs)
         _, values, right = np.linalg.svd(block)
         if values.size < block.shape[1]:
             values = np.concatenate([values, np.zeros(block.shape[1] - values.size)])
