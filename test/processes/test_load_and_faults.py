@@ -39,7 +39,6 @@ and ``RESTART``.
 
 import contextlib
 import fcntl
-import itertools
 import math
 import os
 from pathlib import Path
@@ -47,6 +46,7 @@ import signal
 import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from fuzzing.fuzz_client import paced
 from geometry_msgs.msg import Pose
 from helpers import fail_with_output, pose_message, SpinningClient, stop_cleanly
 import numpy as np
@@ -152,21 +152,6 @@ def node_arguments(config_directory, *extra):
     """Return the command line of ik_node or fk_node: shipped parameter files, then ``extra``."""
     return ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
             '--params-file', str(config_directory / 'solver.yaml'), *extra]
-
-
-def paced(rate, count=None):
-    """
-    Yield 0, 1, 2, ... on a monotonic schedule of ``rate`` a second, ``count`` times or forever.
-
-    Index ``i`` is due ``i / rate`` seconds after the start, so a late step does not delay the
-    following ones (no drift): the average rate stays ``rate`` as long as the caller keeps up.
-    """
-    start = time.monotonic()
-    for index in range(count) if count is not None else itertools.count():
-        delay = start + index / rate - time.monotonic()
-        if delay > 0.0:
-            time.sleep(delay)
-        yield index
 
 
 def rss_kb(node):
