@@ -31,6 +31,7 @@ import pytest
 
 from stewart_kinematics.model.validators import (
     FixedLength,
+    InertiaTensor,
     InRange,
     OneOf,
     ZeroOrInRange,
@@ -120,7 +121,12 @@ def claims(spec):
         base = list(spec.default) if spec.default is not None else [0.5] * count
         found = [(base, True), (base[:-1], False), (base + [base[0]], False)]
         finite = bool(match.group(2))
-        if match.group(3):
+        if match.group(3) == InertiaTensor().describe():
+            found += [([0.3, 0.3, 0.0, 0.0, 0.0, 0.0], True),     # a rod: the triangle's edge
+                      ([0.1, 0.1, 0.5, 0.0, 0.0, 0.0], False),    # beyond the triangle
+                      ([0.2, -0.2, 0.2, 0.0, 0.0, 0.0], False),   # a negative moment
+                      ([0.2, 0.2, 0.2, 0.5, 0.0, 0.0], False)]    # indefinite
+        elif match.group(3):
             element = number_claims(match.group(3), integer=False)
             assert element is not None, text
             found += [([value] + base[1:], allowed) for value, allowed in element]
@@ -165,7 +171,8 @@ def test_notes_are_few_and_say_what_no_validator_can():
     notes = {spec.name: spec.note for spec in all_specs() if spec.note}
     assert sorted(notes) == sorted([
         'base_joints', 'platform_joints', 'leg_length_min', 'leg_length_max', 'position_step',
-        'orientation_step_deg', 'estimated_pose_frame'])
+        'orientation_step_deg', 'estimated_pose_frame', 'platform_inertia', 'payload_inertia',
+        'leg_lower_inertia', 'leg_upper_inertia'])
 
 
 @pytest.mark.parametrize('validator, text', [
