@@ -53,7 +53,8 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
         base_joints=np.reshape(np.asarray(settings.base_joints, dtype=float), (6, 3)),
         platform_joints=np.reshape(np.asarray(settings.platform_joints, dtype=float), (6, 3)),
         home_pose=home_pose,
-        limits=pose_limits_from_settings(settings))
+        limits=pose_limits_from_settings(settings),
+        mass_properties=mass_properties_from_settings(settings))
 
 
 def pose_limits_from_settings(settings: GeometrySettings) -> PoseLimits:

@@ -117,6 +117,18 @@ class GeometrySettings(Settings):
     refused (leg_collision); 0.0 for no collision check. Allowed: in [0, 1]. Read-only at run time.
     """
 
+    leg_force_min: float = -math.inf
+    """
+    Largest pull of a leg, newtons, as a negative force (0: the legs may only push); -.inf for no
+    limit. Allowed: <= 0. Read-only at run time.
+    """
+
+    leg_force_max: float = math.inf
+    """
+    Largest push of a leg, newtons; .inf for no limit. Allowed: > 0; .inf allowed. Read-only at run
+    time.
+    """
+
     leg_velocity_max: float = math.inf
     """
     Largest speed of a leg (actuator), metres per second: timed trajectories are refused or retimed
