@@ -230,7 +230,7 @@ def _batch_forces(constants, poses, motions, mass_properties):
 
 def static_forces_of_legs(lengths, vectors, rotation, mass_properties) -> np.ndarray:
     """
-    Static leg forces of poses given by their legs, as the pose limits read them.
+    Return the static leg forces of poses given by their legs, as the pose limits read them.
 
     The same terms as :func:`leg_forces` with every twist and acceleration 0, from the legs
     of :class:`stewart_kinematics.limits.base.PoseLegs` rather than the poses.

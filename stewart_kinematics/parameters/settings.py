@@ -120,7 +120,7 @@ class GeometrySettings(Settings):
     leg_force_min: float = -math.inf
     """
     Largest pull of a leg, newtons, as a negative force (0: the legs may only push); -.inf for no
-    limit. Allowed: <= 0. Read-only at run time.
+    limit. Allowed: <= 0; -.inf allowed. Read-only at run time.
     """
 
     leg_force_max: float = math.inf

@@ -45,6 +45,7 @@ DECLARATIONS = (Path(__file__).resolve().parents[2] / 'stewart_kinematics' / 'pa
 NUMBER = r'-?(?:\d+(?:\.\d*)?(?:e[+-]?\d+)?|inf)'
 INTERVAL = re.compile(rf'^in ([\[(])({NUMBER}), ({NUMBER})([\])])$')
 HALF_LINE = re.compile(rf'^(>=|>) ({NUMBER})$')
+LOWER_HALF_LINE = re.compile(rf'^(<=|<) ({NUMBER})$')
 ZERO_OR = re.compile(rf'^0\.0 or in \[({NUMBER}), ({NUMBER})\]$')
 INTEGERS = re.compile(r'^(-?\d+)(?:, (-?\d+))* or (-?\d+)$')
 ARRAY = re.compile(r'^(\d+) (finite )?values(?: (.+))?$')
@@ -75,6 +76,10 @@ def number_claims(phrase, integer):
         low = convert(float(match.group(2)))
         return [(low, match.group(1) == '>='), (below(low, integer), False),
                 (above(low, integer), True), (convert(1e9) if integer else 1e300, True)]
+    if match := LOWER_HALF_LINE.match(phrase):
+        high = convert(float(match.group(2)))
+        return [(high, match.group(1) == '<='), (above(high, integer), False),
+                (below(high, integer), True), (convert(-1e9) if integer else -1e300, True)]
     if match := ZERO_OR.match(phrase):
         low, high = float(match.group(1)), float(match.group(2))
         return [(0.0, True), (low / 2.0, False), (low, True), (high, True),
@@ -138,7 +143,8 @@ def claims(spec):
     integer = kind == 'integer'
     phrases = text.split('; ')
     infinity = '.inf allowed' in phrases
-    phrases = [phrase for phrase in phrases if phrase != '.inf allowed']
+    negative_infinity = '-.inf allowed' in phrases
+    phrases = [phrase for phrase in phrases if phrase not in ('.inf allowed', '-.inf allowed')]
     assert len(phrases) == 1, text
     parts = phrases[0].split(', ')
     finite = parts[0] == 'finite'
@@ -146,7 +152,7 @@ def claims(spec):
     assert found is not None, text
     if not integer:
         # Without '.inf allowed', infinity is refused (by 'finite', or by a bound).
-        found += [(math.nan, False), (-math.inf, False), (math.inf, infinity)]
+        found += [(math.nan, False), (-math.inf, negative_infinity), (math.inf, infinity)]
     return found
 
 
