@@ -52,7 +52,7 @@ class _Singular(Exception):
 
 
 def leg_forces(geometry, poses, twists=None, accelerations=None, *,
-               mass_properties: MassProperties) -> np.ndarray:
+               mass_properties: MassProperties = None) -> np.ndarray:
     """
     Axial forces of the six actuators that hold the platform at a pose, or move it.
 
@@ -67,7 +67,9 @@ def leg_forces(geometry, poses, twists=None, accelerations=None, *,
         or (N, 6); None (the default): at rest.
     :param accelerations: their time derivatives ``[dv/dt, dw/dt]`` (m/s^2, rad/s^2), base
         frame, shape (6,) or (N, 6); None (the default): zero.
-    :param mass_properties: the masses and gravity, a :class:`MassProperties`.
+    :param mass_properties: the masses and gravity, a :class:`MassProperties`; ``None`` (the
+        default): the geometry's own (:attr:`~stewart_kinematics.Geometry.mass_properties`),
+        every mass 0 when it has none.
     :returns: forces f_1..f_6 in newtons, positive when a leg pushes the platform away from the
         base, shape (6,), or (N, 6) when any argument is a batch (one row broadcasts against
         N). Exactly 0 when every mass is 0.
@@ -83,6 +85,8 @@ def leg_forces(geometry, poses, twists=None, accelerations=None, *,
     ...            mass_properties=MassProperties(payload=payload)).round(2)
     array([32.91, 33.73, 32.81, 33.39, 33.52, 32.95])
     """
+    if mass_properties is None:
+        mass_properties = masses_of(geometry)
     if not isinstance(mass_properties, MassProperties):
         raise ValueError(f'mass_properties must be a MassProperties, got '
                          f'{preview(mass_properties)} ({type(mass_properties).__name__})')
@@ -163,6 +167,15 @@ def platform_wrench(geometry, poses, forces) -> np.ndarray:
     return check_finite_output(wrench.reshape(shape), 'the platform wrench', 'the forces')
 
 
+def masses_of(geometry) -> MassProperties:
+    """Return the masses a geometry carries, or every mass 0 when it carries none."""
+    masses = getattr(geometry, 'mass_properties', None)
+    return _MASSLESS if masses is None else masses
+
+
+_MASSLESS = MassProperties()
+
+
 def _entries(angles, cos, sin):
     """Rotation entries of Euler angles ``(alpha, beta, gamma)`` (floats or arrays)."""
     alpha, beta, gamma = angles
@@ -206,8 +219,57 @@ def _batch_forces(constants, poses, motions, mass_properties):
     lengths, vectors = batch_legs(constants, poses[:, :3], entries)
     if not np.all(np.isfinite(lengths)):   # an overflow: refused as such by the caller
         return np.full(poses.shape, math.nan)
+    transposed, wrench = _balance(entries, lengths, vectors, tuple(
+        np.ascontiguousarray(motions.T)), mass_properties)
+    try:
+        return np.linalg.solve(transposed, wrench)[..., 0]
+    except np.linalg.LinAlgError:   # LAPACK found a pivot of 0: which pose has it
+        singular = np.flatnonzero(~(np.linalg.det(transposed) != 0.0))
+        raise _Singular(int(singular[0]) if singular.size else 0) from None
+
+
+def static_forces_of_legs(lengths, vectors, rotation, mass_properties) -> np.ndarray:
+    """
+    Return the static leg forces of poses given by their legs, as the pose limits read them.
+
+    The same terms as :func:`leg_forces` with every twist and acceleration 0, from the legs
+    of :class:`stewart_kinematics.limits.base.PoseLegs` rather than the poses.
+
+    :param lengths: leg lengths, metres, shape (6, n).
+    :param vectors: ``(lx, ly, lz, ax, ay, az)``: leg vectors and rotated platform joints,
+        each (6, n), metres, base frame.
+    :param rotation: the nine entries of each platform-to-base rotation, each (n,).
+    :param mass_properties: a :class:`MassProperties`.
+    :returns: leg forces, newtons, shape (6, n), positive pushing; NaN for every leg of a
+        singular pose or one whose legs are not finite (no forces balance the load there).
+    """
+    count = lengths.shape[1]
+    if mass_properties.massless:
+        return np.zeros((6, count))
+    forces = np.full((count, 6), math.nan)
+    with np.errstate(all='ignore'):
+        finite = np.isfinite(lengths).all(axis=0)
+        transposed, wrench = _balance(rotation, lengths, vectors, tuple(
+            np.zeros((12, count))), mass_properties)
+        transposed, wrench = transposed[finite], wrench[finite]
+        try:
+            forces[finite] = np.linalg.solve(transposed, wrench)[..., 0]
+        except np.linalg.LinAlgError:   # a singular pose: solved one by one, NaN there
+            regular = np.linalg.det(transposed) != 0.0
+            solved = np.full((len(transposed), 6), math.nan)
+            solved[regular] = np.linalg.solve(transposed[regular], wrench[regular])[..., 0]
+            forces[finite] = solved
+    forces[~np.isfinite(forces).all(axis=1)] = math.nan
+    return forces.T
+
+
+def _balance(entries, lengths, vectors, motion, mass_properties):
+    """
+    Return ``(J^T, wrench)`` of a block of poses: shapes (n, 6, 6) and (n, 6, 1).
+
+    The leg forces f solve ``J^T f = wrench``: the wrench the legs must exert on the platform.
+    """
     lengths = np.where(lengths == 0.0, 1.0, lengths)   # a zero row: singular, refused
-    motion = tuple(np.ascontiguousarray(motions.T))
     gravity = mass_properties.gravity
     wrench = body_wrench(entries, motion, mass_properties.moving_body, gravity)
     if not mass_properties.legs_massless:
@@ -217,11 +279,7 @@ def _batch_forces(constants, poses, motions, mass_properties):
             for column in range(6):
                 wrench[column] = wrench[column] + terms[column][leg]
     transposed = np.stack(twist_rows([(lengths, *vectors)])).transpose(2, 0, 1)   # (n, 6, 6)
-    try:
-        return np.linalg.solve(transposed, np.stack(wrench, axis=-1)[..., None])[..., 0]
-    except np.linalg.LinAlgError:   # LAPACK found a pivot of 0: which pose has it
-        singular = np.flatnonzero(~(np.linalg.det(transposed) != 0.0))
-        raise _Singular(int(singular[0]) if singular.size else 0) from None
+    return transposed, np.stack(np.broadcast_arrays(*wrench), axis=-1)[..., None]
 
 
 def _transposed_product(columns, forces):

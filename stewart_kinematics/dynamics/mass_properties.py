@@ -32,13 +32,15 @@ import numpy as np
 
 from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.inputs import is_real
-from stewart_kinematics.model.validators import Finite, first_reason, InRange
+from stewart_kinematics.model.validators import (
+    Finite,
+    first_reason,
+    InertiaTensor,
+    InRange,
+)
 
 #: Standard gravity (m/s^2), pointing down the base frame's z axis by default.
 STANDARD_GRAVITY = 9.80665
-#: Relative tolerance of the checks of an inertia tensor (positive semi-definite, triangle
-#: inequality), of its trace: what rounding the entries written in a file may break.
-INERTIA_TOLERANCE = 1e-9
 
 _NON_NEGATIVE = (Finite(), InRange(0.0, math.inf))
 _FINITE = (Finite(),)
@@ -83,23 +85,9 @@ def inertia_matrix(inertia) -> np.ndarray:
 
 def _check_inertia(subject, inertia):
     """Refuse a tensor that is not positive semi-definite or breaks the triangle inequality."""
-    with np.errstate(all='ignore'):   # a tensor near the float range: refused below
-        moments = np.linalg.eigvalsh(inertia_matrix(inertia)) if all(
-            abs(value) < 1e150 for value in inertia) else np.full(3, math.nan)
-    if not np.all(np.isfinite(moments)):
-        raise ValueError(f'{subject} must have entries below 1e150 kg m^2, got '
-                         f'{preview(list(inertia))}')
-    tolerance = INERTIA_TOLERANCE * abs(sum(inertia[:3]))
-    low, middle, high = moments.tolist()
-    if low < -tolerance:
-        raise ValueError(f'{subject} must be positive semi-definite (principal moments >= 0), '
-                         f'got {preview(list(inertia))} with principal moments '
-                         f'{low:.6g}, {middle:.6g}, {high:.6g}')
-    if low + middle < high - tolerance:
-        raise ValueError(f'{subject} must keep the triangle inequality of its principal moments '
-                         f'(each at most the sum of the other two), got '
-                         f'{preview(list(inertia))} with principal moments '
-                         f'{low:.6g}, {middle:.6g}, {high:.6g}')
+    reason = InertiaTensor().reason(subject, list(inertia))
+    if reason:
+        raise ValueError(reason)
 
 
 def _check_massless(subject, mass, inertia):

@@ -36,7 +36,8 @@ every check: one pose, a batch, leg states (trajectories, streams, twists).
 gives the verdict a node publishes. :mod:`.geometry_checks` has the same as functions of a
 geometry. :mod:`.base` holds what the evaluators share, :mod:`.violation` what they report.
 
-May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.findings` and numpy.
+May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.dynamics` (the leg
+forces), :mod:`stewart_kinematics.findings` and numpy.
 Nothing here imports ROS.
 """
 

@@ -24,7 +24,14 @@ kind added to it. Nothing here imports ROS.
 
 from typing import Dict, Tuple
 
-from stewart_kinematics.limits import joint_cones, leg_collision, leg_rates, singularity, stroke
+from stewart_kinematics.limits import (
+    joint_cones,
+    leg_collision,
+    leg_forces,
+    leg_rates,
+    singularity,
+    stroke,
+)
 from stewart_kinematics.limits.kind import ACTUATOR, BoundLook, LimitParameter, POSE
 
 #: Every kind of limit, in report order.
@@ -33,6 +40,7 @@ LIMIT_KINDS = [
     joint_cones.KIND,
     singularity.KIND,
     leg_collision.KIND,
+    leg_forces.KIND,
     leg_rates.KIND,
 ]
 

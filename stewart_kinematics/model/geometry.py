@@ -84,6 +84,9 @@ class Geometry:
         (stroke, joint cones, singularity margin, leg radius: each checked there with the
         bounds of its parameter); ``None`` (the default) for no pose limit. The geometry asks
         it whether its home pose is allowed (``limits.check_home(geometry)``).
+    :param mass_properties: the masses it carries and gravity, a
+        :class:`stewart_kinematics.MassProperties` (kept as a reference, as ``limits``; the
+        leg forces and the ``leg_force`` limit read it); ``None`` (the default): every mass 0.
     :raises ValueError: if an array has the wrong shape or a non-finite value, three or more
         joints of the base or of the platform coincide (a joint is shared by two legs at
         most), two legs share both their joints, the joints of the base or of the platform
@@ -116,6 +119,7 @@ class Geometry:
     platform_joints: np.ndarray
     home_pose: np.ndarray = field(default_factory=lambda: np.zeros(6))
     limits: Any = None
+    mass_properties: Any = None
 
     def __post_init__(self):
         for name, shape in (('base_joints', (6, 3)), ('platform_joints', (6, 3)),
@@ -172,6 +176,15 @@ class Geometry:
             raise ValueError('this geometry has no limits to change; give it '
                              'limits=PoseLimits(...)')
         return dataclasses.replace(self, limits=self.limits.replace(**changes))
+
+    def with_mass_properties(self, mass_properties) -> 'Geometry':
+        """
+        Return this geometry carrying other masses (a new payload, say), its limits the same.
+
+        :param mass_properties: a :class:`stewart_kinematics.MassProperties`, or ``None``.
+        :raises ValueError: if its home pose breaks a limit with them (the leg forces).
+        """
+        return dataclasses.replace(self, mass_properties=mass_properties)
 
 
 def _checked_array(name, value, shape):

@@ -46,6 +46,8 @@ from dataclasses import dataclass
 import math
 from typing import Any, Callable, Tuple
 
+import numpy as np
+
 from stewart_kinematics.model.arrays import preview
 
 #: The containers a value of several numbers or names comes in (rclpy hands double arrays over
@@ -312,3 +314,54 @@ def first_reason(validators, subject: str, value: Any) -> str:
         if reason:
             return reason
     return ''
+
+
+#: Relative tolerance of the checks of an inertia tensor (positive semi-definite, triangle
+#: inequality), of its trace: what rounding the entries written in a file may break.
+INERTIA_TOLERANCE = 1e-9
+#: Largest magnitude of an inertia tensor's entry, kg m^2: beyond it the principal moments
+#: are not computed reliably (and their squares overflow).
+INERTIA_ENTRY_MAX = 1e150
+
+
+@dataclass(frozen=True)
+class InertiaTensor(Validator):
+    """
+    Require the six entries ``[Ixx, Iyy, Izz, Ixy, Ixz, Iyz]`` of an inertia tensor (kg m^2).
+
+    As URDF's ``<inertia>`` element writes them. The tensor must be positive semi-definite and
+    its principal moments must keep the triangle inequality (each at most the sum of the other
+    two), both to :data:`INERTIA_TOLERANCE` of the trace; every entry below
+    :data:`INERTIA_ENTRY_MAX`. A value that is not six finite numbers is left to
+    :class:`FixedLength` and :class:`Finite`.
+    """
+
+    def reason(self, subject: str, value: Any) -> str:
+        """Refuse a tensor that is not positive semi-definite or breaks the triangle inequality."""
+        entries = list(_items(value))
+        if len(entries) != 6 or not all(math.isfinite(item) for item in entries):
+            return ''
+        if not all(abs(item) < INERTIA_ENTRY_MAX for item in entries):
+            return (f'{subject} must have entries below 1e150 kg m^2, got '
+                    f'{preview(value)}')
+        ixx, iyy, izz, ixy, ixz, iyz = entries
+        with np.errstate(all='ignore'):
+            moments = np.linalg.eigvalsh(np.array(
+                [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]))
+        tolerance = INERTIA_TOLERANCE * abs(ixx + iyy + izz)
+        low, middle, high = moments.tolist()
+        if low < -tolerance:
+            return (f'{subject} must be positive semi-definite (principal moments >= 0), '
+                    f'got {preview(value)} with principal moments '
+                    f'{low:.6g}, {middle:.6g}, {high:.6g}')
+        if low + middle < high - tolerance:
+            return (f'{subject} must keep the triangle inequality of its principal moments '
+                    f'(each at most the sum of the other two), got '
+                    f'{preview(value)} with principal moments '
+                    f'{low:.6g}, {middle:.6g}, {high:.6g}')
+        return ''
+
+    def describe(self) -> str:
+        """Return the rule in words."""
+        return ('forming an inertia tensor (positive semi-definite, principal moments within '
+                'the triangle inequality)')

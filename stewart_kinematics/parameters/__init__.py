@@ -24,7 +24,9 @@ node, generated from the declarations by scripts/generate_settings.py; their beh
 geometry and frames from parameter values) and :mod:`.tables` (the documentation's parameter
 tables).
 
-May import: :mod:`stewart_kinematics.model`, numpy and PyYAML. Nothing here imports ROS.
+May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.limits`,
+:mod:`stewart_kinematics.dynamics` (the mass properties), numpy and PyYAML. Nothing here
+imports ROS.
 """
 
 from stewart_kinematics.parameters.builders import (
@@ -35,6 +37,8 @@ from stewart_kinematics.parameters.builders import (
     frames_from_settings,
     geometry_from_parameters,
     geometry_from_settings,
+    mass_properties_from_parameters,
+    mass_properties_from_settings,
 )
 from stewart_kinematics.parameters.declarations import (
     ACTUATOR_PARAMETERS,
@@ -48,6 +52,7 @@ from stewart_kinematics.parameters.declarations import (
     GEOMETRY_PARAMETERS,
     IK_FRAME_PARAMETERS,
     MARKER_PARAMETERS,
+    MASS_SPECS,
     MOTION_CUEING_PARAMETERS,
     MOTION_PARAMETERS,
     QUEUE_PARAMETERS,
@@ -148,6 +153,9 @@ __all__ = [
     'markdown_table',
     'MARKER_PARAMETERS',
     'MarkerSettings',
+    'mass_properties_from_parameters',
+    'mass_properties_from_settings',
+    'MASS_SPECS',
     'MOTION_CUEING_PARAMETERS',
     'MOTION_PARAMETERS',
     'MotionCueingNodeSettings',

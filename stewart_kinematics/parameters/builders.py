@@ -25,6 +25,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from stewart_kinematics.dynamics.mass_properties import LegBody, MassProperties, RigidBody
 from stewart_kinematics.limits.kinds import actuator_settings, pose_settings
 from stewart_kinematics.limits.settings import PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
@@ -52,7 +53,8 @@ def geometry_from_settings(settings: GeometrySettings) -> Geometry:
         base_joints=np.reshape(np.asarray(settings.base_joints, dtype=float), (6, 3)),
         platform_joints=np.reshape(np.asarray(settings.platform_joints, dtype=float), (6, 3)),
         home_pose=home_pose,
-        limits=pose_limits_from_settings(settings))
+        limits=pose_limits_from_settings(settings),
+        mass_properties=mass_properties_from_settings(settings))
 
 
 def pose_limits_from_settings(settings: GeometrySettings) -> PoseLimits:
@@ -65,6 +67,49 @@ def actuator_limits_from_settings(settings: GeometrySettings) -> ActuatorLimits:
     """Return the legs' speed limits (``leg_velocity_max``, ...) of the geometry settings."""
     return ActuatorLimits(**{name: parameter.setting_value(getattr(settings, parameter.name))
                              for name, parameter in actuator_settings().items()})
+
+
+def mass_properties_from_settings(settings: GeometrySettings) -> MassProperties:
+    """
+    Return the masses and gravity of the geometry settings (kg, metres, kg m^2, m/s^2).
+
+    The platform's and the payload's centres of mass and inertias are in the platform frame;
+    each leg body's centre is a distance from its own joint along the leg axis.
+
+    :raises ValueError: naming the parameter, for a body given an inertia without a mass (each
+        value alone is checked by its parameter's rules).
+    """
+    bodies = {}
+    for body in ('platform', 'payload'):
+        bodies[body] = _body(RigidBody, body, settings, f'{body}_')
+    for body in ('lower', 'upper'):
+        bodies[f'leg_{body}'] = _body(LegBody, f'leg_{body}', settings, f'leg_{body}_')
+    return MassProperties(gravity=list(settings.gravity), **bodies)
+
+
+def mass_properties_from_parameters(values: Mapping[str, Any]) -> MassProperties:
+    """
+    Return the masses and gravity of ROS parameter values, as a parameter file gives them.
+
+    :param values: parameter name -> value (``payload_mass``, ``gravity``, ...; the
+        :data:`~stewart_kinematics.parameters.MASS_SPECS`); a missing one takes its
+        default (every mass 0), and the geometry's own are needed as for
+        :func:`geometry_from_parameters`.
+    :raises ValueError: naming the parameter, if a value is missing or not allowed.
+    """
+    return mass_properties_from_settings(GeometrySettings.from_values(values))
+
+
+def _body(kind, name, settings, prefix):
+    """Build one body of the mass properties, refusing a bad one naming its parameters."""
+    mass, center, inertia = (getattr(settings, prefix + field)
+                             for field in ('mass', 'center_of_mass', 'inertia'))
+    if isinstance(center, (list, tuple)):
+        center, inertia = list(center), list(inertia)
+    try:
+        return kind(mass, center, inertia, name=name)
+    except ValueError as error:
+        raise ValueError(f"parameters '{prefix}mass' and '{prefix}inertia': {error}") from None
 
 
 def actuator_interface_from_settings(settings: ActuatorSettings) -> ActuatorInterface:

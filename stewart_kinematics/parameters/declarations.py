@@ -25,6 +25,7 @@ import difflib
 import math
 
 from stewart_kinematics.limits.kinds import limit_parameters
+from stewart_kinematics.model.validators import InertiaTensor
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DistinctNames,
@@ -86,8 +87,76 @@ def limit_specs() -> tuple:
         for parameter in limit_parameters())
 
 
-#: The geometry's parameters: its joints and home pose, then every limit kind's.
-GEOMETRY_PARAMETERS = _JOINT_AND_HOME_SPECS + limit_specs()
+#: Largest mass of a body, kg: a value beyond it is a typing error, and keeps the forces finite.
+MASS_MAX = 1e9
+#: Largest distance of a centre of mass from its frame's origin (or its joint), metres.
+CENTER_OF_MASS_MAX = 1000.0
+#: Largest magnitude of each component of gravity, m/s^2.
+GRAVITY_MAX = 1000.0
+
+_MASS_RULES = (Finite(), InRange(0.0, MASS_MAX))
+_CENTER_RULES = (FixedLength(3), Finite(), InRange(-CENTER_OF_MASS_MAX, CENTER_OF_MASS_MAX))
+_INERTIA_RULES = (FixedLength(6), Finite(), InertiaTensor())
+_MASSLESS_NOTE = '0 when the mass is 0'
+
+
+def _rigid_body_specs(body: str, words: str, read_only: bool) -> tuple:
+    """Return the mass, centre of mass and inertia specs of the platform or the payload."""
+    return (
+        ParameterSpec(
+            f'{body}_mass', DOUBLE, f'Mass of {words}, kg; 0 for none',
+            default=0.0, read_only=read_only, validators=_MASS_RULES),
+        ParameterSpec(
+            f'{body}_center_of_mass', DOUBLE_ARRAY,
+            f'Centre of mass of {words}, X, Y, Z in the platform frame, metres',
+            default=[0.0, 0.0, 0.0], read_only=read_only, validators=_CENTER_RULES),
+        ParameterSpec(
+            f'{body}_inertia', DOUBLE_ARRAY,
+            f'Inertia tensor of {words} about its centre of mass, axes of the platform frame, '
+            "kg m^2, as Ixx, Iyy, Izz, Ixy, Ixz, Iyz (the entries of the tensor, as URDF's "
+            '<inertia> writes them)',
+            default=[0.0] * 6, read_only=read_only, validators=_INERTIA_RULES,
+            note=_MASSLESS_NOTE),
+    )
+
+
+def _leg_body_specs(body: str, words: str, joint: str) -> tuple:
+    """Return the mass, centre of mass and inertia specs of one body of every leg."""
+    return (
+        ParameterSpec(
+            f'leg_{body}_mass', DOUBLE, f'Mass of the {words} of each leg, kg; 0 for none',
+            default=0.0, read_only=True, validators=_MASS_RULES),
+        ParameterSpec(
+            f'leg_{body}_center_of_mass', DOUBLE,
+            f'Distance of the centre of mass of the {words} of each leg from the {joint} '
+            'joint along the leg axis, metres (negative: beyond the joint)',
+            default=0.0, read_only=True,
+            validators=(Finite(), InRange(-CENTER_OF_MASS_MAX, CENTER_OF_MASS_MAX))),
+        ParameterSpec(
+            f'leg_{body}_inertia', DOUBLE,
+            f'Moment of inertia of the {words} of each leg about a transverse axis through its '
+            'centre of mass, kg m^2 (none about the leg axis)',
+            default=0.0, read_only=True, validators=(Finite(), InRange(0.0, 1e150)),
+            note=_MASSLESS_NOTE),
+    )
+
+
+#: The masses the actuators carry, and gravity (:class:`stewart_kinematics.MassProperties`);
+#: every mass 0 by default, and with every mass 0 the leg forces are 0. The payload's may
+#: change at run time: payloads change.
+MASS_SPECS = (
+    _rigid_body_specs('platform', 'the platform', read_only=True)
+    + _rigid_body_specs('payload', 'the payload fixed to the platform', read_only=False)
+    + _leg_body_specs('lower', 'lower body (cylinder)', 'base')
+    + _leg_body_specs('upper', 'upper body (rod)', 'platform')
+    + (ParameterSpec(
+        'gravity', DOUBLE_ARRAY,
+        'Gravity X, Y, Z in the base frame, m/s^2',
+        default=[0.0, 0.0, -9.80665], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(-GRAVITY_MAX, GRAVITY_MAX))),))
+
+#: The geometry's parameters: its joints and home pose, every limit kind's, then the masses.
+GEOMETRY_PARAMETERS = _JOINT_AND_HOME_SPECS + limit_specs() + MASS_SPECS
 
 
 ACTUATOR_PARAMETERS = (
@@ -588,8 +657,9 @@ def check_known_names(names, context: str) -> None:
         described = ', '.join(f"'{text}'{hint(name)}" for text, name in zip(shown, unknown))
         if len(unknown) > _UNKNOWN_NAMES_SHOWN:
             described += f' and {len(unknown) - _UNKNOWN_NAMES_SHOWN} more'
-        raise ValueError(f'unknown parameter(s) {described} in {context}; known parameters: '
-                         + ', '.join(sorted(known)))
+        # The known names are too many for one line (with the masses, over 2000 characters).
+        raise ValueError(f'unknown parameter(s) {described} in {context}; the {len(known)} '
+                         'known parameters are in the tables of doc/nodes.md')
 
 
 def defaults(specs) -> dict:

@@ -117,6 +117,18 @@ class GeometrySettings(Settings):
     refused (leg_collision); 0.0 for no collision check. Allowed: in [0, 1]. Read-only at run time.
     """
 
+    leg_force_min: float = -math.inf
+    """
+    Largest pull of a leg, newtons, as a negative force (0: the legs may only push); -.inf for no
+    limit. Allowed: <= 0; -.inf allowed. Read-only at run time.
+    """
+
+    leg_force_max: float = math.inf
+    """
+    Largest push of a leg, newtons; .inf for no limit. Allowed: > 0; .inf allowed. Read-only at run
+    time.
+    """
+
     leg_velocity_max: float = math.inf
     """
     Largest speed of a leg (actuator), metres per second: timed trajectories are refused or retimed
@@ -134,6 +146,86 @@ class GeometrySettings(Settings):
     """
     Largest jerk of a leg, metres per second cubed, for streamed commands (command_rate); .inf for
     no limit. Allowed: > 0; .inf allowed. Read-only at run time.
+    """
+
+    platform_mass: float = 0.0
+    """Mass of the platform, kg; 0 for none. Allowed: in [0, 1e+09]. Read-only at run time."""
+
+    platform_center_of_mass: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Centre of mass of the platform, X, Y, Z in the platform frame, metres. Allowed: 3 values in
+    [-1000, 1000]. Read-only at run time.
+    """
+
+    platform_inertia: Tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    """
+    Inertia tensor of the platform about its centre of mass, axes of the platform frame, kg m^2, as
+    Ixx, Iyy, Izz, Ixy, Ixz, Iyz (the entries of the tensor, as URDF's <inertia> writes them).
+    Allowed: 6 finite values forming an inertia tensor (positive semi-definite, principal moments
+    within the triangle inequality); 0 when the mass is 0. Read-only at run time.
+    """
+
+    payload_mass: float = 0.0
+    """Mass of the payload fixed to the platform, kg; 0 for none. Allowed: in [0, 1e+09]."""
+
+    payload_center_of_mass: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    Centre of mass of the payload fixed to the platform, X, Y, Z in the platform frame, metres.
+    Allowed: 3 values in [-1000, 1000].
+    """
+
+    payload_inertia: Tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    """
+    Inertia tensor of the payload fixed to the platform about its centre of mass, axes of the
+    platform frame, kg m^2, as Ixx, Iyy, Izz, Ixy, Ixz, Iyz (the entries of the tensor, as URDF's
+    <inertia> writes them). Allowed: 6 finite values forming an inertia tensor (positive
+    semi-definite, principal moments within the triangle inequality); 0 when the mass is 0.
+    """
+
+    leg_lower_mass: float = 0.0
+    """
+    Mass of the lower body (cylinder) of each leg, kg; 0 for none. Allowed: in [0, 1e+09].
+    Read-only at run time.
+    """
+
+    leg_lower_center_of_mass: float = 0.0
+    """
+    Distance of the centre of mass of the lower body (cylinder) of each leg from the base joint
+    along the leg axis, metres (negative: beyond the joint). Allowed: in [-1000, 1000]. Read-only
+    at run time.
+    """
+
+    leg_lower_inertia: float = 0.0
+    """
+    Moment of inertia of the lower body (cylinder) of each leg about a transverse axis through its
+    centre of mass, kg m^2 (none about the leg axis). Allowed: in [0, 1e+150]; 0 when the mass is
+    0. Read-only at run time.
+    """
+
+    leg_upper_mass: float = 0.0
+    """
+    Mass of the upper body (rod) of each leg, kg; 0 for none. Allowed: in [0, 1e+09]. Read-only at
+    run time.
+    """
+
+    leg_upper_center_of_mass: float = 0.0
+    """
+    Distance of the centre of mass of the upper body (rod) of each leg from the platform joint
+    along the leg axis, metres (negative: beyond the joint). Allowed: in [-1000, 1000]. Read-only
+    at run time.
+    """
+
+    leg_upper_inertia: float = 0.0
+    """
+    Moment of inertia of the upper body (rod) of each leg about a transverse axis through its
+    centre of mass, kg m^2 (none about the leg axis). Allowed: in [0, 1e+150]; 0 when the mass is
+    0. Read-only at run time.
+    """
+
+    gravity: Tuple[float, ...] = (0.0, 0.0, -9.80665)
+    """
+    Gravity X, Y, Z in the base frame, m/s^2. Allowed: 3 values in [-1000, 1000]. Read-only at run
+    time.
     """
 
 

@@ -264,4 +264,7 @@ def describe(value_type: str, validators) -> str:
     if Finite not in kinds and any(isinstance(rule, InRange) and rule.allows_infinity
                                    for rule in validators):
         text += '; .inf allowed'
+    if Finite not in kinds and any(isinstance(rule, InRange) and rule.low == -math.inf
+                                   and rule.low_inclusive for rule in validators):
+        text += '; -.inf allowed'
     return text

@@ -111,7 +111,8 @@ def test_every_kind_declares_a_default_that_its_bounds_allow_and_that_sets_no_li
     assert {parameter.name for parameter in kinds.limit_parameters()} == {
         'leg_length_min', 'leg_length_max', 'base_joint_max_angle_deg',
         'platform_joint_max_angle_deg', 'max_jacobian_condition', 'leg_radius',
-        'leg_velocity_max', 'leg_acceleration_max', 'leg_jerk_max'}
+        'leg_velocity_max', 'leg_acceleration_max', 'leg_jerk_max', 'leg_force_min',
+        'leg_force_max'}
 
 
 def test_without_the_line_in_the_list_the_kind_is_unknown():

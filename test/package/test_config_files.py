@@ -56,7 +56,8 @@ NODE_SPECS = {
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {
-    'ik_node': (IkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
+    'ik_node': (IkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml',
+                         'example_masses.yaml')),
     'fk_node': (FkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
     'trajectory_node': (TrajectoryNode, ('paper_platform.yaml', 'example_limits.yaml',
                                          'table3_ramp.yaml')),

@@ -40,9 +40,9 @@ CORE_MODULES = sorted(
 MAY_IMPORT = {
     'findings': set(),
     'model': {'model'},
-    'limits': {'model', 'limits', 'findings'},
+    'limits': {'model', 'dynamics', 'limits', 'findings'},
     'dynamics': {'model', 'dynamics'},
-    'parameters': {'model', 'limits', 'parameters'},
+    'parameters': {'model', 'dynamics', 'limits', 'parameters'},
     'pose_decisions': {'model', 'limits', 'findings', 'parameters', 'pose_decisions',
                        'analysis.assembly_modes'},
     'motion': {'model', 'limits', 'findings', 'parameters', 'motion'},

@@ -31,6 +31,7 @@ import pytest
 
 from stewart_kinematics.model.validators import (
     FixedLength,
+    InertiaTensor,
     InRange,
     OneOf,
     ZeroOrInRange,
@@ -44,6 +45,7 @@ DECLARATIONS = (Path(__file__).resolve().parents[2] / 'stewart_kinematics' / 'pa
 NUMBER = r'-?(?:\d+(?:\.\d*)?(?:e[+-]?\d+)?|inf)'
 INTERVAL = re.compile(rf'^in ([\[(])({NUMBER}), ({NUMBER})([\])])$')
 HALF_LINE = re.compile(rf'^(>=|>) ({NUMBER})$')
+LOWER_HALF_LINE = re.compile(rf'^(<=|<) ({NUMBER})$')
 ZERO_OR = re.compile(rf'^0\.0 or in \[({NUMBER}), ({NUMBER})\]$')
 INTEGERS = re.compile(r'^(-?\d+)(?:, (-?\d+))* or (-?\d+)$')
 ARRAY = re.compile(r'^(\d+) (finite )?values(?: (.+))?$')
@@ -74,6 +76,10 @@ def number_claims(phrase, integer):
         low = convert(float(match.group(2)))
         return [(low, match.group(1) == '>='), (below(low, integer), False),
                 (above(low, integer), True), (convert(1e9) if integer else 1e300, True)]
+    if match := LOWER_HALF_LINE.match(phrase):
+        high = convert(float(match.group(2)))
+        return [(high, match.group(1) == '<='), (above(high, integer), False),
+                (below(high, integer), True), (convert(-1e9) if integer else -1e300, True)]
     if match := ZERO_OR.match(phrase):
         low, high = float(match.group(1)), float(match.group(2))
         return [(0.0, True), (low / 2.0, False), (low, True), (high, True),
@@ -120,7 +126,12 @@ def claims(spec):
         base = list(spec.default) if spec.default is not None else [0.5] * count
         found = [(base, True), (base[:-1], False), (base + [base[0]], False)]
         finite = bool(match.group(2))
-        if match.group(3):
+        if match.group(3) == InertiaTensor().describe():
+            found += [([0.3, 0.3, 0.0, 0.0, 0.0, 0.0], True),     # a rod: the triangle's edge
+                      ([0.1, 0.1, 0.5, 0.0, 0.0, 0.0], False),    # beyond the triangle
+                      ([0.2, -0.2, 0.2, 0.0, 0.0, 0.0], False),   # a negative moment
+                      ([0.2, 0.2, 0.2, 0.5, 0.0, 0.0], False)]    # indefinite
+        elif match.group(3):
             element = number_claims(match.group(3), integer=False)
             assert element is not None, text
             found += [([value] + base[1:], allowed) for value, allowed in element]
@@ -132,7 +143,8 @@ def claims(spec):
     integer = kind == 'integer'
     phrases = text.split('; ')
     infinity = '.inf allowed' in phrases
-    phrases = [phrase for phrase in phrases if phrase != '.inf allowed']
+    negative_infinity = '-.inf allowed' in phrases
+    phrases = [phrase for phrase in phrases if phrase not in ('.inf allowed', '-.inf allowed')]
     assert len(phrases) == 1, text
     parts = phrases[0].split(', ')
     finite = parts[0] == 'finite'
@@ -140,7 +152,7 @@ def claims(spec):
     assert found is not None, text
     if not integer:
         # Without '.inf allowed', infinity is refused (by 'finite', or by a bound).
-        found += [(math.nan, False), (-math.inf, False), (math.inf, infinity)]
+        found += [(math.nan, False), (-math.inf, negative_infinity), (math.inf, infinity)]
     return found
 
 
@@ -165,7 +177,8 @@ def test_notes_are_few_and_say_what_no_validator_can():
     notes = {spec.name: spec.note for spec in all_specs() if spec.note}
     assert sorted(notes) == sorted([
         'base_joints', 'platform_joints', 'leg_length_min', 'leg_length_max', 'position_step',
-        'orientation_step_deg', 'estimated_pose_frame'])
+        'orientation_step_deg', 'estimated_pose_frame', 'platform_inertia', 'payload_inertia',
+        'leg_lower_inertia', 'leg_upper_inertia'])
 
 
 @pytest.mark.parametrize('validator, text', [

@@ -266,3 +266,35 @@ def test_a_pose_where_two_legs_collide_is_refused_everywhere_naming_them(
     assert code == 1, output
     assert 'cannot start: ramp refused: 4 of 11 samples break the limits' in output
     assert output.count('legs 2 and 3: leg_collision') == 4 and 'Traceback' not in output
+
+
+#: The example masses (28 kg on the platform, legs of 2 kg) and a push of at most 60 N a leg:
+#: home needs at most 52.4 N a leg, this tilted pose 65.8, 82.8 and 69.7 N on legs 3, 4 and 6
+#: (and keeps every other example limit).
+HEAVY = ['--params-file', 'example_masses.yaml', '-p', 'leg_force_max:=60.0']
+HEAVY_POSE = np.array([0.02, -0.01, 0.44, 0.08, -0.05, 0.1])
+
+
+def test_a_pose_whose_static_forces_break_leg_force_max_is_refused_naming_the_legs(
+        client, start_node, config_directory):
+    """ik_node refuses the tilted pose naming leg_force_max and legs 3, 4 and 6; home passes."""
+    extra = list(HEAVY)
+    extra[1] = str(config_directory / extra[1])
+    ik = start_node('ik_node', arguments(config_directory, *extra))
+    topics = Client(client, [ik])
+    topics.advertise(Pose, 'target_pose')
+    topics.subscribe(Float64MultiArray, 'leg_lengths')
+    topics.connect()
+    topics.publish('target_pose', pose_message(HEAVY_POSE))
+    topics.publish('target_pose', pose_message(HOME))
+    topics.wait_for('leg_lengths', 1)
+    status = topics.counted('/ik_node: target_pose', 'rejected out_of_limits')
+    rejection = status['last rejection']
+    assert rejection.startswith('the pose is out of the limits: leg 3: leg_force_max'), rejection
+    for leg in (3, 4, 6):
+        assert f'leg {leg}: leg_force_max' in rejection, rejection
+    assert 'leg 1:' not in rejection and 'leg 2:' not in rejection, rejection
+    np.testing.assert_allclose(topics.received['leg_lengths'][0].data,
+                               reference.leg_lengths(HOME), rtol=0.0, atol=1e-12)
+    assert len(topics.received['leg_lengths']) == 1
+    stop_cleanly(ik)
