@@ -149,17 +149,15 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     for _ in range(MAX_STRETCHES):
         check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate,
                                  cancel=cancel)
-        refusal, violations, command = _check_refusal(check), check.violations, None
+        refusal, stretch, command = _check_refusal(check), check.stretch, None
         if refusal is None and output is not None:
             command = _gate(trajectory, geometry, scaled, output)
-            refusal, violations = command.refusal, command.violations
-        if refusal is None or not violations or not all(
-                violation.limit in SPEED_LIMITS for violation in violations):
+            refusal, stretch = command.refusal, _gate_stretch(command.violations)
+        if refusal is None or stretch is None:
             break
-        # toppra's timing exceeds a leg limit between the samples of the check, or at a point
-        # sent: stretch on.
-        trajectory = trajectory.stretched(max(_speed_excess(violation)
-                                              for violation in violations) * STRETCH_MARGIN)
+        # toppra's timing exceeds a leg limit (speed, or dynamic force) between the samples of
+        # the check, or at a point sent: stretch on.
+        trajectory = trajectory.stretched(stretch * STRETCH_MARGIN)
     return MotionPlan(refusal, trajectory if refusal is None else None, check, True,
                       command=command)
 
@@ -180,6 +178,13 @@ def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
         'validation_rate, or publish more points)'))
 
 
+def _gate_stretch(violations) -> Optional[float]:
+    """Return the stretch that brings leg speed violations within, ``None`` for others."""
+    if not violations or not all(violation.limit in SPEED_LIMITS for violation in violations):
+        return None
+    return max(_speed_excess(violation) for violation in violations)
+
+
 def _speed_excess(violation) -> float:
     """Return the stretch that brings one leg speed violation within its limit."""
     ratio = abs(violation.value) / violation.allowed
@@ -190,17 +195,15 @@ def _check_refusal(check: TrajectoryCheck) -> Optional[Finding]:
     """
     Return the refusal of a failed check, or ``None``.
 
-    :data:`TOO_FAST` when only leg velocity or acceleration is broken, :data:`OUT_OF_LIMITS`
-    otherwise, :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give
+    :data:`TOO_FAST` when only leg velocity, acceleration or dynamic leg forces are broken (a
+    slower timing would keep them: ``check.stretch``), :data:`OUT_OF_LIMITS` otherwise, :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give
     the time, the waypoints around it and every violated limit.
     """
     if check.accepted:
         return None
     if not check.complete:
         return Finding(findings.TRAJECTORY_TOO_LONG, check.reason)
-    code = findings.TOO_FAST if all(violation.limit in SPEED_LIMITS
-                                    for violation in check.violations) else (
-        findings.OUT_OF_LIMITS)
+    code = findings.TOO_FAST if check.stretch is not None else findings.OUT_OF_LIMITS
     return Finding(code, check.reason, (
         ('time_s', f'{check.time:.4f}'),
         ('segment', f'points {check.segment[0]} and {check.segment[1]}'),
