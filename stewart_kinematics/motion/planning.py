@@ -36,6 +36,7 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding, violation_details
 from stewart_kinematics.limits import CommandGate, TrajectoryCommand
+from stewart_kinematics.limits.base import Bound, LEG
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.frames import FrameTree
@@ -47,6 +48,7 @@ from stewart_kinematics.motion.pose_trajectory import (
     TimedTrajectory,
 )
 from stewart_kinematics.motion.retiming import retime, RetimingError
+from stewart_kinematics.motion.trajectory_forces import force_limits
 from stewart_kinematics.motion.trajectory_check import (
     check_trajectory,
     DEFAULT_VALIDATION_RATE,
@@ -97,11 +99,12 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
 
     Without ``retime_path`` the trajectory keeps its own timing, slowed by ``1 /
     speed_scale``, and is refused if any sample breaks a limit, leg velocity and acceleration
-    included. With it, the path through its waypoint poses is retimed (:func:`retime`: its own
+    included, and with masses its dynamic leg forces (see :func:`check_trajectory`). With it, the path through its waypoint poses is retimed (:func:`retime`: its own
     times, velocities and accelerations are dropped, repeated waypoints merged) and the result
     checked whole (:func:`retime` keeps every leg within its limits at the check's samples;
-    should a sample still exceed a leg limit, the timing is stretched uniformly by that excess
-    times :data:`STRETCH_MARGIN`, and checked again).
+    should a sample still exceed a leg limit or a dynamic force limit, the timing is stretched
+    uniformly by what brings it within (``check.stretch``) times :data:`STRETCH_MARGIN`, and
+    checked again).
 
     :param path: the trajectory; a path without timing comes from :meth:`PoseTrajectory.path`
         and must be retimed.
@@ -163,12 +166,19 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
 
 
 def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
-    """Return the command gate's verdict on the leg trajectory a timed trajectory is sent as."""
+    """
+    Return the command gate's verdict on the leg trajectory a timed trajectory is sent as.
+
+    With masses, the efforts the points carry (their dynamic leg forces) are checked too: not
+    finite (a singular pose), or beyond ``leg_force_min`` / ``leg_force_max``, refuses it.
+    """
     rate, actuators = output
     points, poses = sampled_leg_trajectory(trajectory, geometry, actuators, rate)
     gate = CommandGate(geometry, ActuatorLimits(actuator_limits.velocity_max,
                                                 actuator_limits.acceleration_max))
     command = gate.trajectory(points, poses.positions, poses.rotations)
+    if command.accepted:
+        command = _effort_verdict(command, geometry)
     if command.accepted:
         return command
     # Every sample of the check kept the limits: the point sent lies between two of them.
@@ -176,6 +186,35 @@ def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
     return dataclasses.replace(command, refusal=dataclasses.replace(
         refusal, message=refusal.message + ' (between the samples of the check: raise '
         'validation_rate, or publish more points)'))
+
+
+def _effort_verdict(command: TrajectoryCommand, geometry) -> TrajectoryCommand:
+    """Refuse a gated leg trajectory whose efforts are not finite or break a force limit."""
+    points = command.trajectory
+    if points.efforts is None:
+        return command
+    efforts = points.efforts
+    limits = force_limits(geometry)
+    low, high = limits if limits is not None else (-math.inf, math.inf)
+    bounds = (Bound('leg_force_max', high, True, LEG, 'N'),
+              Bound('leg_force_min', low, False, LEG, 'N'))
+    bad = ~np.all(np.isfinite(efforts), axis=-1)
+    for bound in bounds:
+        if math.isfinite(bound.allowed):
+            bad |= np.any(bound.broken(efforts), axis=-1)
+    if not bad.any():
+        return command
+    first = int(np.argmax(bad))
+    violations = tuple(bound.violation(int(leg), float(efforts[first, leg]))
+                       for bound in bounds if math.isfinite(bound.allowed)
+                       for leg in np.flatnonzero(bound.broken(efforts[first])))
+    reason = '; '.join(map(str, violations)) or (
+        'no leg forces hold the platform there (a singular pose)')
+    return TrajectoryCommand(None, Finding(
+        findings.OUT_OF_LIMITS,
+        f'published point {first} (t = {points.times[first]:.4f} s) of leg_trajectory: '
+        f'effort {reason}', (('point', str(first)), ('time_s', f'{points.times[first]:.4f}'))
+        + violation_details(violations)), violations=violations, point=first)
 
 
 def _gate_stretch(violations) -> Optional[float]:
@@ -196,8 +235,9 @@ def _check_refusal(check: TrajectoryCheck) -> Optional[Finding]:
     Return the refusal of a failed check, or ``None``.
 
     :data:`TOO_FAST` when only leg velocity, acceleration or dynamic leg forces are broken (a
-    slower timing would keep them: ``check.stretch``), :data:`OUT_OF_LIMITS` otherwise, :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give
-    the time, the waypoints around it and every violated limit.
+    slower timing would keep them: ``check.stretch``), :data:`OUT_OF_LIMITS` otherwise,
+    :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give the time, the
+    waypoints around it and every violated limit.
     """
     if check.accepted:
         return None
