@@ -52,7 +52,7 @@ from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTraje
 from stewart_kinematics.motion.trajectory_forces import (
     force_coefficients,
     force_limits,
-    static_and_dynamic_forces,
+    sample_forces,
 )
 
 #: toppra's grid: this many gridpoints along a path whose legs do not curve ...
@@ -279,7 +279,8 @@ def _interval_excess(timed, geometry, limits, sample_rate, cancel, force_limits=
     a dynamic force ``f`` breaks a limit that its static force ``c`` keeps.
 
     :param trajectory: the trajectory retimed, to name where a static force breaks a limit.
-    :raises RetimingError: where a sample's static force breaks a force limit.
+    :raises RetimingError: where a sample whose dynamic forces break a force limit breaks it
+        with its static forces too (no stretch brings it within).
     """
     times = timed.sample_times(sample_rate)
     intervals = np.clip(np.searchsorted(timed.grid_times, times, side='right') - 1,
@@ -297,13 +298,25 @@ def _interval_excess(timed, geometry, limits, sample_rate, cancel, force_limits=
             ratio = np.maximum(ratio, np.sqrt(np.abs(legs.accelerations).max(axis=-1)
                                               / limits.acceleration_max))
         if force_limits is not None:
-            static, dynamic = static_and_dynamic_forces(geometry, samples)
-            taus = timed.path_times(times[chunk])[0]
-            _refuse_static_forces(trajectory, timed.path, taus, static, force_limits,
-                                  times[chunk])
-            ratio = np.maximum(ratio, _force_stretch(static, dynamic, force_limits))
+            dynamic = sample_forces(geometry, samples)
+            low, high = force_limits
+            # Only the samples beyond a limit need their static forces (what a stretch keeps).
+            beyond = np.flatnonzero(~np.all((dynamic >= low) & (dynamic <= high), axis=-1))
+            if beyond.size:
+                picked = times[chunk][beyond]
+                static = sample_forces(geometry, _at_rest(timed.sample(picked)))
+                _refuse_static_forces(trajectory, timed.path, timed.path_times(picked)[0],
+                                      static, force_limits, picked)
+                ratio[beyond] = np.maximum(ratio[beyond], _force_stretch(
+                    static, dynamic[beyond], force_limits))
         np.maximum.at(excess, intervals[chunk], ratio)
     return excess
+
+
+def _at_rest(samples):
+    """Return the poses of samples with every velocity and acceleration 0."""
+    zeros = np.zeros_like(samples.velocities)
+    return type(samples)(samples.positions, samples.rotations, zeros, zeros, zeros, zeros)
 
 
 def _force_stretch(static, dynamic, force_limits) -> np.ndarray:

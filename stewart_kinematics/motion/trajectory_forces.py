@@ -83,24 +83,6 @@ def sample_forces(geometry, samples: PoseSamples) -> np.ndarray:
     return _forces(geometry, sample_poses(samples), twists, accelerations)
 
 
-def static_and_dynamic_forces(geometry, samples: PoseSamples):
-    """
-    Return the static and the dynamic leg forces of trajectory samples, each (M, 6), newtons.
-
-    One batch call: each pose at rest, then with its twist and acceleration (see
-    :func:`sample_forces`).
-    """
-    poses = sample_poses(samples)
-    twists = np.concatenate([samples.velocities, samples.angular_velocities], axis=-1)
-    accelerations = np.concatenate([samples.accelerations, samples.angular_accelerations],
-                                   axis=-1)
-    zeros = np.zeros_like(twists)
-    forces = _forces(geometry, np.concatenate([poses, poses]), np.concatenate([zeros, twists]),
-                     np.concatenate([zeros, accelerations]))
-    count = poses.shape[0]
-    return forces[:count], forces[count:]
-
-
 def force_coefficients(geometry, path, parameters, scale: float = 1.0):
     """
     Return ``(a, b, c)`` of ``f = a sdd + b sd^2 + c`` at positions along a path, each (G, 6).
