@@ -48,13 +48,13 @@ from stewart_kinematics.motion.pose_trajectory import (
     TimedTrajectory,
 )
 from stewart_kinematics.motion.retiming import retime, RetimingError
-from stewart_kinematics.motion.trajectory_forces import force_limits
 from stewart_kinematics.motion.trajectory_check import (
     check_trajectory,
     DEFAULT_VALIDATION_RATE,
     SPEED_LIMITS,
     TrajectoryCheck,
 )
+from stewart_kinematics.motion.trajectory_forces import force_limits
 
 #: A retimed trajectory that exceeds a leg limit between toppra's gridpoints is stretched by
 #: its excess times this (the samples then fall elsewhere: up to MAX_STRETCHES times).
@@ -99,8 +99,9 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
 
     Without ``retime_path`` the trajectory keeps its own timing, slowed by ``1 /
     speed_scale``, and is refused if any sample breaks a limit, leg velocity and acceleration
-    included, and with masses its dynamic leg forces (see :func:`check_trajectory`). With it, the path through its waypoint poses is retimed (:func:`retime`: its own
-    times, velocities and accelerations are dropped, repeated waypoints merged) and the result
+    included, and with masses its dynamic leg forces (see :func:`check_trajectory`). With it,
+    the path through its waypoint poses is retimed (:func:`retime`: its own times, velocities
+    and accelerations are dropped, repeated waypoints merged) and the result
     checked whole (:func:`retime` keeps every leg within its limits at the check's samples;
     should a sample still exceed a leg limit or a dynamic force limit, the timing is stretched
     uniformly by what brings it within (``check.stretch``) times :data:`STRETCH_MARGIN`, and

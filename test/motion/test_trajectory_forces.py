@@ -42,13 +42,13 @@ from stewart_kinematics import (
     plan_motion,
     PoseTrajectory,
 )
+from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
 from stewart_kinematics.motion import trajectory_check, trajectory_forces
 from stewart_kinematics.motion.leg_trajectory import sampled_leg_trajectory
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
 from stewart_kinematics.motion.retiming import retime, RetimingError
 from stewart_kinematics.motion.trajectory_forces import force_coefficients
-from stewart_kinematics.model.actuators import ActuatorInterface
 
 pytestmark = pytest.mark.core
 
@@ -65,7 +65,7 @@ DENSE_RATE = 5000.0
 
 
 def wave(duration=10.0, count=100):
-    """The motion benchmark's 10 s trajectory: 100 waypoints of slow waves around home."""
+    """Build the motion benchmark's 10 s trajectory: 100 waypoints of slow waves around home."""
     times = np.linspace(0.0, duration, count)
     amplitudes = np.array([0.015, 0.015, 0.01, math.radians(4.0), math.radians(4.0),
                            math.radians(7.0)])
@@ -83,7 +83,7 @@ def direct_forces(geometry, samples):
 
 
 def dense(trajectory, rate=DENSE_RATE):
-    """Samples of a timed trajectory every 1 / rate seconds, ends included."""
+    """Sample a timed trajectory every 1 / rate seconds, ends included."""
     return trajectory.sample(np.linspace(0.0, trajectory.duration,
                                          int(trajectory.duration * rate) + 1))
 

@@ -34,11 +34,10 @@ from nav_msgs.msg import Path
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-from trajectory_msgs.msg import JointTrajectory
-
 from stewart_kinematics import forward_kinematics, leg_forces, load_geometry
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.model.velocities import leg_states, platform_twist, PoseSamples
+from trajectory_msgs.msg import JointTrajectory
 
 pytestmark = pytest.mark.process
 
@@ -48,7 +47,7 @@ VELOCITY_MAX, ACCELERATION_MAX = 0.05, 0.25
 
 
 def wave_poses(home, count=100):
-    """The motion benchmark's wave: ``count`` poses around home, at rest at both ends."""
+    """Return the motion benchmark's wave: ``count`` poses around home, at rest at both ends."""
     u = np.linspace(0.0, 1.0, count)
     amplitudes = np.array([0.015, 0.015, 0.01, math.radians(4.0), math.radians(4.0),
                            math.radians(7.0)])
