@@ -83,6 +83,9 @@ REFINEMENT_MARGIN = 1.002
 #: the motion between the samples (1e-4 of each limit, a hundred times what it exceeds them
 #: by there on the shipped examples).
 FINAL_STRETCH_MARGIN = 1.0001
+#: Largest stretch the refinement asks for a force beyond its limit (where the static force
+#: is at the limit, no stretch is enough).
+MAX_FORCE_STRETCH = 1e3
 #: Samples of a refinement taken at once (between two looks at the cancel flag).
 REFINEMENT_CHUNK = 2500
 
@@ -334,7 +337,9 @@ def _force_stretch(static, dynamic, force_limits) -> np.ndarray:
             if math.isfinite(limit) and beyond.any():
                 needed = (dynamic - static) / (limit - static)
                 ratio = np.where(beyond, np.maximum(ratio, needed), ratio)
-    return np.sqrt(np.max(ratio, axis=-1))
+    # A static force exactly at the limit leaves no room (an infinite stretch): capped, so
+    # that the refinement stays finite; the check of the result refuses what is left.
+    return np.sqrt(np.minimum(np.max(ratio, axis=-1), MAX_FORCE_STRETCH ** 2))
 
 
 def gridpoints(path: PoseTrajectory, leg_path, speed) -> np.ndarray:
@@ -525,11 +530,14 @@ def _refuse_static_forces(trajectory, path, taus, static, force_limits, times=No
         time = float(given[0] + fraction * (given[1] - given[0]))
         where += f', about t = {time:.4f} s as given'
         details.append(('time_s', f'{time:.4f}'))
-    forces = ', '.join(f'{value:.6g}' for value in static[index, np.array(legs) - 1])
+    values = static[index, np.array(legs) - 1]
+    forces = (f'static forces are {", ".join(f"{value:.6g}" for value in values)} N'
+              if np.all(np.isfinite(values)) else
+              'no leg forces hold the platform there (a singular pose)')
     raise RetimingError(
-        f'leg_force: {name} {allowed:g} N is broken at rest by leg(s) {legs} {where}): their '
-        f'static forces are {forces} N, so the path cannot be followed at any speed (the '
-        'platform could not be held there)', 'leg_force', details)
+        f'leg_force: {name} {allowed:g} N is broken at rest by leg(s) {legs} {where}): '
+        f'{forces}, so the path cannot be followed at any speed (the platform could not be '
+        'held there)', 'leg_force', details)
 
 
 def _leg_path(path, geometry, speed, base):

@@ -44,7 +44,7 @@ from stewart_kinematics import (
 )
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.rotations import matrix_to_euler_zyx
-from stewart_kinematics.motion import trajectory_check, trajectory_forces
+from stewart_kinematics.motion import retiming, trajectory_check, trajectory_forces
 from stewart_kinematics.motion.leg_trajectory import sampled_leg_trajectory
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
 from stewart_kinematics.motion.retiming import retime, RetimingError
@@ -281,3 +281,24 @@ def test_a_singular_sample_breaks_the_force_limit():
     with nan_forces:
         check = check_trajectory(timed, geometry, LIMITS)
     assert not check.accepted and check.time == 0.0 and check.stretch is None
+
+
+def test_a_place_without_static_forces_is_refused_as_singular():
+    """NaN static forces (a singular pose) refuse the path, naming every leg, not 'nan N'."""
+    path = wave().as_path(MASSIVE)
+    taus = path.times[[3, 4]]
+    static = np.full((2, 6), 10.0)
+    static[1] = np.nan
+    with pytest.raises(RetimingError) as raised:
+        retiming._refuse_static_forces(path, path, taus, static, (-math.inf, 100.0))
+    message = str(raised.value)
+    assert 'leg(s) [1, 2, 3, 4, 5, 6]' in message and 'a singular pose' in message
+    assert 'nan' not in message.lower()
+
+
+def test_the_refinement_stretch_stays_finite_at_a_static_force_on_the_limit():
+    """A static force exactly at the limit asks for the capped stretch, not infinity."""
+    static = np.array([[100.0, 0.0, 0.0, 0.0, 0.0, 0.0], [50.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    dynamic = np.array([[101.0, 0.0, 0.0, 0.0, 0.0, 0.0], [150.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    stretch = retiming._force_stretch(static, dynamic, (-math.inf, 100.0))
+    assert_allclose(stretch, [retiming.MAX_FORCE_STRETCH, math.sqrt(2.0)], rtol=1e-15)
