@@ -284,7 +284,7 @@ def test_a_singular_sample_breaks_the_force_limit():
 
 
 def test_a_place_without_static_forces_is_refused_as_singular():
-    """NaN static forces (a singular pose) refuse the path, naming every leg, not 'nan N'."""
+    """Refuse a path with NaN static forces (a singular pose), naming every leg, not "nan N"."""
     path = wave().as_path(MASSIVE)
     taus = path.times[[3, 4]]
     static = np.full((2, 6), 10.0)
