@@ -41,6 +41,9 @@ The cases:
   (target of issue 20: < 100 ms); and the time from SIGINT to the process's exit while it
   checks, against an idle node's (target: < 1 s).
 - the streaming filter per command, against one single-pose inverse kinematics.
+- retiming under a force limit (issue 29): the 10 s trajectory with config/example_masses.yaml
+  and ``leg_force_max`` 125 N (the forces of its timing without that limit reach 144 N),
+  against the same retiming without masses, in the same rounds: target at most 2x.
 """
 
 import argparse
@@ -78,6 +81,11 @@ CHECK_TARGET = 0.100       # seconds: check and retime of the 10 s trajectory
 RESPONSE_TARGET = 0.100    # seconds: a parameter request while a trajectory is checked
 STOP_TARGET = 1.0          # seconds: SIGINT to exit while a trajectory is checked
 FILTER_TARGET = 50e-6      # seconds per command
+#: Issue 29: retiming under a force limit at most this many times the time without.
+FORCE_RATIO_TARGET = 2.0
+#: The push limit of that case, newtons: it binds on the 10 s trajectory with the example
+#: masses (its timing without it needs 144 N; its static forces stay below 117.4 N).
+FORCE_MAX = 125.0
 COMMAND_PERIOD = 0.002
 #: Points per second of leg_trajectory in the gated case (the shipped publish_rate), hertz.
 PUBLISH_RATE = 50.0
@@ -154,6 +162,10 @@ def core_benchmark(rounds):
     ten = ten_second_trajectory(geometry)
     long = waves(geometry, 1e4, 1000)
     plan_motion(ten, geometry, actuator_limits, retime_path=True)   # import toppra first
+    massive = load_geometry(CONFIG + [ROOT / 'config' / 'example_masses.yaml']).with_limits(
+        leg_force_max=FORCE_MAX)
+    forced = plan_motion(ten, massive, actuator_limits, retime_path=True)
+    assert forced.accepted, forced.reason
     given = plan_motion(ten, geometry, actuator_limits)
     retimed = plan_motion(ten, geometry, actuator_limits, retime_path=True)
     long_given = plan_motion(long, geometry, actuator_limits)
@@ -168,6 +180,9 @@ def core_benchmark(rounds):
         # shipped publish_rate) checked as published by the command gate.
         'retime 10 s, points gated': lambda: plan_motion(
             ten, geometry, actuator_limits, retime_path=True, publish_rate=PUBLISH_RATE),
+        # Issue 29: the same under leg_force_max with the example masses.
+        'retime 10 s, force limit': lambda: plan_motion(
+            ten, massive, actuator_limits, retime_path=True),
     }
     cpu = {}
     times = interleaved(cases, rounds, cpu)
@@ -203,6 +218,14 @@ def core_benchmark(rounds):
           f'{shown(statistics.median(cpu["retime 10 s, points gated"]))} | '
           f'{statistics.median(gated) / statistics.median(times["retime 10 s"]):.2f}x the retime '
           'alone |')
+    forced_times = times['retime 10 s, force limit']
+    ratio = statistics.median(forced_times) / statistics.median(times['retime 10 s'])
+    print(f'| 10 s, 100 waypoints: retime under leg_force_max {FORCE_MAX:g} N with the example '
+          f'masses (to {forced.trajectory.duration:.2f} s, peak force '
+          f'{forced.check.peak_force_ratio * 100:.2f} % of the limit; target at most '
+          f'{FORCE_RATIO_TARGET:g}x the retime without) | {spread(forced_times)} | '
+          f'{shown(statistics.median(cpu["retime 10 s, force limit"]))} | {ratio:.2f}x the '
+          'retime without masses |')
     print(f'| 10 s, 100 waypoints: check + retime (target < {CHECK_TARGET * 1e3:.0f} ms) | '
           f'{spread(both)} | {shown(statistics.median(both_cpu))} | '
           f'{sum(value < CHECK_TARGET for value in both)} of {rounds} rounds under the target '
@@ -217,6 +240,8 @@ def core_benchmark(rounds):
              statistics.median(both_cpu) < CHECK_TARGET,
              f'{shown(statistics.median(both_cpu))} ({shown(min(both_cpu))} to '
              f'{shown(max(both_cpu))})')]
+    rows.append((f'retime under a force limit at most {FORCE_RATIO_TARGET:g}x the time without',
+                 ratio <= FORCE_RATIO_TARGET, f'{ratio:.2f}x'))
     rows.append(('check of the 10^4 s trajectory in seconds',
                  statistics.median(long_times['check 1e4 s as timed']) < 10.0,
                  spread(long_times['check 1e4 s as timed'])))

@@ -106,7 +106,8 @@ TOO_FAST = _register(
     '(trajectory_node)',
     'A twist whose leg velocities exceed `leg_velocity_max` (with `twist_over_limit: '
     "'refuse'`), or a timed trajectory, not retimed, that breaks a leg velocity or "
-    'acceleration limit, naming the time, the segment, the legs and the limits.')
+    'acceleration limit, or (with masses) a leg force limit with its dynamic forces while its '
+    'static ones keep it, naming the time, the segment, the legs and the limits.')
 TWIST_SCALED = _register(
     'twist_scaled', 'warning',
     '`CommandCheck.twist` (ik_node: `target_twist`, with `twist_over_limit: '
@@ -218,8 +219,9 @@ RETIMING_FAILED = _register(
     'retiming_failed', 'refusal',
     '`plan_motion`, `MotionPlanner` (trajectory_node)',
     'No timing of the path within the leg limits: the path crosses a singularity (the '
-    'platform moves while the legs do not), or toppra failed on its grid; the details give the '
-    'cause, the waypoints and the leg.')
+    'platform moves while the legs do not), a static leg force breaks `leg_force_min` or '
+    '`leg_force_max` somewhere (cause `leg_force`: no speed can follow it), or toppra failed on '
+    'its grid; the details give the cause, the waypoints and the leg.')
 INVALID_TRAJECTORY = _register(
     'invalid_trajectory', 'refusal',
     '`MotionPlanner` (trajectory_node: `pose_trajectory`, `pose_path`)',

@@ -16,19 +16,24 @@
 Leg trajectories: a timed platform trajectory sampled for the six actuators.
 
 A :class:`LegTrajectory` is what a trajectory_msgs/JointTrajectory carries to
-joint_trajectory_controller: actuator positions, velocities and accelerations at times.
+joint_trajectory_controller: actuator positions, velocities and accelerations at times, and,
+when the geometry carries masses, the efforts: each point's dynamic leg forces (its pose with
+its twist and acceleration, :func:`~stewart_kinematics.motion.trajectory_forces.
+sample_forces`), a feed-forward for ros2_control. With every mass 0 there are no efforts.
 
-Units: metres, seconds. Nothing here imports ROS.
+Units: metres, seconds, newtons. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
+from stewart_kinematics.dynamics.inverse_dynamics import masses_of
 from stewart_kinematics.model.actuators import ActuatorInterface
 from stewart_kinematics.model.velocities import leg_states
 from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+from stewart_kinematics.motion.trajectory_forces import sample_forces
 
 #: Most points of a leg trajectory (a JointTrajectory of 100,000 points is about 20 MB).
 MAX_POINTS = 100_000
@@ -46,6 +51,8 @@ class LegTrajectory:
     :param accelerations: m/s^2, shape (M, 6).
     :param offsets: each actuator's zero as a leg length, metres, shape (6,): the positions
         are the leg lengths minus these (:class:`~stewart_kinematics.ActuatorInterface`).
+    :param efforts: the dynamic leg forces at each point, newtons, shape (M, 6), positive
+        pushing; ``None`` when the geometry carries no mass (every mass 0).
     """
 
     joint_names: Tuple[str, ...]
@@ -54,6 +61,7 @@ class LegTrajectory:
     velocities: np.ndarray
     accelerations: np.ndarray
     offsets: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    efforts: Optional[np.ndarray] = None
 
     @property
     def lengths(self) -> np.ndarray:
@@ -71,7 +79,7 @@ def leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: ActuatorInt
     :data:`~stewart_kinematics.motion.pose_trajectory.MAX_PIECE_SAMPLES` intervals; a long
     trajectory that would need more than ``max_points`` gets proportionally fewer points
     between two (the controller interpolates between them with their velocities and
-    accelerations).
+    accelerations). With masses, each point carries its dynamic leg forces (``efforts``).
 
     :param rate: points per second, hertz.
     """
@@ -91,5 +99,7 @@ def sampled_leg_trajectory(trajectory: TimedTrajectory, geometry, actuators: Act
     times = trajectory.sample_times(rate, max_samples=max_points)
     poses = trajectory.sample(times)
     legs = leg_states(geometry, poses)
+    efforts = None if masses_of(geometry).massless else sample_forces(geometry, poses)
     return LegTrajectory(actuators.joint_names, times, actuators.positions(legs.lengths),
-                         legs.velocities, legs.accelerations, actuators.offsets), poses
+                         legs.velocities, legs.accelerations, actuators.offsets,
+                         efforts), poses

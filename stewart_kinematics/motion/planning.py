@@ -36,6 +36,7 @@ import numpy as np
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Decision, Finding, violation_details
 from stewart_kinematics.limits import CommandGate, TrajectoryCommand
+from stewart_kinematics.limits.base import Bound, LEG
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.frames import FrameTree
@@ -53,6 +54,7 @@ from stewart_kinematics.motion.trajectory_check import (
     SPEED_LIMITS,
     TrajectoryCheck,
 )
+from stewart_kinematics.motion.trajectory_forces import force_limits
 
 #: A retimed trajectory that exceeds a leg limit between toppra's gridpoints is stretched by
 #: its excess times this (the samples then fall elsewhere: up to MAX_STRETCHES times).
@@ -97,11 +99,13 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
 
     Without ``retime_path`` the trajectory keeps its own timing, slowed by ``1 /
     speed_scale``, and is refused if any sample breaks a limit, leg velocity and acceleration
-    included. With it, the path through its waypoint poses is retimed (:func:`retime`: its own
-    times, velocities and accelerations are dropped, repeated waypoints merged) and the result
+    included, and with masses its dynamic leg forces (see :func:`check_trajectory`). With it,
+    the path through its waypoint poses is retimed (:func:`retime`: its own times, velocities
+    and accelerations are dropped, repeated waypoints merged) and the result
     checked whole (:func:`retime` keeps every leg within its limits at the check's samples;
-    should a sample still exceed a leg limit, the timing is stretched uniformly by that excess
-    times :data:`STRETCH_MARGIN`, and checked again).
+    should a sample still exceed a leg limit or a dynamic force limit, the timing is stretched
+    uniformly by what brings it within (``check.stretch``) times :data:`STRETCH_MARGIN`, and
+    checked again).
 
     :param path: the trajectory; a path without timing comes from :meth:`PoseTrajectory.path`
         and must be retimed.
@@ -149,28 +153,33 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
     for _ in range(MAX_STRETCHES):
         check = check_trajectory(trajectory, geometry, scaled, validation_rate=validation_rate,
                                  cancel=cancel)
-        refusal, violations, command = _check_refusal(check), check.violations, None
+        refusal, stretch, command = _check_refusal(check), check.stretch, None
         if refusal is None and output is not None:
             command = _gate(trajectory, geometry, scaled, output)
-            refusal, violations = command.refusal, command.violations
-        if refusal is None or not violations or not all(
-                violation.limit in SPEED_LIMITS for violation in violations):
+            refusal, stretch = command.refusal, _gate_stretch(command.violations)
+        if refusal is None or stretch is None:
             break
-        # toppra's timing exceeds a leg limit between the samples of the check, or at a point
-        # sent: stretch on.
-        trajectory = trajectory.stretched(max(_speed_excess(violation)
-                                              for violation in violations) * STRETCH_MARGIN)
+        # toppra's timing exceeds a leg limit (speed, or dynamic force) between the samples of
+        # the check, or at a point sent: stretch on.
+        trajectory = trajectory.stretched(stretch * STRETCH_MARGIN)
     return MotionPlan(refusal, trajectory if refusal is None else None, check, True,
                       command=command)
 
 
 def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
-    """Return the command gate's verdict on the leg trajectory a timed trajectory is sent as."""
+    """
+    Return the command gate's verdict on the leg trajectory a timed trajectory is sent as.
+
+    With masses, the efforts the points carry (their dynamic leg forces) are checked too: not
+    finite (a singular pose), or beyond ``leg_force_min`` / ``leg_force_max``, refuses it.
+    """
     rate, actuators = output
     points, poses = sampled_leg_trajectory(trajectory, geometry, actuators, rate)
     gate = CommandGate(geometry, ActuatorLimits(actuator_limits.velocity_max,
                                                 actuator_limits.acceleration_max))
     command = gate.trajectory(points, poses.positions, poses.rotations)
+    if command.accepted:
+        command = _effort_verdict(command, geometry)
     if command.accepted:
         return command
     # Every sample of the check kept the limits: the point sent lies between two of them.
@@ -178,6 +187,42 @@ def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
     return dataclasses.replace(command, refusal=dataclasses.replace(
         refusal, message=refusal.message + ' (between the samples of the check: raise '
         'validation_rate, or publish more points)'))
+
+
+def _effort_verdict(command: TrajectoryCommand, geometry) -> TrajectoryCommand:
+    """Refuse a gated leg trajectory whose efforts are not finite or break a force limit."""
+    points = command.trajectory
+    if points.efforts is None:
+        return command
+    efforts = points.efforts
+    limits = force_limits(geometry)
+    low, high = limits if limits is not None else (-math.inf, math.inf)
+    bounds = (Bound('leg_force_max', high, True, LEG, 'N'),
+              Bound('leg_force_min', low, False, LEG, 'N'))
+    bad = ~np.all(np.isfinite(efforts), axis=-1)
+    for bound in bounds:
+        if math.isfinite(bound.allowed):
+            bad |= np.any(bound.broken(efforts), axis=-1)
+    if not bad.any():
+        return command
+    first = int(np.argmax(bad))
+    violations = tuple(bound.violation(int(leg), float(efforts[first, leg]))
+                       for bound in bounds if math.isfinite(bound.allowed)
+                       for leg in np.flatnonzero(bound.broken(efforts[first])))
+    reason = '; '.join(map(str, violations)) or (
+        'no leg forces hold the platform there (a singular pose)')
+    return TrajectoryCommand(None, Finding(
+        findings.OUT_OF_LIMITS,
+        f'published point {first} (t = {points.times[first]:.4f} s) of leg_trajectory: '
+        f'effort {reason}', (('point', str(first)), ('time_s', f'{points.times[first]:.4f}'))
+        + violation_details(violations)), violations=violations, point=first)
+
+
+def _gate_stretch(violations) -> Optional[float]:
+    """Return the stretch that brings leg speed violations within, ``None`` for others."""
+    if not violations or not all(violation.limit in SPEED_LIMITS for violation in violations):
+        return None
+    return max(_speed_excess(violation) for violation in violations)
 
 
 def _speed_excess(violation) -> float:
@@ -190,17 +235,16 @@ def _check_refusal(check: TrajectoryCheck) -> Optional[Finding]:
     """
     Return the refusal of a failed check, or ``None``.
 
-    :data:`TOO_FAST` when only leg velocity or acceleration is broken, :data:`OUT_OF_LIMITS`
-    otherwise, :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give
-    the time, the waypoints around it and every violated limit.
+    :data:`TOO_FAST` when only leg velocity, acceleration or dynamic leg forces are broken (a
+    slower timing would keep them: ``check.stretch``), :data:`OUT_OF_LIMITS` otherwise,
+    :data:`TRAJECTORY_TOO_LONG` when the check was not made; the details give the time, the
+    waypoints around it and every violated limit.
     """
     if check.accepted:
         return None
     if not check.complete:
         return Finding(findings.TRAJECTORY_TOO_LONG, check.reason)
-    code = findings.TOO_FAST if all(violation.limit in SPEED_LIMITS
-                                    for violation in check.violations) else (
-        findings.OUT_OF_LIMITS)
+    code = findings.TOO_FAST if check.stretch is not None else findings.OUT_OF_LIMITS
     return Finding(code, check.reason, (
         ('time_s', f'{check.time:.4f}'),
         ('segment', f'points {check.segment[0]} and {check.segment[1]}'),

@@ -29,7 +29,17 @@ gridpoints are spread along the leg travel, closer where the legs' path curves
 there are few of them. So the same path given with any timing, at any density, retimes to the
 same duration.
 
-Units: metres, radians, seconds. Nothing here imports ROS.
+Leg forces: when the geometry carries masses and sets ``leg_force_min`` or ``leg_force_max``
+(:func:`~stewart_kinematics.motion.trajectory_forces.force_limits`), each leg's force along the
+path is ``a(s) sdd + b(s) sd^2 + c(s)`` (linear in the path acceleration, quadratic in the
+path speed: :func:`~stewart_kinematics.motion.trajectory_forces.force_coefficients`), which
+is TOPP-RA's second-order constraint: toppra keeps it at every gridpoint, and the refinement
+between them, as it does the velocity and acceleration limits. A path whose static force
+``c(s)`` breaks a limit somewhere cannot be followed at any speed (the platform could not be
+held there were it stopped): it is refused with a :class:`RetimingError` naming
+``leg_force``, the bound, the legs and where. With every mass 0 no force is computed.
+
+Units: metres, radians, seconds, newtons. Nothing here imports ROS.
 """
 
 import math
@@ -39,6 +49,11 @@ import numpy as np
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.velocities import leg_states
 from stewart_kinematics.motion.pose_trajectory import PoseTrajectory, TimedTrajectory
+from stewart_kinematics.motion.trajectory_forces import (
+    force_coefficients,
+    force_limits,
+    sample_forces,
+)
 
 #: toppra's grid: this many gridpoints along a path whose legs do not curve ...
 BASE_GRIDPOINTS = 300
@@ -68,6 +83,9 @@ REFINEMENT_MARGIN = 1.002
 #: the motion between the samples (1e-4 of each limit, a hundred times what it exceeds them
 #: by there on the shipped examples).
 FINAL_STRETCH_MARGIN = 1.0001
+#: Largest stretch the refinement asks for a force beyond its limit (where the static force
+#: is at the limit, no stretch is enough).
+MAX_FORCE_STRETCH = 1e3
 #: Samples of a refinement taken at once (between two looks at the cancel flag).
 REFINEMENT_CHUNK = 2500
 
@@ -78,7 +96,9 @@ class RetimingError(ValueError):
 
     :param message: what failed, where (between which waypoints), and on which leg.
     :param cause: ``'limits'`` (none set), ``'path'`` (the leg path is not smooth enough
-        there: its derivatives are not finite) or ``'grid'`` (toppra's grid failed there).
+        there: its derivatives are not finite), ``'grid'`` (toppra's grid failed there) or
+        ``'leg_force'`` (a static leg force beyond ``leg_force_min`` or ``leg_force_max``
+        there: the path cannot be followed at any speed).
     :param details: ``(key, value)`` pairs for a :class:`~stewart_kinematics.findings.Finding`.
     """
 
@@ -136,13 +156,17 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
     correction, which leaves the rest of the path at full speed. What is left (a tenth of a
     percent, typically) is removed by a uniform stretch, so that the result is within every
     leg limit at those samples; :func:`~stewart_kinematics.motion.planning.plan_motion` then
-    checks it whole.
+    checks it whole. With masses and a force limit (see the module's docstring), the dynamic
+    leg forces are kept within ``leg_force_min`` and ``leg_force_max`` likewise (the limits
+    themselves, not scaled by ``speed_scale``).
 
     :param trajectory: a path, or a timed trajectory whose timing is replaced.
     :param sample_rate: hertz, the rate at which the refinement samples the timing.
     :param cancel: ``None``, or an event: set, the work stops with :class:`Cancelled`.
     :raises RetimingError: if neither a velocity nor an acceleration limit is set (the fastest
-        timing would take no time), or toppra finds no timing (the reason says where).
+        timing would take no time), a static leg force breaks a force limit somewhere on the
+        path (cause ``'leg_force'``: the bound, the legs and where), or toppra finds no timing
+        (the reason says where).
     :raises ValueError: if the waypoints do not make a path (see :meth:`PoseTrajectory.path`).
     """
     import toppra  # toppra pulls scipy: imported only by the motion that needs it.
@@ -170,11 +194,19 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
     if bad.any():
         raise _failure(path, grid, int(np.argmax(bad)), curvatures, 'path',
                        "the legs' path has no finite derivatives there")
+    limits = force_limits(geometry)
+    forces = None
+    if limits is not None:
+        coefficients = force_coefficients(geometry, path, grid, speed)
+        _refuse_static_forces(trajectory, path, grid, coefficients[2], limits)
+        forces = coefficients, limits
+        raise_if_cancelled(cancel)
     factors = np.ones(grid.shape)
     for refinement in range(REFINEMENTS + 1):
-        timed = _solve(path, grid, leg_path, curvatures, speed, scaled, factors)
+        timed = _solve(path, grid, leg_path, curvatures, speed, scaled, factors, forces)
         raise_if_cancelled(cancel)
-        excess = _interval_excess(timed, geometry, scaled, sample_rate, cancel)
+        excess = _interval_excess(timed, geometry, scaled, sample_rate, cancel, limits,
+                                  trajectory)
         if refinement == REFINEMENTS or not excess.max() > 1.0 + REFINEMENT_TOLERANCE:
             break
         over = np.flatnonzero(excess > 1.0)
@@ -187,9 +219,14 @@ def retime(trajectory: PoseTrajectory, geometry, actuator_limits: ActuatorLimits
     return timed.stretched(max(float(excess.max()), 1.0) * FINAL_STRETCH_MARGIN)
 
 
-def _solve(path, grid, leg_path, curvatures, speed, limits, factors) -> TimedTrajectory:
+def _solve(path, grid, leg_path, curvatures, speed, limits, factors,
+           forces=None) -> TimedTrajectory:
     """
     Solve the time-optimal problem on the grid, the limits at gridpoint j times ``factors[j]``.
+
+    :param forces: ``None``, or ``((a, b, c), (low, high))``: the force coefficients at the
+        gridpoints (in toppra's parameter) and the force limits, newtons; the dynamic part
+        ``a u + b x`` is allowed ``factors[j]^2`` of its room there.
 
     :raises RetimingError: where toppra finds no timing.
     """
@@ -204,6 +241,10 @@ def _solve(path, grid, leg_path, curvatures, speed, limits, factors) -> TimedTra
         constraints.append(_acceleration_constraint(
             toppra.constraint.JointAccelerationConstraint, limits.acceleration_max,
             factors, STOPPED_LEG_SLOPE * speed,
+            toppra.constraint.DiscretizationType.Interpolation))
+    if forces is not None:
+        constraints.append(_force_constraint(
+            toppra.constraint.LinearConstraint, *forces, factors,
             toppra.constraint.DiscretizationType.Interpolation))
     algorithm = toppra.algorithm.TOPPRA(constraints, leg_path, gridpoints=grid / speed,
                                         solver_wrapper='seidel')
@@ -230,12 +271,19 @@ def _solve(path, grid, leg_path, curvatures, speed, limits, factors) -> TimedTra
     return TimedTrajectory(path, np.concatenate([[0.0], np.cumsum(durations)]), grid, rates)
 
 
-def _interval_excess(timed, geometry, limits, sample_rate, cancel) -> np.ndarray:
+def _interval_excess(timed, geometry, limits, sample_rate, cancel, force_limits=None,
+                     trajectory=None) -> np.ndarray:
     """
     Return the largest excess over a leg limit in each grid interval, shape (G - 1,).
 
     ``max(|velocity| / velocity_max, sqrt(|acceleration| / acceleration_max))`` over the
-    samples of the interval (the stretch that would bring them within), sampled in chunks.
+    samples of the interval (the stretch that would bring them within), sampled in chunks;
+    with ``force_limits`` ``(low, high)``, newtons, also ``sqrt((f - c) / (limit - c))`` where
+    a dynamic force ``f`` breaks a limit that its static force ``c`` keeps.
+
+    :param trajectory: the trajectory retimed, to name where a static force breaks a limit.
+    :raises RetimingError: where a sample whose dynamic forces break a force limit breaks it
+        with its static forces too (no stretch brings it within).
     """
     times = timed.sample_times(sample_rate)
     intervals = np.clip(np.searchsorted(timed.grid_times, times, side='right') - 1,
@@ -244,15 +292,54 @@ def _interval_excess(timed, geometry, limits, sample_rate, cancel) -> np.ndarray
     for start in range(0, times.shape[0], REFINEMENT_CHUNK):
         raise_if_cancelled(cancel)
         chunk = slice(start, start + REFINEMENT_CHUNK)
-        legs = leg_states(geometry, timed.sample(times[chunk]))
+        samples = timed.sample(times[chunk])
+        legs = leg_states(geometry, samples)
         ratio = np.zeros(legs.velocities.shape[0])
         if math.isfinite(limits.velocity_max):
             ratio = np.abs(legs.velocities).max(axis=-1) / limits.velocity_max
         if math.isfinite(limits.acceleration_max):
             ratio = np.maximum(ratio, np.sqrt(np.abs(legs.accelerations).max(axis=-1)
                                               / limits.acceleration_max))
+        if force_limits is not None:
+            dynamic = sample_forces(geometry, samples)
+            low, high = force_limits
+            # Only the samples beyond a limit need their static forces (what a stretch keeps).
+            beyond = np.flatnonzero(~np.all((dynamic >= low) & (dynamic <= high), axis=-1))
+            if beyond.size:
+                picked = times[chunk][beyond]
+                static = sample_forces(geometry, _at_rest(timed.sample(picked)))
+                _refuse_static_forces(trajectory, timed.path, timed.path_times(picked)[0],
+                                      static, force_limits, picked)
+                ratio[beyond] = np.maximum(ratio[beyond], _force_stretch(
+                    static, dynamic[beyond], force_limits))
         np.maximum.at(excess, intervals[chunk], ratio)
     return excess
+
+
+def _at_rest(samples):
+    """Return the poses of samples with every velocity and acceleration 0."""
+    zeros = np.zeros_like(samples.velocities)
+    return type(samples)(samples.positions, samples.rotations, zeros, zeros, zeros, zeros)
+
+
+def _force_stretch(static, dynamic, force_limits) -> np.ndarray:
+    """
+    Return the stretch that brings each sample's dynamic forces within the limits, shape (M,).
+
+    ``sqrt((f - c) / (limit - c))`` for each force ``f`` beyond a limit that its static force
+    ``c`` keeps (a uniform stretch k divides the dynamic part ``f - c`` by ``k^2``); 0 where
+    every force is within.
+    """
+    ratio = np.zeros(static.shape)
+    with np.errstate(divide='ignore', invalid='ignore'):
+        for limit, beyond in ((force_limits[1], dynamic > force_limits[1]),
+                              (force_limits[0], dynamic < force_limits[0])):
+            if math.isfinite(limit) and beyond.any():
+                needed = (dynamic - static) / (limit - static)
+                ratio = np.where(beyond, np.maximum(ratio, needed), ratio)
+    # A static force exactly at the limit leaves no room (an infinite stretch): capped, so
+    # that the refinement stays finite; the check of the result refuses what is left.
+    return np.sqrt(np.minimum(np.max(ratio, axis=-1), MAX_FORCE_STRETCH ** 2))
 
 
 def gridpoints(path: PoseTrajectory, leg_path, speed) -> np.ndarray:
@@ -362,6 +449,95 @@ def _acceleration_constraint(base, acceleration_max, factors, smallest_slope, di
 
     return LegAccelerationConstraint(np.full(6, acceleration_max),
                                      discretization_scheme=discretization)
+
+
+def _force_constraint(base, coefficients, force_limits, factors, discretization):
+    """
+    Build the legs' force limits as a toppra canonical linear constraint.
+
+    ``low <= a u + b x + c <= high`` per leg (``u`` the path acceleration, ``x`` the squared
+    path speed, in toppra's parameter), with ``a`` and ``b`` divided by ``factors[j]^2`` at
+    gridpoint j (which lowers the dynamic part's room there), all in units of the largest
+    limit (toppra's tolerances are absolute).
+
+    :param coefficients: ``(a, b, c)``, newtons, each (G, 6); ``force_limits``: ``(low,
+        high)``, newtons, at least one finite.
+    """
+    from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
+
+    low, high = force_limits
+    unit = max(abs(limit) for limit in force_limits if math.isfinite(limit) and limit != 0.0)
+    rows, bounds = [], []
+    if math.isfinite(high):
+        rows.append(np.eye(6))
+        bounds.append(np.full(6, high / unit))
+    if math.isfinite(low):
+        rows.append(-np.eye(6))
+        bounds.append(np.full(6, -low / unit))
+    matrix, bound = np.concatenate(rows), np.concatenate(bounds)
+    first, second, static = (values / unit for values in coefficients)
+    scale = 1.0 / (factors * factors)[:, None]
+
+    class LegForceConstraint(base):
+        def __init__(self):
+            super().__init__()
+            self.dof = 6
+            self.identical = True
+            self.set_discretization_type(discretization)
+
+        def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
+            return canlinear_colloc_to_interpolate(
+                first * scale, second * scale, static, matrix, bound, None, None, gridpoints,
+                identical=True)
+
+    return LegForceConstraint()
+
+
+def _refuse_static_forces(trajectory, path, taus, static, force_limits, times=None):
+    """
+    Raise a :class:`RetimingError` where a static force breaks a force limit; else nothing.
+
+    :param trajectory: the trajectory given to :func:`retime` (its own times, if it has
+        any, say when it reached that place).
+    :param path: the path retimed; ``taus``: its parameters of the forces, shape (M,).
+    :param static: static leg forces there, newtons, (M, 6); NaN: none hold the platform.
+    :param times: the retimed clock times of ``taus``, seconds, or ``None`` (not yet timed).
+    """
+    low, high = force_limits
+    over = ~(static <= high)     # NaN (a singular pose) breaks both
+    under = ~(static >= low)
+    broken = over | under
+    if not broken.any():
+        return
+    index = int(np.flatnonzero(broken.any(axis=-1))[0])
+    name, allowed, legs = ('leg_force_max', high, over[index]) if over[index].any() else (
+        'leg_force_min', low, under[index])
+    legs = (np.flatnonzero(legs) + 1).tolist()
+    tau = float(taus[index])
+    segment = int(path.segments(np.array([tau]))[0])
+    first, second = path.points(segment)
+    fraction = (tau - path.times[segment]) / (path.times[segment + 1] - path.times[segment])
+    where = (f'between points {first} and {second} ({fraction:.0%} of the way, leg travel '
+             f'{tau - path.times[0]:.4g} m of {path.times[-1] - path.times[0]:.4g} m')
+    details = [('limit', name), ('legs', str(legs)),
+               ('segment', f'points {first} and {second}'),
+               ('fraction_of_segment', f'{fraction:.3f}')]
+    if times is not None:
+        where += f', t = {float(times[index]):.4f} s of the timing'
+        details.append(('time_s', f'{float(times[index]):.4f}'))
+    elif not trajectory.is_path:
+        given = trajectory.times[[first, second]]
+        time = float(given[0] + fraction * (given[1] - given[0]))
+        where += f', about t = {time:.4f} s as given'
+        details.append(('time_s', f'{time:.4f}'))
+    values = static[index, np.array(legs) - 1]
+    forces = (f'static forces are {", ".join(f"{value:.6g}" for value in values)} N'
+              if np.all(np.isfinite(values)) else
+              'no leg forces hold the platform there (a singular pose)')
+    raise RetimingError(
+        f'leg_force: {name} {allowed:g} N is broken at rest by leg(s) {legs} {where}): '
+        f'{forces}, so the path cannot be followed at any speed (the platform could not be '
+        'held there)', 'leg_force', details)
 
 
 def _leg_path(path, geometry, speed, base):

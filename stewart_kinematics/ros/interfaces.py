@@ -311,8 +311,10 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
              'An accepted trajectory for the actuators: `joint_names`, and per point (every '
              '`1 / publish_rate` s or closer, at most 256 between two waypoints, and at every '
              'waypoint) the actuator positions (leg length '
-             'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2) and '
-             '`time_from_start`, as joint_trajectory_controller takes it.', commands=True),
+             'minus `actuator_offsets`, m), velocities (m/s), accelerations (m/s^2), `effort` '
+             '(the dynamic leg forces, N, positive pushing, when masses are set; empty with '
+             'every mass 0) and `time_from_start`, as joint_trajectory_controller takes it.',
+             commands=True),
     Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
              DIAGNOSTICS_TOPIC.meaning + ', with the time, segment and violated limits of a '
              'refused trajectory.'),

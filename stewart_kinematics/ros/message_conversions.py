@@ -290,17 +290,20 @@ def joint_trajectory_message(header, trajectory: LegTrajectory) -> JointTrajecto
     """
     trajectory_msgs/msg/JointTrajectory of a leg trajectory, for joint_trajectory_controller.
 
-    Joint names, and per point the actuator positions, velocities, accelerations and
+    Joint names, and per point the actuator positions, velocities, accelerations, efforts
+    (the leg forces, newtons, when the trajectory has them; empty otherwise) and
     time_from_start, as the controller takes them on its ``joint_trajectory`` topic.
     """
     message = JointTrajectory(header=header, joint_names=list(trajectory.joint_names))
+    efforts = ([[]] * len(trajectory.times) if trajectory.efforts is None
+               else trajectory.efforts.tolist())
     message.points = [
         JointTrajectoryPoint(positions=positions, velocities=velocities,
-                             accelerations=accelerations,
+                             accelerations=accelerations, effort=effort,
                              time_from_start=duration_message(time))
-        for time, positions, velocities, accelerations in zip(
+        for time, positions, velocities, accelerations, effort in zip(
             trajectory.times.tolist(), trajectory.positions.tolist(),
-            trajectory.velocities.tolist(), trajectory.accelerations.tolist())]
+            trajectory.velocities.tolist(), trajectory.accelerations.tolist(), efforts)]
     return message
 
 

@@ -45,7 +45,7 @@ MAY_IMPORT = {
     'parameters': {'model', 'dynamics', 'limits', 'parameters'},
     'pose_decisions': {'model', 'limits', 'findings', 'parameters', 'pose_decisions',
                        'analysis.assembly_modes'},
-    'motion': {'model', 'limits', 'findings', 'parameters', 'motion'},
+    'motion': {'model', 'dynamics', 'limits', 'findings', 'parameters', 'motion'},
     'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis'},
     'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
     'workers': {'analysis', 'workers'},
