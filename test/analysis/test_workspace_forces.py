@@ -22,15 +22,18 @@ is located again by bisection on those forces: the package's end must be where t
 reaches ``leg_force_max`` (or ``leg_force_min``), and the leg named must be that leg.
 """
 
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 import reference
 
-from stewart_kinematics import load_geometry, MassProperties, RigidBody
+from stewart_kinematics import findings, load_geometry, MassProperties, RigidBody
 from stewart_kinematics.analysis import workspace
+from stewart_kinematics.analysis.capabilities import geometry_report, parameters_report
 from stewart_kinematics.limits import LIMIT_NAMES
+from stewart_kinematics.parameters import read_parameter_files
 
 pytestmark = pytest.mark.core
 
@@ -52,7 +55,7 @@ def limited():
 
 def loaded(geometry, payload=PAYLOAD, **force_limits):
     """Return ``geometry`` carrying ``payload`` (massless platform and legs), force limits set."""
-    return geometry.with_mass_properties(MassProperties(payload=payload)).__class__(
+    return geometry.__class__(
         geometry.base_joints, geometry.platform_joints, geometry.home_pose,
         limits=geometry.limits.replace(**force_limits),
         mass_properties=MassProperties(payload=payload))
@@ -204,7 +207,6 @@ def test_a_slice_names_the_leg_that_pulls_most_beyond_leg_force_min(limited):
         limited.base_joints, limited.platform_joints, limited.home_pose,
         limits=limited.limits.__class__(leg_force_min=force_min),
         mass_properties=MassProperties(payload=OFFSET_PAYLOAD))
-    import math
     extent = ((-math.radians(40.0), math.radians(40.0)),
               (-math.radians(40.0), math.radians(40.0)))
     result = workspace.workspace_slice(geometry, ('alpha', 'beta'), extent=extent,
@@ -218,3 +220,35 @@ def test_a_slice_names_the_leg_that_pulls_most_beyond_leg_force_min(limited):
     several = np.sum(forces < force_min, axis=1) >= 2
     assert several.sum() > 20, 'the slice must hold points where several legs pull too much'
     np.testing.assert_array_equal(result.leg[refused], forces.argmin(axis=1) + 1)
+
+
+def test_the_geometry_report_gives_the_force_margins_at_home(limited):
+    report = geometry_report(loaded(limited, leg_force_max=FORCE_MAX, leg_force_min=-10.0))
+    forces = static_forces(limited, PAYLOAD, limited.home_pose)[0]
+    margins = {margin.limit: margin for margin in report.margins}
+    np.testing.assert_allclose(margins['leg_force_max'].margin, FORCE_MAX - forces.max(),
+                               rtol=1e-12)
+    assert margins['leg_force_max'].subject == f'leg {forces.argmax() + 1}'
+    np.testing.assert_allclose(margins['leg_force_min'].margin, forces.min() + 10.0,
+                               rtol=1e-12)
+    assert margins['leg_force_min'].subject == f'leg {forces.argmin() + 1}'
+    assert 'leg_force_max 60 N: at home 33.7283 N (leg 2), margin 26.27 N' in report.text()
+    assert report.travel.axes[4].positive_limit == 'leg_force_max'
+    # Without masses, the force limits are set but not checked: no margin.
+    bare = geometry_report(limited.__class__(
+        limited.base_joints, limited.platform_joints, limited.home_pose,
+        limits=limited.limits.replace(leg_force_max=FORCE_MAX)))
+    assert not [margin for margin in bare.margins if margin.limit.startswith('leg_force')]
+
+
+def test_a_payload_too_heavy_for_the_home_pose_is_reported_naming_leg_force_max():
+    values = read_parameter_files([CONFIG / 'paper_platform.yaml',
+                                   CONFIG / 'example_limits.yaml'])
+    values.update(payload_mass=20.0, payload_center_of_mass=[0.0, 0.0, 0.1], leg_force_max=30.0)
+    report = parameters_report(values)
+    assert not report.usable and 'leg_force_max' in report.home_refusal
+    assert [warning.code for warning in report.warnings] == [findings.LIMIT_BROKEN_AT_HOME]
+    margin = next(margin for margin in report.margins if margin.limit == 'leg_force_max')
+    assert margin.broken and margin.subject == 'leg 2'
+    assert '[limit_broken_at_home] the home pose breaks leg_force_max 30 N: at home 33.7' in (
+        report.text())
