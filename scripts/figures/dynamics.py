@@ -74,8 +74,10 @@ def ramp_forces(geometry, masses):
 
 def payload_travel_ranges(geometry):
     """
-    Return ``(without, with_payload)``: travel ranges from home without masses, and carrying
-    :data:`PAYLOAD` under :data:`FORCE_LIMITS` (and the geometry's other limits).
+    Return ``(without, with_payload)``: travel ranges from home without and with the payload.
+
+    Without masses (the force limits are then not checked), and carrying :data:`PAYLOAD`
+    under :data:`FORCE_LIMITS` and the geometry's other limits.
     """
     loaded = geometry.__class__(
         geometry.base_joints, geometry.platform_joints, geometry.home_pose,

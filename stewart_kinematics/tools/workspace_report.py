@@ -17,10 +17,11 @@ r"""
 ``stewart_workspace``: what a platform can reach, from the nodes' own parameter files.
 
 Prints the masses and force limits it works with, the travel ranges from the home pose (or
-``--pose``) and the volume of the constant-orientation workspace, and writes to ``--output``: ``workspace.yaml`` (the numbers),
-``workspace_slices.png`` (XY, XZ and YZ slices through the pose, boundary coloured by the
-limit met), ``orientation_workspace.png`` (reachable alpha and beta at the position, for three
-gamma values) and ``dexterity.png`` (condition number over the slices)::
+``--pose``) and the volume of the constant-orientation workspace, and writes to ``--output``:
+``workspace.yaml`` (the numbers), ``workspace_slices.png`` (XY, XZ and YZ slices through the
+pose, boundary coloured by the limit met), ``orientation_workspace.png`` (reachable alpha and
+beta at the position, for three gamma values) and ``dexterity.png`` (condition number over the
+slices)::
 
     stewart_workspace --params-file config/paper_platform.yaml \\
         --params-file config/example_limits.yaml --output workspace_output
