@@ -56,10 +56,10 @@ from stewart_kinematics.analysis.workspace import (
     workspace_volume,
     WorkspaceVolume,
 )
-from stewart_kinematics.dynamics.inverse_dynamics import masses_of, static_forces_of_legs
 from stewart_kinematics.limits.base import LEG_PAIRS, PoseLegs
 from stewart_kinematics.limits.kinds import pose_settings
 from stewart_kinematics.limits.leg_collision import LegCollision
+from stewart_kinematics.limits.leg_forces import LegForces
 from stewart_kinematics.limits.settings import limits_of
 from stewart_kinematics.model.geometry import (
     Geometry,
@@ -353,9 +353,10 @@ def _report(bare, limits, full, refusal, volume_resolution) -> GeometryReport:
     directions = vectors / lengths[:, None]
     condition = float(jacobian_condition(bare, home[:3], rotation))
     distances = LegCollision(bare).values(legs)[0][:, 0]
-    masses = masses_of(bare)
-    forces = (None if masses.massless else
-              static_forces_of_legs(legs.lengths, legs.vectors, legs.rotation, masses)[:, 0])
+    # The force limit's own evaluator gives the static forces at home; it has no bound (and
+    # the forces are not checked) while every mass is 0.
+    force_evaluator = LegForces(bare, force_max=1.0)
+    forces = force_evaluator.values(legs)[0][:, 0] if force_evaluator.bounds else None
     margins = _margins(lengths, condition, distances, limits, forces)
     angles = tuple(
         float(math.atan2(np.linalg.norm(np.cross(directions[i - 1], directions[j - 1])),
