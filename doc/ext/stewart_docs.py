@@ -17,7 +17,9 @@
 The documentation's own Sphinx extension: tables generated from the code, and completeness checks.
 
 - ``{parameter-table} GROUP`` renders the parameter group ``GROUP`` (``GEOMETRY``, ``SOLVER``,
-  ...) from its specs when the site is built, so a page cannot drift from the declarations.
+  ...) from its specs when the site is built, so a page cannot drift from the declarations;
+  ``GROUP`` may also be a part of a group that a page shows alone (:func:`parameter_parts`:
+  ``MASS``, the masses and gravity; ``LIMIT_LEG_FORCE``, one limit kind's parameters).
 - ``{refusal-codes}`` renders every code the package emits, from the registry of
   :mod:`stewart_kinematics.findings`.
 - ``{limit-table}`` renders every kind of limit (evaluator, parameters, meaning), from their
@@ -80,10 +82,28 @@ def parameter_groups() -> dict:
             if name.endswith('_PARAMETERS') and isinstance(value, tuple)}
 
 
+def parameter_parts() -> dict:
+    """
+    Return ``{PART: specs}``: parts of the parameter groups that a page shows alone.
+
+    ``MASS``: the masses and gravity (``MASS_SPECS`` of the geometry group);
+    ``LIMIT_<KIND>``: the parameters of one kind of limit (``LIMIT_LEG_FORCE``, ...), from the
+    list of kinds. The nodes page shows every group whole (:func:`parameter_groups`).
+    """
+    from stewart_kinematics.limits.kinds import LIMIT_KINDS
+    from stewart_kinematics.parameters import declarations
+    specs = {spec.name: spec for spec in declarations.all_specs()}
+    parts = {'MASS': declarations.MASS_SPECS}
+    for kind in LIMIT_KINDS:
+        parts[f'LIMIT_{kind.name.upper()}'] = tuple(
+            specs[parameter.name] for parameter in kind.parameters)
+    return parts
+
+
 def parameter_table(group: str) -> str:
-    """Return the Markdown table of one parameter group, as the specs render it."""
+    """Return the Markdown table of one parameter group or part, as the specs render it."""
     from stewart_kinematics.parameters import markdown_table
-    table = markdown_table(parameter_groups()[group])
+    table = markdown_table({**parameter_parts(), **parameter_groups()}[group])
     # A description may say `<platform_frame>_commanded`: outside code spans, escape '<' so
     # that Markdown shows it rather than taking it for an HTML tag.
     return re.sub(r'(`[^`]*`)|<', lambda match: match.group(1) or r'\<', table)
@@ -140,8 +160,9 @@ class ParameterTable(MarkdownDirective):
     def markdown(self) -> str:
         """Render the group named by the argument."""
         group = self.arguments[0]
-        if group not in parameter_groups():
-            raise KeyError(f'no parameter group {group!r}; known: {sorted(parameter_groups())}')
+        known = {**parameter_parts(), **parameter_groups()}
+        if group not in known:
+            raise KeyError(f'no parameter group {group!r}; known: {sorted(known)}')
         return parameter_table(group)
 
 

@@ -24,7 +24,8 @@ much). The report holds, in SI units:
   those two legs at home, and pairs of joints that nearly coincide but count as two;
 - the home leg lengths, the Jacobian's condition number at home and the margin to each limit
   that is set (the stroke, the joint cones, whose axes are the home directions, the
-  singularity margin, the clearance between legs);
+  singularity margin, the clearance between legs, and the static leg forces of the masses
+  the geometry carries: not checked while every mass is 0);
 - the travel range along each pose coordinate from home and the volume of the workspace at the
   home orientation on a coarse grid (:mod:`.workspace`);
 - every assembly mode of the home leg lengths (:mod:`.assembly_modes`): how many are real,
@@ -58,6 +59,7 @@ from stewart_kinematics.analysis.workspace import (
 from stewart_kinematics.limits.base import LEG_PAIRS, PoseLegs
 from stewart_kinematics.limits.kinds import pose_settings
 from stewart_kinematics.limits.leg_collision import LegCollision
+from stewart_kinematics.limits.leg_forces import LegForces
 from stewart_kinematics.limits.settings import limits_of
 from stewart_kinematics.model.geometry import (
     Geometry,
@@ -97,7 +99,8 @@ class HomeMargin:
     :param allowed: the limit, SI units (for ``leg_collision``: ``2 * leg_radius``).
     :param value: the closest value at home: the longest leg, the nearest two legs' axes, ...
     :param margin: how far the value may still go, SI units; negative where broken.
-    :param unit: ``m``, ``rad`` or ``''`` (the condition number).
+    :param unit: ``m``, ``rad``, ``N`` (the static leg forces) or ``''`` (the condition
+        number).
     :param subject: the leg or legs of the closest value (``leg 3``, ``legs 1 and 2``), or
         ``''``.
     """
@@ -115,8 +118,8 @@ class HomeMargin:
         return not self.margin >= 0.0
 
     def __str__(self):
-        scale, unit = {'m': (1e3, ' mm'), 'rad': (math.degrees(1.0), ' deg'), '': (1.0, '')}[
-            self.unit]
+        scale, unit = {'m': (1e3, ' mm'), 'rad': (math.degrees(1.0), ' deg'), 'N': (1.0, ' N'),
+                       '': (1.0, '')}[self.unit]
         subject = f' ({self.subject})' if self.subject else ''
         return (f'{self.limit} {self.allowed * scale:.6g}{unit}: at home '
                 f'{self.value * scale:.6g}{unit}{subject}, margin '
@@ -350,7 +353,11 @@ def _report(bare, limits, full, refusal, volume_resolution) -> GeometryReport:
     directions = vectors / lengths[:, None]
     condition = float(jacobian_condition(bare, home[:3], rotation))
     distances = LegCollision(bare).values(legs)[0][:, 0]
-    margins = _margins(lengths, condition, distances, limits)
+    # The force limit's own evaluator gives the static forces at home; it has no bound (and
+    # the forces are not checked) while every mass is 0.
+    force_evaluator = LegForces(bare, force_max=1.0)
+    forces = force_evaluator.values(legs)[0][:, 0] if force_evaluator.bounds else None
+    margins = _margins(lengths, condition, distances, limits, forces)
     angles = tuple(
         float(math.atan2(np.linalg.norm(np.cross(directions[i - 1], directions[j - 1])),
                          float(directions[i - 1] @ directions[j - 1])))
@@ -381,8 +388,13 @@ def _report(bare, limits, full, refusal, volume_resolution) -> GeometryReport:
         warnings=warnings)
 
 
-def _margins(lengths, condition, distances, limits) -> Tuple[HomeMargin, ...]:
-    """Return the margin at home to each limit that is set (the values of NO_LIMITS are not)."""
+def _margins(lengths, condition, distances, limits, forces=None) -> Tuple[HomeMargin, ...]:
+    """
+    Return the margin at home to each limit that is set (the values of NO_LIMITS are not).
+
+    :param forces: the static leg forces at home, N, or ``None`` when every mass is 0 (the
+        force limit is then not checked).
+    """
     margins = []
     shortest, longest = int(np.argmin(lengths)), int(np.argmax(lengths))
     if limits['leg_length_min'] != NO_LIMITS['leg_length_min']:
@@ -409,6 +421,18 @@ def _margins(lengths, condition, distances, limits) -> Tuple[HomeMargin, ...]:
         margins.append(HomeMargin('leg_collision', allowed, float(distances[nearest]),
                                   float(distances[nearest] - allowed), 'm',
                                   f'legs {first} and {second}'))
+    if forces is not None:
+        weakest, strongest = int(np.argmin(forces)), int(np.argmax(forces))
+        if limits['leg_force_min'] != NO_LIMITS['leg_force_min']:
+            allowed = limits['leg_force_min']
+            margins.append(HomeMargin('leg_force_min', allowed, float(forces[weakest]),
+                                      float(forces[weakest] - allowed), 'N',
+                                      f'leg {weakest + 1}'))
+        if limits['leg_force_max'] != NO_LIMITS['leg_force_max']:
+            allowed = limits['leg_force_max']
+            margins.append(HomeMargin('leg_force_max', allowed, float(forces[strongest]),
+                                      float(allowed - forces[strongest]), 'N',
+                                      f'leg {strongest + 1}'))
     return tuple(margins)
 
 

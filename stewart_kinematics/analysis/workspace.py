@@ -27,11 +27,15 @@ Workspace: what the platform can reach, under every limit of its geometry.
 
 Poses are ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians, ``R = Rz(gamma) Ry(beta)
 Rx(alpha)``) and place the pivot point, so a change of an angle alone turns the platform about
-the pivot (about the base axes x, y, z from a level orientation). The limits are those of
-:mod:`stewart_kinematics.limits` (stroke, joint cones, singularity margin), checked with its
-vectorised :func:`~stewart_kinematics.limits.check_poses_array` on grids of poses; each
-crossing of the boundary between two grid points is then located by bisection to
-``tolerance``. Nothing here imports ROS.
+the pivot (about the base axes x, y, z from a level orientation). The limits are every kind
+of :mod:`stewart_kinematics.limits` (:data:`~stewart_kinematics.limits.LIMIT_KINDS`: stroke,
+joint cones, singularity margin, leg collision, leg forces), checked with its vectorised
+:func:`~stewart_kinematics.limits.check_poses_array` on grids of poses; each crossing of the
+boundary between two grid points is then located by bisection to ``tolerance``. The leg
+force limit judges each pose with its static forces, from the masses the geometry carries
+(:attr:`~stewart_kinematics.Geometry.mass_properties`): a heavy payload shrinks the ranges
+and the volume where an actuator would push more than ``leg_force_max`` or pull more than
+``-leg_force_min`` to hold it; with every mass 0 nothing changes. Nothing here imports ROS.
 
 Like any sampled method, a forbidden gap narrower than the scan step of a ray or the
 resolution of a grid can be missed; the steps are arguments.
@@ -526,7 +530,9 @@ def _classify_chunk(geometry, poses, with_condition):
     legs = np.zeros((count, len(names)), dtype=int)
     for index, name in enumerate(names):
         if name in checks.broken:
-            scale = checks.model.bound(name).allowed or 1.0
+            # Relative to the limit's size: a negative limit (a pull, leg_force_min) must
+            # not turn the comparison round.
+            scale = abs(checks.model.bound(name).allowed) or 1.0
             relative = np.where(checks.broken[name], checks.excess(name) / scale, -np.inf)
             if relative.ndim == 2:
                 legs[:, index] = np.argmax(relative, axis=1) + 1

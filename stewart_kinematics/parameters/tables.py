@@ -32,7 +32,7 @@ def markdown_table(specs) -> str:
         if value is None:
             return 'required'
         if isinstance(value, float) and math.isinf(value):
-            return '`.inf`'
+            return '`.inf`' if value > 0 else '`-.inf`'
         if isinstance(value, str):
             return f"`'{value}'`"
         if isinstance(value, bool):

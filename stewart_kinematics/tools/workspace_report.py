@@ -16,11 +16,12 @@
 r"""
 ``stewart_workspace``: what a platform can reach, from the nodes' own parameter files.
 
-Prints the travel ranges from the home pose (or ``--pose``) and the volume of the
-constant-orientation workspace, and writes to ``--output``: ``workspace.yaml`` (the numbers),
-``workspace_slices.png`` (XY, XZ and YZ slices through the pose, boundary coloured by the
-limit met), ``orientation_workspace.png`` (reachable alpha and beta at the position, for three
-gamma values) and ``dexterity.png`` (condition number over the slices)::
+Prints the masses and force limits it works with, the travel ranges from the home pose (or
+``--pose``) and the volume of the constant-orientation workspace, and writes to ``--output``:
+``workspace.yaml`` (the numbers), ``workspace_slices.png`` (XY, XZ and YZ slices through the
+pose, boundary coloured by the limit met), ``orientation_workspace.png`` (reachable alpha and
+beta at the position, for three gamma values) and ``dexterity.png`` (condition number over the
+slices)::
 
     stewart_workspace --params-file config/paper_platform.yaml \\
         --params-file config/example_limits.yaml --output workspace_output
@@ -188,6 +189,8 @@ def workspace_report(geometry, options) -> dict:
                         orientation)
     progress.close()
 
+    masses = masses_numbers(geometry)
+    print(masses_text(masses))
     print('Travel ranges from the pose '
           + ', '.join(f'{name} {value:.6g}' for name, value in zip(
               ('X [m]', 'Y [m]', 'Z [m]', 'alpha [rad]', 'beta [rad]', 'gamma [rad]'), pose)))
@@ -203,6 +206,7 @@ def workspace_report(geometry, options) -> dict:
     for path in figures:
         print(f'figure written to {path}')
     return {
+        'masses': masses,
         'start_pose': _floats(pose),
         'travel_ranges': {
             travel.axis: {'unit': travel.unit, 'negative': float(travel.negative),
@@ -224,6 +228,60 @@ def workspace_report(geometry, options) -> dict:
         'orientation_workspace': [_slice_numbers(result) for result in orientation],
         'seconds': timings,
     }
+
+
+def masses_numbers(geometry) -> dict:
+    """
+    Return the masses the workspace is computed with and the force limits, for the report.
+
+    The leg force limit judges each pose with its static forces, from these masses: a heavy
+    payload shrinks the workspace; with every mass 0 the limit is not checked.
+
+    :param geometry: a :class:`stewart_kinematics.Geometry`.
+    :returns: ``masses_set``; the payload's and the platform's ``mass_kg`` and
+        ``center_of_mass_m`` (platform frame), the legs' ``lower_mass_kg`` and
+        ``upper_mass_kg``, ``gravity_m_s2`` (base frame); ``force_limits_n`` with
+        ``leg_force_min`` and ``leg_force_max`` in newtons, ``None`` where not set, and
+        ``force_limits_checked``.
+    """
+    from stewart_kinematics.dynamics.inverse_dynamics import masses_of
+    from stewart_kinematics.limits.settings import limits_of
+    masses = masses_of(geometry)
+    limits = limits_of(geometry)
+    force_limits = {name: (float(getattr(limits, name)) if limits.is_set(name) else None)
+                    for name in ('leg_force_min', 'leg_force_max')}
+    return {
+        'masses_set': not masses.massless,
+        'payload': {'mass_kg': float(masses.payload.mass),
+                    'center_of_mass_m': _floats(masses.payload.center_of_mass)},
+        'platform': {'mass_kg': float(masses.platform.mass),
+                     'center_of_mass_m': _floats(masses.platform.center_of_mass)},
+        'legs': {'lower_mass_kg': float(masses.leg_lower.mass),
+                 'upper_mass_kg': float(masses.leg_upper.mass)},
+        'gravity_m_s2': _floats(masses.gravity),
+        'force_limits_n': force_limits,
+        'force_limits_checked': bool(not masses.massless and any(
+            value is not None for value in force_limits.values())),
+    }
+
+
+def masses_text(masses: dict) -> str:
+    """Return the lines of the report that say which masses and force limits are used."""
+    limits = masses['force_limits_n']
+    shown = ', '.join(f'{name} {value:g} N' for name, value in limits.items()
+                      if value is not None) or 'none set'
+    if not masses['masses_set']:
+        return ('Masses: none set (every mass 0): the leg forces are 0, the force limits '
+                f'({shown}) are not checked and change nothing')
+    payload, platform, legs = masses['payload'], masses['platform'], masses['legs']
+    centre = ', '.join(f'{value:g}' for value in payload['center_of_mass_m'])
+    return '\n'.join([
+        f'Payload: {payload["mass_kg"]:g} kg, centre of mass [{centre}] m (platform frame); '
+        f'platform {platform["mass_kg"]:g} kg; each leg {legs["lower_mass_kg"]:g} kg lower, '
+        f'{legs["upper_mass_kg"]:g} kg upper',
+        f'Force limits: {shown}' + (' (each pose judged with its static leg forces)'
+                                    if masses['force_limits_checked'] else
+                                    ': the forces limit nothing')])
 
 
 def _slice_numbers(result):

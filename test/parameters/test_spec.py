@@ -281,6 +281,15 @@ def test_markdown_table_lists_every_parameter():
         assert line.startswith(f'| `{spec.name}` | {spec.value_type} |')
 
 
+def test_markdown_table_shows_a_default_of_minus_infinity_as_minus_inf():
+    """leg_force_min's default (no pull limit) is -.inf, as a parameter file writes it."""
+    specs = [spec for spec in GEOMETRY_PARAMETERS
+             if spec.name in ('leg_force_min', 'leg_force_max')]
+    lines = parameters.markdown_table(specs).splitlines()
+    assert lines[2].startswith('| `leg_force_min` | double | `-.inf` |')
+    assert lines[3].startswith('| `leg_force_max` | double | `.inf` |')
+
+
 # Parameter files.
 
 def test_read_wildcard_section(tmp_path):

@@ -100,3 +100,49 @@ def test_bad_input_is_refused_with_a_message(tmp_path):
     assert missing.returncode == 2 and 'cannot read parameter file' in missing.stderr
     usage = run_report('--output', tmp_path)
     assert usage.returncode == 2 and '--params-file' in usage.stderr
+
+
+def test_a_payload_and_a_force_limit_shrink_the_ranges_and_are_shown(tmp_path):
+    payload = tmp_path / 'payload.yaml'
+    payload.write_text('/**:\n  ros__parameters:\n    payload_mass: 20.0\n'
+                       '    payload_center_of_mass: [0.0, 0.0, 0.1]\n'
+                       '    leg_force_max: 60.0\n')
+    loaded = run_report('--params-file', FILES[0], '--params-file', FILES[1],
+                        '--params-file', payload, '--output', tmp_path / 'loaded',
+                        '--no-figures', *COARSE)
+    assert loaded.returncode == 0, loaded.stderr
+    lines = loaded.stdout.splitlines()
+    assert lines[0].startswith('Payload: 20 kg, centre of mass [0, 0, 0.1] m (platform frame)')
+    assert lines[1] == ('Force limits: leg_force_max 60 N (each pose judged with its static '
+                        'leg forces)')
+    expected = travel_ranges(load_geometry(FILES + [payload]))
+    free = travel_ranges(load_geometry(FILES))
+    beta = next(line for line in lines if line.startswith('beta '))
+    assert f'{math.degrees(expected.axes[4].positive):.3f}' in beta
+    assert beta.rstrip().endswith('leg_force_max, leg 4')
+    assert expected.axes[4].positive < free.axes[4].positive - math.radians(5.0)
+    numbers = yaml.safe_load((tmp_path / 'loaded' / 'workspace.yaml').read_text())
+    masses = numbers['masses']
+    assert masses['masses_set'] and masses['force_limits_checked']
+    assert masses['payload'] == {'mass_kg': 20.0, 'center_of_mass_m': [0.0, 0.0, 0.1]}
+    assert masses['force_limits_n'] == {'leg_force_min': None, 'leg_force_max': 60.0}
+    assert numbers['travel_ranges']['beta']['positive_limit'] == 'leg_force_max'
+    assert numbers['travel_ranges']['beta']['positive'] == pytest.approx(
+        expected.axes[4].positive, abs=1e-12)
+
+    # Every mass 0: the force limit is set but changes nothing, and the report says so.
+    massless = tmp_path / 'massless.yaml'
+    massless.write_text('/**:\n  ros__parameters:\n    leg_force_max: 60.0\n')
+    done = run_report('--params-file', FILES[0], '--params-file', FILES[1],
+                      '--params-file', massless, '--output', tmp_path / 'massless',
+                      '--no-figures', *COARSE)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines()[0] == (
+        'Masses: none set (every mass 0): the leg forces are 0, the force limits '
+        '(leg_force_max 60 N) are not checked and change nothing')
+    numbers = yaml.safe_load((tmp_path / 'massless' / 'workspace.yaml').read_text())
+    assert not numbers['masses']['masses_set'] and not numbers['masses']['force_limits_checked']
+    for axis in free.axes:
+        written = numbers['travel_ranges'][axis.axis]
+        assert (written['negative'], written['positive']) == (axis.negative, axis.positive)
+        assert 'leg_force' not in f'{written["negative_limit"]} {written["positive_limit"]}'
