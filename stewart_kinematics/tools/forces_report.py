@@ -79,8 +79,9 @@ POWER_WORDS = {True: 'delivered', False: 'absorbed', None: ''}
 #: The parameters of a ramp file: at least one must be in it.
 RAMP_TABLE = ('position_start', 'position_step', 'position_end', 'orientation_start_deg',
               'orientation_step_deg', 'orientation_end_deg')
-#: Most rows of a pose list.
+#: Most rows of a pose list, and its largest size in bytes (read whole before any check).
 MAX_POSES = 100_000
+MAX_POSE_FILE_BYTES = 32 * 1024 * 1024
 
 
 class InputError(ValueError):
@@ -135,6 +136,10 @@ def read_poses(path: Path):
     :raises InputError: naming the file, the line and the column.
     """
     try:
+        size = path.stat().st_size
+        if size > MAX_POSE_FILE_BYTES:
+            raise InputError(f'{path}: {size:,} bytes, more than a pose list of '
+                             f'{MAX_POSES:,} poses may take ({MAX_POSE_FILE_BYTES:,})')
         with open(path, encoding='utf-8', newline='') as stream:
             lines = [(number, line) for number, line in enumerate(stream, start=1)
                      if line.strip() and not line.lstrip().startswith('#')]
@@ -144,6 +149,13 @@ def read_poses(path: Path):
         raise InputError(f'{path}: no header and no data')
     if len(lines) > MAX_POSES + 1:
         raise InputError(f'{path}: at most {MAX_POSES:,} poses, got {len(lines) - 1:,}')
+    try:
+        return _pose_rows(path, lines)
+    except csv.Error as error:   # a field beyond the csv module's limit, say
+        raise InputError(f'{path}: not a CSV file of poses: {error}') from None
+
+
+def _pose_rows(path, lines):
     reader = csv.reader(line for _, line in lines)
     header = tuple(cell.strip() for cell in next(reader))
     if header not in (POSE_COLUMNS, POSE_COLUMNS_DEG):
@@ -207,7 +219,7 @@ def motion(options, values):
     :raises InputError: for an input or parameters that cannot be used.
     """
     from stewart_kinematics.dynamics.sizing import sample_times
-    from stewart_kinematics.motion.pose_trajectory import PoseTrajectory
+    from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS, PoseTrajectory
     from stewart_kinematics.parameters import geometry_from_parameters
     if options.scenario is not None:
         from stewart_kinematics.cueing import MotionCueing, replay
@@ -217,6 +229,10 @@ def motion(options, values):
         except ValueError as error:
             raise InputError(f'the parameters: {error}') from None
         drive = scenario(options.scenario, options.rate)
+        if drive.times.size > MAX_WAYPOINTS:
+            raise InputError(f'scenario {options.scenario} at {options.rate:g} Hz has '
+                             f'{drive.times.size:,} samples, more than a trajectory may have '
+                             f'({MAX_WAYPOINTS:,}): lower --rate')
         played = replay(cueing, drive.times, drive.specific_force, drive.angular_velocity)
         try:
             trajectory = PoseTrajectory.from_poses(played.times, played.poses,

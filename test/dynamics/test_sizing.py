@@ -28,8 +28,9 @@ Actuator sizing (dynamics/sizing.py) against values worked out independently.
 
 import math
 
+from hypothesis import given, strategies as st
 import numpy as np
-from properties import assert_refused, PAPER
+from properties import assert_refused, budget, floats, PAPER, poses_near_home
 import pytest
 from scipy.integrate import quad
 from stewart_kinematics import (
@@ -287,3 +288,56 @@ def test_sample_times_refuse_too_many_samples():
 @pytest.mark.parametrize('values', [[1.0, math.nan], [1.0], 'abc', [[1.0, 2.0, 3.0]]])
 def test_rms_refuses_bad_values(values):
     assert_refused(lambda: time_weighted_rms([0.0, 1.0], values), ['values'])
+
+
+@st.composite
+def waypoint_motions(draw):
+    """Return 3 to 5 poses near home at random increasing times, and random masses."""
+    count = draw(st.integers(3, 5))
+    poses = np.array([draw(poses_near_home(position=0.04)) for _ in range(count)])
+    steps = [draw(floats(0.2, 2.0)) for _ in range(count - 1)]
+    masses = MassProperties(
+        platform=RigidBody(draw(floats(0.1, 20.0)), [0.0, 0.0, draw(floats(0.0, 0.3))],
+                           name='platform'),
+        payload=RigidBody(draw(floats(0.0, 50.0)), [draw(floats(-0.1, 0.1)), 0.0, 0.2],
+                          name='payload'),
+        leg_lower=LegBody(draw(floats(0.0, 3.0)), 0.2, 0.0))
+    return np.concatenate([[0.0], np.cumsum(steps)]), poses, masses
+
+
+@budget(25)
+@given(motion=waypoint_motions(), rate=floats(5.0, 60.0))
+def test_peaks_rms_and_power_signs_hold_along_random_motions(motion, rate):
+    """
+    Each peak is a sample's value, bounds every sample, and happens at its time.
+
+    The RMS lies between the smallest and largest |f|, and is additive over time: the mean
+    square over the whole motion is the time-weighted mean of those over two parts.
+    """
+    knots, poses, masses = motion
+    trajectory = PoseTrajectory.from_poses(knots, poses)
+    times = sample_times(knots, rate)
+    demands = trajectory_demands(PAPER, trajectory, times, mass_properties=masses)
+    forces, speeds, powers = demands.forces, demands.speeds, demands.powers
+    split = times.size // 2
+    for leg in demands.legs:
+        f, v, p = forces[:, leg.leg - 1], speeds[:, leg.leg - 1], powers[:, leg.leg - 1]
+        assert leg.peak_push >= f.max() and leg.peak_push >= 0.0
+        assert leg.peak_pull >= -f.min() and leg.peak_pull >= 0.0
+        if leg.peak_push > 0.0:
+            assert f[times == leg.peak_push_time].max() == leg.peak_push
+        if leg.peak_pull > 0.0:
+            assert -f[times == leg.peak_pull_time].min() == leg.peak_pull
+        assert leg.peak_speed == np.abs(v).max()
+        assert np.abs(v[times == leg.peak_speed_time]).max() == leg.peak_speed
+        assert leg.peak_power == np.abs(p).max()
+        at_peak = p[times == leg.peak_power_time]
+        if leg.peak_power > 0.0:
+            assert bool(at_peak[np.abs(at_peak) == leg.peak_power][0] > 0.0) is (
+                leg.peak_power_delivered)
+        assert np.abs(f).min() * (1 - 1e-12) <= leg.rms_force <= np.abs(f).max() * (1 + 1e-12)
+        whole = leg.rms_force ** 2 * (times[-1] - times[0])
+        first = time_weighted_rms(times[:split + 1], f[:split + 1]) ** 2 * (
+            times[split] - times[0])
+        second = time_weighted_rms(times[split:], f[split:]) ** 2 * (times[-1] - times[split])
+        assert whole == pytest.approx(first + second, rel=1e-12, abs=1e-12)

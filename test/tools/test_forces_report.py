@@ -187,6 +187,14 @@ BAD_POSE_FILES = {
     'back': ('time,X,Y,Z,alpha,beta,gamma\n1,0,0,0.4325,0,0,0\n0,0,0,0.44,0,0,0\n',
              'times'),
     'empty': ('', 'no header and no data'),
+    'huge field': ('time,X,Y,Z,alpha,beta,gamma\n0,0,0,0.4325,0,0,0\n1,' + '1' * 200_000
+                   + ',0,0.44,0,0,0\n', 'not a CSV file of poses: field larger'),
+    'nul': ('time,X,Y,Z,alpha,beta,gamma\n0,0,0,0.4325,0,0,0\n1,0\x00,0,0.44,0,0,0\n',
+            'line 3: X must be a finite number'),
+    'too many': ('time,X,Y,Z,alpha,beta,gamma\n' + '0,0,0,0.4325,0,0,0\n' * 100_001,
+                 'at most 100,000 poses'),
+    'repeated time': ('time,X,Y,Z,alpha,beta,gamma\n0,0,0,0.4325,0,0,0\n0,0,0,0.44,0,0,0\n',
+                      'increase strictly'),
     'huge': ('time,X,Y,Z,alpha,beta,gamma\n0,0,0,0.4325,0,0,0\n1,1e308,0,0.44,0,0,0\n',
              'positions'),
 }
@@ -236,6 +244,14 @@ def test_a_parameter_file_without_a_ramp_is_refused(capsys):
     assert code == 2 and err.count('\n') == 1 and 'no ramp in it' in err, err
 
 
+def test_a_huge_pose_file_is_refused_before_it_is_read(tmp_path, capsys):
+    huge = tmp_path / 'huge.csv'
+    with open(huge, 'wb') as stream:
+        stream.truncate(33 * 1024 * 1024)     # sparse: 33 MB of NUL bytes, nothing written
+    code, _, err = run(['--poses', str(huge)] + PARAMS, capsys)
+    assert code == 2 and err.count('\n') == 1 and 'more than a pose list' in err, err
+
+
 def test_a_bad_ramp_file_is_one_line_and_exit_2(tmp_path, capsys):
     ramp = write(tmp_path / 'ramp.yaml', 'trajectory_node:\n  ros__parameters:\n'
                  '    position_step: [0.01, 0.015, 0.0123]\n')
@@ -283,6 +299,11 @@ def test_options_that_do_not_fit_exit_2(tmp_path, capsys):
             main(argv)
         assert raised.value.code == 2
         assert words in capsys.readouterr().err
+
+
+def test_a_scenario_at_a_rate_beyond_a_trajectory_is_refused_before_the_replay(capsys):
+    code, _, err = run(['--scenario', 'lap', '--rate', '5000'] + PARAMS, capsys)
+    assert code == 2 and err.count('\n') == 1 and 'lower --rate' in err, err
 
 
 def test_too_many_samples_are_refused(capsys):
