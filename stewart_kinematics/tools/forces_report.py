@@ -39,7 +39,9 @@ The motion is one of:
 A trajectory or a pose list is played as trajectory_node plays timed waypoints: the package's
 trajectory through them (cubic, C1, velocities estimated from the neighbours, at rest at the
 first and last), sampled at ``--rate`` and on both sides of every waypoint (the acceleration
-jumps there); the twists and accelerations are the trajectory's own derivatives, exact. The
+jumps there); the twists and accelerations are the trajectory's own derivatives, exact. With
+``--retime``, the waypoints are played as trajectory_node retimes them instead: as fast as
+``leg_velocity_max`` and ``leg_acceleration_max`` allow. The
 poses of a cueing scenario are its replay's, one per input sample; their twists and
 accelerations are the exact derivatives of the package's C2 trajectory through them (quintic,
 derivatives from the polynomial through the 5 samples around each).
@@ -115,6 +117,10 @@ def build_parser() -> argparse.ArgumentParser:
                              'layer files, as the nodes take them')
     parser.add_argument('--duration', type=number_in(0.0, 1e6, low_inclusive=False),
                         help='play the --trajectory ramp over this many seconds')
+    parser.add_argument('--retime', action='store_true',
+                        help='play the --trajectory or --poses waypoints as fast as '
+                             'leg_velocity_max and leg_acceleration_max allow (as '
+                             'trajectory_node retimes them), not on their own times')
     parser.add_argument('--rate', type=number_in(0.0, 10000.0, low_inclusive=False),
                         default=DEFAULT_RATE,
                         help=f'samples per second (default {DEFAULT_RATE:g}); a --scenario '
@@ -256,10 +262,29 @@ def motion(options, values):
         source = str(options.poses)
     try:
         trajectory = PoseTrajectory.from_poses(knots, poses)
-        times = sample_times(trajectory.times, options.rate)
+        knots = trajectory.times
+        if options.retime:
+            trajectory, knots = retimed(trajectory, geometry, values)
+            description += (f', retimed to the leg speed and acceleration limits: '
+                            f'{trajectory.duration:.3f} s')
+        times = sample_times(knots, options.rate)
     except ValueError as error:
         raise InputError(f'{source}: {error}') from None
     return geometry, trajectory, times, description
+
+
+def retimed(trajectory, geometry, values):
+    """
+    Return the fastest timing within the legs' speed and acceleration, and its breakpoints.
+
+    As trajectory_node retimes a path (:func:`~stewart_kinematics.motion.retiming.retime`):
+    the waypoint poses kept, their times replaced, at rest at both ends.
+    """
+    from stewart_kinematics.motion.retiming import retime
+    from stewart_kinematics.parameters import actuator_limits_from_settings, GeometrySettings
+    limits = actuator_limits_from_settings(GeometrySettings.from_values(values))
+    timed = retime(trajectory, geometry, limits)
+    return timed, timed.breakpoints
 
 
 def limits_of(values) -> dict:
@@ -462,6 +487,10 @@ def main(argv=None) -> int:
     if options.duration is not None and options.trajectory is None:
         parser.error('argument --duration: only with --trajectory (a pose list and a scenario '
                      'have their own times)')
+    if options.retime and options.scenario is not None:
+        parser.error('argument --retime: not with --scenario (the cueing times its own motion)')
+    if options.retime and options.duration is not None:
+        parser.error('argument --retime: not with --duration (retiming replaces the times)')
     check_output_paths(parser, [('--csv', options.csv, False), ('--json', options.json, False),
                                 ('--figure', options.figure, False)])
     from stewart_kinematics.parameters import ParameterFileError

@@ -54,7 +54,8 @@ EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote pose
                    'how-to/size_actuators.md': [
                        r'4 \| +223\.3 \(2\.000\) \| +0\.0 \(-\)',
                        r'beyond leg_velocity_max 0\.05 m/s', r'wrote forces\.png',
-                       r'wrote braking_forces\.png'],
+                       r'wrote braking_forces\.png', r'retimed to the leg speed and '
+                       r'acceleration limits: 2\.99\d s', r'4 \| +167\.1 \(2\.997\)'],
                    'how-to/own_platform.md': [r'Design: 6-3 \(legs 1 and 6, 2 and 3, 4 and 5',
                                               r'Condition number at home: 6\.514\n',
                                               r'Warnings: none']}

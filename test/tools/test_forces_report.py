@@ -147,6 +147,30 @@ def test_a_pose_list_of_the_ramp_rows_gives_the_same_peaks(tmp_path, capsys):
                 assert leg[name] == pytest.approx(other[name], rel=1e-9, abs=1e-9)
 
 
+def test_retimed_the_ramp_keeps_the_leg_speed_limit(tmp_path, capsys):
+    """Retimed to example_limits.yaml's 0.05 m/s and 0.25 m/s^2, the ramp takes about 3 s."""
+    json_path = tmp_path / 'retimed.json'
+    code, out, err = run(['--trajectory', str(CONFIG / 'table3_ramp.yaml'), '--retime']
+                         + PARAMS + ['--json', str(json_path)], capsys)
+    assert code == 0, err
+    results = json.loads(json_path.read_text(encoding='utf-8'))
+    assert 2.9 < results['duration'] < 3.1
+    assert max(leg['peak_speed'] for leg in results['legs']) == pytest.approx(0.05, rel=1e-3)
+    assert all(leg['peak_speed'] <= 0.05 * (1 + 1e-6) for leg in results['legs'])
+    assert 'retimed to the leg speed and acceleration limits' in out
+    assert 'every peak within the limits given' in out
+    for argv in (['--scenario', 'lap', '--retime'] + PARAMS, RAMP + ['--retime'] + PARAMS):
+        with pytest.raises(SystemExit) as raised:
+            main(argv)
+        assert raised.value.code == 2 and 'argument --retime' in capsys.readouterr().err
+
+
+def test_retiming_without_rate_limits_is_refused_in_one_line(capsys):
+    code, _, err = run(['--trajectory', str(CONFIG / 'table3_ramp.yaml'), '--retime',
+                        '--params-file', str(CONFIG / 'paper_platform.yaml')], capsys)
+    assert code == 2 and err.count('\n') == 1, err
+
+
 def test_peak_power_is_drawn_and_checked(tmp_path, capsys):
     figure = tmp_path / 'forces.png'
     code, out, err = run(RAMP + PARAMS + ['--peak-power', '2', '--figure', str(figure)],
