@@ -39,8 +39,8 @@ setup(
         'Inverse and forward kinematics of a 6-6 Gough-Stewart platform (hexapod), '
         'with ROS 2 nodes'),
     license='Apache-2.0',
-    # matplotlib draws the figures of ramp_demo and stewart_cueing only (tools/); mcap reads
-    # stewart_cueing's recorded input.
+    # matplotlib draws the figures of ramp_demo, stewart_cueing and stewart_forces only
+    # (tools/); mcap reads stewart_cueing's recorded input.
     extras_require={'demo': ['matplotlib', 'rosbags', 'mcap', 'mcap-ros2-support'],
                     'test': ['pytest', 'hypothesis']},
     entry_points={
@@ -54,6 +54,7 @@ setup(
             'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
             'stewart_geometry = stewart_kinematics.tools.geometry_report:main',
             'stewart_cueing = stewart_kinematics.tools.cueing_report:main',
+            'stewart_forces = stewart_kinematics.tools.forces_report:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
         ],
     },

@@ -341,6 +341,8 @@ def tool_commands(path: Path, directory: Path) -> dict:
         'stewart_cueing': layered + ['--csv', str(samples), '--no-figures', '--quiet',
                                      '--output', str(directory / 'cueing')],
         'stewart_geometry': layered + ['--volume-resolution-mm', '100'],
+        'stewart_forces': layered + ['--trajectory', str(CONFIG_DIRECTORY / 'table3_ramp.yaml'),
+                                     '--duration', '2', '--rate', '10'],
     }
 
 

@@ -42,7 +42,8 @@ pytestmark = pytest.mark.process
 ROOT = doc_blocks.ROOT
 BIN = Path(sys.executable).parent
 #: The package's command-line tools a guide may run (the nodes take --ros-args instead).
-TOOLS = ('stewart_geometry', 'stewart_calibrate', 'stewart_cueing', 'stewart_workspace')
+TOOLS = ('stewart_geometry', 'stewart_calibrate', 'stewart_cueing', 'stewart_workspace',
+         'stewart_forces')
 #: The JTC's "at rest" at the last point: ``std::numeric_limits<float>::epsilon()``.
 FLOAT_EPSILON = float(np.finfo(np.float32).eps)
 JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
@@ -50,6 +51,11 @@ JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
 EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote poses\.csv',
                                            r'calibrated +position +\d'],
                    'how-to/motion_cueing.md': [r'zero limit violations: 0'],
+                   'how-to/size_actuators.md': [
+                       r'4 \| +223\.3 \(2\.000\) \| +0\.0 \(-\)',
+                       r'beyond leg_velocity_max 0\.05 m/s', r'wrote forces\.png',
+                       r'wrote braking_forces\.png', r'retimed to the leg speed and '
+                       r'acceleration limits: 2\.99\d s', r'4 \| +167\.1 \(2\.997\)'],
                    'how-to/own_platform.md': [r'Design: 6-3 \(legs 1 and 6, 2 and 3, 4 and 5',
                                               r'Condition number at home: 6\.514\n',
                                               r'Warnings: none']}
