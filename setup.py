@@ -54,6 +54,7 @@ setup(
             'stewart_workspace = stewart_kinematics.tools.workspace_report:main',
             'stewart_geometry = stewart_kinematics.tools.geometry_report:main',
             'stewart_cueing = stewart_kinematics.tools.cueing_report:main',
+            'stewart_payload = stewart_kinematics.tools.payload:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
         ],
     },
