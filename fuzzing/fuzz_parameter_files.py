@@ -341,6 +341,8 @@ def tool_commands(path: Path, directory: Path) -> dict:
         'stewart_cueing': layered + ['--csv', str(samples), '--no-figures', '--quiet',
                                      '--output', str(directory / 'cueing')],
         'stewart_geometry': layered + ['--volume-resolution-mm', '100'],
+        'stewart_payload': layered + ['--propose', '4', '--poses-out',
+                                      str(directory / 'payload_poses.csv')],
     }
 
 

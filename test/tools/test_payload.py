@@ -38,8 +38,8 @@ from stewart_kinematics.tools.payload import main
 pytestmark = pytest.mark.core
 
 ROOT = Path(__file__).resolve().parents[2]
-FILES = [str(ROOT / 'config' / name) for name in ('paper_platform.yaml', 'example_limits.yaml',
-                                                 'example_masses.yaml')]
+NAMES = ('paper_platform.yaml', 'example_limits.yaml', 'example_masses.yaml')
+FILES = [str(ROOT / 'config' / name) for name in NAMES]
 PARAMS = [word for path in FILES for word in ('--params-file', path)]
 
 
@@ -68,7 +68,7 @@ def run(argv, capsys):
 
 @pytest.fixture(scope='module')
 def measured(tmp_path_factory):
-    """The proposed poses and the example's measurements at them: their folder."""
+    """Write the proposed poses and the example's measurements at them; return the folder."""
     folder = tmp_path_factory.mktemp('payload')
     assert main(PARAMS + ['--propose', '20', '--poses-out', str(folder / 'poses.csv')]) == 0
     assert EXAMPLE.main([str(folder / 'poses.csv'), str(folder / 'measurements.csv')]) == 0
@@ -120,7 +120,7 @@ def test_level_poses_print_the_warning_naming_z(measured, tmp_path, capsys):
 
 
 def corrupt(measured, tmp_path, line, column, value):
-    """The example's measurements with one field replaced; return the file."""
+    """Write the example's measurements with one field replaced; return the file."""
     lines = (measured / 'measurements.csv').read_text().splitlines()
     fields = lines[line - 1].split(',')
     fields[column] = value
