@@ -118,6 +118,18 @@ def test_the_target_of_issue_29_with_1_newton_of_noise():
     assert np.all(np.abs(np.mean(errors, axis=0)) < 4.0 * np.std(errors, axis=0) / math.sqrt(300))
 
 
+@pytest.mark.parametrize('noise', [0.2, 3.0])
+def test_the_standard_deviations_follow_the_noise(noise):
+    """At 0.2 N and 3 N: the reported deviations are the spread of 200 estimates (15 %)."""
+    estimates = [identify_payload(GEOMETRY, POSES, forces_of(TRUE, POSES, noise, seed))
+                 for seed in range(200)]
+    errors = np.array([[estimate.mass, *estimate.center_of_mass] for estimate in estimates])
+    deviations = np.array([[estimate.mass_deviation, *estimate.center_deviation]
+                           for estimate in estimates])
+    assert_allclose(np.median(deviations, axis=0), np.std(errors, axis=0), rtol=0.15)
+    assert_allclose(np.median([estimate.noise for estimate in estimates]), noise, rtol=0.05)
+
+
 def test_all_level_poses_cannot_tell_the_centres_height():
     """Level poses (any yaw, any position): z named, kept from the prior; m, x, y still fitted."""
     rng = np.random.default_rng(7)
