@@ -39,6 +39,7 @@ poses do not determine (a singular value of the scaled design below the largest 
 """
 
 from dataclasses import dataclass, replace
+import math
 from typing import Tuple
 
 import numpy as np
@@ -51,6 +52,7 @@ from stewart_kinematics.limits.geometry_checks import check_poses_array
 from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.inputs import as_poses
+from stewart_kinematics.parameters.rcl_yaml import read_yaml_file
 
 #: The unknowns: the mass and the first moment of the mass (``m c``, kg m), platform frame.
 UNKNOWNS = ('mass', 'm*x', 'm*y', 'm*z')
@@ -282,39 +284,86 @@ def _unobservable(vector, condition, max_condition, prior) -> Finding:
 
 def load_force_measurements(path, geometry) -> Tuple[np.ndarray, np.ndarray]:
     """
-    Read leg forces measured at rest, and the poses they were measured at, from a CSV file.
+    Read leg forces measured at rest, and the poses they were measured at, from a file.
 
-    The calibration's measurement file, with forces instead of actuator positions
-    (:func:`~stewart_kinematics.analysis.calibration_files.load_columns` reads it): a header
-    naming :data:`POSE_COLUMNS` (``X, Y, Z`` in metres, ``alpha, beta, gamma`` in radians) or
-    :data:`LENGTH_COLUMNS` (``leg_length_1`` .. ``leg_length_6``, metres, whose pose forward
-    kinematics solves from the geometry's start table), and :data:`FORCE_COLUMNS` (``force_1``
-    .. ``force_6``, newtons, positive pushing), then one row per pose.
+    A CSV file is the calibration's measurement file, with forces instead of actuator
+    positions (:func:`~stewart_kinematics.analysis.calibration_files.load_columns` reads it): a
+    header naming :data:`POSE_COLUMNS` (``X, Y, Z`` in metres, ``alpha, beta, gamma`` in
+    radians) or :data:`LENGTH_COLUMNS` (``leg_length_1`` .. ``leg_length_6``, metres, whose
+    pose forward kinematics solves from the geometry's start table), and :data:`FORCE_COLUMNS`
+    (``force_1`` .. ``force_6``, newtons, positive pushing), then one row per pose. A YAML file
+    (``.yaml``, ``.yml``; read by the package's one YAML reader, with its limits) holds
+    ``measurements:``, a list of mappings with ``pose`` (or ``leg_lengths``) and ``forces``,
+    six numbers each, in the same units.
 
-    :param path: the CSV file.
+    :param path: the CSV or YAML file.
     :param geometry: the platform, to solve poses from leg lengths.
     :returns: ``(poses, forces)``, each shape (N, 6).
-    :raises ValueError: naming the file and its line, for a missing column, a row with the
-        wrong number of fields, a value that is not a finite number, or leg lengths that no
-        pose has.
+    :raises ValueError: naming the file and its line (CSV) or the measurement (YAML), and the
+        column, for a missing column, a row with the wrong number of fields, a value that is
+        not a finite number, or leg lengths that no pose has.
     """
-    layout, values = load_columns(path, POSE_COLUMNS + FORCE_COLUMNS,
-                                  LENGTH_COLUMNS + FORCE_COLUMNS)
+    if str(path).lower().endswith(('.yaml', '.yml')):
+        layout, values = _load_yaml_measurements(path)
+        row = 'measurement'
+    else:
+        layout, values = load_columns(path, POSE_COLUMNS + FORCE_COLUMNS,
+                                      LENGTH_COLUMNS + FORCE_COLUMNS)
+        row = 'data row'
     forces = values[:, 6:]
     if layout == 0:
         return values[:, :6], forces
     lengths = values[:, :6]
     bad = np.flatnonzero(~np.all(lengths > 0.0, axis=1))
     if bad.size:
-        raise ValueError(f'{path}: data row {bad[0] + 1}: leg lengths must be positive, got '
+        raise ValueError(f'{path}: {row} {bad[0] + 1}: leg lengths must be positive, got '
                          f'{preview(lengths[bad[0]].tolist())}')
     solved = forward_kinematics(geometry, lengths)
     failed = np.flatnonzero(~np.asarray(solved.converged))
     if failed.size:
-        raise ValueError(f'{path}: data row {failed[0] + 1}: no pose has the leg lengths '
+        raise ValueError(f'{path}: {row} {failed[0] + 1}: no pose has the leg lengths '
                          f'{preview(lengths[failed[0]].tolist())} '
                          f'({np.atleast_1d(solved.reason)[failed[0]]})')
     return np.atleast_2d(solved.pose), forces
+
+
+#: The keys of a YAML measurement: the pose or the leg lengths, then the forces.
+_YAML_LAYOUTS = (('pose', 'forces'), ('leg_lengths', 'forces'))
+
+
+def _load_yaml_measurements(path) -> Tuple[int, np.ndarray]:
+    """Return ``(layout, values)`` of a YAML measurement file, as :func:`load_columns` does."""
+    shape = ("a YAML measurement file holds 'measurements:', a list of mappings, each with "
+             "'pose' (or 'leg_lengths') and 'forces', six numbers each")
+    document = read_yaml_file(path).value
+    items = document.get('measurements') if isinstance(document, dict) else None
+    if not isinstance(items, list) or not items:
+        raise ValueError(f'{path}: {shape}; got {preview(document)}')
+    layout, rows = None, []
+    for number, item in enumerate(items, start=1):
+        where = f'{path}: measurement {number}'
+        keys = tuple(sorted(item)) if isinstance(item, dict) else None
+        found = next((index for index, names in enumerate(_YAML_LAYOUTS)
+                      if keys == tuple(sorted(names))), None)
+        if found is None:
+            raise ValueError(f'{where}: {shape}; got {preview(item)}')
+        if layout is not None and found != layout:
+            raise ValueError(f'{where}: {_YAML_LAYOUTS[found][0]}, but measurement 1 has '
+                             f'{_YAML_LAYOUTS[layout][0]}: give every measurement the same')
+        layout = found
+        row = []
+        for key in _YAML_LAYOUTS[found]:
+            values = item[key]
+            if not (isinstance(values, list) and len(values) == 6 and all(
+                    isinstance(value, (int, float)) and not isinstance(value, bool)
+                    for value in values)):
+                raise ValueError(f'{where}: {key} must be a list of six numbers, got '
+                                 f'{preview(values)}')
+            if not all(math.isfinite(value) for value in values):
+                raise ValueError(f'{where}: {key} must be finite, got {preview(values)}')
+            row += [float(value) for value in values]
+        rows.append(row)
+    return layout, np.array(rows)
 
 
 def payload_poses(geometry, count: int = 20, *, margin: float = 0.9) -> np.ndarray:

@@ -15,12 +15,12 @@
 """
 stewart_payload: identify the payload's mass and centre of mass from leg forces measured at rest.
 
-Reads a CSV of static poses (or leg lengths) and the six leg forces measured at each, and the
-platform's parameter files (its geometry, and the platform's and legs' masses, which are
-subtracted); prints the payload's mass and centre of mass with their standard deviations and
-any warning, and writes a parameter file with ``payload_mass`` and ``payload_center_of_mass``
-that the nodes load after the others. With ``--propose N`` it instead writes N poses to
-measure, tilted in every direction as far as the limits allow.
+Reads a CSV (or YAML) file of static poses (or leg lengths) and the six leg forces measured at
+each, and the platform's parameter files (its geometry, and the platform's and legs' masses,
+which are subtracted); prints the payload's mass and centre of mass with their standard
+deviations and any warning, and writes a parameter file with ``payload_mass`` and
+``payload_center_of_mass`` that the nodes load after the others. With ``--propose N`` it
+instead writes N poses to measure, tilted in every direction as far as the limits allow.
 
 A file that cannot be read (a parameter file, or a measurement file: a missing column, a row
 of the wrong length, a value that is not a finite number) exits 2 with one line naming the
@@ -67,6 +67,8 @@ units:
   alpha, beta, gamma   orientation, rad (R = Rz(gamma) Ry(beta) Rx(alpha))
   (or leg_length_1..6  leg lengths between the joints' centres, m, instead of the pose)
   force_1..6           the legs' axial forces measured there, N, positive pushing
+A .yaml or .yml file instead holds 'measurements:', a list of mappings with 'pose' (or
+'leg_lengths') and 'forces', six numbers each, in the same units.
 The platform's and the legs' masses and gravity come from the parameter files (platform_mass,
 leg_lower_mass, ...; every mass 0 when absent); their forces are subtracted. The payload given
 there is the prior: a component of the centre the poses cannot determine keeps its value.
@@ -83,7 +85,7 @@ def parse_arguments(argv):
         prog=PROG, description=__doc__.strip(), epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('measurements', nargs='?', type=Path,
-                        help='CSV of static poses and leg forces (columns below)')
+                        help='CSV (or YAML) of static poses and leg forces (below)')
     parser.add_argument('--params-file', dest='params_files', action='append', type=Path,
                         required=True,
                         help='parameter file with the geometry and masses (repeat to layer '

@@ -273,6 +273,56 @@ def test_bad_measurement_files_name_the_file_line_and_column(tmp_path, edit, wor
     assert str(path) in str(raised.value) and words in str(raised.value), str(raised.value)
 
 
+def write_yaml(path, key, rows, forces):
+    """Write a YAML measurement file: ``key`` (pose or leg_lengths) and forces per item."""
+    items = ''.join(f'  - {key}: {list(map(float, row))}\n    forces: {list(map(float, force))}\n'
+                    for row, force in zip(rows, forces))
+    path.write_text('measurements:\n' + items, encoding='utf-8')
+    return path
+
+
+def test_yaml_files_read_as_the_csv_files(tmp_path):
+    """The same measurements in YAML, with poses or with leg lengths."""
+    forces = forces_of(TRUE, POSES, 1.0)
+    poses, read = load_force_measurements(
+        write_yaml(tmp_path / 'poses.yaml', 'pose', POSES, forces), GEOMETRY)
+    assert_allclose(poses, POSES, rtol=0.0, atol=0.0)
+    assert_allclose(read, forces, rtol=0.0, atol=0.0)
+    lengths = np.array([reference.leg_lengths(pose, GEOMETRY.base_joints,
+                                              GEOMETRY.platform_joints) for pose in POSES])
+    poses, read = load_force_measurements(
+        write_yaml(tmp_path / 'lengths.yml', 'leg_lengths', lengths, forces), GEOMETRY)
+    assert_allclose(poses, POSES, rtol=0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize('text, words', [
+    ('', "holds 'measurements:'"),
+    ('measurements: []\n', "holds 'measurements:'"),
+    ('measurements: 3.0\n', "holds 'measurements:'"),
+    ('measurements:\n  - [1.0]\n', 'measurement 1: a YAML measurement file holds'),
+    ('measurements:\n  - pose: [0.0, 0.0, 0.4, 0.0, 0.0, 0.0]\n',
+     'measurement 1: a YAML measurement file holds'),
+    ('measurements:\n  - pose: [0.0, 0.0, 0.4, 0.0, 0.0]\n    forces: [1, 1, 1, 1, 1, 1]\n',
+     'measurement 1: pose must be a list of six numbers'),
+    ('measurements:\n  - pose: [0.0, 0.0, 0.4, 0.0, 0.0, 0.0]\n    forces: [1, 1, 1, 1, 1, .inf]'
+     '\n', 'measurement 1: forces must be finite'),
+    ('measurements:\n  - pose: [0.0, 0.0, 0.4, 0.0, 0.0, 0.0]\n    forces: [1, 1, 1, 1, 1, true]'
+     '\n', 'measurement 1: forces must be a list of six numbers'),
+    ('measurements:\n  - pose: [0.0, 0.0, 0.4, 0.0, 0.0, 0.0]\n    forces: [1, 1, 1, 1, 1, a]'
+     '\n', 'measurement 1: forces must be a list of six numbers'),
+    ('measurements:\n  - pose: &p [0.0, 0.0, 0.4, 0.0, 0.0, 0.0]\n    forces: *p\n',
+     'alias'),
+])
+def test_bad_yaml_files_name_the_file_and_the_measurement(tmp_path, text, words):
+    """No list, an empty one, a wrong key, five numbers, inf, a bool, text, an alias."""
+    path = tmp_path / 'measurements.yaml'
+    path.write_text(text, encoding='utf-8')
+    with pytest.raises(ValueError) as raised:
+        load_force_measurements(path, GEOMETRY)
+    message = str(raised.value)
+    assert str(path) in message and words in message and '\n' not in message, message
+
+
 def test_leg_lengths_that_no_pose_has_are_refused_naming_the_row(tmp_path):
     """A negative length, and lengths no pose reaches: the data row is named."""
     forces = [repr(1.0)] * 6

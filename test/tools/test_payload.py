@@ -31,6 +31,7 @@ import numpy as np
 from numpy.testing import assert_allclose
 import pytest
 from stewart_kinematics import load_geometry
+from stewart_kinematics.analysis.payload_identification import load_force_measurements
 from stewart_kinematics.limits.geometry_checks import check_poses_array
 from stewart_kinematics.parameters import IkNodeSettings, load_settings
 from stewart_kinematics.tools.payload import main
@@ -179,3 +180,22 @@ def test_bad_options_and_parameter_files_exit_2(tmp_path, capsys):
     bad.write_text('/**:\n  ros__parameters:\n    payload_mass: -1.0\n')
     code, out, error = run(['m.csv', *PARAMS, '--params-file', bad], capsys)
     assert code == 2 and 'payload_mass' in error and len(error.strip().splitlines()) == 1
+
+
+def test_a_yaml_file_gives_the_report_of_the_csv_file(measured, tmp_path, capsys):
+    """The example's measurements as YAML: the same report; the how-to's YAML block reads."""
+    lines = (measured / 'measurements.csv').read_text().splitlines()[2:]
+    rows = [[float(value) for value in line.split(',')] for line in lines]
+    (tmp_path / 'measurements.yaml').write_text('measurements:\n' + ''.join(
+        f'  - pose: {row[:6]}\n    forces: {row[6:]}\n' for row in rows))
+    reports = []
+    for path in (measured / 'measurements.csv', tmp_path / 'measurements.yaml'):
+        code, out, error = run([path, *PARAMS, '--output', tmp_path / 'payload.yaml'], capsys)
+        assert code == 0, error
+        reports.append(out.split('\nwrote')[0])
+    assert reports[0] == reports[1]
+    page = (ROOT / 'doc' / 'how-to' / 'identify_payload.md').read_text(encoding='utf-8')
+    block = re.search(r'```yaml\n(.*?)```', page, re.DOTALL).group(1)
+    (tmp_path / 'block.yaml').write_text(block)
+    poses, forces = load_force_measurements(tmp_path / 'block.yaml', load_geometry(FILES))
+    assert poses.shape == forces.shape == (2, 6) and forces[0, 0] == 95.2
