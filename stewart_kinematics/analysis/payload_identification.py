@@ -373,7 +373,9 @@ def payload_poses(geometry, count: int = 20, *, margin: float = 0.9) -> np.ndarr
     The height of the centre is seen only through tilts (see the module's docstring), and the
     more the better: the poses tilt by ``margin`` times the largest tilt the geometry's limits
     allow in each of ``count`` directions spread evenly around the vertical, at the height
-    (within 0.1 m of home) where those tilts are largest, with home's yaw.
+    (within 0.1 m of home) where those tilts are largest, with home's yaw. Tilts are searched up
+    to 45 degrees in steps of 0.25 degrees: give the geometry its limits (a geometry without
+    limits gets 45 degrees times ``margin`` in every direction).
 
     :param geometry: a :class:`stewart_kinematics.Geometry` (its limits).
     :param count: how many poses, at least :data:`MIN_POSES`.
