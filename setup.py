@@ -55,6 +55,7 @@ setup(
             'stewart_geometry = stewart_kinematics.tools.geometry_report:main',
             'stewart_cueing = stewart_kinematics.tools.cueing_report:main',
             'stewart_forces = stewart_kinematics.tools.forces_report:main',
+            'stewart_payload = stewart_kinematics.tools.payload:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
         ],
     },

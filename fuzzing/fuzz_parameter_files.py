@@ -343,6 +343,8 @@ def tool_commands(path: Path, directory: Path) -> dict:
         'stewart_geometry': layered + ['--volume-resolution-mm', '100'],
         'stewart_forces': layered + ['--trajectory', str(CONFIG_DIRECTORY / 'table3_ramp.yaml'),
                                      '--duration', '2', '--rate', '10'],
+        'stewart_payload': layered + ['--propose', '4', '--poses-out',
+                                      str(directory / 'payload_poses.csv')],
     }
 
 

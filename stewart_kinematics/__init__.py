@@ -45,6 +45,7 @@ from stewart_kinematics.analysis.assembly_modes import (
     AssemblyModeMargin,
     AssemblyModes,
 )
+from stewart_kinematics.analysis.payload_identification import identify_payload, PayloadEstimate
 from stewart_kinematics.analysis.workspace import (
     orientation_workspace,
     travel_ranges,
@@ -126,6 +127,7 @@ __all__ = [
     'FrameTree',
     'Geometry',
     'geometry_from_parameters',
+    'identify_payload',
     'inverse_kinematics',
     'jacobian',
     'leg_forces',
@@ -148,6 +150,7 @@ __all__ = [
     'MotionPlanner',
     'plan_motion',
     'orientation_workspace',
+    'PayloadEstimate',
     'platform_twist',
     'platform_wrench',
     'PoseAnchor',

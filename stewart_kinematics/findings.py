@@ -302,6 +302,17 @@ OTHER_MODE_WITHIN_LIMITS = _register(
     'alone do not tell the two apart (see the assembly-mode guard of fk_node).')
 
 
+# Payload identification (stewart_payload) ---------------------------------------------------
+
+PAYLOAD_UNOBSERVABLE = _register(
+    'payload_unobservable', 'warning',
+    '`identify_payload` (`stewart_payload`)',
+    "The measured poses cannot separate a component of the payload's centre of mass from the "
+    'rest (a singular value of the scaled fit below the largest over `max_condition`): poses '
+    'all at one tilt, such as all level, see the centre only across gravity, not its height. '
+    'The component is kept from the parameter file and named, with the condition number.')
+
+
 def codes_table() -> str:
     """
     Return the documentation's table of every code: code, kind, who emits it, what it means.

@@ -16,11 +16,13 @@
 Offline analysis: the workspace, every assembly mode, and calibration.
 
 :mod:`.workspace` (travel ranges, volumes, slices), :mod:`.assembly_modes` (every real pose of a
-set of leg lengths) and :mod:`.calibration` (the geometry identified from measurements, with
-scipy). The worker threads and processes in which the nodes run them live in
+set of leg lengths), :mod:`.calibration` (the geometry identified from measurements, with
+scipy) and :mod:`.payload_identification` (the payload's mass and centre of mass from leg
+forces measured at rest). The worker threads and processes in which the nodes run them live in
 :mod:`stewart_kinematics.workers`.
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.limits`,
-:mod:`stewart_kinematics.parameters`, numpy, scipy (calibration only). Nothing here imports
+:mod:`stewart_kinematics.parameters`, :mod:`stewart_kinematics.dynamics` (payload
+identification), numpy, scipy (calibration only). Nothing here imports
 ROS.
 """

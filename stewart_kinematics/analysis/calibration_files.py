@@ -19,7 +19,8 @@ Calibration's files: the measurement CSV and the calibrated parameter file.
 :data:`MEASUREMENT_COLUMNS`, one row per pose) and refuses a file it cannot use with the file
 name and line number: a missing column, a row with too few or too many fields, a value that
 is not a finite number. A byte-order mark (as spreadsheet programs write), Windows line ends
-and spaces around the fields are accepted. :func:`write_parameter_file` writes a ROS 2
+and spaces around the fields are accepted; :func:`load_columns`, its reader, reads other
+columns the same way (``stewart_payload``'s forces). :func:`write_parameter_file` writes a ROS 2
 parameter file the nodes load as it is. Nothing here needs scipy (the fit is in
 :mod:`stewart_kinematics.analysis.calibration`).
 """
@@ -28,7 +29,7 @@ import csv
 import io
 import math
 import sys
-from typing import Tuple
+from typing import Sequence, Tuple
 
 import numpy as np
 
@@ -53,6 +54,22 @@ def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
     :raises ValueError: naming the file and its line, for a missing or repeated column, a row
         with the wrong number of fields, or a value that is not a finite number.
     """
+    data = load_columns(path, MEASUREMENT_COLUMNS)[1]
+    return data[:, :6], data[:, 6:]
+
+
+def load_columns(path, *layouts: Sequence[str]) -> Tuple[int, np.ndarray]:
+    """
+    Read the named columns of a measurement CSV file, as :func:`load_measurements` reads them.
+
+    :param path: the CSV file: a header row naming the columns, then one row per measurement.
+    :param layouts: one or more tuples of column names; the first whose columns the header
+        names is read (a file of poses, or one of leg lengths, say).
+    :returns: ``(layout, values)``: the index of the layout read, and its columns in its order,
+        shape (N, len(layout)), every value a finite float.
+    :raises ValueError: naming the file and its line (and the column), for missing or repeated
+        columns, a row with the wrong number of fields, or a value that is not a finite number.
+    """
     try:
         with open(path, newline='', encoding='utf-8-sig') as stream:
             text = stream.read()
@@ -66,26 +83,29 @@ def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
         if not any(fields) or fields[0].startswith('#'):
             continue
         rows.append((number, fields))
+    wanted = ' or '.join(', '.join(layout) for layout in layouts)
     if not rows:
-        raise ValueError(f'{path}: no header row; the header must name '
-                         f'{", ".join(MEASUREMENT_COLUMNS)}')
+        raise ValueError(f'{path}: no header row; the header must name {wanted}')
     header_line, header = rows[0]
-    missing = [name for name in MEASUREMENT_COLUMNS if name not in header]
-    if missing:
+    chosen = next((index for index, layout in enumerate(layouts)
+                   if all(name in header for name in layout)), None)
+    if chosen is None:
+        missing = [name for name in layouts[0] if name not in header]
         raise ValueError(f'{path}: line {header_line}: missing column(s) {", ".join(missing)}; '
-                         f'the header must name {", ".join(MEASUREMENT_COLUMNS)}')
-    repeated = sorted({name for name in MEASUREMENT_COLUMNS if header.count(name) > 1})
+                         f'the header must name {wanted}')
+    names = layouts[chosen]
+    repeated = sorted({name for name in names if header.count(name) > 1})
     if repeated:
         raise ValueError(f'{path}: line {header_line}: column(s) {", ".join(repeated)} named '
                          'more than once')
-    columns = [header.index(name) for name in MEASUREMENT_COLUMNS]
+    columns = [header.index(name) for name in names]
     data = []
     for number, fields in rows[1:]:
         if len(fields) != len(header):
             raise ValueError(f'{path}: line {number}: {len(fields)} fields, but the header '
                              f'(line {header_line}) names {len(header)} columns')
         values = []
-        for name, column in zip(MEASUREMENT_COLUMNS, columns):
+        for name, column in zip(names, columns):
             try:
                 value = float(fields[column])
             except ValueError:
@@ -98,8 +118,7 @@ def load_measurements(path) -> Tuple[np.ndarray, np.ndarray]:
         data.append(values)
     if not data:
         raise ValueError(f'{path}: no measurements after the header (line {header_line})')
-    data = np.array(data)
-    return data[:, :6], data[:, 6:]
+    return chosen, np.array(data)
 
 
 def write_measurements(path, poses, actuator_positions, comment: str = '') -> None:

@@ -46,7 +46,7 @@ MAY_IMPORT = {
     'pose_decisions': {'model', 'limits', 'findings', 'parameters', 'pose_decisions',
                        'analysis.assembly_modes'},
     'motion': {'model', 'dynamics', 'limits', 'findings', 'parameters', 'motion'},
-    'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis'},
+    'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis', 'dynamics'},
     'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
     'workers': {'analysis', 'workers'},
 }

@@ -43,7 +43,7 @@ ROOT = doc_blocks.ROOT
 BIN = Path(sys.executable).parent
 #: The package's command-line tools a guide may run (the nodes take --ros-args instead).
 TOOLS = ('stewart_geometry', 'stewart_calibrate', 'stewart_cueing', 'stewart_workspace',
-         'stewart_forces')
+         'stewart_forces', 'stewart_payload')
 #: The JTC's "at rest" at the last point: ``std::numeric_limits<float>::epsilon()``.
 FLOAT_EPSILON = float(np.finfo(np.float32).eps)
 JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
@@ -56,6 +56,10 @@ EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote pose
                        r'beyond leg_velocity_max 0\.05 m/s', r'wrote forces\.png',
                        r'wrote braking_forces\.png', r'retimed to the leg speed and '
                        r'acceleration limits: 2\.99\d s', r'4 \| +167\.1 \(2\.997\)'],
+                   'how-to/identify_payload.md': [
+                       r'mass \(kg\) +20\.0055 +0\.0271', r'centre z \(mm\) +50\.689 +0\.588',
+                       r'warnings: none', r'mass error: \+0\.006 kg',
+                       r'centre of mass error \(mm\): -0\.17, -0\.04, \+0\.69'],
                    'how-to/own_platform.md': [r'Design: 6-3 \(legs 1 and 6, 2 and 3, 4 and 5',
                                               r'Condition number at home: 6\.514\n',
                                               r'Warnings: none']}

@@ -28,7 +28,8 @@ from pathlib import Path
 
 import pytest
 
-from stewart_kinematics.tools import calibrate, geometry_report, ramp_demo, workspace_report
+from stewart_kinematics.tools import (calibrate, geometry_report, payload, ramp_demo,
+                                      workspace_report)
 import yaml
 
 pytestmark = pytest.mark.core
@@ -53,7 +54,7 @@ EXAMPLE = load_example_script()
 #: Every command-line tool: name -> main(argv).
 TOOLS = {'stewart_workspace': workspace_report.main, 'stewart_calibrate': calibrate.main,
          'ramp_demo': ramp_demo.main, 'calibration_example': EXAMPLE.main,
-         'stewart_geometry': geometry_report.main}
+         'stewart_geometry': geometry_report.main, 'stewart_payload': payload.main}
 
 
 class _Parsed(Exception):
