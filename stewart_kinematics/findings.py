@@ -153,6 +153,12 @@ STREAM_HELD = _register(
     '`CommandFilter.step` (ik_node with `command_rate`)',
     'No step within every limit could be computed: no command is published this period, and '
     'the last one, within the limits, stands.')
+FORCE_LIMITED = _register(
+    'force_limited', 'warning',
+    '`CommandFilter.send` (ik_node with `command_rate`)',
+    'The streamed step asked for would have broken `leg_force_min` or `leg_force_max` (the '
+    'legs and forces in the details): it was planned again with less acceleration (the share '
+    'of `leg_acceleration_max` in the details), slower toward the same target.')
 
 # Measured leg lengths (fk_node) -------------------------------------------------------------
 
