@@ -155,10 +155,12 @@ STREAM_HELD = _register(
     'the last one, within the limits, stands.')
 FORCE_LIMITED = _register(
     'force_limited', 'warning',
-    '`CommandFilter.send` (ik_node with `command_rate`)',
-    'The streamed step asked for would have broken `leg_force_min` or `leg_force_max` (the '
-    'legs and forces in the details): it was planned again with less acceleration (the share '
-    'of `leg_acceleration_max` in the details), slower toward the same target.')
+    '`CommandFilter.send` (ik_node with `command_rate`), `MotionCueing` '
+    '(motion_cueing_node)',
+    'The streamed step or the cue pose asked for would have broken `leg_force_min` or '
+    '`leg_force_max` with its motion (the legs and forces in the details): it was planned '
+    'again with less acceleration (the share of `leg_acceleration_max` in the details), '
+    'slower toward the same target.')
 
 # Measured leg lengths (fk_node) -------------------------------------------------------------
 

@@ -544,6 +544,9 @@ class CommandGate:
         if self._time is not None and not time > self._time and np.array_equal(
                 lengths, self._lengths):
             # The last command again, no time later: no motion is commanded.
+            if self.masses is not None and self._forces is None:   # at rest since the reset
+                self._forces = self._forces_of(pose if pose is not None else np.concatenate(
+                    [position, matrix_to_euler_zyx(rotation)]), None, None)
             return LegCommand(lengths, position=position, rotation=rotation, time=time,
                               velocities=np.zeros(6), forces=self._forces)
         if self._time is not None and not time > self._time:
@@ -617,8 +620,10 @@ class CommandGate:
 
     def _motion_forces(self, pose, rotation, rates):
         """
-        Return ``(forces, None)`` of a motion's command within the force limits (or coming back
-        toward them), else ``(forces, violations)``; every leg at fault for a singular pose.
+        Return a motion's command's forces, and the force limits they break.
+
+        :returns: ``(forces, None)`` within the force limits (or coming back toward them),
+            else ``(forces, violations)``; every leg at fault at a singular pose.
         """
         if rates is None:   # the first command of a motion: from rest
             twist = acceleration = None

@@ -268,7 +268,7 @@ class CommandFilter:
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING, 'no time passed since the last streamed command: '
                 'nothing sent this period'))
-        state = self._state()
+        state = self._state() if self.gate.force_range is not None else None
         step = self.step(interval)
         if not step.accepted:
             command = self.gate.brake(time, replaced=step.refusal)
@@ -288,13 +288,15 @@ class CommandFilter:
                 command = self.gate.brake(time, replaced=step.refusal)
             elif not command.accepted:
                 command = self.gate.brake(time, replaced=command.refusal)
+                if not command.accepted and state is not None:
+                    self._restore(state)   # nothing sent: go on from the last command
             else:
                 warnings = step.warnings
                 if strained:
                     warnings = (Finding(
                         findings.FORCE_LIMITED,
-                        f'the step asked for broke the leg forces ('
-                        + '; '.join(map(str, strained)) + f'): planned again at '
+                        'the step asked for broke the leg forces ('
+                        + '; '.join(map(str, strained)) + '): planned again at '
                         f'{self.force_scale:.4g} of leg_acceleration_max',
                         (('acceleration_share', f'{self.force_scale:.6g}'),)
                         + findings.violation_details(strained)),) + warnings
@@ -325,7 +327,7 @@ class CommandFilter:
         self._following = None
 
     def _scale_acceleration(self, scale: float) -> None:
-        """Plan with ``scale`` of leg_acceleration_max from now on (a new plan at the next step)."""
+        """Plan with ``scale`` of leg_acceleration_max from now on (a new plan next step)."""
         if scale != self.force_scale:
             self.force_scale = scale
             self._input.max_acceleration = [self.limits.acceleration_max * scale] * 6

@@ -136,8 +136,9 @@ def test_a_stream_accelerating_a_heavy_payload_is_held_within_leg_force_max():
 
 def test_a_braking_command_brakes_gently_enough_to_keep_the_forces():
     """
-    Moving down at constant speed, then braking: braking at leg_acceleration_max would push
-    beyond leg_force_max, so it brakes more gently, within it.
+    Moving down, then braking: braking at leg_acceleration_max would push too hard.
+
+    It brakes more gently, within leg_force_max.
     """
     plant = geometry(leg_force_max=FORCE_MAX)
     static = leg_forces(plant, plant.home_pose)
