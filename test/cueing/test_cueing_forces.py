@@ -86,7 +86,7 @@ def independent_forces(times, poses):
 
 @pytest.fixture(scope='module')
 def limited():
-    """The noisy input's commands with leg_force_max set."""
+    """Return the noisy input's commands with leg_force_max set."""
     return run(leg_force_max=FORCE_MAX)
 
 

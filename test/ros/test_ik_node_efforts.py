@@ -30,8 +30,8 @@ from helpers import pose_message
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-import reference
 from rclpy.node import Node
+import reference
 from scipy.spatial.transform import Rotation
 from sensor_msgs.msg import JointState
 
