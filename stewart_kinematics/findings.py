@@ -154,6 +154,14 @@ STREAM_HELD = _register(
     '`CommandFilter.step` (ik_node with `command_rate`)',
     'No step within every limit could be computed: no command is published this period, and '
     'the last one, within the limits, stands.')
+FORCE_LIMITED = _register(
+    'force_limited', 'warning',
+    '`CommandFilter.send` (ik_node with `command_rate`), `MotionCueing` '
+    '(motion_cueing_node)',
+    'The streamed step or the cue pose asked for would have broken `leg_force_min` or '
+    '`leg_force_max` with its motion (the legs and forces in the details): it was planned '
+    'again with less acceleration (the share of `leg_acceleration_max` in the details), '
+    'slower toward the same target.')
 
 # Measured leg lengths (fk_node) -------------------------------------------------------------
 

@@ -41,6 +41,13 @@ rest; at rest, the platform stays. Nothing here imports ROS.
 
 ``dt`` is the time between two commands as they are sent (the node's clock), not the input's:
 the legs' rates are those the actuators see.
+
+Leg forces: the command gate judges each pose sent with its motion's forces (with masses and a
+force limit). When it refuses one for them, :class:`~.motion_cueing.MotionCueing` takes the
+step again from the same state (:meth:`CueLimiter.state`, :meth:`CueLimiter.restore`) with a
+smaller :attr:`CueLimiter.force_scale`: the follower then plans with that share of the leg
+acceleration limit (gentler changes of motion, hence smaller inertial forces), and the share
+grows back with time (:meth:`CueLimiter.recover_force_scale`).
 """
 
 import dataclasses
@@ -51,6 +58,7 @@ from typing import Tuple
 import numpy as np
 
 from stewart_kinematics.cueing.limit_margins import limit_margins, pose_violations, with_margins
+from stewart_kinematics.dynamics.inverse_dynamics import leg_forces, masses_of
 from stewart_kinematics.findings import ACTUATOR_LIMITED, COMMAND_BRAKING, CUE_SCALED, Finding
 from stewart_kinematics.limits import limits_of
 from stewart_kinematics.model.actuators import ActuatorLimits
@@ -74,6 +82,18 @@ ON_CUE_TOLERANCE = 1e-12
 #: Shares of the longest braking time at which a pose off the narrowed limits is checked to
 #: still keep the limits while the legs brake (a joint cone may peak before the stop).
 BRAKING_CHECKS = (0.25, 0.5, 0.75, 1.0)
+#: The follower's acceleration share after leg force refusals: halved per retry down to this,
+#: doubling back every FORCE_SCALE_RECOVERY seconds of commands passed.
+FORCE_SCALE_MIN = 1.0 / 16.0
+#: With masses, the cue keeps its static leg forces this share of the room between the home
+#: pose's and the force limits inside them: headroom for the forces of its motion (and of
+#: braking it), which the command gate checks on every pose sent.
+FORCE_HEADROOM = 0.5
+FORCE_SCALE_RECOVERY = 0.5
+#: What a step changes: :meth:`CueLimiter.state` keeps it, :meth:`CueLimiter.restore` puts it
+#: back (each step replaces these values, never changes them in place).
+_STEP_STATE = ('pose', 'velocity', 'lengths', 'leg_velocities', 'scale', 'tilt_scale',
+               '_target', '_target_velocity', '_last_dt')
 
 
 @dataclass(frozen=True)
@@ -128,23 +148,27 @@ class CueLimiter:
                    if math.isfinite(velocity_max) and math.isfinite(acceleration_max) else 0.0)
         #: The narrowed limits the cue keeps; the stroke margin covers the braking distance.
         self.leg_length_margin = max(settings.leg_length_margin, braking)
-        self.cue_geometry = with_margins(geometry, self.leg_length_margin,
-                                         settings.joint_angle_margin, settings.condition_margin)
+        self.cue_geometry = _with_force_headroom(with_margins(
+            geometry, self.leg_length_margin, settings.joint_angle_margin,
+            settings.condition_margin))
         #: The limits a stopping pose is checked against: all but the stroke.
-        self._stop_geometry = dataclasses.replace(geometry, limits=limits_of(geometry).replace(
-            leg_length_min=0.0, leg_length_max=math.inf))
+        self._stop_geometry = _with_force_headroom(dataclasses.replace(
+            geometry, limits=limits_of(geometry).replace(leg_length_min=0.0,
+                                                         leg_length_max=math.inf)))
         #: Inside these limits (the margins twice over) a pose can stop inside the limits for
         #: sure; beyond them, where it stops is computed (:meth:`_keeps_limits`): a joint cone
         #: may change by more than its margin while the legs brake.
         try:
-            self._safe_geometry = with_margins(
+            self._safe_geometry = _with_force_headroom(with_margins(
                 geometry, 2.0 * self.leg_length_margin, 2.0 * settings.joint_angle_margin,
-                max(2.0 * settings.condition_margin - 1.0, 1e-3))
+                max(2.0 * settings.condition_margin - 1.0, 1e-3)))
         except ValueError:   # no room for twice the margins: always compute where it stops
             self._safe_geometry = None
         self.limits_speed = actuator_limits.limits_speed
         self._velocity_plan = PLANNING_SHARE * velocity_max
         self._acceleration_plan = PLANNING_SHARE * acceleration_max
+        #: The share of the acceleration planned with (below 1 after leg force refusals).
+        self.force_scale = 1.0
         home = np.array(geometry.home_pose, dtype=float)
         self.home_pose = home
         self.home_rotation = euler_zyx_to_matrix(home[3:])
@@ -164,6 +188,27 @@ class CueLimiter:
         self._target = self.home_pose.copy()
         self._target_velocity = np.zeros(6)
         self._last_dt = None
+        self.set_force_scale(1.0)
+
+    def set_force_scale(self, scale: float) -> None:
+        """Plan with ``scale`` (in (0, 1]) of the leg acceleration limit from the next step."""
+        self.force_scale = scale
+        self._acceleration_plan = (PLANNING_SHARE * self.actuator_limits.acceleration_max
+                                   * scale)
+
+    def recover_force_scale(self, dt: float) -> None:
+        """Let the acceleration share grow back toward 1 after ``dt`` seconds passed."""
+        if self.force_scale < 1.0:
+            self.set_force_scale(min(1.0, self.force_scale * 2.0 ** (dt / FORCE_SCALE_RECOVERY)))
+
+    def state(self) -> dict:
+        """Return what a :meth:`step` changes, to take the step again (:meth:`restore`)."""
+        return {name: getattr(self, name) for name in _STEP_STATE}
+
+    def restore(self, state: dict) -> None:
+        """Put back a :meth:`state`: the limiter as it was before the step taken since."""
+        for name, value in state.items():
+            setattr(self, name, value)
 
     def cue_poses(self, displacement, angles) -> np.ndarray:
         """
@@ -466,6 +511,26 @@ class CueLimiter:
         findings.append(Finding(ACTUATOR_LIMITED, 'every next pose would leave the limits: the '
                                 'platform rests where it is'))
         return 0.0, self.pose.copy(), self.lengths.copy()
+
+
+def _with_force_headroom(geometry):
+    """
+    Return ``geometry`` with its force limits drawn in by :data:`FORCE_HEADROOM`.
+
+    Unchanged without masses or without a force limit.
+    """
+    limits = limits_of(geometry)
+    low, high = limits.leg_force_min, limits.leg_force_max
+    masses = masses_of(geometry)
+    if masses.massless or not (math.isfinite(low) or math.isfinite(high)):
+        return geometry
+    home = leg_forces(geometry, geometry.home_pose, mass_properties=masses)
+    changes = {}
+    if math.isfinite(high):
+        changes['leg_force_max'] = high - FORCE_HEADROOM * max(high - float(home.max()), 0.0)
+    if math.isfinite(low):
+        changes['leg_force_min'] = low + FORCE_HEADROOM * max(float(home.min()) - low, 0.0)
+    return dataclasses.replace(geometry, limits=limits.replace(**changes))
 
 
 def box_least_squares(metric, target, lower, upper, max_iterations=30):

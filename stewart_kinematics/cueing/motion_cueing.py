@@ -35,6 +35,10 @@ Every command comes with the command gate's verdict (:class:`~stewart_kinematics
 CommandGate`, a motion: every pose limit and the leg velocity and acceleration between
 consecutive commands, on the very numbers of the ``target_pose`` message, tool frame
 included); a command the gate refuses is replaced by its braking command (``command_braking``).
+With masses and a force limit, a command refused for its leg forces (with its motion's twist
+and acceleration) is first taken again with a gentler follower (:attr:`~.cue_limiter.
+CueLimiter.force_scale` halved, down to :data:`~.cue_limiter.FORCE_SCALE_MIN`; a
+``force_limited`` warning naming the legs), and braked only when that fails too.
 
 The input watchdog: a node calls :meth:`MotionCueing.watch` on a timer (every
 :attr:`MotionCueing.watchdog_period`) with its clock. When no sample came for
@@ -70,7 +74,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from stewart_kinematics.cueing.cue_limiter import CueLimiter
+from stewart_kinematics.cueing.cue_limiter import CueLimiter, FORCE_SCALE_MIN
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout
@@ -78,9 +82,11 @@ from stewart_kinematics.findings import (
     COMMAND_BRAKING,
     Decision,
     Finding,
+    FORCE_LIMITED,
     INPUT_GAP,
     INVALID_VEHICLE_MOTION,
     TIME_NOT_INCREASING,
+    violation_details,
     WRONG_FRAME,
 )
 from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
@@ -435,18 +441,40 @@ class MotionCueing:
         target = None
         workspace_scale, tilt_scale = limiter.scale, limiter.tilt_scale
         acceleration_scale = 1.0
-        if interval is not None:
-            limited = limiter.step(washout.displacement, washout.rotation, washout.tilt,
-                                   interval)
-            warnings.extend(limited.findings)
-            pose, target = limited.pose, limited.target
-            workspace_scale, tilt_scale = limited.workspace_scale, limited.tilt_scale
-            acceleration_scale = limited.acceleration_scale
-        else:
-            # No time passed since the last command: the platform stays where it is.
-            pose = limiter.pose.copy()
-        command = None if pose is None else self.gate.pose_vector(self._tool_pose(pose),
-                                                                  command_time)
+        checks_forces = interval is not None and self.gate.force_range is not None
+        state = limiter.state() if checks_forces else None
+        given = list(warnings)
+        strained = ()
+        while True:
+            if interval is not None:
+                limited = limiter.step(washout.displacement, washout.rotation, washout.tilt,
+                                       interval)
+                warnings = given + list(limited.findings)
+                pose, target = limited.pose, limited.target
+                workspace_scale, tilt_scale = limited.workspace_scale, limited.tilt_scale
+                acceleration_scale = limited.acceleration_scale
+            else:
+                # No time passed since the last command: the platform stays where it is.
+                pose = limiter.pose.copy()
+            command = None if pose is None else self.gate.pose_vector(self._tool_pose(pose),
+                                                                      command_time)
+            if not (checks_forces and _forces_refused(command)
+                    and limiter.force_scale > FORCE_SCALE_MIN):
+                break
+            # Too much force: the same step again, with a gentler follower.
+            strained = strained or command.violations
+            limiter.restore(state)
+            limiter.set_force_scale(max(0.5 * limiter.force_scale, FORCE_SCALE_MIN))
+        if checks_forces and command is not None and command.accepted:
+            if strained:
+                warnings.append(Finding(
+                    FORCE_LIMITED, 'the pose asked for broke the leg forces ('
+                    + '; '.join(map(str, strained)) + f'): followed at '
+                    f'{limiter.force_scale:.4g} of the leg acceleration limit',
+                    (('acceleration_share', f'{limiter.force_scale:.6g}'),)
+                    + violation_details(strained)))
+            else:
+                limiter.recover_force_scale(interval)
         if command is None or not command.accepted:
             replaced = command.refusal if command is not None else Finding(
                 COMMAND_BRAKING, 'no pose of the next command could be found')
@@ -476,3 +504,10 @@ class MotionCueing:
     def _tool_pose(self, pose) -> np.ndarray:
         """Return the pose of the ``target_pose`` message's frame (the tool frame's)."""
         return pose if self.frames is None else self.frames.tool_pose_vector(pose)
+
+
+def _forces_refused(command) -> bool:
+    """Whether the gate refused a command for its leg forces (``leg_force_min``/``_max``)."""
+    return command is not None and not command.accepted and any(
+        violation.limit in ('leg_force_min', 'leg_force_max')
+        for violation in command.violations)

@@ -46,6 +46,18 @@ Two kinds of command stream (``timing``):
   decelerates at ``leg_acceleration_max`` (never one step to rest), with a refusal-class
   ``command_braking`` finding when the command it replaces was refused.
 
+Leg forces (when the geometry carries masses, :attr:`stewart_kinematics.Geometry.
+mass_properties`): every accepted :class:`LegCommand` carries ``forces``, the actuators' forces
+of the exact pose it puts the platform at (:func:`stewart_kinematics.leg_forces`). A setpoint's
+are static (the drive brings the platform to rest there). A motion's are dynamic: the pose with
+the twist and acceleration of the divided differences of the poses sent at their send times,
+``V_k = [(p_k - p_k-1) / h_k, log(R_k R_k-1^T) / h_k]`` (``log`` the rotation vector, base
+frame) and ``A_k = (V_k - V_k-1) / ((h_k + h_k-1) / 2)`` (``V_k-1 = 0`` and the span ``h_k``
+after rest), the same spans as the leg rates; a motion's command whose forces leave
+``leg_force_min..leg_force_max`` is refused (``too_fast``, naming the limit and the legs), and
+its braking command brakes more gently when braking at the acceleration limit would break
+them. With every mass 0 no force is computed and ``forces`` is ``None``.
+
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
@@ -57,6 +69,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from stewart_kinematics import findings
+from stewart_kinematics.dynamics.inverse_dynamics import leg_forces, masses_of
 from stewart_kinematics.findings import Decision, Finding
 from stewart_kinematics.limits.leg_rates import RATE_SLACK
 from stewart_kinematics.limits.limit_model import LimitModel
@@ -71,6 +84,7 @@ from stewart_kinematics.model.rotations import (
     euler_zyx_to_quaternion,
     matrix_to_euler_zyx,
     matrix_to_quaternion,
+    matrix_to_rotation_vector,
     normalize_quaternion,
     quaternion_to_matrix,
 )
@@ -95,6 +109,9 @@ INTERPOLATION_ROUNDING = 1e-12
 #: Braking decelerates at this share of leg_acceleration_max: the rest absorbs the rounding of
 #: the pose a braking command is sent as (found by forward kinematics to 1e-12 m).
 BRAKING_SHARE = 0.999
+#: With masses and a force limit, a braking command whose forces would break it brakes at the
+#: next of these shares of ``leg_acceleration_max`` instead (0: the legs keep their speed).
+BRAKING_SHARES = (BRAKING_SHARE, 0.5, 0.25, 0.125, 0.0625, 0.0)
 #: The lengths a trajectory's point carries match those of its pose to this, metres (the
 #: rounding of ``length - offset + offset``).
 LENGTH_MATCH = 1e-9
@@ -127,6 +144,9 @@ class LegCommand(Verdict):
     :param braking: True for the gate's braking command (:meth:`CommandGate.brake`).
     :param tool_pose: for a pose message, ``(position (3,), quaternion (4,) (x, y, z, w))``
         of the tool frame as the message carries them, or ``None``.
+    :param forces: the leg forces of the command, newtons, shape (6,), positive pushing: of
+        its pose at rest (a setpoint) or with the motion's twist and acceleration (a motion's
+        command); ``None`` when every mass is 0 (no forces known) or refused.
     """
 
     lengths: Optional[np.ndarray]
@@ -140,6 +160,7 @@ class LegCommand(Verdict):
     time: Optional[float] = None
     braking: bool = False
     tool_pose: Optional[Tuple[np.ndarray, np.ndarray]] = None
+    forces: Optional[np.ndarray] = None
 
     @property
     def legs_at_fault(self) -> Tuple[Optional[int], ...]:
@@ -266,6 +287,14 @@ class CommandGate:
         #: The limits every command must keep: the geometry's and the actuators'.
         self.limits = LimitModel(geometry, limits, rate_slack=RATE_SLACK)
         self.checks_jerk = jerk and math.isfinite(limits.jerk_max)
+        masses = masses_of(geometry)
+        #: The masses that load the legs, or ``None`` when every mass is 0: then no force is
+        #: computed, for any command.
+        self.masses = None if masses.massless else masses
+        force_range = (self._pose_limits.leg_force_min, self._pose_limits.leg_force_max)
+        #: ``(leg_force_min, leg_force_max)``, N, when a motion's forces are checked, else None.
+        self.force_range = (force_range if self.masses is not None and timing == MOTION
+                            and not force_range == (-math.inf, math.inf) else None)
         self.reset()
 
     # The state of a motion ------------------------------------------------------------------
@@ -303,6 +332,10 @@ class CommandGate:
         self._acceleration = np.zeros(6)
         #: The last three intervals, newest first (``None``: at rest before).
         self._intervals = (None, None, None)
+        #: Twist of the last command (divided differences of the poses), with masses only;
+        #: and its leg forces, N, or ``None``.
+        self._twist = np.zeros(6)
+        self._forces = None
         #: The pose limits the last command broke (a braking command may have to), by
         #: ``(limit, leg, other leg)``: their excess, which a motion's next command may not
         #: pass (it may only come back toward the limits).
@@ -380,7 +413,16 @@ class CommandGate:
             return LegCommand(None, violations, findings.out_of_limits('the pose is', violations),
                               position=position, rotation=rotation)
         if self.timing == SETPOINT:
-            return LegCommand(lengths.copy(), position=position, rotation=rotation, time=time)
+            forces = None
+            if self.masses is not None:
+                forces = self._forces_of(np.concatenate([position, matrix_to_euler_zyx(
+                    rotation)]), None, None)
+                if forces is None:
+                    return LegCommand(None, refusal=Finding(
+                        findings.OUT_OF_LIMITS, 'no leg forces hold the platform at the pose (a '
+                        'singular pose)'), position=position, rotation=rotation)
+            return LegCommand(lengths.copy(), position=position, rotation=rotation, time=time,
+                              forces=forces)
         return self._motion(lengths.copy(), position, rotation, time, violations)
 
     def tool_pose(self, position, quaternion, time: Optional[float] = None,
@@ -502,8 +544,11 @@ class CommandGate:
         if self._time is not None and not time > self._time and np.array_equal(
                 lengths, self._lengths):
             # The last command again, no time later: no motion is commanded.
+            if self.masses is not None and self._forces is None:   # at rest since the reset
+                self._forces = self._forces_of(pose if pose is not None else np.concatenate(
+                    [position, matrix_to_euler_zyx(rotation)]), None, None)
             return LegCommand(lengths, position=position, rotation=rotation, time=time,
-                              velocities=np.zeros(6))
+                              velocities=np.zeros(6), forces=self._forces)
         if self._time is not None and not time > self._time:
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING,
@@ -519,15 +564,102 @@ class CommandGate:
                     'legs: ' + '; '.join(map(str, too_fast)),
                     findings.violation_details(too_fast)), position=position,
                     rotation=rotation, time=time)
-        self._advance(lengths, pose if pose is not None else np.concatenate(
-            [position, matrix_to_euler_zyx(rotation)]), time, rates, violations)
+        pose = pose if pose is not None else np.concatenate(
+            [position, matrix_to_euler_zyx(rotation)])
+        forces = None
+        if self.masses is not None:
+            forces, strained = self._motion_forces(pose, rotation, rates)
+            if strained is not None:
+                return LegCommand(None, strained, Finding(
+                    findings.TOO_FAST,
+                    'the command ' + (f'{time - self._time:.6g} s after the last '
+                                      if self._time is not None else '')
+                    + 'asks too much force of the legs: ' + '; '.join(map(str, strained)),
+                    findings.violation_details(strained)), position=position,
+                    rotation=rotation, time=time)
+            violations = violations + tuple(self._force_violations(forces))
+        self._advance(lengths, pose, time, rates, violations, forces)
         warnings = () if not violations else (Finding(
             findings.RETURNING_TO_LIMITS, 'the platform is coming back within its limits, '
             'never further out: ' + '; '.join(map(str, violations)),
             findings.violation_details(violations)),)
         return LegCommand(lengths, violations, None, warnings, position, rotation, time=time,
                           velocities=None if rates is None else rates['velocities'],
-                          accelerations=None if rates is None else rates['accelerations'])
+                          accelerations=None if rates is None else rates['accelerations'],
+                          forces=forces)
+
+    # Leg forces (only with masses) -------------------------------------------------------------
+
+    def _forces_of(self, pose, twist, acceleration) -> Optional[np.ndarray]:
+        """Return the leg forces of a pose moving so, N, shape (6,); ``None`` at a singular one."""
+        try:
+            return leg_forces(self.geometry, pose, twist, acceleration,
+                              mass_properties=self.masses)
+        except ValueError:   # a singular pose, or forces beyond the float range
+            return None
+
+    def pose_rates(self, position, rotation, interval) -> Tuple[np.ndarray, np.ndarray]:
+        """
+        Return the twist and acceleration of a pose sent ``interval`` seconds after the last.
+
+        The divided differences of the poses sent (see the module's text): the velocity of the
+        platform frame's origin and the angular velocity (the rotation vector of ``R_k
+        R_k-1^T`` over the interval), both in the base frame, and their change over the mean
+        of the last two intervals.
+
+        :param position: metres, (3,); ``rotation`` (3, 3): the pose sent.
+        :param interval: seconds since the last command, positive.
+        :returns: ``(twist (6,), acceleration (6,))``, m/s and rad/s, m/s^2 and rad/s^2.
+        """
+        last_rotation = euler_zyx_to_matrix(self._pose[3:])
+        twist = np.concatenate([np.asarray(position, dtype=float) - self._pose[:3],
+                                matrix_to_rotation_vector(rotation @ last_rotation.T)]) / interval
+        last = self._intervals[0]
+        span = 0.5 * (interval + (last if last is not None else interval))
+        return twist, (twist - self._twist) / span
+
+    def _motion_forces(self, pose, rotation, rates):
+        """
+        Return a motion's command's forces, and the force limits they break.
+
+        :returns: ``(forces, None)`` within the force limits (or coming back toward them),
+            else ``(forces, violations)``; every leg at fault at a singular pose.
+        """
+        if rates is None:   # the first command of a motion: from rest
+            twist = acceleration = None
+        else:
+            twist, acceleration = self.pose_rates(pose[:3], rotation, rates['interval'])
+            rates['twist'] = twist
+        forces = self._forces_of(pose, twist, acceleration)
+        if forces is None:
+            return None, tuple(Violation('leg_force_max', leg, math.inf, self.force_range[1]
+                                         if self.force_range else math.inf, 'N')
+                               for leg in range(1, 7))
+        if self.force_range is None:
+            return forces, None
+        violations = tuple(self._force_violations(forces))
+        if violations and not self._forces_coming_back(violations):
+            return forces, violations
+        return forces, None
+
+    def _force_violations(self, forces):
+        """Yield the :class:`Violation` of each leg force beyond the force limits."""
+        if self.force_range is None or forces is None:
+            return
+        low, high = self.force_range
+        for leg, force in enumerate(forces.tolist(), start=1):
+            if force > high:
+                yield Violation('leg_force_max', leg, force, high, 'N')
+            elif force < low:
+                yield Violation('leg_force_min', leg, force, low, 'N')
+
+    def _forces_coming_back(self, violations) -> bool:
+        """Whether forces beyond their limits break them by no more than the last command's."""
+        for violation in violations:
+            last = self._outside.get((violation.limit, violation.leg, None))
+            if last is None or violation.excess > last:
+                return False
+        return True
 
     def _rates(self, lengths, interval) -> dict:
         """
@@ -557,8 +689,9 @@ class CommandGate:
         return {'velocities': velocities, 'accelerations': accelerations, 'jerks': jerks,
                 'interval': interval, 'checked': checked}
 
-    def _advance(self, lengths, pose, time, rates, violations=()) -> None:
+    def _advance(self, lengths, pose, time, rates, violations=(), forces=None) -> None:
         """Make a command passed (or a braking one) the last one."""
+        self._forces = forces
         self._solution = (self._candidate if self._candidate is not None
                           and np.array_equal(self._candidate.pose, pose) else None)
         self._candidate = None
@@ -566,6 +699,7 @@ class CommandGate:
                          for violation in violations}
         if rates is not None:
             self._velocity, self._acceleration = rates['velocities'], rates['accelerations']
+            self._twist = rates.get('twist', np.zeros(6))
             self._intervals = (rates['interval'],) + self._intervals[:2]
         self._lengths, self._pose, self._time = np.array(lengths, dtype=float), pose, time
 
@@ -586,18 +720,72 @@ class CommandGate:
         :param replaced: the refusal of the command it replaces, or ``None`` (a stop asked
             for): with one, the braking command carries a ``command_braking`` finding (a
             refusal class: no command within every limit was given).
+        With masses and a force limit, a braking command whose leg forces (with the motion's
+        twist and acceleration) would leave ``leg_force_min..leg_force_max`` brakes at the next
+        gentler share of :data:`BRAKING_SHARES` instead (down to keeping the legs' speed).
+
         :returns: a :class:`LegCommand` with ``braking`` set; refused only when no time
-            passed since the last command (``clock_not_advancing``) or the pose of the braked
-            lengths cannot be found (then nothing can be sent: the last command stands).
+            passed since the last command (``clock_not_advancing``), the pose of the braked
+            lengths cannot be found, or no braking keeps the leg forces (``command_braking``
+            naming the limit and the legs): then nothing can be sent, the last command stands.
         """
         interval = None if self._time is None else float(time) - self._time
         if interval is None or not interval > 0.0:
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING, 'no time passed since the last command: nothing '
                 'to brake yet'))
+        strained = None
+        for share in (BRAKING_SHARES if self.force_range is not None else (BRAKING_SHARE,)):
+            braking = self._braking(interval, share)
+            if isinstance(braking, LegCommand):
+                return braking
+            lengths, stopped, position, rotation, tool_pose, violations, rates = braking
+            pose = np.concatenate([position, matrix_to_euler_zyx(rotation)])
+            if self.masses is None:
+                forces = None
+                break
+            forces, strained = self._motion_forces(pose, rotation, rates)
+            if strained is None:
+                break
+        else:
+            return LegCommand(None, strained, Finding(
+                findings.COMMAND_BRAKING, 'no command within the limits could be given, and '
+                'braking at any rate asks too much force of the legs: '
+                + '; '.join(map(str, strained)) + ': the last command stands',
+                findings.violation_details(strained)), time=float(time))
+        if self.masses is not None:
+            violations = violations + tuple(self._force_violations(forces))
+        self._advance(lengths, pose, float(time), rates, violations, forces)
+        warnings = ()
+        if replaced is not None or violations or np.any(stopped) or share != BRAKING_SHARE:
+            details = ((('replaced', replaced.code),) + tuple(replaced.details)
+                       if replaced is not None else ())
+            message = (('braking at leg_acceleration_max' if share == BRAKING_SHARE else
+                        f'braking at {share:g} of leg_acceleration_max (harder would break the '
+                        'leg force limits)')
+                       + (f' instead of a command that was refused: {replaced.message}'
+                          if replaced is not None else ''))
+            if np.any(stopped):
+                message += (f'; legs {(np.flatnonzero(stopped) + 1).tolist()} stopped at the end '
+                            'of the stroke')
+            if violations:
+                message += '; the braking command breaks ' + '; '.join(map(str, violations))
+            warnings = (Finding(findings.COMMAND_BRAKING, message,
+                                details + findings.violation_details(violations)),)
+        return LegCommand(lengths, violations, None, warnings, position, rotation,
+                          velocities=rates['velocities'], accelerations=rates['accelerations'],
+                          time=float(time), braking=True, tool_pose=tool_pose, forces=forces)
+
+    def _braking(self, interval, share):
+        """
+        Return the braking command ``interval`` after the last, at ``share`` of the limit.
+
+        :returns: ``(lengths, stopped, position, rotation, tool_pose, violations, rates)``, or
+            a refused :class:`LegCommand` when its pose cannot be found.
+        """
         last = self._intervals[0]
         span = 0.5 * (interval + (last if last is not None else interval))
-        change = BRAKING_SHARE * self.actuator_limits.acceleration_max * span
+        change = share * self.actuator_limits.acceleration_max * span
         velocities = self._velocity - np.clip(self._velocity, -change, change)
         lengths = self._lengths + velocities * interval
         low, high = self._pose_limits.leg_length_min, self._pose_limits.leg_length_max
@@ -620,25 +808,8 @@ class CommandGate:
         if self.sends == 'poses':
             lengths = legs.lengths[:, 0].copy()
         violations = tuple(self.limits.violations_of(legs))
-        rates = self._rates(lengths, interval)
-        self._advance(lengths, np.concatenate([position, matrix_to_euler_zyx(rotation)]),
-                      float(time), rates, violations)
-        warnings = ()
-        if replaced is not None or violations or np.any(stopped):
-            details = (('replaced', replaced.code),) if replaced is not None else ()
-            message = ('braking at leg_acceleration_max'
-                       + (f' instead of a command that was refused: {replaced.message}'
-                          if replaced is not None else ''))
-            if np.any(stopped):
-                message += (f'; legs {(np.flatnonzero(stopped) + 1).tolist()} stopped at the end '
-                            'of the stroke')
-            if violations:
-                message += '; the braking command breaks ' + '; '.join(map(str, violations))
-            warnings = (Finding(findings.COMMAND_BRAKING, message,
-                                details + findings.violation_details(violations)),)
-        return LegCommand(lengths, violations, None, warnings, position, rotation,
-                          velocities=rates['velocities'], accelerations=rates['accelerations'],
-                          time=float(time), braking=True, tool_pose=tool_pose)
+        return (lengths, stopped, position, rotation, tool_pose, violations,
+                self._rates(lengths, interval))
 
     @property
     def at_rest(self) -> bool:

@@ -47,6 +47,14 @@ The filter is total: it never raises for a target or a step.
   by holding the last command (a stop within one step); the filter goes on from what was sent.
   Sending starts with the first target accepted at a time (``set_target(lengths, time)``):
   until then there is nothing to send (:attr:`CommandFilter.started`).
+- With masses (:attr:`stewart_kinematics.Geometry.mass_properties`) and a force limit, the
+  gate also refuses a step whose dynamic leg forces leave ``leg_force_min..leg_force_max``
+  (``too_fast`` naming the limit and the legs). The filter then plans again from the last
+  command with half the acceleration, down to :data:`FORCE_SCALE_MIN` of
+  ``leg_acceleration_max``, and sends that step if the gate passes it; else the gate's braking
+  command (which brakes more gently when braking at the limit would break the forces). The
+  acceleration it plans with grows back to ``leg_acceleration_max`` by a factor of two every
+  :data:`FORCE_SCALE_RECOVERY` seconds. Without masses none of this is computed.
 
 Units: metres, seconds. Nothing here imports ROS.
 """
@@ -71,6 +79,10 @@ WINDOW_SECONDS = 10.0
 #: A planned motion may pass the stroke by this much, metres, for rounding; a step is clipped
 #: back into the stroke when it does (by at most this).
 STROKE_ROUNDING = 1e-12
+#: After a step refused for its leg forces, the acceleration planned with is halved, down to
+#: this share of leg_acceleration_max; it doubles back every FORCE_SCALE_RECOVERY seconds.
+FORCE_SCALE_MIN = 1.0 / 64.0
+FORCE_SCALE_RECOVERY = 0.25
 
 
 @dataclass(frozen=True, eq=False)
@@ -162,6 +174,8 @@ class CommandFilter:
         self._input = ruckig.InputParameter(6)
         self._input.max_velocity = [actuator_limits.velocity_max] * 6
         self._input.max_acceleration = [actuator_limits.acceleration_max] * 6
+        #: The share of leg_acceleration_max planned with (below 1 after force refusals).
+        self.force_scale = 1.0
         self._input.max_jerk = [actuator_limits.jerk_max] * 6
         # Phase synchronisation: from rest (or moving along the jump) the legs move in
         # proportion, a straight line in leg space; otherwise ruckig falls back to
@@ -254,15 +268,43 @@ class CommandFilter:
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING, 'no time passed since the last streamed command: '
                 'nothing sent this period'))
+        state = self._state() if self.gate.force_range is not None else None
         step = self.step(interval)
         if not step.accepted:
             command = self.gate.brake(time, replaced=step.refusal)
         else:
             command = self.gate.legs(step.lengths, time, step.velocities, step.accelerations)
-            if not command.accepted:
+            strained = command.violations if _forces_refused(command) else ()
+            while _forces_refused(command) and self.force_scale > FORCE_SCALE_MIN:
+                # Too much force: plan again from the last command with less acceleration.
+                self._restore(state)
+                self._scale_acceleration(max(0.5 * self.force_scale, FORCE_SCALE_MIN))
+                step = self.step(interval)
+                if not step.accepted:
+                    break
+                command = self.gate.legs(step.lengths, time, step.velocities,
+                                         step.accelerations)
+            if not step.accepted:
+                command = self.gate.brake(time, replaced=step.refusal)
+            elif not command.accepted:
                 command = self.gate.brake(time, replaced=command.refusal)
-            elif step.warnings:
-                command = dataclasses.replace(command, warnings=step.warnings)
+                if not command.accepted and state is not None:
+                    self._restore(state)   # nothing sent: go on from the last command
+            else:
+                warnings = step.warnings
+                if strained:
+                    warnings = (Finding(
+                        findings.FORCE_LIMITED,
+                        'the step asked for broke the leg forces ('
+                        + '; '.join(map(str, strained)) + '): planned again at '
+                        f'{self.force_scale:.4g} of leg_acceleration_max',
+                        (('acceleration_share', f'{self.force_scale:.6g}'),)
+                        + findings.violation_details(strained)),) + warnings
+                if warnings:
+                    command = dataclasses.replace(command, warnings=warnings)
+                if self.force_scale < 1.0:
+                    self._scale_acceleration(min(1.0, self.force_scale * 2.0 ** (
+                        interval / FORCE_SCALE_RECOVERY)))
         if command.braking and command.accepted:
             # Go on from what was sent: a new plan from the braking command's state.
             self._position = command.lengths.tolist()
@@ -270,6 +312,26 @@ class CommandFilter:
             self._acceleration = command.accelerations.tolist()
             self._following = None
         return command
+
+    def _state(self):
+        """Return the command's state and the plan's, to go back to (:meth:`_restore`)."""
+        following = self._following
+        return (self._position, self._velocity, self._acceleration, following,
+                None if following is None else following.time)
+
+    def _restore(self, state) -> None:
+        """Go back to a state of :meth:`_state`, with no plan to follow (a new one is made)."""
+        self._position, self._velocity, self._acceleration, following, time = state
+        if following is not None:
+            following.time = time
+        self._following = None
+
+    def _scale_acceleration(self, scale: float) -> None:
+        """Plan with ``scale`` of leg_acceleration_max from now on (a new plan next step)."""
+        if scale != self.force_scale:
+            self.force_scale = scale
+            self._input.max_acceleration = [self.limits.acceleration_max * scale] * 6
+            self._following = None
 
     def set_target(self, lengths, time: Optional[float] = None) -> StreamTarget:
         """
@@ -442,6 +504,13 @@ class CommandFilter:
         if violations:
             return findings.out_of_limits('the target lengths are', violations)
         return None
+
+
+def _forces_refused(command) -> bool:
+    """Whether the gate refused a command for its leg forces (``leg_force_min``/``_max``)."""
+    return not command.accepted and any(
+        violation.limit in ('leg_force_min', 'leg_force_max')
+        for violation in command.violations)
 
 
 def _finite_seconds(time) -> Optional[float]:

@@ -26,7 +26,10 @@ Publishes ``leg_lengths`` (std_msgs/msg/Float64MultiArray, metres, leg 1..6),
 paper's q_i), ``joint_commands`` (sensor_msgs/msg/JointState, the legs as prismatic joints
 named ``joint_names``, positions ``length - actuator_offsets``, with the stamp of the pose; or,
 with ``command_rate``, streamed at that rate through the jerk-limited
-:class:`stewart_kinematics.CommandFilter` toward the latest accepted pose), ``leg_velocities``
+:class:`stewart_kinematics.CommandFilter` toward the latest accepted pose; with masses, efforts:
+the leg forces in newtons of the pose sent, at rest for a pose, with the stream's twist and
+acceleration for a streamed command, as the command gate checked them; without masses the
+effort list is empty: not given), ``leg_velocities``
 (the rates of change of the lengths for a twist at the last pose, m/s), ``platform_markers``
 (visualization_msgs/msg/MarkerArray for RViz: the platform at every pose received, legs that
 break a limit in red, even for a refused pose), ``workspace_markers`` (the boundary of the
@@ -115,8 +118,8 @@ class IkNode(Node):
             lambda command: legs_to_message(command.lengths - home_lengths))
         # Commands, not measurements: joint_states is left to the actuators' driver.
         self.joint_command_publisher = create_output_publisher(
-            self, IK_NODE['joint_commands'], depth, lambda command, header: joint_state_message(
-                header, command.lengths, command.velocities, actuators=self.actuators))
+            self, IK_NODE['joint_commands'], depth, lambda command, header: joint_command_message(
+                header, command, self.actuators))
         self.velocities_publisher = create_output_publisher(
             self, IK_NODE['leg_velocities'], depth,
             lambda command: legs_to_message(command.velocities))
@@ -241,6 +244,27 @@ class IkNode(Node):
         linear, angular = message.linear, message.angular
         send_command(self.velocities_publisher, self.twist_accounting, self.check.tool_twist(
             (linear.x, linear.y, linear.z, angular.x, angular.y, angular.z), self.frames))
+
+
+def joint_command_message(header, command, actuators):
+    """
+    sensor_msgs/msg/JointState of a command gate's verdict: what ``joint_commands`` sends.
+
+    Positions (``length - offset``, m) and velocities (m/s, when the command carries them), and
+    the efforts: the leg forces of the command (N, positive pushing, the force along each
+    prismatic joint), those the gate checked against ``leg_force_min`` and ``leg_force_max``.
+    With every mass 0 the command carries no forces and the effort list stays empty, which
+    JointState reads as "not given" (a ros2_control controller then adds no feed-forward,
+    rather than a feed-forward of 0 N).
+
+    :param command: an accepted :class:`stewart_kinematics.limits.LegCommand`.
+    :param actuators: joint names and offsets.
+    """
+    message = joint_state_message(header, command.lengths, command.velocities,
+                                  actuators=actuators)
+    if command.forces is not None:
+        message.effort = command.forces.tolist()
+    return message
 
 
 def main(args=None) -> int:
