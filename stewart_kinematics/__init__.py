@@ -52,6 +52,7 @@ from stewart_kinematics.analysis.workspace import (
     workspace_volume,
 )
 from stewart_kinematics.dynamics import (
+    external_wrench,
     leg_forces,
     LegBody,
     MassProperties,
@@ -118,6 +119,7 @@ __all__ = [
     'CommandFilter',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
+    'external_wrench',
     'FilteredCommand',
     'Finding',
     'forward_kinematics',

@@ -19,12 +19,16 @@ The masses and gravity (:mod:`.mass_properties`: :class:`RigidBody` for the plat
 payload, :class:`LegBody` for the two bodies of each leg, :class:`MassProperties` for all of
 them), the terms of the equations of motion, for one pose in floats and a batch in arrays
 (:mod:`.wrenches`), and the inverse dynamics (:mod:`.inverse_dynamics`: :func:`leg_forces`,
-:func:`platform_wrench`). The model and its conventions: doc/dynamics.md.
+:func:`platform_wrench`), and the wrench on the platform that measured leg forces reveal
+(:mod:`.external_wrench`: :func:`external_wrench`). The model and its conventions:
+doc/dynamics.md.
 
 May import: ``model/``, numpy and the standard library. Nothing here imports ROS.
 """
 
+from stewart_kinematics.dynamics.external_wrench import external_wrench
 from stewart_kinematics.dynamics.inverse_dynamics import leg_forces, platform_wrench
 from stewart_kinematics.dynamics.mass_properties import LegBody, MassProperties, RigidBody
 
-__all__ = ['leg_forces', 'LegBody', 'MassProperties', 'platform_wrench', 'RigidBody']
+__all__ = ['external_wrench', 'leg_forces', 'LegBody', 'MassProperties', 'platform_wrench',
+           'RigidBody']

@@ -24,7 +24,10 @@ base or user frame, to re-anchor the tracker). Publishes ``estimated_pose``
 joint state it comes from, or the time of the estimate), ``estimated_twist``
 (geometry_msgs/msg/Twist, base frame: from leg velocities, at the last pose; the velocity of the
 tool frame's origin and the angular velocity, like every pose topic about the tool frame's point),
-the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on ``/tf_static``
+``estimated_wrench`` (geometry_msgs/msg/WrenchStamped, for joint states with efforts: the wrench
+the environment applies to the platform, platform frame, about its origin, from
+:func:`stewart_kinematics.dynamics.external_wrench.external_wrench`, statics), the platform
+frame on ``/tf`` (with the same stamp) and the user and tool frames on ``/tf_static``
 (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good solution, since
 a platform moves continuously, and falls back to the home pose when that fails; the service
 ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for homing

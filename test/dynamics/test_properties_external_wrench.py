@@ -29,6 +29,7 @@ import numpy as np
 from properties import (
     assert_refused,
     budget,
+    covers,
     floats,
     HUGE,
     NON_FINITE,
@@ -40,8 +41,7 @@ from properties import (
 import pytest
 from reference import HOME, singular_yaw
 
-from stewart_kinematics import leg_forces, LegBody, MassProperties, RigidBody
-from stewart_kinematics.dynamics.external_wrench import external_wrench
+from stewart_kinematics import external_wrench, leg_forces, LegBody, MassProperties, RigidBody
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core
@@ -93,6 +93,7 @@ def with_extra_payload(mass, center):
                           leg_upper=MODEL.leg_upper, gravity=GRAVITY)
 
 
+@covers('external_wrench')
 @budget(60)
 @given(poses_near_home())
 def test_the_models_own_forces_give_no_wrench(pose):
@@ -101,6 +102,7 @@ def test_the_models_own_forces_give_no_wrench(pose):
     np.testing.assert_allclose(wrench, np.zeros(6), rtol=0.0, atol=1e-9 * np.abs(forces).max())
 
 
+@covers('external_wrench')
 @budget(80)
 @given(poses_near_home(), floats(0.5, 50.0), CENTERS)
 def test_an_unmodelled_payload_shows_as_its_weight_and_moment(pose, mass, center):
@@ -134,6 +136,7 @@ def test_the_worked_example_payload_at_home():
                                [0.0, 0.0, -20.0 * 9.80665, 0.0, 0.0, 0.0], rtol=0.0, atol=1e-9)
 
 
+@covers('external_wrench')
 @budget(30)
 @given(pose_batches(max_size=6))
 def test_a_batch_gives_each_pose_its_own_wrench(poses):
@@ -145,6 +148,7 @@ def test_a_batch_gives_each_pose_its_own_wrench(poses):
                                    rtol=1e-12, atol=1e-9)
 
 
+@covers('external_wrench')
 @budget(40)
 @given(st.integers(0, 5), st.one_of(NON_FINITE, HUGE))
 def test_non_finite_or_huge_forces_are_refused_or_finite(leg, bad):
@@ -185,6 +189,7 @@ def test_rows_that_do_not_match_the_poses_are_refused():
     assert_refused(lambda: external_wrench(GEOMETRY, poses, np.zeros((3, 6))), ['rows'])
 
 
+@covers('external_wrench')
 @budget(20)
 @given(NOT_NUMBERS)
 def test_things_that_are_not_numbers_are_refused(value):
