@@ -43,7 +43,7 @@ BUSY = np.array(TABLE_3[3])
 
 
 def node_arguments(config_directory):
-    """The paper's platform, the example masses and a push of at most 100 N a leg."""
+    """Return the arguments: the paper's platform, the example masses, 100 N a leg at most."""
     return ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
             '--params-file', str(config_directory / 'example_masses.yaml'),
             '-p', 'leg_force_max:=100.0']
