@@ -53,6 +53,7 @@ from stewart_kinematics.analysis.workspace import (
     workspace_volume,
 )
 from stewart_kinematics.dynamics import (
+    external_wrench,
     leg_forces,
     LegBody,
     MassProperties,
@@ -119,6 +120,7 @@ __all__ = [
     'CommandFilter',
     'euler_zyx_to_matrix',
     'euler_zyx_to_quaternion',
+    'external_wrench',
     'FilteredCommand',
     'Finding',
     'forward_kinematics',

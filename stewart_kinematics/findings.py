@@ -221,6 +221,13 @@ NEAR_SINGULARITY = _register(
     "The Jacobian's condition number exceeds `near_singularity_condition`: the pose is "
     'published with a warning, and leg velocities are not turned into a twist there.')
 
+INVALID_EFFORTS = _register(
+    'invalid_efforts', 'warning',
+    'fk_node (`joint_states`, for `estimated_wrench`)',
+    'No external wrench for a joint state whose pose was published: its efforts are missing '
+    '(while `estimated_wrench` has a subscriber), not one per joint name, not finite or too '
+    'large, or the pose is singular (no leg forces balance the load there).')
+
 # Trajectories (trajectory_node) -------------------------------------------------------------
 
 RETIMING_FAILED = _register(

@@ -19,13 +19,15 @@ The masses and gravity (:mod:`.mass_properties`: :class:`RigidBody` for the plat
 payload, :class:`LegBody` for the two bodies of each leg, :class:`MassProperties` for all of
 them), the terms of the equations of motion, for one pose in floats and a batch in arrays
 (:mod:`.wrenches`), and the inverse dynamics (:mod:`.inverse_dynamics`: :func:`leg_forces`,
-:func:`platform_wrench`), and actuator sizing along a timed motion (:mod:`.sizing`:
-:func:`actuator_demands`, :func:`trajectory_demands`: per leg peak push, pull, RMS force, speed
-and power). The model and its conventions: doc/dynamics.md.
+:func:`platform_wrench`), the wrench on the platform that measured leg forces reveal
+(:mod:`.external_wrench`: :func:`external_wrench`), and actuator sizing along a timed motion
+(:mod:`.sizing`: :func:`actuator_demands`, :func:`trajectory_demands`: per leg peak push,
+pull, RMS force, speed and power). The model and its conventions: doc/dynamics.md.
 
 May import: ``model/``, numpy and the standard library. Nothing here imports ROS.
 """
 
+from stewart_kinematics.dynamics.external_wrench import external_wrench
 from stewart_kinematics.dynamics.inverse_dynamics import leg_forces, platform_wrench
 from stewart_kinematics.dynamics.mass_properties import LegBody, MassProperties, RigidBody
 from stewart_kinematics.dynamics.sizing import (
@@ -35,5 +37,6 @@ from stewart_kinematics.dynamics.sizing import (
     trajectory_demands,
 )
 
-__all__ = ['actuator_demands', 'ActuatorDemands', 'leg_forces', 'LegBody', 'LegDemand',
-           'MassProperties', 'platform_wrench', 'RigidBody', 'trajectory_demands']
+__all__ = ['actuator_demands', 'ActuatorDemands', 'external_wrench', 'leg_forces', 'LegBody',
+           'LegDemand', 'MassProperties', 'platform_wrench', 'RigidBody',
+           'trajectory_demands']

@@ -37,8 +37,10 @@ from stewart_kinematics.parameters.builders import (
     frames_from_settings,
     geometry_from_parameters,
     geometry_from_settings,
+    geometry_with_payload,
     mass_properties_from_parameters,
     mass_properties_from_settings,
+    PAYLOAD_PARAMETERS,
 )
 from stewart_kinematics.parameters.declarations import (
     ACTUATOR_PARAMETERS,
@@ -141,6 +143,7 @@ __all__ = [
     'FrameSettings',
     'geometry_from_parameters',
     'geometry_from_settings',
+    'geometry_with_payload',
     'GEOMETRY_PARAMETERS',
     'GeometrySettings',
     'IK_FRAME_PARAMETERS',
@@ -167,6 +170,7 @@ __all__ = [
     'OutOfRangeNumber',
     'ParameterFileError',
     'ParameterSpec',
+    'PAYLOAD_PARAMETERS',
     'QUEUE_PARAMETERS',
     'QueueSettings',
     'RAMP_PARAMETERS',

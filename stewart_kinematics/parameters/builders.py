@@ -21,6 +21,7 @@ functions take a mapping of parameter values instead, as a parameter file gives 
 here imports ROS.
 """
 
+import dataclasses
 from typing import Any, Mapping
 
 import numpy as np
@@ -29,6 +30,7 @@ from stewart_kinematics.dynamics.mass_properties import LegBody, MassProperties,
 from stewart_kinematics.limits.kinds import actuator_settings, pose_settings
 from stewart_kinematics.limits.settings import PoseLimits
 from stewart_kinematics.model.actuators import ActuatorInterface, ActuatorLimits
+from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.model.frames import FrameTree, Transform
 from stewart_kinematics.model.geometry import Geometry
 from stewart_kinematics.parameters.settings import (
@@ -98,6 +100,44 @@ def mass_properties_from_parameters(values: Mapping[str, Any]) -> MassProperties
     :raises ValueError: naming the parameter, if a value is missing or not allowed.
     """
     return mass_properties_from_settings(GeometrySettings.from_values(values))
+
+
+#: The payload's parameters: the masses that may change at run time (payloads change).
+PAYLOAD_PARAMETERS = ('payload_mass', 'payload_center_of_mass', 'payload_inertia')
+
+
+def geometry_with_payload(geometry: Geometry, values: Mapping[str, Any]) -> Geometry:
+    """
+    Return a geometry carrying the payload of parameter values, its other masses unchanged.
+
+    A run-time change of the payload (``ros2 param set``) goes through here: the new payload
+    is checked whole, then with the geometry's limits at its home pose (a payload too heavy
+    for ``leg_force_max`` at home is refused).
+
+    :param geometry: the geometry the node uses now (its platform, legs and gravity are kept).
+    :param values: parameter name -> value; the :data:`PAYLOAD_PARAMETERS` are read (kg,
+        metres in the platform frame, kg m^2 about the centre of mass, platform axes), each
+        one's own rules already checked.
+    :raises ValueError: naming the payload parameters, for an inertia without a mass or a
+        home pose whose leg forces break the limits with the new payload.
+    """
+    try:
+        payload = RigidBody(values['payload_mass'], list(values['payload_center_of_mass']),
+                            list(values['payload_inertia']), name='payload')
+    except ValueError as error:
+        raise ValueError(f"parameters 'payload_mass' and 'payload_inertia': {error}") from None
+    masses = geometry.mass_properties or MassProperties()
+    try:
+        return geometry.with_mass_properties(dataclasses.replace(masses, payload=payload))
+    except ValueError as error:
+        given = ', '.join(f'{name} {preview(_plain(values[name]))}'
+                          for name in PAYLOAD_PARAMETERS)
+        raise ValueError(f'payload refused ({given}): {error}') from None
+
+
+def _plain(value):
+    """Return a parameter's value as a number or a list (rclpy gives ``array.array``)."""
+    return value if isinstance(value, (int, float, str)) else list(value)
 
 
 def _body(kind, name, settings, prefix):

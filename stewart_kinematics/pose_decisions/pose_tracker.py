@@ -287,6 +287,20 @@ class PoseTracker:
             raise TypeError(f'settings must be SolverSettings, got {type(settings).__name__}')
         self.settings = settings
 
+    def set_mass_properties(self, geometry):
+        """
+        Judge solutions with the masses of ``geometry`` (a new payload) from the next update on.
+
+        The state (the last solution, the anchor) is kept.
+
+        :param geometry: the tracker's geometry carrying other masses
+            (:meth:`stewart_kinematics.Geometry.with_mass_properties`): its joints, home pose
+            and limits must be the tracker's.
+        """
+        self.geometry = geometry
+        self.limits = LimitModel.of_geometry(geometry)
+        self._anchor_check = CommandCheck(geometry)
+
     @property
     def ambiguous(self) -> bool:
         """Whether the estimate may be in another assembly mode (:attr:`ambiguity` says why)."""

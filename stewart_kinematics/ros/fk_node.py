@@ -24,7 +24,10 @@ base or user frame, to re-anchor the tracker). Publishes ``estimated_pose``
 joint state it comes from, or the time of the estimate), ``estimated_twist``
 (geometry_msgs/msg/Twist, base frame: from leg velocities, at the last pose; the velocity of the
 tool frame's origin and the angular velocity, like every pose topic about the tool frame's point),
-the platform frame on ``/tf`` (with the same stamp) and the user and tool frames on ``/tf_static``
+``estimated_wrench`` (geometry_msgs/msg/WrenchStamped, for joint states with efforts: the wrench
+the environment applies to the platform, platform frame, about its origin, from
+:func:`stewart_kinematics.dynamics.external_wrench.external_wrench`, statics), the platform
+frame on ``/tf`` (with the same stamp) and the user and tool frames on ``/tf_static``
 (see :mod:`stewart_kinematics.model.frames`). Each solve starts from the last good solution, since
 a platform moves continuously, and falls back to the home pose when that fails; the service
 ``reset_tracker`` (std_srvs/srv/Trigger) makes the next solve start from the home pose, for homing
@@ -62,6 +65,7 @@ from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
 
 from stewart_kinematics import findings
+from stewart_kinematics.dynamics.external_wrench import external_wrench
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.parameters import (
@@ -82,10 +86,12 @@ from stewart_kinematics.ros.message_accounting import (
     WARNING_PERIOD,
 )
 from stewart_kinematics.ros.message_conversions import (
+    leg_efforts_from_joint_state,
     leg_lengths_from_message,
     legs_from_joint_state,
     pose_to_message,
     twist_to_message,
+    wrench_to_message,
 )
 from stewart_kinematics.ros.node_main import (
     create_declared_service,
@@ -93,7 +99,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings
+from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 
@@ -103,8 +109,10 @@ class FkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        self.settings = declare_settings(self, FkNodeSettings, on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason, node_options=kwargs)
+        self.settings = declare_settings(
+            self, FkNodeSettings, on_change=self.on_parameter_change,
+            check=frame_parameters_reason, node_options=kwargs,
+            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
@@ -118,6 +126,8 @@ class FkNode(Node):
         self.stamped_publisher = create_output_publisher(
             self, FK_NODE['estimated_pose_stamped'], depth)
         self.twist_publisher = create_output_publisher(self, FK_NODE['estimated_twist'], depth)
+        self.wrench_publisher = create_output_publisher(
+            self, FK_NODE['estimated_wrench'], depth)
         self.tf = TransformBroadcaster(self, dynamic=FK_NODE['/tf'], static=FK_NODE[
             '/tf_static']) if settings.fk_frames.publish_tf else None
         if self.tf is not None:
@@ -162,6 +172,11 @@ class FkNode(Node):
             self.tracker.configure(self.settings.solver)
         if name == 'assembly_mode_margin_warning' and self.margin is not None:
             self.margin.monitor.warning_distance = value
+
+    def set_mass_properties(self, geometry):
+        """Take the geometry carrying a new payload: the wrench and the limits use it now."""
+        self.geometry = geometry
+        self.tracker.set_mass_properties(geometry)
 
     def on_margin_timer(self):
         """
@@ -209,6 +224,34 @@ class FkNode(Node):
                                  velocities)
         if estimate.twist is not None:
             self.twist_publisher.publish(twist_to_message(estimate.tool_twist))
+        if estimate.accepted:
+            self.publish_wrench(message, estimate.pose)
+
+    def publish_wrench(self, message: JointState, pose):
+        """
+        Publish the external wrench on the platform from a joint state's efforts, or warn why not.
+
+        Statics: the model's forces are those that hold the pose still (doc/dynamics.md).
+
+        :param message: the joint state, its names already matched to the legs.
+        :param pose: the platform's pose it was solved to (metres, radians).
+        """
+        try:
+            efforts = leg_efforts_from_joint_state(message, self.actuators)
+            if efforts is None:
+                if self.wrench_publisher.get_subscription_count() > 0:
+                    self.joint_state_accounting.warn(Finding(
+                        findings.INVALID_EFFORTS, 'no estimated_wrench: the joint state '
+                        'carries no efforts (the measured leg forces, N)'))
+                return
+            wrench = external_wrench(self.geometry, pose, efforts)
+        except ValueError as error:
+            self.joint_state_accounting.warn(Finding(
+                findings.INVALID_EFFORTS, f'no estimated_wrench: {error}'))
+            return
+        self.wrench_publisher.publish(wrench_to_message(
+            Header(stamp=message.header.stamp,
+                   frame_id=self.tracker.frames.platform_frame), wrench))
 
     def on_leg_velocities(self, message: Float64MultiArray):
         """Publish the platform twist of leg velocities at the last estimated pose."""

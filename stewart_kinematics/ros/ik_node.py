@@ -77,7 +77,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings
+from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_publishing import WorkspacePublisher
 
@@ -90,8 +90,10 @@ class IkNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
-        self.settings = declare_settings(self, IkNodeSettings, on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason, node_options=kwargs)
+        self.settings = declare_settings(
+            self, IkNodeSettings, on_change=self.on_parameter_change,
+            check=frame_parameters_reason, node_options=kwargs,
+            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         actuator_limits = actuator_limits_from_settings(settings.geometry)
@@ -158,6 +160,14 @@ class IkNode(Node):
             self.frames = frames_from_settings(self.settings.frames)
         elif name == 'workspace_resolution':
             self.workspace.set_resolution(value)
+
+    def set_mass_properties(self, geometry):
+        """Judge every pose from now on with a new payload: the check rebuilt, its state kept."""
+        old, self.geometry = self.check, geometry
+        self.check = CommandCheck(geometry, old.limits.actuator_limits,
+                                  twist_over_limit=old.twist_over_limit)
+        self.check.last_pose, self.check.last_lengths = old.last_pose, old.last_lengths
+        self.check.gate.reset(old.gate.last_lengths, old.gate.last_pose)
 
     def destroy_node(self):
         """Stop the workspace worker, then destroy the node."""

@@ -270,6 +270,15 @@ FK_NODE = NodeInterface('fk_node', (
     Endpoint('estimated_twist', PUBLISHER, 'geometry_msgs/msg/Twist', QUEUE,
              "Velocity of the tool frame's origin and angular velocity (m/s, rad/s, base "
              'frame: about the same point as the poses) from leg velocities.'),
+    Endpoint('estimated_wrench', PUBLISHER, 'geometry_msgs/msg/WrenchStamped', QUEUE,
+             'For each `joint_states` with efforts (the measured leg forces, N, positive '
+             'pushing) whose pose is published: the wrench the environment applies to the '
+             'platform (an unmodelled payload, a contact), the measured forces minus the '
+             "model's static forces at that pose mapped through J^T, sign turned: force (N) "
+             "and torque (N m) about the platform frame's origin, both in the platform frame "
+             '(`frame_id`: `platform_frame`), with the stamp of the joint state. A payload '
+             'the model does not know shows as its weight; a moving platform adds its own '
+             'inertial forces.'),
     Endpoint('/tf', PUBLISHER, 'tf2_msgs/msg/TFMessage', TF,
              '`base_frame` -> `platform_frame`: the estimated platform pose, with the stamp of '
              'the lengths it comes from; sent only while someone listens (needs tf2_msgs).',

@@ -22,7 +22,7 @@ raises ``ValueError`` with a sentence a user can act on when a message cannot be
 import math
 
 from builtin_interfaces.msg import Duration
-from geometry_msgs.msg import Pose, Twist
+from geometry_msgs.msg import Pose, Twist, WrenchStamped
 from nav_msgs.msg import Path
 import numpy as np
 from sensor_msgs.msg import JointState
@@ -173,6 +173,42 @@ def legs_from_joint_state(message: JointState,
     if len(message.velocity) == len(names):
         velocities = np.asarray(message.velocity, dtype=float)[order]
     return lengths, velocities
+
+
+def leg_efforts_from_joint_state(message: JointState,
+                                 actuators: ActuatorInterface = DEFAULT_ACTUATORS):
+    """
+    Return the measured leg forces of a JointState naming the legs' joints, or ``None``.
+
+    Matched by name like the positions (:func:`legs_from_joint_state`, which has checked the
+    names); not judged here: :func:`stewart_kinematics.dynamics.external_wrench.
+    external_wrench` refuses forces that are not finite.
+
+    :returns: the legs' efforts, newtons, positive pushing the platform away from the base,
+        shape (6,); ``None`` when the message carries no efforts (an empty list).
+    :raises ValueError: if there are efforts but not one for each of the message's names.
+    """
+    names = list(message.name)
+    efforts = message.effort
+    if len(efforts) == 0:
+        return None
+    if len(efforts) != len(names):
+        raise ValueError(f'joint state efforts must give one force (N) for each of its '
+                         f'{len(names)} names, got {len(efforts)}')
+    return np.asarray(efforts, dtype=float)[actuators.order(names)]
+
+
+def wrench_to_message(header, wrench) -> WrenchStamped:
+    """
+    geometry_msgs/msg/WrenchStamped of ``[Fx, Fy, Fz, Mx, My, Mz]`` (N, N m).
+
+    :param header: std_msgs/msg/Header: the frame the wrench is expressed in (its moment about
+        that frame's origin) and the stamp.
+    """
+    message = WrenchStamped(header=header)
+    force, torque = message.wrench.force, message.wrench.torque
+    force.x, force.y, force.z, torque.x, torque.y, torque.z = (float(v) for v in wrench)
+    return message
 
 
 def seconds(duration) -> float:

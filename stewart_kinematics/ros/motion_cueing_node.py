@@ -66,7 +66,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings
+from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
 
 
 class MotionCueingNode(Node):
@@ -74,9 +74,12 @@ class MotionCueingNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('motion_cueing_node', **kwargs)
-        self.settings = declare_settings(self, MotionCueingNodeSettings,
-                                         on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason, node_options=kwargs)
+        self.settings = declare_settings(
+            self, MotionCueingNodeSettings, on_change=self.on_parameter_change,
+            check=frame_parameters_reason, node_options=kwargs, payload=RunTimePayload(
+                lambda: self.cueing.geometry, self.set_mass_properties, lambda: '' if (
+                    self.cueing.settled()) else 'motion_cueing_node takes a new payload only '
+                'at rest at home: call reset, wait until the platform is home, then set it'))
         self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
                                                    frames_from_settings(self.settings.frames))
         depth = self.settings.queue.queue_depth
@@ -105,6 +108,11 @@ class MotionCueingNode(Node):
         self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             self.cueing.set_frames(frames_from_settings(self.settings.frames))
+
+    def set_mass_properties(self, geometry):
+        """Cue with a new payload (the platform rests at home): a new cueing of the settings."""
+        self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
+                                                   frames_from_settings(self.settings.frames))
 
     def on_imu(self, message: Imu):
         """

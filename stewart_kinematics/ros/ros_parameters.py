@@ -35,13 +35,14 @@ messages that rclpy itself would raise on.
 
 import os
 import sys
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import weakref
 
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.parameter import Parameter
 
 from stewart_kinematics import parameters
+from stewart_kinematics.parameters import geometry_with_payload, PAYLOAD_PARAMETERS
 from stewart_kinematics.parameters.files import (
     parse_rcl_yaml,
     read_sections_and_lines,
@@ -77,7 +78,8 @@ def descriptor(spec: parameters.ParameterSpec) -> ParameterDescriptor:
 
 
 def declare_parameters(node, specs, on_change=None, check=None,
-                       node_options: Optional[dict] = None) -> dict:
+                       node_options: Optional[dict] = None,
+                       payload: Optional['RunTimePayload'] = None) -> dict:
     """
     Declare ``specs`` on ``node`` with validation, and return their values.
 
@@ -90,6 +92,8 @@ def declare_parameters(node, specs, on_change=None, check=None,
         rules between parameters, such as distinct frame names).
     :param node_options: the keyword arguments the node was built with (``cli_args``,
         ``parameter_overrides``, ``use_global_arguments``), read for :class:`ParameterSources`.
+    :param payload: how the node takes a new payload at run time (:class:`RunTimePayload`),
+        or ``None``: the payload parameters are checked each alone, and not applied.
     :returns: parameter name -> value, as set by parameter files, overrides or defaults.
     :raises rclpy.exceptions.ParameterException: if a value has the wrong type or is not
         allowed; the message gives the spec's reason.
@@ -136,6 +140,12 @@ def declare_parameters(node, specs, on_change=None, check=None,
             reason = check(values)
             if reason:
                 return SetParametersResult(successful=False, reason=reason)
+        if payload is not None and any(parameter.name in PAYLOAD_PARAMETERS
+                                       for parameter in parameters) and all(
+                node.has_parameter(name) for name in by_name):   # not while declaring
+            reason = payload.reason(node, parameters)
+            if reason:
+                return SetParametersResult(successful=False, reason=reason)
         return SetParametersResult(successful=True)
 
     node.add_on_set_parameters_callback(validate)
@@ -144,11 +154,15 @@ def declare_parameters(node, specs, on_change=None, check=None,
         default = _ROS_TYPES[spec.value_type] if spec.default is None else spec.default
         node.declare_parameter(spec.name, default, descriptor(spec))
 
-    if on_change is not None:
+    if on_change is not None or payload is not None:
         def apply(parameters):
             for parameter in parameters:
-                if parameter.name in by_name:
+                if parameter.name in by_name and on_change is not None:
                     on_change(parameter.name, parameter.value)
+            # Once for the whole set: its payload parameters were checked together.
+            if payload is not None and any(parameter.name in PAYLOAD_PARAMETERS
+                                           for parameter in parameters):
+                payload.apply(node)
         node.add_post_set_parameters_callback(apply)
     values = {spec.name: node.get_parameter_or(spec.name).value for spec in specs}
     # A required parameter that no file set was never validated: report it here.
@@ -157,18 +171,75 @@ def declare_parameters(node, specs, on_change=None, check=None,
 
 
 def declare_settings(node, settings_class, on_change=None, check=None,
-                     node_options: Optional[dict] = None):
+                     node_options: Optional[dict] = None,
+                     payload: Optional['RunTimePayload'] = None):
     """
     Declare a node's parameters (:func:`declare_parameters`) and return them as its settings.
 
     :param settings_class: the node's :class:`~stewart_kinematics.parameters.NodeSettings`
         subclass, such as ``IkNodeSettings``: its specs are declared.
     :param node_options: as for :func:`declare_parameters`.
+    :param payload: as for :func:`declare_parameters`.
     :returns: an object of ``settings_class`` holding the values the node starts with.
     """
     values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check,
-                                node_options=node_options)
+                                node_options=node_options, payload=payload)
     return settings_class.from_values(values)
+
+
+class RunTimePayload:
+    """
+    How a node takes a new payload at run time (``ros2 param set``, a parameter service).
+
+    The payload parameters (:data:`~stewart_kinematics.parameters.PAYLOAD_PARAMETERS`) of one
+    request are checked together, before they are set, with the geometry the node uses now
+    (:func:`~stewart_kinematics.parameters.geometry_with_payload`: an inertia without a mass,
+    or a payload too heavy for ``leg_force_max`` at home, is refused with the reason and the
+    old payload stays); once set, the node is handed the geometry carrying them, at once.
+
+    :param geometry: returns the geometry the node uses now.
+    :param apply: called as ``apply(geometry)`` with the geometry carrying the new payload;
+        the node hands it to every object that uses the masses.
+    :param refusal: returns ``''`` when the node can take a new payload now, else why not
+        (a node that must be at rest first); ``None``: always.
+    """
+
+    def __init__(self, geometry: Callable[[], object], apply: Callable[[object], None],
+                 refusal: Optional[Callable[[], str]] = None):
+        self.geometry = geometry
+        self._apply = apply
+        self._refusal = refusal
+
+    def reason(self, node, changes) -> str:
+        """Return ``''`` if the payload after ``changes`` (rclpy Parameters) fits, else why not."""
+        refusal = self._refusal() if self._refusal is not None else ''
+        if refusal:
+            return refusal
+        values = _payload_values(node)
+        values.update({change.name: change.value for change in changes
+                       if change.name in PAYLOAD_PARAMETERS})
+        try:
+            geometry_with_payload(self.geometry(), values)
+        except ValueError as error:
+            return str(error)
+        return ''
+
+    def apply(self, node) -> None:
+        """Hand the node the geometry carrying the payload parameters as now set."""
+        try:
+            geometry = geometry_with_payload(self.geometry(), _payload_values(node))
+        except ValueError as error:   # checked before the set: not expected, never raised
+            node.get_logger().error(f'the new payload could not be taken: {error}')
+            return
+        self._apply(geometry)
+        mass = node.get_parameter('payload_mass').value
+        node.get_logger().info(f'payload changed: {mass:g} kg; the leg forces and the '
+                               'leg_force limit use it from now on')
+
+
+def _payload_values(node) -> dict:
+    """Return the payload parameters' values on a node, as set now."""
+    return {name: node.get_parameter(name).value for name in PAYLOAD_PARAMETERS}
 
 
 def remember_process_arguments(context, arguments: Optional[Sequence[str]]) -> None:

@@ -81,7 +81,7 @@ from stewart_kinematics.ros.node_main import (
     hand_to_executor,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings
+from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
@@ -93,9 +93,10 @@ class TrajectoryNode(Node):
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        self.settings = declare_settings(self, TrajectoryNodeSettings,
-                                         on_change=self.on_parameter_change,
-                                         check=frame_parameters_reason, node_options=kwargs)
+        self.settings = declare_settings(
+            self, TrajectoryNodeSettings, on_change=self.on_parameter_change,
+            check=frame_parameters_reason, node_options=kwargs,
+            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuator_limits = actuator_limits_from_settings(settings.geometry)
@@ -152,6 +153,11 @@ class TrajectoryNode(Node):
         self.planner = self.make_planner(self.settings)
         if name.startswith('tool_frame'):
             self.ramp.set_frames(self.planner.planner.frames)
+
+    def set_mass_properties(self, geometry):
+        """Plan every message from now on with a new payload (one being planned keeps its own)."""
+        self.geometry = geometry
+        self.planner = self.make_planner(self.settings)
 
     def destroy_node(self):
         """Stop the worker (a plan under way is cancelled), then destroy the node."""

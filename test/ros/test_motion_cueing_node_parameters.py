@@ -42,8 +42,10 @@ FILES = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
          '--params-file', str(CONFIG / 'example_limits.yaml'),
          '--params-file', str(CONFIG / 'motion_cueing.yaml')]
 G = 9.80665
-#: The tool frame parameters: the only ones a user may change while the node runs.
-WRITABLE = {'tool_frame', 'tool_frame_position', 'tool_frame_orientation_deg', 'use_sim_time'}
+#: The tool frame and payload parameters: the only ones a user may change while the node runs
+#: (a payload only while the platform rests at home: test_payload_parameters.py).
+WRITABLE = {'tool_frame', 'tool_frame_position', 'tool_frame_orientation_deg', 'use_sim_time',
+            'payload_mass', 'payload_center_of_mass', 'payload_inertia'}
 
 
 def imu(stamp_ns):
