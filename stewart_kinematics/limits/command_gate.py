@@ -715,14 +715,14 @@ class CommandGate:
         to rest and no further; the jerk limit may be exceeded. A leg that would pass an end of
         its stroke stops there. Given at rest, it repeats the last command. A gate that sends
         poses (``sends='poses'``) judges the lengths of the pose message it gives, as sent.
+        With masses and a force limit, a braking command whose leg forces (with the motion's
+        twist and acceleration) would leave ``leg_force_min..leg_force_max`` brakes at the next
+        gentler share of :data:`BRAKING_SHARES` instead (down to keeping the legs' speed).
 
         :param time: when it is sent, seconds, after the last command.
         :param replaced: the refusal of the command it replaces, or ``None`` (a stop asked
             for): with one, the braking command carries a ``command_braking`` finding (a
             refusal class: no command within every limit was given).
-        With masses and a force limit, a braking command whose leg forces (with the motion's
-        twist and acceleration) would leave ``leg_force_min..leg_force_max`` brakes at the next
-        gentler share of :data:`BRAKING_SHARES` instead (down to keeping the legs' speed).
 
         :returns: a :class:`LegCommand` with ``braking`` set; refused only when no time
             passed since the last command (``clock_not_advancing``), the pose of the braked

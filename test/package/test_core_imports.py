@@ -47,7 +47,7 @@ MAY_IMPORT = {
                        'analysis.assembly_modes'},
     'motion': {'model', 'dynamics', 'limits', 'findings', 'parameters', 'motion'},
     'analysis': {'model', 'limits', 'findings', 'parameters', 'analysis', 'dynamics'},
-    'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing'},
+    'cueing': {'model', 'limits', 'findings', 'parameters', 'motion', 'cueing', 'dynamics'},
     'workers': {'analysis', 'workers'},
 }
 #: Single modules allowed one import more than their folder, and why: none (a geometry asks
