@@ -193,3 +193,16 @@ def test_a_new_payload_at_run_time_changes_the_wrench_at_once(start):
     send(POSE, efforts)
     assert_allclose(wrench_values(probe.wrenches[2]), expected, rtol=0.0,
                     atol=1e-9 * np.abs(expected).max())
+
+
+def test_joint_states_without_efforts_and_no_subscriber_give_no_warning(ros):
+    """Most drivers send no efforts: without a subscriber of the wrench, nothing to say."""
+    node = FkNode(cli_args=ARGS)
+    try:
+        message = JointState(name=[f'leg_{leg}' for leg in range(1, 7)],
+                             position=inverse_kinematics(GEOMETRY, POSE).tolist())
+        node.on_joint_states(message)
+        accounting = node.joint_state_accounting
+        assert (accounting.published, accounting.warned) == (1, 0)
+    finally:
+        node.destroy_node()
