@@ -287,15 +287,39 @@ class CommandGate:
         #: The limits every command must keep: the geometry's and the actuators'.
         self.limits = LimitModel(geometry, limits, rate_slack=RATE_SLACK)
         self.checks_jerk = jerk and math.isfinite(limits.jerk_max)
+        self._take_masses(geometry)
+        self.reset()
+
+    def _take_masses(self, geometry) -> None:
+        """Take the masses of ``geometry`` and the force limits it carries."""
         masses = masses_of(geometry)
         #: The masses that load the legs, or ``None`` when every mass is 0: then no force is
         #: computed, for any command.
         self.masses = None if masses.massless else masses
         force_range = (self._pose_limits.leg_force_min, self._pose_limits.leg_force_max)
         #: ``(leg_force_min, leg_force_max)``, N, when a motion's forces are checked, else None.
-        self.force_range = (force_range if self.masses is not None and timing == MOTION
+        self.force_range = (force_range if self.masses is not None and self.timing == MOTION
                             and not force_range == (-math.inf, math.inf) else None)
-        self.reset()
+
+    def set_mass_properties(self, geometry) -> None:
+        """
+        Judge the next commands with the masses of ``geometry`` (a new payload), motion kept.
+
+        The last command, its time, its rates and the limits it broke stay, so a stream goes
+        on without a jump; its next command is judged with the new masses, statics (the pose
+        limits' ``leg_force`` kind) and motion alike. Without masses before, the gate kept no
+        twist: the first command after takes its acceleration as 0.
+
+        :param geometry: the gate's geometry carrying other masses (the same platform and
+            limits: :meth:`stewart_kinematics.Geometry.with_mass_properties`).
+        """
+        was_massless = self.masses is None
+        self.geometry = geometry
+        self._pose_limits = limits_of(geometry)
+        self.limits = LimitModel(geometry, self.limits.actuator_limits, rate_slack=RATE_SLACK)
+        self._take_masses(geometry)
+        if was_massless and self.masses is not None and self._time is not None:
+            self._twist = None
 
     # The state of a motion ------------------------------------------------------------------
 
@@ -614,6 +638,8 @@ class CommandGate:
         last_rotation = euler_zyx_to_matrix(self._pose[3:])
         twist = np.concatenate([np.asarray(position, dtype=float) - self._pose[:3],
                                 matrix_to_rotation_vector(rotation @ last_rotation.T)]) / interval
+        if self._twist is None:     # masses given mid-motion: no earlier twist was kept
+            return twist, np.zeros(6)
         last = self._intervals[0]
         span = 0.5 * (interval + (last if last is not None else interval))
         return twist, (twist - self._twist) / span

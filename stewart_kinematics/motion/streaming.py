@@ -199,6 +199,16 @@ class CommandFilter:
         if not start.accepted:
             raise ValueError(start.reason)
 
+    def set_mass_properties(self, geometry) -> None:
+        """
+        Check the next steps with the masses of ``geometry`` (a new payload), the stream kept.
+
+        :param geometry: the filter's geometry carrying other masses
+            (:meth:`stewart_kinematics.Geometry.with_mass_properties`).
+        """
+        if self.gate is not None:
+            self.gate.set_mass_properties(geometry)
+
     def reset(self, lengths) -> StreamTarget:
         """
         Put the command at rest at ``lengths`` (metres, shape (6,)), which is also the target.

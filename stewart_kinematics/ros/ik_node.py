@@ -168,6 +168,8 @@ class IkNode(Node):
                                   twist_over_limit=old.twist_over_limit)
         self.check.last_pose, self.check.last_lengths = old.last_pose, old.last_lengths
         self.check.gate.reset(old.gate.last_lengths, old.gate.last_pose)
+        if self.command_filter is not None:    # a stream in flight checks its next step too
+            self.command_filter.set_mass_properties(geometry)
 
     def destroy_node(self):
         """Stop the workspace worker, then destroy the node."""

@@ -197,3 +197,36 @@ def test_without_masses_nothing_is_computed(monkeypatch):
     assert all(command.forces is None for command in commands)
     gate = CommandGate(plant, LIMITS, timing=SETPOINT)
     assert gate.pose(PAPER.home_pose[:3], np.eye(3)).forces is None
+
+
+@pytest.mark.parametrize('before', [
+    MassProperties(payload=RigidBody(100.0, [0.0, 0.0, 0.1], [1.0, 1.0, 1.0, 0.0, 0.0, 0.0],
+                                     name='payload')),
+    MassProperties()], ids=['lighter payload', 'no masses'])
+def test_a_payload_set_mid_stream_is_checked_from_the_next_step(before):
+    """
+    The payload grows to 200 kg while the stream accelerates: its next steps keep leg_force_max.
+
+    A stream that kept checking its steps with the masses it started with would push the
+    200 kg beyond the limit (the unlimited motion asks more of it: the first test above).
+    """
+    command_filter = CommandFilter(LIMITS, PERIOD, HOME_LENGTHS,
+                                   geometry(masses=before, leg_force_max=FORCE_MAX))
+    assert command_filter.set_target(HOME_LENGTHS + 0.05, 0.0).accepted
+    times, lengths, commands = [0.0], [HOME_LENGTHS], []
+    switch = 20
+    for k in range(1, 1500):
+        if k == switch:
+            command_filter.set_mass_properties(
+                geometry(masses=before, leg_force_max=FORCE_MAX).with_mass_properties(MASSES))
+        command = command_filter.send(k * PERIOD)
+        assert command.accepted, command.refusal
+        times.append(k * PERIOD)
+        lengths.append(command.lengths)
+        commands.append(command)
+    forces = independent_forces(PAPER, times, lengths)
+    # From the step after the switch (its acceleration is judged against the step before).
+    assert forces[switch + 1:].max() <= FORCE_MAX + 0.02
+    assert all(command.forces is not None and np.all(command.forces <= FORCE_MAX)
+               for command in commands[switch:])
+    assert_allclose(lengths[-1], HOME_LENGTHS + 0.05, atol=1e-9)
