@@ -170,6 +170,7 @@ class IkNode(Node):
         self.check.gate.reset(old.gate.last_lengths, old.gate.last_pose)
         if self.command_filter is not None:    # a stream in flight checks its next step too
             self.command_filter.set_mass_properties(geometry)
+        self.workspace.set_geometry(geometry)
 
     def destroy_node(self):
         """Stop the workspace worker, then destroy the node."""

@@ -84,6 +84,8 @@ class WorkspacePublisher:
         self.namespace = node.get_namespace().strip('/') or 'stewart_platform'
         self.lock = threading.Lock()
         self.worker = None
+        #: Which worker process is the current one (one per geometry the node had).
+        self.worker_generation = 0
         #: Results waiting for the executor: kind -> (generation, value or exception).
         self.results = {}
         #: Set by :meth:`shutdown`: a result that arrives later is dropped.
@@ -123,6 +125,25 @@ class WorkspacePublisher:
             self.marker_publisher.publish(workspace_markers(self._header(), np.zeros((0, 3)),
                                                             [], self.namespace))
 
+    def set_geometry(self, geometry):
+        """
+        Compute from now on with ``geometry`` (a new payload: its force limits move the boundary).
+
+        The worker process holds the old geometry: it is stopped (a computation under way is
+        dropped) and started again with the new one when next needed; the markers are computed
+        again for their subscribers, and the next travel range from the last accepted pose.
+        """
+        with self.lock:
+            self.results = {}
+            self.worker_generation += 1   # what the old worker still sends is dropped
+        if self.worker is not None:
+            self.worker.close()
+            self.worker = None
+        self.geometry = geometry
+        self.busy.clear()
+        self.travel = None
+        self.set_resolution(self.resolution)
+
     def request_markers(self):
         """Start the workspace computation if it is due and someone subscribes."""
         if self.markers_due and self.marker_publisher.get_subscription_count():
@@ -145,15 +166,19 @@ class WorkspacePublisher:
 
     def _submit(self, kind, tag, function, *args, **kwargs):
         if self.worker is None:
-            self.worker = WorkspaceWorker(self.geometry, self._on_result)
+            # A result of a worker stopped since (the old geometry's) is told apart by this.
+            self.worker_generation += 1
+            generation = self.worker_generation
+            self.worker = WorkspaceWorker(
+                self.geometry, lambda tag, value: self._on_result(tag, value, generation))
         self.busy.add(kind)
         self.worker.submit((kind, tag), function, *args, **kwargs)
 
-    def _on_result(self, tag, value):
+    def _on_result(self, tag, value, worker_generation=None):
         """Keep a finished result and hand it to the node's executor (the reader thread)."""
         kind, generation = tag
         with self.lock:
-            if self.closed:
+            if self.closed or worker_generation != self.worker_generation:
                 return
             self.results[kind] = (generation, value)
             # Under the lock: shutdown() cannot free the node meanwhile.

@@ -29,12 +29,15 @@ from pathlib import Path
 
 from geometry_msgs.msg import Pose
 from helpers import pose_message
+import numpy as np
+from numpy.testing import assert_allclose
 import pytest
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from reference import TABLE_3
 from std_msgs.msg import Float64MultiArray
 
+from stewart_kinematics import travel_ranges
 from stewart_kinematics.ros.ik_node import IkNode
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
@@ -177,3 +180,29 @@ def test_motion_cueing_node_takes_a_payload_only_at_rest_at_home(ros):
         assert node.cueing.geometry.mass_properties.payload.mass == 25.0
     finally:
         node.destroy_node()
+
+
+def test_ik_node_travel_ranges_follow_a_new_payload(node_rig, spin_until):
+    """
+    The travel ranges (computed in ik_node's worker process) take the new payload at once.
+
+    With 20 kg and leg_force_max 100 N the force stops some ends; with 40 kg they shrink, and
+    the node's ranges are those of the platform carrying 40 kg, not the 20 kg it started with.
+    """
+    node = node_rig.add(IkNode(cli_args=MASSES, parameter_overrides=FORCE_LIMIT + [
+        Parameter('travel_range_rate', value=5.0)]))
+    probe = node_rig.add(Node('travel_probe'))
+    received = []
+    probe.create_subscription(Float64MultiArray, 'travel_ranges',
+                              lambda message: received.append(list(message.data)), 10)
+    node_rig.connect(lambda: node.workspace.travel_publisher.get_subscription_count() >= 1,
+                     'ik_node travel_ranges')
+    before = travel_ranges(node.geometry).as_array().ravel()
+    assert spin_until(node_rig.executor, lambda: received, timeout=30.0)
+    assert_allclose(received[-1], before, rtol=0.0, atol=1e-12)
+    assert set_one(node, 'payload_mass', 40.0).successful
+    after = travel_ranges(node.geometry).as_array().ravel()
+    assert np.any(np.abs(after) < np.abs(before) - 1e-3)   # the heavier payload shrinks them
+    assert spin_until(node_rig.executor, lambda: np.allclose(received[-1], after, rtol=0.0,
+                                                             atol=1e-12), timeout=30.0), (
+        f'still {received[-1]}, expected {after.tolist()}')
