@@ -78,11 +78,14 @@ def load_columns(path, *layouts: Sequence[str]) -> Tuple[int, np.ndarray]:
     except UnicodeDecodeError as error:
         raise ValueError(f'measurement file {path} is not UTF-8 text: {error}') from error
     rows = []
-    for number, fields in enumerate(csv.reader(io.StringIO(text)), start=1):
-        fields = [field.strip() for field in fields]
-        if not any(fields) or fields[0].startswith('#'):
-            continue
-        rows.append((number, fields))
+    try:
+        for number, fields in enumerate(csv.reader(io.StringIO(text)), start=1):
+            fields = [field.strip() for field in fields]
+            if not any(fields) or fields[0].startswith('#'):
+                continue
+            rows.append((number, fields))
+    except csv.Error as error:   # a field beyond the csv module's limit, say
+        raise ValueError(f'{path}: not a CSV file of measurements: {error}') from None
     wanted = ' or '.join(', '.join(layout) for layout in layouts)
     if not rows:
         raise ValueError(f'{path}: no header row; the header must name {wanted}')

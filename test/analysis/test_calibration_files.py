@@ -72,6 +72,9 @@ def test_columns_in_any_order_with_others_ignored(tmp_path):
     (HEADER.replace('gamma', 'Gamma') + '\n' + ROW + '\n', 'line 1: missing column(s) gamma'),
     (HEADER + ',X\n' + ROW + ',0\n', 'line 1: column(s) X named more than once'),
     ('# only a comment\n', 'no header row'),
+    # A quoted field beyond the csv module's limit (131072 characters): a refusal, no traceback.
+    (HEADER + '\n"' + '1' * 200000 + '",' + ROW.split(',', 1)[1] + '\n',
+     'not a CSV file of measurements: field larger than field limit'),
     (HEADER + '\n', 'no measurements after the header (line 1)'),
 ])
 def test_a_bad_file_is_refused_with_its_line(tmp_path, text, words):
