@@ -87,6 +87,9 @@ GROUPS = (
     ('RampSettings', 'RAMP_PARAMETERS', 'The Table 3 ramp and how trajectory_node plays it.'),
     ('MotionSettings', 'MOTION_PARAMETERS',
      'Trajectories and paths received by trajectory_node: checking, retiming, playing.'),
+    ('ActionSettings', 'ACTION_PARAMETERS',
+     "trajectory_node's follow_joint_trajectory action: execution, feedback, joints and the "
+     'default tolerances.'),
     ('StreamingSettings', 'STREAMING_PARAMETERS', "ik_node's streamed, jerk-limited commands."),
     ('CueingParameterSettings', 'MOTION_CUEING_PARAMETERS',
      "motion_cueing_node's washout, limit margins and input checks, as the node declares its "
@@ -117,7 +120,7 @@ NODES = (
      "trajectory_node's settings: one field per group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('frames', 'FrameSettings'), ('ramp', 'RampSettings'), ('motion', 'MotionSettings'),
-        ('queue', 'QueueSettings'))),
+        ('action', 'ActionSettings'), ('queue', 'QueueSettings'))),
 )
 
 #: The annotation of each parameter type.

@@ -260,6 +260,45 @@ PLANNING_ERROR = _register(
     'An unexpected error while planning (a bug): the message gives the error; the node goes '
     'on.')
 
+# The follow_joint_trajectory action (trajectory_node) ---------------------------------------
+
+INVALID_JOINTS = _register(
+    'invalid_joints', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `INVALID_JOINTS`)',
+    "A goal whose joint names are not exactly one joint set: the six leg joints "
+    "(`joint_names`) or the six Cartesian joints (`action_cartesian_joints`), in any order; "
+    'the message names the unknown, missing or repeated joints (a tolerance naming a joint the '
+    'goal does not move too).')
+INVALID_GOAL = _register(
+    'invalid_goal', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `INVALID_GOAL`)',
+    'A goal that cannot be played as given: no points, sizes that do not match the joints, '
+    'values not finite or beyond 1e6, times not increasing, a last point that does not rest, '
+    'efforts, a `multi_dof_trajectory`, an illegal tolerance, a first point at time 0 away '
+    'from the current state, no `joint_states` yet; the planner\'s refusals (limits, '
+    'retiming) answer `INVALID_GOAL` with their own code and reason in `error_string`.')
+OLD_HEADER_TIMESTAMP = _register(
+    'old_header_timestamp', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `OLD_HEADER_TIMESTAMP`)',
+    'A goal with a non-zero header stamp whose end (stamp plus the last `time_from_start`) is '
+    'already past, as joint_trajectory_controller refuses it.')
+PATH_TOLERANCE_VIOLATED = _register(
+    'path_tolerance_violated', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `PATH_TOLERANCE_VIOLATED`)',
+    'While a goal ran, a measured joint (from `joint_states`) left its path tolerance: the '
+    'joint, the error, the tolerance and the excess; the platform is braked to rest.')
+GOAL_TOLERANCE_VIOLATED = _register(
+    'goal_tolerance_violated', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `GOAL_TOLERANCE_VIOLATED`)',
+    'A goal whose measured end state was not within its goal tolerance by the end time plus '
+    '`goal_time_tolerance`: the joint, the error, the tolerance and the excess.')
+GOAL_PREEMPTED = _register(
+    'goal_preempted', 'refusal',
+    'trajectory_node (`follow_joint_trajectory`: result `INVALID_GOAL`)',
+    'A goal replaced by a newer goal, or by a trajectory on `pose_trajectory` or `pose_path`, '
+    'as joint_trajectory_controller answers it (aborted, `INVALID_GOAL`, "Current goal '
+    'preempted by new incoming action."); the platform brakes to rest on its path first.')
+
 
 # Motion cueing (motion_cueing_node) ---------------------------------------------------------
 

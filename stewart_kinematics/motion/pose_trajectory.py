@@ -368,13 +368,17 @@ class TimedTrajectory:
     :param grid_taus: path times of the gridpoints, increasing, from ``path.times[0]`` to
         ``path.times[-1]``, shape (G,).
     :param rates: ``d tau / d t`` at the gridpoints, shape (G,).
+    :param partial: the grid may start after the first waypoint and end before the last (a
+        part of the path: a braking, :mod:`~stewart_kinematics.motion.path_braking`); the
+        clock still starts at 0 at the grid's first path time.
 
     Attributes: ``waypoint_times``, the clock time of each waypoint, and ``breakpoints``, the
     clock times where the motion's acceleration may jump (waypoints and gridpoints), which
     split the trajectory into the pieces :meth:`sample_times` samples.
     """
 
-    def __init__(self, path: PoseTrajectory, grid_times, grid_taus, rates):
+    def __init__(self, path: PoseTrajectory, grid_times, grid_taus, rates, *,
+                 partial: bool = False):
         if not isinstance(path, PoseTrajectory):
             raise ValueError(f'path must be a PoseTrajectory, got {type(path).__name__}')
         self.path = path
@@ -384,12 +388,15 @@ class TimedTrajectory:
         self.rates = _array('rates', rates, (count,))
         if count < 2 or self.grid_times[0] != 0.0 or not np.all(np.diff(self.grid_times) > 0.0):
             raise ValueError('grid_times must increase strictly from 0, at least 2 of them')
-        if not (np.all(np.diff(self.grid_taus) > 0.0) and self.grid_taus[0] == path.times[0]
-                and self.grid_taus[-1] == path.times[-1]):
+        spans = (self.grid_taus[0] >= path.times[0] and self.grid_taus[-1] <= path.times[-1]
+                 if partial else self.grid_taus[0] == path.times[0]
+                 and self.grid_taus[-1] == path.times[-1])
+        if not (np.all(np.diff(self.grid_taus) > 0.0) and spans):
             raise ValueError('grid_taus must increase strictly from the first waypoint time to '
-                             'the last')
+                             'the last (within them for a partial grid)')
         if np.any(self.rates < 0.0):
             raise ValueError('rates (d tau / dt) must not be negative')
+        self.partial = partial
         steps = np.diff(self.grid_taus)
         self._rate_changes = (self.rates[1:] ** 2 - self.rates[:-1] ** 2) / (2.0 * steps)
         self.waypoint_times = self.clock_times(path.times)
@@ -413,7 +420,7 @@ class TimedTrajectory:
         if not (_is_number(factor) and 0.0 < factor < math.inf):
             raise ValueError(f'factor must be positive and finite, got {factor!r}')
         return TimedTrajectory(self.path, self.grid_times * factor, self.grid_taus,
-                               self.rates / factor)
+                               self.rates / factor, partial=self.partial)
 
     def path_times(self, times):
         """

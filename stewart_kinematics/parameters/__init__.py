@@ -43,6 +43,7 @@ from stewart_kinematics.parameters.builders import (
     PAYLOAD_PARAMETERS,
 )
 from stewart_kinematics.parameters.declarations import (
+    ACTION_PARAMETERS,
     ACTUATOR_PARAMETERS,
     all_specs,
     ASSEMBLY_MODE_PARAMETERS,
@@ -72,6 +73,7 @@ from stewart_kinematics.parameters.files import (
     read_parameter_files,
 )
 from stewart_kinematics.parameters.settings import (
+    ActionSettings,
     ActuatorSettings,
     AssemblyModeSettings,
     CueingParameterSettings,
@@ -115,6 +117,8 @@ from stewart_kinematics.parameters.spec import (
 from stewart_kinematics.parameters.tables import markdown_table
 
 __all__ = [
+    'ACTION_PARAMETERS',
+    'ActionSettings',
     'actuator_interface_from_settings',
     'actuator_limits_from_settings',
     'ACTUATOR_PARAMETERS',

@@ -429,6 +429,72 @@ MOTION_PARAMETERS = (
         default=False),
 )
 
+#: trajectory_node: the follow_joint_trajectory action (control_msgs/action/FollowJointTrajectory);
+#: a change applies from the next goal.
+ACTION_PARAMETERS = (
+    ParameterSpec(
+        'action_execution', STRING,
+        "How an accepted goal is sent: 'leg_trajectory' (its leg trajectory on leg_trajectory, "
+        "for joint_trajectory_controller) or 'stream' (its leg commands on joint_commands at "
+        'publish_rate, as ik_node sends them)',
+        default='leg_trajectory', validators=(OneOf('leg_trajectory', 'stream'),)),
+    ParameterSpec(
+        'action_feedback_rate', DOUBLE,
+        'Feedback messages per second of a running goal (desired, actual and error), hertz',
+        default=10.0, validators=(Finite(), InRange(0.1, 1000.0))),
+    ParameterSpec(
+        'action_cartesian_joints', STRING_ARRAY,
+        "Names of the six Cartesian joints a goal may give instead of the legs: the tool frame's "
+        'x, y, z (metres) and roll, pitch, yaw (radians, R = Rz(yaw) Ry(pitch) Rx(roll) about '
+        'the base axes), in the header frame (base_frame or user_frame)',
+        default=['x', 'y', 'z', 'roll', 'pitch', 'yaw'],
+        validators=(FixedLength(6), DistinctNames())),
+    ParameterSpec(
+        'action_leg_path_tolerance', DOUBLE,
+        "Default path tolerance of each leg joint's position while a goal runs, metres; 0.0: "
+        'none (a goal may set its own)',
+        default=0.02, validators=(Finite(), InRange(0.0, 1.0))),
+    ParameterSpec(
+        'action_leg_goal_tolerance', DOUBLE,
+        "Default goal tolerance of each leg joint's position at the end, metres; 0.0: none",
+        default=0.002, validators=(Finite(), InRange(0.0, 1.0))),
+    ParameterSpec(
+        'action_stopped_velocity_tolerance', DOUBLE,
+        "Default goal tolerance of each leg joint's velocity at the end (when joint_states "
+        "carries velocities), m/s, as joint_trajectory_controller's "
+        'stopped_velocity_tolerance; 0.0: none',
+        default=0.01, validators=(Finite(), InRange(0.0, 10.0))),
+    ParameterSpec(
+        'action_position_path_tolerance', DOUBLE,
+        'Default path tolerance of the Cartesian joints x, y, z while a goal runs, metres; '
+        '0.0: none',
+        default=0.02, validators=(Finite(), InRange(0.0, 10.0))),
+    ParameterSpec(
+        'action_orientation_path_tolerance', DOUBLE,
+        'Default path tolerance of the Cartesian joints roll, pitch, yaw while a goal runs, '
+        'radians; 0.0: none',
+        default=0.05, validators=(Finite(), InRange(0.0, 3.2))),
+    ParameterSpec(
+        'action_position_goal_tolerance', DOUBLE,
+        'Default goal tolerance of x, y, z at the end, metres; 0.0: none',
+        default=0.002, validators=(Finite(), InRange(0.0, 10.0))),
+    ParameterSpec(
+        'action_orientation_goal_tolerance', DOUBLE,
+        'Default goal tolerance of roll, pitch, yaw at the end, radians; 0.0: none',
+        default=0.005, validators=(Finite(), InRange(0.0, 3.2))),
+    ParameterSpec(
+        'action_goal_time_tolerance', DOUBLE,
+        "Default time after a goal's end by which the measured state must be within the goal "
+        'tolerance, seconds; 0.0: checked once, at the end time',
+        default=1.0, validators=(Finite(), InRange(0.0, 3600.0))),
+    ParameterSpec(
+        'action_start_tolerance', DOUBLE,
+        'How far a first point at time 0 may be from the current state (metres, or radians '
+        'for roll, pitch, yaw): it is taken as the current state; farther, the goal is refused '
+        '(it would jump)',
+        default=0.01, validators=(Finite(), InRange(0.0, 1.0))),
+)
+
 #: ik_node: commanded rates: commands streamed through the jerk-limited filter, and twists.
 STREAMING_PARAMETERS = (
     ParameterSpec(
@@ -621,7 +687,7 @@ def all_specs():
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
-            + RAMP_PARAMETERS + MOTION_PARAMETERS + STREAMING_PARAMETERS
+            + RAMP_PARAMETERS + MOTION_PARAMETERS + ACTION_PARAMETERS + STREAMING_PARAMETERS
             + MOTION_CUEING_PARAMETERS)
 
 

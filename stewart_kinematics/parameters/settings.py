@@ -625,6 +625,91 @@ class MotionSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class ActionSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.ACTION_PARAMETERS`.
+
+    trajectory_node's follow_joint_trajectory action: execution, feedback, joints and the default
+    tolerances.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.ACTION_PARAMETERS
+
+    action_execution: str = 'leg_trajectory'
+    """
+    How an accepted goal is sent: 'leg_trajectory' (its leg trajectory on leg_trajectory, for
+    joint_trajectory_controller) or 'stream' (its leg commands on joint_commands at publish_rate,
+    as ik_node sends them). Allowed: 'leg_trajectory' or 'stream'.
+    """
+
+    action_feedback_rate: float = 10.0
+    """
+    Feedback messages per second of a running goal (desired, actual and error), hertz. Allowed: in
+    [0.1, 1000].
+    """
+
+    action_cartesian_joints: Tuple[str, ...] = ('x', 'y', 'z', 'roll', 'pitch', 'yaw')
+    """
+    Names of the six Cartesian joints a goal may give instead of the legs: the tool frame's x, y, z
+    (metres) and roll, pitch, yaw (radians, R = Rz(yaw) Ry(pitch) Rx(roll) about the base axes), in
+    the header frame (base_frame or user_frame). Allowed: 6 distinct, non-empty names.
+    """
+
+    action_leg_path_tolerance: float = 0.02
+    """
+    Default path tolerance of each leg joint's position while a goal runs, metres; 0.0: none (a
+    goal may set its own). Allowed: in [0, 1].
+    """
+
+    action_leg_goal_tolerance: float = 0.002
+    """
+    Default goal tolerance of each leg joint's position at the end, metres; 0.0: none. Allowed: in
+    [0, 1].
+    """
+
+    action_stopped_velocity_tolerance: float = 0.01
+    """
+    Default goal tolerance of each leg joint's velocity at the end (when joint_states carries
+    velocities), m/s, as joint_trajectory_controller's stopped_velocity_tolerance; 0.0: none.
+    Allowed: in [0, 10].
+    """
+
+    action_position_path_tolerance: float = 0.02
+    """
+    Default path tolerance of the Cartesian joints x, y, z while a goal runs, metres; 0.0: none.
+    Allowed: in [0, 10].
+    """
+
+    action_orientation_path_tolerance: float = 0.05
+    """
+    Default path tolerance of the Cartesian joints roll, pitch, yaw while a goal runs, radians;
+    0.0: none. Allowed: in [0, 3.2].
+    """
+
+    action_position_goal_tolerance: float = 0.002
+    """Default goal tolerance of x, y, z at the end, metres; 0.0: none. Allowed: in [0, 10]."""
+
+    action_orientation_goal_tolerance: float = 0.005
+    """
+    Default goal tolerance of roll, pitch, yaw at the end, radians; 0.0: none. Allowed: in [0,
+    3.2].
+    """
+
+    action_goal_time_tolerance: float = 1.0
+    """
+    Default time after a goal's end by which the measured state must be within the goal tolerance,
+    seconds; 0.0: checked once, at the end time. Allowed: in [0, 3600].
+    """
+
+    action_start_tolerance: float = 0.01
+    """
+    How far a first point at time 0 may be from the current state (metres, or radians for roll,
+    pitch, yaw): it is taken as the current state; farther, the goal is refused (it would jump).
+    Allowed: in [0, 1].
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class StreamingSettings(Settings):
     """
     One field per parameter of :data:`~stewart_kinematics.parameters.STREAMING_PARAMETERS`.
@@ -894,4 +979,5 @@ class TrajectoryNodeSettings(NodeSettings):
     frames: FrameSettings
     ramp: RampSettings
     motion: MotionSettings
+    action: ActionSettings
     queue: QueueSettings

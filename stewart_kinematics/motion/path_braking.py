@@ -1,0 +1,132 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Braking on the path: a running trajectory brought to rest without leaving its checked path.
+
+A cancelled or preempted goal (:mod:`~stewart_kinematics.ros.trajectory_action`) must stop
+within the leg velocity and acceleration limits, never with a jump. Braking each leg on its own
+(:meth:`~stewart_kinematics.limits.CommandGate.brake`) leaves the path the trajectory was
+checked on; here the platform keeps to it and only its clock slows: the path time ``tau(t)``
+of the trajectory is replaced, from the moment of braking, by one whose rate ``tau'``
+falls to 0 as fast as every leg's acceleration allows. With ``l_tau`` and ``l_tautau`` the
+legs' derivatives along the path, a leg's velocity is ``l_tau tau'`` (below its limit, since
+``tau'`` never exceeds the trajectory's own rate there) and its acceleration ``l_tautau tau'^2
++ l_tau tau''``: each step takes the most negative ``tau''`` that keeps every leg within
+:data:`BRAKING_MARGIN` of ``leg_acceleration_max``. The result is a partial
+:class:`~stewart_kinematics.motion.pose_trajectory.TimedTrajectory` (its clock from 0 at the
+moment of braking), sampled and sent like any other, and checked by the command gate as it is.
+
+Units: seconds, metres. Nothing here imports ROS.
+"""
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.velocities import leg_states
+from stewart_kinematics.motion.pose_trajectory import TimedTrajectory
+
+#: Clock step of the braking's grid, seconds: the rate's change is held over a step.
+BRAKING_STEP = 0.002
+#: Share of leg_acceleration_max a braking step may use (the acceleration varies within it).
+BRAKING_MARGIN = 0.9
+#: Braking time without an acceleration limit, seconds (a stop is never a jump).
+UNLIMITED_BRAKING_TIME = 0.5
+#: Most steps of a braking; beyond, the path is followed to its end (within its own timing).
+MAX_BRAKING_STEPS = 20_000
+#: A leg's path derivative below this (m per path second) does not constrain the braking.
+FLAT = 1e-12
+
+
+def braking_trajectory(trajectory: TimedTrajectory, time: float, geometry,
+                       actuator_limits: Optional[ActuatorLimits] = None, *,
+                       step: float = BRAKING_STEP) -> Optional[TimedTrajectory]:
+    """
+    Bring a timed trajectory to rest on its path from clock time ``time``, as fast as allowed.
+
+    :param trajectory: the trajectory running (full or partial: a braking may be braked).
+    :param time: its clock time at the moment of braking, seconds.
+    :param actuator_limits: ``leg_acceleration_max`` bounds the braking (with
+        :data:`BRAKING_MARGIN`); without one, the rate falls linearly over
+        :data:`UNLIMITED_BRAKING_TIME`.
+    :param step: clock step of the grid, seconds.
+    :returns: the braking, a partial :class:`TimedTrajectory` whose clock starts at 0 at the
+        moment of braking and ends at rest; ``None`` when the trajectory is already at rest there
+        (its end, or a rate of 0).
+    """
+    path = trajectory.path
+    taus, rates, _ = trajectory.path_times([float(time)])
+    tau, rate = float(taus[0]), float(rates[0])
+    end = float(path.times[-1])
+    if not (rate > 0.0 and tau < end):
+        return None
+    limit = math.inf if actuator_limits is None else actuator_limits.acceleration_max
+    allowed = BRAKING_MARGIN * limit
+    grid_times, grid_taus, grid_rates = [0.0], [tau], [rate]
+    for _ in range(MAX_BRAKING_STEPS):
+        change = _steepest_change(path, geometry, tau, rate, allowed, step)
+        interval = step
+        new_rate = rate + change * interval
+        if new_rate <= 0.0:
+            interval, new_rate = rate / -change, 0.0
+        advance = rate * interval + 0.5 * change * interval ** 2
+        if tau + advance >= end or advance <= 0.0:
+            # The path ends (at rest) within the step: reach its end at the rate left.
+            remaining = end - tau
+            new_rate = math.sqrt(max(rate ** 2 + 2.0 * change * remaining, 0.0))
+            interval = 2.0 * remaining / (rate + new_rate)
+            _append(grid_times, grid_taus, grid_rates, interval, end, new_rate)
+            break
+        new_tau = tau + advance
+        # Never faster than the trajectory itself there (its own timing kept the limits).
+        own = float(trajectory.path_times(trajectory.clock_times([new_tau]))[1][0])
+        new_rate = min(new_rate, max(own, 0.0)) if new_rate > 0.0 else 0.0
+        _append(grid_times, grid_taus, grid_rates, interval, new_tau, new_rate)
+        tau, rate = new_tau, new_rate
+        if rate == 0.0:
+            break
+    else:
+        # Held back all along: follow the path to its end at the rate reached.
+        _append(grid_times, grid_taus, grid_rates, (end - tau) / rate, end, rate)
+    return TimedTrajectory(path, grid_times, grid_taus, grid_rates, partial=True)
+
+
+def _append(times, taus, rates, interval, tau, rate):
+    """Add a gridpoint ``interval`` seconds after the last, where the rate is ``rate``."""
+    times.append(times[-1] + interval)
+    taus.append(tau)
+    rates.append(rate)
+
+
+def _steepest_change(path, geometry, tau, rate, allowed, step) -> float:
+    """
+    Return the most negative ``tau''`` (1/s) keeping every leg's acceleration within ``allowed``.
+
+    Each leg asks ``-allowed <= l_tautau rate^2 + l_tau change <= allowed``; the change is at
+    most 0 (holding the rate keeps the trajectory's own accelerations, scaled by ``rate^2``).
+    """
+    if not math.isfinite(allowed):
+        return -rate / UNLIMITED_BRAKING_TIME if rate > 0.0 else 0.0
+    legs = leg_states(geometry, path.sample(np.array([tau])))
+    slope, curvature = legs.velocities[0], legs.accelerations[0] * rate ** 2
+    moving = np.abs(slope) > FLAT
+    if not moving.any():
+        # The legs do not move along the path here: the clock may stop at once.
+        return -rate / step
+    g, b = slope[moving], curvature[moving]
+    lower = np.where(g > 0.0, (-allowed - b) / g, (allowed - b) / g)
+    return min(float(np.max(lower)), 0.0)
