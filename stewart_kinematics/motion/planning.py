@@ -166,6 +166,19 @@ def plan_motion(path: PoseTrajectory, geometry, actuator_limits: Optional[Actuat
                       command=command)
 
 
+def gated_leg_trajectory(trajectory: TimedTrajectory, geometry, actuator_limits: ActuatorLimits,
+                         publish_rate: float, actuators: ActuatorInterface) -> TrajectoryCommand:
+    """
+    Return the command gate's verdict on a timed trajectory sent as a leg trajectory.
+
+    What :func:`plan_motion` checks before an accepted plan is sent, for a trajectory timed
+    elsewhere (a braking, :mod:`~stewart_kinematics.motion.path_braking`).
+
+    :param publish_rate: points per second, hertz.
+    """
+    return _gate(trajectory, geometry, actuator_limits, (publish_rate, actuators))
+
+
 def _gate(trajectory, geometry, actuator_limits, output) -> TrajectoryCommand:
     """
     Return the command gate's verdict on the leg trajectory a timed trajectory is sent as.

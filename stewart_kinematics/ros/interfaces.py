@@ -36,6 +36,8 @@ from typing import Optional, Tuple, Union
 SUBSCRIPTION = 'subscription'
 PUBLISHER = 'publisher'
 SERVICE = 'service'
+#: An action server (its goal, cancel and result services and its feedback and status topics).
+ACTION = 'action'
 
 #: A declared depth that is the node's ``queue_depth`` parameter (QUEUE_PARAMETERS).
 QUEUE_DEPTH = 'queue_depth'
@@ -135,9 +137,9 @@ class Endpoint:
     One topic or service of a node.
 
     :param name: topic or service name, relative unless it starts with ``/``.
-    :param kind: :data:`SUBSCRIPTION`, :data:`PUBLISHER` or :data:`SERVICE`.
-    :param type_name: the message or service type, as ``package/msg/Name`` or
-        ``package/srv/Name``.
+    :param kind: :data:`SUBSCRIPTION`, :data:`PUBLISHER`, :data:`SERVICE` or :data:`ACTION`.
+    :param type_name: the message, service or action type, as ``package/msg/Name``,
+        ``package/srv/Name`` or ``package/action/Name``.
     :param qos: the :class:`Qos` it is created with (see the constants of this module).
     :param meaning: what it carries, with units and frames.
     :param condition: when the node has it (a parameter that turns it on), ``''``: always.
@@ -324,6 +326,23 @@ TRAJECTORY_NODE = NodeInterface('trajectory_node', (
              '(the dynamic leg forces, N, positive pushing, when masses are set; empty with '
              'every mass 0) and `time_from_start`, as joint_trajectory_controller takes it.',
              commands=True),
+    Endpoint('joint_states', SUBSCRIPTION, 'sensor_msgs/msg/JointState', QUEUE,
+             'The measured legs as joints named `joint_names` (any order, other joints ignored), '
+             'positions in actuator coordinates (length minus `actuator_offsets`, m), with '
+             'velocities when known: what `follow_joint_trajectory` checks its tolerances '
+             'against, and where a goal starts when nothing was commanded.'),
+    Endpoint('joint_commands', PUBLISHER, 'sensor_msgs/msg/JointState', QUEUE,
+             "With `action_execution: stream`: a running goal's leg commands at `publish_rate` "
+             '(positions as `joint_commands` of ik_node, m, and velocities, m/s), braking to rest '
+             'on the path after a cancel or a preemption.', commands=True),
+    Endpoint('follow_joint_trajectory', ACTION, 'control_msgs/action/FollowJointTrajectory',
+             SERVICE_QOS,
+             'Goals of the six leg joints (`joint_names`) or the six Cartesian joints '
+             '(`action_cartesian_joints`: the tool frame, m and rad) in `trajectory`, checked, '
+             'planned as `pose_trajectory` is (limits, `retime`) and sent as `action_execution` '
+             'says; tolerances checked against `joint_states`; feedback at '
+             '`action_feedback_rate`; a new goal preempts, a cancel brakes to rest. Result '
+             'codes: [Drive it from MoveIt, rqt or a script](how-to/drive_from_moveit.md).'),
     Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
              DIAGNOSTICS_TOPIC.meaning + ', with the time, segment and violated limits of a '
              'refused trajectory.'),

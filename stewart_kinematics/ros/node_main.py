@@ -153,6 +153,12 @@ def executor_for_nodes(name: str, nodes):
     :param nodes: the process's nodes, built: a node with ``use_sim_time`` set takes
         :data:`SIM_TIME_EXECUTOR`.
     """
+    if name != SIM_TIME_EXECUTOR and any(getattr(node, 'SERVES_ACTIONS', False)
+                                         for node in nodes):
+        # rclpy 7.1.6's EventsExecutor never answered a FollowJointTrajectory goal.
+        return SIM_TIME_EXECUTOR, (
+            f'an action server: spinning on the {SIM_TIME_EXECUTOR} executor, not {name} (it '
+            'does not run rclpy action servers)')
     if name == SIM_TIME_EXECUTOR or not any(
             node.get_parameter('use_sim_time').value for node in nodes):
         return name, ''

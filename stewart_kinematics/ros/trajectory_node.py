@@ -82,6 +82,7 @@ from stewart_kinematics.ros.node_main import (
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.trajectory_action import JOB_NAME, TrajectoryAction
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 #: Seconds between two checks for subscribers while waiting for min_subscribers.
@@ -90,6 +91,9 @@ WAIT_PERIOD = 0.05
 
 class TrajectoryNode(Node):
     """Publish a ramp of poses on ``target_pose``; check, time and publish trajectories."""
+
+    #: Its action server needs an executor that runs rclpy's action servers (node_main).
+    SERVES_ACTIONS = True
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
@@ -120,6 +124,8 @@ class TrajectoryNode(Node):
         # and the ramp, not in the first plan.
         self.worker = PlanningWorker(lambda task: hand_to_executor(self, task), self.on_planned,
                                      warm_up=load_retiming, name='trajectory planning')
+        #: The follow_joint_trajectory action server (ros/trajectory_action.py).
+        self.action = TrajectoryAction(self, diagnostics.accounting('follow_joint_trajectory'))
         create_input_subscription(
             self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
         create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)
@@ -220,6 +226,9 @@ class TrajectoryNode(Node):
 
     def on_planned(self, answer: PlanningAnswer):
         """Publish a plan the worker accepted, or count its refusal (executor thread)."""
+        if answer.job.name == JOB_NAME:
+            self.action.on_planned(answer)
+            return
         accounting, settings, waypoints = answer.job.context
         if not answer.accepted:
             accounting.reject(answer.refusal)
@@ -227,6 +236,7 @@ class TrajectoryNode(Node):
         plan, prepared = answer.plan, answer.prepared
         prepared.message.header = Header(stamp=self.get_clock().now().to_msg(),
                                          frame_id=settings.base_frame)
+        self.action.preempt_by_topic(accounting.topic)
         send_command(self.leg_trajectory_publisher, accounting, prepared)
         self.get_logger().info(
             f'{accounting.topic}: {waypoints} waypoints accepted, '
