@@ -265,8 +265,8 @@ PLANNING_ERROR = _register(
 INVALID_JOINTS = _register(
     'invalid_joints', 'refusal',
     'trajectory_node (`follow_joint_trajectory`: result `INVALID_JOINTS`)',
-    "A goal whose joint names are not exactly one joint set: the six leg joints "
-    "(`joint_names`) or the six Cartesian joints (`action_cartesian_joints`), in any order; "
+    'A goal whose joint names are not exactly one joint set: the six leg joints '
+    '(`joint_names`) or the six Cartesian joints (`action_cartesian_joints`), in any order; '
     'the message names the unknown, missing or repeated joints (a tolerance naming a joint the '
     'goal does not move too).')
 INVALID_GOAL = _register(
@@ -275,7 +275,7 @@ INVALID_GOAL = _register(
     'A goal that cannot be played as given: no points, sizes that do not match the joints, '
     'values not finite or beyond 1e6, times not increasing, a last point that does not rest, '
     'efforts, a `multi_dof_trajectory`, an illegal tolerance, a first point at time 0 away '
-    'from the current state, no `joint_states` yet; the planner\'s refusals (limits, '
+    "from the current state, no `joint_states` yet; the planner's refusals (limits, "
     'retiming) answer `INVALID_GOAL` with their own code and reason in `error_string`.')
 OLD_HEADER_TIMESTAMP = _register(
     'old_header_timestamp', 'refusal',

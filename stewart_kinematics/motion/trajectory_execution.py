@@ -172,8 +172,9 @@ class GoalCheck(Decision):
     warnings: Tuple[Finding, ...] = ()
 
 
-def _refused(code: str, message: str) -> GoalCheck:
-    return GoalCheck(Finding(code, message))
+def _invalid(message: str) -> GoalCheck:
+    """Refuse a goal with ``invalid_goal`` and ``message``."""
+    return GoalCheck(Finding(findings.INVALID_GOAL, message))
 
 
 def joint_set(names: Sequence[str], sets: JointSets):
@@ -189,7 +190,8 @@ def joint_set(names: Sequence[str], sets: JointSets):
     described = (f'the six leg joints ({", ".join(legs)}) or the six Cartesian joints '
                  f'({", ".join(cartesian)}), in any order')
     if not names:
-        return None, Finding(findings.INVALID_JOINTS, f'the goal names no joints: give {described}')
+        return None, Finding(findings.INVALID_JOINTS,
+                             f'the goal names no joints: give {described}')
     repeated = sorted({name for name in names if names.count(name) > 1})
     if repeated:
         return None, Finding(findings.INVALID_JOINTS, f'joint names repeated: '
@@ -225,7 +227,7 @@ def check_goal(request: GoalRequest, sets: JointSets, now: float) -> GoalCheck:
     """
     if request.multi_dof_points or request.multi_dof_joints:
         both = ' (trajectory is given too)' if request.joint_names or request.times else ''
-        return _refused(findings.INVALID_GOAL, f'multi_dof_trajectory is not taken{both}: give '
+        return _invalid(f'multi_dof_trajectory is not taken{both}: give '
                         'the six joints in trajectory (a MultiDOFJointTrajectory of the tool '
                         'frame goes to pose_trajectory)')
     kind, order = joint_set(request.joint_names, sets)
@@ -233,9 +235,9 @@ def check_goal(request: GoalRequest, sets: JointSets, now: float) -> GoalCheck:
         return GoalCheck(order)
     count = len(request.times)
     if count == 0:
-        return _refused(findings.INVALID_GOAL, 'the trajectory has no points')
+        return _invalid('the trajectory has no points')
     if count > MAX_WAYPOINTS:
-        return _refused(findings.INVALID_GOAL, f'the trajectory has {count:,} points; at most '
+        return _invalid(f'the trajectory has {count:,} points; at most '
                         f'{MAX_WAYPOINTS:,}')
     names = sets.names(kind)
     width = len(request.joint_names)
@@ -245,43 +247,45 @@ def check_goal(request: GoalRequest, sets: JointSets, now: float) -> GoalCheck:
                                        ('accelerations', request.accelerations, False)):
         array, reason = _point_array(field_name, rows, count, width, required)
         if reason:
-            return _refused(findings.INVALID_GOAL, reason)
+            return _invalid(reason)
         if array is not None:
             bad = ~(np.abs(array) <= MAX_VALUE)
             if bad.any():
                 point, column = (int(i) for i in np.argwhere(bad)[0])
-                return _refused(findings.INVALID_GOAL, f'point {point}: {field_name} of '
-                                f'{request.joint_names[column]} is {float(array[point, column])!r}; '
+                value = float(array[point, column])
+                return _invalid(f'point {point}: {field_name} of '
+                                f'{request.joint_names[column]} is {value!r}; '
                                 f'a value must be finite and within +-{MAX_VALUE:g}')
             array = array[:, order]
         arrays[field_name] = array
     if any(len(row) for row in request.efforts):
-        return _refused(findings.INVALID_GOAL, 'the points carry efforts: they are not taken '
+        return _invalid('the points carry efforts: they are not taken '
                         '(the efforts follow from the motion and the masses)')
     times = np.array(request.times, dtype=float)
     bad = ~((times >= 0.0) & (times <= MAX_TIME))
     if bad.any():
         point = int(np.argmax(bad))
-        return _refused(findings.INVALID_GOAL, f'point {point}: time_from_start '
+        return _invalid(f'point {point}: time_from_start '
                         f'{float(times[point])!r} s; times must be within 0 to {MAX_TIME:g} s')
     steps = np.diff(times)
     if np.any(steps <= 0.0):
         point = int(np.argmax(steps <= 0.0)) + 1
-        return _refused(findings.INVALID_GOAL, f'times not strictly increasing: point {point} at '
-                        f'{times[point]:.9g} s after point {point - 1} at {times[point - 1]:.9g} s')
+        return _invalid(f'times not strictly increasing: point {point} at '
+                        f'{times[point]:.9g} s after point {point - 1} at '
+                        f'{times[point - 1]:.9g} s')
     last_velocities = arrays['velocities']
     if last_velocities is not None and np.any(np.abs(last_velocities[-1]) > REST_VELOCITY):
         joint = int(np.argmax(np.abs(last_velocities[-1])))
-        return _refused(findings.INVALID_GOAL, f'the last point does not rest: velocity of '
+        return _invalid(f'the last point does not rest: velocity of '
                         f'{names[joint]} is {last_velocities[-1, joint]:.6g}')
     if request.stamp != 0.0:
         end = request.stamp + times[-1]
         if end < now:
-            return _refused(findings.OLD_HEADER_TIMESTAMP, f'the trajectory starts at its header '
-                            f'stamp {request.stamp:.3f} s and ends at {end:.3f} s, before now '
-                            f'({now:.3f} s)')
+            return GoalCheck(Finding(
+                findings.OLD_HEADER_TIMESTAMP, f'the trajectory starts at its header stamp '
+                f'{request.stamp:.3f} s and ends at {end:.3f} s, before now ({now:.3f} s)'))
         if request.stamp - now > MAX_TIME:
-            return _refused(findings.INVALID_GOAL, f'the header stamp {request.stamp:.3f} s is '
+            return _invalid(f'the header stamp {request.stamp:.3f} s is '
                             f'more than {MAX_TIME:g} s ahead of now ({now:.3f} s)')
     return GoalCheck(None, kind, times, arrays['positions'], arrays['velocities'],
                      arrays['accelerations'])
@@ -325,7 +329,7 @@ class GoalMotion(Decision):
 def goal_motion(goal: GoalCheck, current, geometry, actuators: ActuatorInterface,
                 start_tolerance: float, frame_id: str = '') -> GoalMotion:
     """
-    The motion to plan for a checked goal, from the current state of its joints.
+    Return the motion to plan for a checked goal, from the current state of its joints.
 
     :param goal: an accepted :class:`GoalCheck`.
     :param current: the current positions of the goal's joints (the set's order), shape (6,):
@@ -440,7 +444,7 @@ def angular_accelerations(angles, rates, second_rates):
 
 
 def _cartesian_motion(times, positions, velocities, accelerations, frame_id) -> GoalMotion:
-    """The tool frame's waypoints of a Cartesian goal, for ``MotionPlanner.plan_trajectory``."""
+    """Return the tool frame's waypoints of a Cartesian goal, for ``plan_trajectory``."""
     angles = positions[:, 3:]
     waypoints = {'times': times, 'positions': positions[:, :3],
                  'quaternions': matrix_to_quaternion(euler_zyx_to_matrix(angles)),
@@ -490,7 +494,7 @@ class JointSpace:
 
     def desired(self, trajectory, time: float) -> JointState:
         """
-        The desired state of a timed trajectory at clock time ``time`` (held at its ends).
+        Return the desired state of a timed trajectory at clock time ``time`` (held at ends).
 
         Legs: positions and velocities; Cartesian: positions only (the tool frame's pose).
         """
@@ -507,7 +511,7 @@ class JointSpace:
 
     def actual(self, positions, velocities=None) -> Optional[JointState]:
         """
-        The measured state in the goal's joints, from measured actuator positions (leg order).
+        Return the measured state in the goal's joints, from actuator positions (leg order).
 
         Cartesian: the tool frame's pose by forward kinematics (started at the last one);
         ``None`` when it cannot be found.

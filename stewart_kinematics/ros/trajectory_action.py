@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-trajectory_node's ``follow_joint_trajectory`` action server (control_msgs/action/FollowJointTrajectory).
+trajectory_node's ``follow_joint_trajectory`` action server (FollowJointTrajectory).
 
 The contract is the core's (:mod:`stewart_kinematics.motion.trajectory_execution`,
 :mod:`stewart_kinematics.motion.tolerances`, :mod:`stewart_kinematics.motion.path_braking`);
@@ -43,12 +43,14 @@ import numpy as np
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.task import Future
 
+from std_msgs.msg import Header
 from stewart_kinematics import findings
 from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits import CommandGate
 from stewart_kinematics.motion.path_braking import braking_trajectory
 from stewart_kinematics.motion.planning import gated_leg_trajectory, MotionPlan, plan_motion
 from stewart_kinematics.motion.planning_worker import PlanningJob
+from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from stewart_kinematics.motion.tolerances import (
     INVALID_GOAL,
     JointToleranceValues,
@@ -58,7 +60,6 @@ from stewart_kinematics.motion.tolerances import (
     SUCCESSFUL,
     ToleranceMonitor,
 )
-from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from stewart_kinematics.motion.trajectory_execution import (
     check_goal,
     goal_motion,
@@ -77,7 +78,6 @@ from stewart_kinematics.ros.message_conversions import (
     seconds,
 )
 from stewart_kinematics.ros.node_main import create_input_subscription, create_output_publisher
-from std_msgs.msg import Header
 
 #: The action's name, relative (``/follow_joint_trajectory`` without a namespace).
 ACTION_NAME = 'follow_joint_trajectory'
@@ -276,7 +276,7 @@ class TrajectoryAction:
         return None if actual is None else actual.positions
 
     def on_planned(self, answer) -> None:
-        """A goal's plan (executor thread): run it, or abort the goal with the refusal."""
+        """Run a goal's plan (executor thread), or abort the goal with its refusal."""
         record = answer.job.context
         if record is not self.pending:
             return                       # preempted or cancelled meanwhile
@@ -359,7 +359,7 @@ class TrajectoryAction:
         return CancelResponse.REJECT
 
     def preempt_by_topic(self, topic: str) -> None:
-        """A trajectory from ``pose_trajectory`` or ``pose_path`` replaces the goals."""
+        """Abort the goals: a trajectory on ``pose_trajectory`` or ``pose_path`` replaces them."""
         for record in (self.pending, self.waiting, self.active):
             if record is not None:
                 self.finish(record, ABORTED, INVALID_GOAL, f'{PREEMPTED} ({topic})',
@@ -399,7 +399,7 @@ class TrajectoryAction:
         send_command(self.commands_publisher, self.accounting, command, Header(stamp=_stamp(now)))
 
     def check(self, record: GoalRecord, now: float) -> None:
-        """The goal's tolerances against the latest joint_states, and its feedback."""
+        """Check the goal's tolerances against the latest joint_states; send its feedback."""
         elapsed = now - record.start
         if elapsed < 0.0:
             return                      # waiting for its header stamp
@@ -439,14 +439,14 @@ def node_action_type():
 
 
 def _stamp(seconds_value: float):
-    """builtin_interfaces/msg/Time of node seconds."""
+    """Return the builtin_interfaces/msg/Time of node seconds."""
     from builtin_interfaces.msg import Time
     nanoseconds = int(round(seconds_value * 1e9))
     return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
 
 
 def default_tolerances(kind: str, settings) -> SegmentTolerances:
-    """The default tolerances of a joint set, from the action's parameters."""
+    """Return the default tolerances of a joint set, from the action's parameters."""
     if kind == LEGS:
         path = StateTolerances.uniform(6, settings.action_leg_path_tolerance)
         goal = StateTolerances.uniform(6, settings.action_leg_goal_tolerance,
@@ -463,7 +463,7 @@ def default_tolerances(kind: str, settings) -> SegmentTolerances:
 
 def goal_request(goal):
     """
-    A :class:`GoalRequest` of a FollowJointTrajectory goal message, or the Finding refusing it.
+    Return the :class:`GoalRequest` of a FollowJointTrajectory goal, or the Finding refusing it.
 
     Only counts and conversions: every value is judged by :func:`check_goal`.
     """
@@ -490,7 +490,7 @@ def goal_request(goal):
 
 
 def feedback_message(names, now, elapsed, desired, actual, error):
-    """control_msgs FollowJointTrajectory feedback: desired, actual and error."""
+    """Return the FollowJointTrajectory feedback: desired, actual and error."""
     feedback = node_action_type().Feedback()
     feedback.header.stamp = _stamp(now)
     feedback.joint_names = list(names)
@@ -506,8 +506,7 @@ def feedback_message(names, now, elapsed, desired, actual, error):
 
 
 def _duration(value: float):
-    """builtin_interfaces/msg/Duration of seconds."""
+    """Return the builtin_interfaces/msg/Duration of seconds."""
     from builtin_interfaces.msg import Duration
     nanoseconds = int(round(value * 1e9))
     return Duration(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
-

@@ -107,22 +107,22 @@ def test_either_joint_set_in_any_order(geometry):
 
 
 @pytest.mark.parametrize('fields, words', [
-    (dict(times=(), positions=()), 'no points'),
-    (dict(times=(1.0, 1.0)), 'not strictly increasing: point 1'),
-    (dict(times=(2.0, 1.0)), 'not strictly increasing'),
-    (dict(times=(-1.0, 1.0)), 'time_from_start -1.0'),
-    (dict(times=(1.0, 2e6)), 'within 0 to 1e+06'),
-    (dict(times=(1.0, math.nan)), 'time_from_start nan'),
-    (dict(positions=[[0.2] * 6, [0.2] * 5]), 'point 1: 5 positions for 6 joints'),
-    (dict(positions=[[0.2] * 6, [math.nan] * 6]), 'positions of leg_1 is nan'),
-    (dict(positions=[[0.2] * 6, [0.2] * 5 + [math.inf]]), 'positions of leg_6 is inf'),
-    (dict(positions=[[1e308] * 6, [0.2] * 6]), 'point 0: positions of leg_1 is 1e+308'),
-    (dict(velocities=([0.0] * 6, [])), 'on every point, or on none'),
-    (dict(velocities=([0.0] * 6, [0.1] * 6)), 'last point does not rest'),
-    (dict(accelerations=([0.0] * 3, [0.0] * 3)), '3 accelerations for 6 joints'),
-    (dict(efforts=([1.0] * 6, [1.0] * 6)), 'efforts'),
-    (dict(multi_dof_points=1, multi_dof_joints=1), 'multi_dof_trajectory is not taken (traj'),
-    (dict(stamp=1e7), 'more than 1e+06 s ahead'),
+    ({'times': (), 'positions': ()}, 'no points'),
+    ({'times': (1.0, 1.0)}, 'not strictly increasing: point 1'),
+    ({'times': (2.0, 1.0)}, 'not strictly increasing'),
+    ({'times': (-1.0, 1.0)}, 'time_from_start -1.0'),
+    ({'times': (1.0, 2e6)}, 'within 0 to 1e+06'),
+    ({'times': (1.0, math.nan)}, 'time_from_start nan'),
+    ({'positions': [[0.2] * 6, [0.2] * 5]}, 'point 1: 5 positions for 6 joints'),
+    ({'positions': [[0.2] * 6, [math.nan] * 6]}, 'positions of leg_1 is nan'),
+    ({'positions': [[0.2] * 6, [0.2] * 5 + [math.inf]]}, 'positions of leg_6 is inf'),
+    ({'positions': [[1e308] * 6, [0.2] * 6]}, 'point 0: positions of leg_1 is 1e+308'),
+    ({'velocities': ([0.0] * 6, [])}, 'on every point, or on none'),
+    ({'velocities': ([0.0] * 6, [0.1] * 6)}, 'last point does not rest'),
+    ({'accelerations': ([0.0] * 3, [0.0] * 3)}, '3 accelerations for 6 joints'),
+    ({'efforts': ([1.0] * 6, [1.0] * 6)}, 'efforts'),
+    ({'multi_dof_points': 1, 'multi_dof_joints': 1}, 'multi_dof_trajectory is not taken (traj'),
+    ({'stamp': 1e7}, 'more than 1e+06 s ahead'),
 ])
 def test_malformed_goals_refused_invalid_goal(fields, words):
     code, reason = refusal(request(**fields))

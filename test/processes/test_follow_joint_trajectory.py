@@ -39,9 +39,8 @@ import pytest
 from rclpy.action import ActionClient
 import reference
 from sensor_msgs.msg import JointState
-from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
-
 from stewart_kinematics.ros.node_main import create_executor
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 pytestmark = pytest.mark.process
 
@@ -68,7 +67,7 @@ def duration(value):
 
 
 def goal(names, times, rows, **fields):
-    """A FollowJointTrajectory goal of positions ``rows`` at ``times``."""
+    """Return a FollowJointTrajectory goal of positions ``rows`` at ``times``."""
     message = FollowJointTrajectory.Goal()
     message.trajectory.joint_names = list(names)
     message.trajectory.points = [
@@ -169,7 +168,7 @@ class MoveItLikeClient:
 
 @pytest.fixture
 def client(ros):
-    """A client node spun by its own thread on the single-threaded executor (actions)."""
+    """Spin a client node in its own thread on the single-threaded executor (actions)."""
     client = SpinningClient(ros.create_node('stewart_action_client'),
                             create_executor('single_threaded'), 100)
     yield client
@@ -193,6 +192,8 @@ def rig(client, start_node, config_directory, *parameters):
 
 def test_every_result_code_and_feedback(client, start_node, config_directory):
     """
+    Every result code, and feedback.
+
     SUCCESSFUL (legs in any order, and Cartesian), INVALID_JOINTS, INVALID_GOAL (NaN, a limit),
     OLD_HEADER_TIMESTAMP, PATH_TOLERANCE_VIOLATED and GOAL_TOLERANCE_VIOLATED (a stalled leg),
     each with its error_string; feedback at action_feedback_rate with desired, actual, error.
@@ -259,7 +260,9 @@ def test_every_result_code_and_feedback(client, start_node, config_directory):
 
 def test_preemption_and_cancel_brake_within_the_limits(client, start_node, config_directory):
     """
-    Streamed: a new goal preempts the running one (INVALID_GOAL, JTC's words); a cancel ends it
+    Preemption and cancel, streamed.
+
+    A new goal preempts the running one (INVALID_GOAL, JTC's words); a cancel ends it
     CANCELED, and the commands after it slow within leg_acceleration_max to rest, no jump.
     """
     node, platform, action = rig(client, start_node, config_directory,
@@ -304,6 +307,8 @@ def test_preemption_and_cancel_brake_within_the_limits(client, start_node, confi
 
 def test_adversary_goals_get_codes_and_the_node_lives(client, start_node, config_directory):
     """
+    Adversarial goals.
+
     10^5 points, both trajectory kinds, huge times and values, a flood of goals, a cancel of a
     finished goal: each answered with its code; nothing beyond the limits is sent.
     """
