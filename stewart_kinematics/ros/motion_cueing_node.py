@@ -46,18 +46,17 @@ on.
 """
 
 from geometry_msgs.msg import AccelStamped, PoseStamped
-from rclpy.node import Node
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.parameters import (
-    frame_parameters_reason,
     frames_from_settings,
     MotionCueingNodeSettings,
 )
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import command_pose_message, pose_to_message
 from stewart_kinematics.ros.node_main import (
@@ -66,20 +65,26 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 
 
-class MotionCueingNode(Node):
+class MotionCueingNode(ManagedNode):
     """Turn every vehicle IMU message into a platform pose within the limits."""
+
+    SETTINGS = MotionCueingNodeSettings
 
     def __init__(self, **kwargs):
         super().__init__('motion_cueing_node', **kwargs)
-        self.settings = declare_settings(
-            self, MotionCueingNodeSettings, on_change=self.on_parameter_change,
-            check=frame_parameters_reason, node_options=kwargs, payload=RunTimePayload(
-                lambda: self.cueing.geometry, self.set_mass_properties, lambda: '' if (
-                    self.cueing.settled()) else 'motion_cueing_node takes a new payload only '
-                'at rest at home: call reset, wait until the platform is home, then set it'))
+
+    def run_time_payload(self):
+        """Take a new payload only at rest at home."""
+        return RunTimePayload(
+            lambda: self.cueing.geometry, self.set_mass_properties, lambda: '' if (
+                self.cueing.settled()) else 'motion_cueing_node takes a new payload only '
+            'at rest at home: call reset, wait until the platform is home, then set it')
+
+    def configure(self):
+        """Build the motion cueing, every publisher, subscription, service and timer."""
         self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
                                                    frames_from_settings(self.settings.frames))
         depth = self.settings.queue.queue_depth

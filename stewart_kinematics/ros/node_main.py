@@ -220,7 +220,10 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             for node in nodes:
                 executor.add_node(node)
             rclpy.logging.get_logger(name).info(f'spinning on the {executor_kind} executor')
-            while not stop_requests and rclpy.ok():
+            # A managed node's shutdown transition finalizes it: with every node finalized,
+            # the process has nothing left to do.
+            while not stop_requests and rclpy.ok() and not all(
+                    getattr(node, 'finalized', False) for node in nodes):
                 executor.spin_once(timeout_sec=SPIN_SLICE)
         except ExternalShutdownException:
             pass
@@ -252,7 +255,9 @@ def hand_to_executor(node, callback) -> bool:
     executor = node.executor
     if executor is None:
         return False
-    executor.create_task(callback)
+    # A managed node drops it while inactive (stewart_kinematics.ros.managed).
+    gated = getattr(node, 'gated', None)
+    executor.create_task(callback if gated is None else gated(callback))
     return True
 
 
@@ -301,6 +306,9 @@ def create_input_subscription(node, endpoint, callback, queue_depth=None):
     :param queue_depth: the node's ``queue_depth`` parameter, for an endpoint whose QoS keeps
         that many messages (messages); the others ignore it.
     """
+    gated = getattr(node, 'gated', None)
+    if gated is not None:   # a managed node ignores messages while inactive
+        callback = gated(callback, topic=endpoint.name)
     return node.create_subscription(
         endpoint.message_type, endpoint.name, callback, endpoint.qos.profile(queue_depth),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
@@ -312,5 +320,8 @@ def create_declared_service(node, endpoint, callback):
 
     :param endpoint: the service's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     """
+    gated = getattr(node, 'gated', None)
+    if gated is not None:   # a managed node answers that it is inactive
+        callback = gated(callback, service=True)
     return node.create_service(endpoint.message_type, endpoint.name, callback,
                                qos_profile=endpoint.qos.profile())
