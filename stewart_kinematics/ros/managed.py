@@ -109,7 +109,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
     def __init__(self, node_name: str, **kwargs):
         Node.__init__(self, node_name, **kwargs)
         # managed first, alone: the names and values of the others are checked just below.
-        first = DeferredChecks(lambda: False)
+        first = DeferredChecks(lambda: False, settable=False)
         self.managed = bool(declare_parameters(
             self, LIFECYCLE_PARAMETERS, node_options=kwargs, deferred=first)['managed'])
         if 'managed' in first.problems:

@@ -240,26 +240,28 @@ class DeferredChecks:
     while the node is unconfigured, and are read-only while it is configured.
 
     :param configurable: returns whether the node is unconfigured now.
+    :param settable: whether read-only parameters are declared settable (while unconfigured);
+        ``False`` declares them read-only, as an unmanaged node does.
     """
 
     #: The key of a problem of the parameter sources themselves (a name nobody declares).
     SOURCES = ''
 
-    def __init__(self, configurable: Callable[[], bool]):
+    def __init__(self, configurable: Callable[[], bool], settable: bool = True):
         self.configurable = configurable
+        self.settable = settable
         #: Parameter name (or :data:`SOURCES`) -> why its value given cannot be used.
         self.problems: Dict[str, str] = {}
 
     def declare(self, node, spec, default, ros_descriptor) -> None:
         """Declare one parameter settable while unconfigured; a wrong type: the default."""
-        ros_descriptor.read_only = False
+        if self.settable:
+            ros_descriptor.read_only = False
         try:
             node.declare_parameter(spec.name, default, ros_descriptor)
         except ParameterException as error:
             self.problems.setdefault(spec.name, str(error))
-            # rclpy keeps the override it refused; declared again without it, the default.
-            node._parameter_overrides.pop(spec.name, None)
-            node.declare_parameter(spec.name, default, ros_descriptor)
+            node.declare_parameter(spec.name, default, ros_descriptor, ignore_override=True)
 
     def settings(self, node, settings_class, check=None):
         """
