@@ -45,11 +45,14 @@ the start with the reason). Every one is read-only but the tool frame's (``tool_
 on.
 """
 
+import time
+
 from geometry_msgs.msg import AccelStamped, PoseStamped
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
+from stewart_kinematics.cueing.motion_cueing import WATCHDOG_PERIOD
 from stewart_kinematics.parameters import (
     frames_from_settings,
     MotionCueingNodeSettings,
@@ -66,6 +69,9 @@ from stewart_kinematics.ros.node_main import (
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import RunTimePayload
+
+#: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
+MAX_BRAKING_STEPS = 10_000
 
 
 class MotionCueingNode(ManagedNode):
@@ -107,6 +113,28 @@ class MotionCueingNode(ManagedNode):
             f'ready: cueing vehicle_imu into target_pose (head at '
             f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
             f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
+
+    def deactivate(self):
+        """
+        Brake the platform to rest where it is, then wash out (the next samples glide it home).
+
+        One braking command a watchdog period (:meth:`stewart_kinematics.cueing.MotionCueing.
+        brake`), within the velocity and acceleration limits, until the legs rest: a fraction
+        of a second, where easing home would take the washout's tens of seconds. Runs in the
+        deactivate transition, which answers once the platform rests.
+        """
+        period = WATCHDOG_PERIOD
+        moment = self.cueing.gate.last_time
+        for _ in range(MAX_BRAKING_STEPS if moment is not None else 0):
+            moment += period
+            result = self.cueing.brake(moment)
+            if result is None:
+                break
+            self.target_publisher.publish(result.command)
+            self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
+            time.sleep(period)
+        self.cueing.reset()
+        self.cueing.restart_time()
 
     def on_parameter_change(self, name, value):
         """Take a validated run-time change (the tool frame: the others are read-only)."""

@@ -44,6 +44,7 @@ from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.experimental import EventsExecutor
+from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import get_default_context, remove_ros_args
@@ -161,7 +162,7 @@ def executor_for_nodes(name: str, nodes):
         'do not keep to a simulated clock)')
 
 
-def run_nodes(node_classes, name: str, args=None) -> int:
+def run_nodes(node_classes, name: str, args=None, autostart: bool = False) -> int:
     """
     Initialise rclpy, build nodes and spin them in one executor until SIGINT or SIGTERM.
 
@@ -174,6 +175,9 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     :param node_classes: the nodes' classes, each constructed without arguments, in order.
     :param name: the process's name, for the log of a failed start.
     :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
+    :param autostart: configure then activate each managed node (``managed: true``) once it
+        spins, as a lifecycle manager's autostart would; a refused configure leaves that node
+        unconfigured (its log says why), the others go on.
     :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a parameter file cannot
         be read, a node could not be built or the executor is unknown, with a fatal log that
         says why.
@@ -220,6 +224,10 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             for node in nodes:
                 executor.add_node(node)
             rclpy.logging.get_logger(name).info(f'spinning on the {executor_kind} executor')
+            for node in nodes if autostart else ():
+                if getattr(node, 'managed', False) and (
+                        node.trigger_configure() == TransitionCallbackReturn.SUCCESS):
+                    node.trigger_activate()
             # A managed node's shutdown transition finalizes it: with every node finalized,
             # the process has nothing left to do.
             while not stop_requests and rclpy.ok() and not all(
