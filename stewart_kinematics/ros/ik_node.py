@@ -87,6 +87,8 @@ from stewart_kinematics.ros.workspace_publishing import WorkspacePublisher
 COMMANDED_SUFFIX = '_commanded'
 #: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
 MAX_BRAKING_STEPS = 100_000
+#: Leg speed below which the deactivate transition takes the legs as resting, m/s.
+REST_SPEED = 1e-9
 
 
 class IkNode(ManagedNode):
@@ -188,34 +190,42 @@ class IkNode(ManagedNode):
 
     def brake_stream(self):
         """
-        Send the command gate's braking commands, one a period, until the legs rest.
+        Stop the stream as soon as the limits allow, one command a period, until the legs rest.
 
-        Each slows every leg at the gate's braking share of ``leg_acceleration_max`` from the
-        last command sent (within the velocity and acceleration limits by construction): the
-        platform comes to rest where it can, as from a refused step, not at the target. Runs
-        in the deactivate transition, which answers once the legs rest (under a second for
-        any limits the streaming allows: the speed over the braking deceleration). The
-        stream then rests there: the next accepted pose, once active again, starts from it.
+        The stream's target becomes where its braking plan ends
+        (:meth:`stewart_kinematics.CommandFilter.stopping_lengths`: every leg slowed within
+        the velocity, acceleration and jerk limits, from the command's own state), and each
+        step goes through the command gate as every streamed command does. The platform rests
+        where it can, short of the pose asked for. Runs in the deactivate transition, which
+        answers once the legs rest (the speed over the acceleration, plus the acceleration
+        over the jerk: 0.3 s with example_limits.yaml). The stream then rests there: the
+        next accepted pose, once active again, starts from it.
         """
         stream = self.command_filter
         period = stream.period
+        stop = stream.stopping_lengths()
+        if stop is None or not stream.set_target(stop).accepted:
+            self.get_logger().warning('deactivated mid-stream: no braking plan; the gate '
+                                      'brakes the legs instead')
         limits = stream.limits
-        last = None
+        gentlest = min(share for share in BRAKING_SHARES if share > 0.0)
+        steps = int((limits.velocity_max / limits.acceleration_max
+                     + limits.acceleration_max / limits.jerk_max)
+                    / gentlest / period) + 3
         # Times on the gate's own line, a period apart: the executor (and with it a simulated
         # clock) does not run meanwhile; the stamps are the clock's.
         moment = stream.gate.last_time
-        gentlest = min(share for share in BRAKING_SHARES if share > 0.0)
-        steps = int(limits.velocity_max / (gentlest * limits.acceleration_max) / period) + 3
+        last = None
         for _ in range(min(steps, MAX_BRAKING_STEPS)):
             moment += period
-            command = stream.gate.brake(moment)
+            command = stream.send(moment)
             if not command.accepted:
                 break
             last = command
             self.stream_accounting.receive()
             send_command(self.joint_command_publisher, self.stream_accounting, command, Header(
                 stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame))
-            if not np.any(command.velocities):
+            if np.abs(command.velocities).max() <= REST_SPEED:
                 break
             time.sleep(period)
         if last is not None:

@@ -125,6 +125,7 @@ class MotionCueingNode(ManagedNode):
         """
         period = WATCHDOG_PERIOD
         moment = self.cueing.gate.last_time
+        braked = 0
         for _ in range(MAX_BRAKING_STEPS if moment is not None else 0):
             moment += period
             result = self.cueing.brake(moment)
@@ -132,7 +133,10 @@ class MotionCueingNode(ManagedNode):
                 break
             self.target_publisher.publish(result.command)
             self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
+            braked += 1
             time.sleep(period)
+        if braked:
+            self.get_logger().info(f'deactivated: braked to rest in {braked} commands')
         self.cueing.reset()
         self.cueing.restart_time()
 
