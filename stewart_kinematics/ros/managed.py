@@ -19,12 +19,14 @@ Every node of the package is a :class:`ManagedNode`, an ``rclpy.lifecycle`` node
 (``LifecycleNodeMixin`` over ``rclpy.node.Node``) built in two steps, which is how ``managed``
 is read before the lifecycle part exists: ``Node.__init__`` first, then the ``managed``
 parameter is declared and read (from the parameter files, ``-p`` or ``parameter_overrides``,
-as any parameter), then ``LifecycleNodeMixin.__init__`` with
-``enable_communication_interface=managed``. So there is one class per node and no second
-reading of the command line:
+as any parameter), then, only if it is true, ``LifecycleNodeMixin.__init__``, which makes the
+lifecycle state machine and its services. So there is one class per node and no second
+reading of the command line. (Not ``enable_communication_interface=False`` for an unmanaged
+node: rcl_lifecycle creates the ``~/transition_event`` publisher even then, and the node would
+not be the node it was.)
 
-- ``managed: false`` (the default, what ``ros2 run`` gives): no lifecycle service and no
-  transition event exist; the constructor runs the configure and activate transitions itself,
+- ``managed: false`` (the default, what ``ros2 run`` gives): no state machine, no lifecycle
+  service or topic; the constructor does the configure and activate transitions' work itself,
   and a parameter it refuses raises there, so the process exits with the reason, exactly as
   the nodes always did. The node is the same node as before.
 - ``managed: true``: the node has the standard services (``~/change_state``, ``~/get_state``,
@@ -81,6 +83,7 @@ from rclpy.lifecycle import LifecycleNodeMixin, LifecyclePublisher, TransitionCa
 from rclpy.node import Node
 
 from stewart_kinematics.parameters import frame_parameters_reason, LIFECYCLE_PARAMETERS
+from stewart_kinematics.ros.rclpy_guards import guard_change_state
 from stewart_kinematics.ros.ros_parameters import (
     declare_parameters,
     declare_settings,
@@ -114,7 +117,11 @@ class ManagedNode(LifecycleNodeMixin, Node):
             self, LIFECYCLE_PARAMETERS, node_options=kwargs, deferred=first)['managed'])
         if 'managed' in first.problems:
             raise ValueError(first.problems['managed'])
-        LifecycleNodeMixin.__init__(self, enable_communication_interface=self.managed)
+        if self.managed:
+            # Unmanaged, no state machine at all: rcl_lifecycle would create the
+            # ~/transition_event publisher even without its communication interface.
+            LifecycleNodeMixin.__init__(self)
+            guard_change_state(self)
         #: Whether inputs are acted on and outputs published (lifecycle state ``active``).
         self.active = False
         #: Whether the node is built (``inactive`` or ``active``).
@@ -134,9 +141,10 @@ class ManagedNode(LifecycleNodeMixin, Node):
             check=self.PARAMETERS_CHECK, node_options=kwargs, payload=self.run_time_payload(),
             deferred=self._deferred, skip=('managed',))
         if not self.managed:
-            if self.trigger_configure() != TransitionCallbackReturn.SUCCESS:
+            # The same parts as the transitions, called in turn: the node is active.
+            if self._configure() != TransitionCallbackReturn.SUCCESS:
                 raise self.configure_error
-            self.trigger_activate()
+            self._activate()
 
     # The node's parts: overridden by each node.
 
@@ -198,6 +206,8 @@ class ManagedNode(LifecycleNodeMixin, Node):
 
     def lifecycle_state(self) -> str:
         """Return the label of the lifecycle state: unconfigured, inactive, active, ..."""
+        if not self.managed:
+            return 'active' if self.active else 'finalized'
         return self._state_machine.current_state[1]
 
     def create_timer(self, timer_period_sec, callback, *args, **kwargs):
@@ -215,6 +225,13 @@ class ManagedNode(LifecycleNodeMixin, Node):
 
     def on_configure(self, state) -> TransitionCallbackReturn:
         """Check the parameters and build the node; a refusal leaves it unconfigured."""
+        result = self._configure()
+        if result != TransitionCallbackReturn.SUCCESS:
+            return result
+        return super().on_configure(state)
+
+    def _configure(self) -> TransitionCallbackReturn:
+        """The configure transition's work: SUCCESS, or FAILURE with ``configure_error`` set."""
         self.configure_error = None
         try:
             if self._deferred is not None:
@@ -234,49 +251,61 @@ class ManagedNode(LifecycleNodeMixin, Node):
         self.configured = True
         if self.managed:
             self.get_logger().info('configured (inactive): activate it to start')
-        return super().on_configure(state)
+        return TransitionCallbackReturn.SUCCESS
 
     def on_activate(self, state) -> TransitionCallbackReturn:
         """Enable the publishers, act on inputs."""
         result = super().on_activate(state)
+        if result != TransitionCallbackReturn.SUCCESS:
+            return result
+        if not self._activate():
+            super().on_deactivate(state)
+            return TransitionCallbackReturn.FAILURE
+        self.get_logger().info('active')
+        return result
+
+    def _activate(self) -> bool:
+        """The activate transition's work; whether it succeeded (else the node stays inactive)."""
         self.active = True
         try:
             self.activate()
         except Exception as error:  # noqa: B902 - the transition fails, the node stays inactive
             self.active = False
-            super().on_deactivate(state)
-            self.get_logger().error(f'activate failed, the node stays inactive: {error}')
-            return TransitionCallbackReturn.FAILURE
-        if self.managed:
-            self.get_logger().info('active')
-        return result
+            if self.managed:
+                self.get_logger().error(f'activate failed, the node stays inactive: {error}')
+            else:
+                raise
+            return False
+        return True
 
     def on_deactivate(self, state) -> TransitionCallbackReturn:
         """Bring the platform to rest, then publish nothing and ignore inputs."""
+        self._deactivate()
+        self.get_logger().info('deactivated (inactive)')
+        return super().on_deactivate(state)
+
+    def _deactivate(self):
+        """The deactivate transition's work: the node's part, then inactive whatever happens."""
         try:
             self.deactivate()
         except Exception as error:  # noqa: B902 - inactive whatever happened
             self.get_logger().error(f'deactivate: {type(error).__name__}: {error}')
         self.active = False
-        if self.managed:
-            self.get_logger().info('deactivated (inactive)')
-        return super().on_deactivate(state)
 
     def on_cleanup(self, state) -> TransitionCallbackReturn:
         """Release everything configure built: the node is unconfigured again."""
         self._release()
-        if self.managed:
-            self.get_logger().info('cleaned up (unconfigured)')
+        self.get_logger().info('cleaned up (unconfigured)')
         return super().on_cleanup(state)
 
     def on_shutdown(self, state) -> TransitionCallbackReturn:
         """From any state: deactivate and clean up as needed; the node is finalized."""
         if self.active:
-            self.on_deactivate(state)
+            self._deactivate()
+            super().on_deactivate(state)
         self._release()
         self.finalized = True
-        if self.managed:
-            self.get_logger().info('shut down (finalized)')
+        self.get_logger().info('shut down (finalized)')
         return TransitionCallbackReturn.SUCCESS
 
     def on_error(self, state) -> TransitionCallbackReturn:
