@@ -231,7 +231,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
         return super().on_configure(state)
 
     def _configure(self) -> TransitionCallbackReturn:
-        """The configure transition's work: SUCCESS, or FAILURE with ``configure_error`` set."""
+        """Do the configure transition's work: SUCCESS, or FAILURE with ``configure_error`` set."""
         self.configure_error = None
         try:
             if self._deferred is not None:
@@ -265,7 +265,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
         return result
 
     def _activate(self) -> bool:
-        """The activate transition's work; whether it succeeded (else the node stays inactive)."""
+        """Do the activate transition's work; return whether it succeeded (else inactive)."""
         self.active = True
         try:
             self.activate()
@@ -285,7 +285,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
         return super().on_deactivate(state)
 
     def _deactivate(self):
-        """The deactivate transition's work: the node's part, then inactive whatever happens."""
+        """Do the deactivate transition's work: the node's part, then inactive whatever happens."""
         try:
             self.deactivate()
         except Exception as error:  # noqa: B902 - inactive whatever happened

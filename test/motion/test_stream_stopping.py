@@ -34,7 +34,7 @@ HOME = np.array([0.7189, 0.7189, 0.7011, 0.7189, 0.7189, 0.7189])
 
 
 def cruise(limits, steps=200):
-    """A filter streaming toward a target 0.1 m away, after ``steps`` steps."""
+    """Return a filter streaming toward a target 0.1 m away, after ``steps`` steps."""
     command_filter = CommandFilter(limits, PERIOD, HOME)
     assert command_filter.set_target(HOME + 0.1).accepted
     for _ in range(steps):

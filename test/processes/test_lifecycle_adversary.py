@@ -13,9 +13,11 @@
 # limitations under the License.
 
 """
-Managed nodes driven as an adversary would: transitions in a wrong order, twice, by unknown
-labels and ids, a flood of change_state calls, SIGINT in every state; and the two ways of
-starting several nodes at once (stewart_platform --autostart), and unmanaged nodes unchanged.
+Managed nodes driven as an adversary would, and the process-level cases of managed nodes.
+
+Transitions in a wrong order, twice, by unknown labels and ids, a flood of change_state calls,
+SIGINT in every state; several nodes in one process (stewart_platform --autostart), and
+unmanaged nodes unchanged.
 """
 
 import subprocess
@@ -63,9 +65,11 @@ def test_transitions_in_a_wrong_order_are_refused_and_the_node_goes_on(
 def test_a_flood_of_change_state_calls_leaves_a_working_node(
         client, start_node, config_directory):
     """
-    300 change_state requests at once, cycling through every transition (most refused in
-    the state they find): the node answers what its service queue kept (keep last 10: DDS
-    drops the rest, as for any ROS service), ends in a primary state, and works.
+    Answer a flood of 300 change_state requests and work on.
+
+    The requests cycle through every transition (most refused in the state they find): the
+    node answers what its service queue kept (keep last 10: DDS drops the rest, as for any ROS
+    service), ends in a primary state, and works.
     """
     node = start_node('ik_node', config_args(config_directory))
     lifecycle = Lifecycle(client, 'ik_node', [node])
@@ -121,7 +125,7 @@ def test_configure_and_cleanup_again_and_again_release_the_worker_processes(
         return result.stdout.split()
 
     def workers():
-        """The worker processes: children of multiprocessing's forkserver, a child."""
+        """Return the worker processes: children of multiprocessing's forkserver, a child."""
         found = []
         for child in children(node.process.pid):
             try:
@@ -196,9 +200,10 @@ def test_unmanaged_nodes_have_no_lifecycle_interface(client, start_node, config_
 def test_stewart_platform_managed_with_and_without_autostart(
         client, start_node, config_directory, autostart):
     """
-    One process, three managed nodes: --autostart true brings each to active (a pose is
-    answered through ik_node and fk_node); without it each waits, unconfigured. Shutting the
-    three down ends the process.
+    Run three managed nodes in one process, with and without --autostart.
+
+    --autostart true brings each to active (a pose is answered through ik_node and fk_node);
+    without it each waits, unconfigured. Shutting the three down ends the process.
     """
     node = start_node('stewart_platform', [
         '--play-ramp', 'true', '--autostart', str(autostart).lower(),

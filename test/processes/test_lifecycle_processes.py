@@ -129,10 +129,12 @@ def joint_arrays(messages):
 def test_ik_node_every_transition_and_a_stream_braked_to_rest(
         client, start_node, config_directory):
     """
-    ik_node managed, streaming at 100 Hz: unconfigured and inactive it publishes nothing and
-    never acts later on what came meanwhile; active it streams; deactivated mid-stream it
-    brakes to rest within the velocity and acceleration limits, then is silent; cleanup
-    removes its topics, configure and activate work again; shutdown ends the process (0).
+    Take ik_node, streaming at 100 Hz, through every transition.
+
+    Unconfigured and inactive it publishes nothing and never acts later on what came
+    meanwhile; active it streams; deactivated mid-stream it brakes to rest within the
+    velocity and acceleration limits, then is silent; cleanup removes its topics, configure
+    and activate work again; shutdown ends the process (0).
     """
     node = start_node('ik_node', config_args(config_directory, '-p', 'command_rate:=100.0'))
     lifecycle = Lifecycle(client, 'ik_node', [node])
@@ -213,8 +215,10 @@ def test_ik_node_every_transition_and_a_stream_braked_to_rest(
 def test_fk_node_bad_parameter_fails_configure_and_is_fixed(
         client, start_node, config_directory):
     """
-    A stroke limit that is not allowed: configure fails with the reason in the log, the node
-    stays unconfigured and alive; set right, it configures, activates and estimates poses.
+    Fail fk_node's configure with a stroke limit not allowed, then fix it.
+
+    Configure fails with the reason in the log, the node stays unconfigured and alive; set
+    right, it configures, activates and estimates poses.
     """
     node = start_node('fk_node', config_args(config_directory, '-p', 'leg_length_max:=-1.0'))
     lifecycle = Lifecycle(client, 'fk_node', [node])
@@ -282,6 +286,8 @@ def test_bad_parameter_file_fails_configure_and_the_node_shuts_down(
 
 def test_trajectory_node_plays_only_while_active(client, start_node, config_directory):
     """
+    Play the ramp only while active.
+
     The ramp, looping: nothing while inactive, poses once active, none after deactivate; a
     trajectory received while inactive is never planned.
     """
@@ -314,7 +320,7 @@ def test_trajectory_node_plays_only_while_active(client, start_node, config_dire
 
 
 def imu(stamp, force_x):
-    """A vehicle_imu sample: a forward specific force, at rest otherwise, stamped."""
+    """Return a vehicle_imu sample: a forward specific force, at rest otherwise, stamped."""
     message = Imu()
     message.header.stamp.sec, message.header.stamp.nanosec = divmod(int(stamp * 1e9), 10 ** 9)
     message.linear_acceleration.x, message.linear_acceleration.z = force_x, 9.81
@@ -324,8 +330,10 @@ def imu(stamp, force_x):
 def test_motion_cueing_node_brakes_to_rest_when_deactivated(
         client, start_node, config_directory):
     """
+    Brake motion_cueing_node's platform to rest when it is deactivated.
+
     Inactive: samples ignored, reset answers that it is inactive; active: cues; deactivated
-    mid-cue: the platform brakes to rest within the leg limits, then nothing is published.
+    mid-cue: the platform brakes to rest, then nothing is published.
     """
     node = start_node('motion_cueing_node', config_args(
         config_directory, '--params-file', str(config_directory / 'motion_cueing.yaml')))

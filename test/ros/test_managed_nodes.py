@@ -189,7 +189,7 @@ def test_an_unexpected_error_in_configure_fails_it_and_releases(build, monkeypat
 
 @pytest.mark.parametrize('value', ['yes', 1, [True]])
 def test_managed_of_the_wrong_type_stops_the_node(ros, value):
-    """managed is read before anything else: a wrong type stops the node at once."""
+    """Stop the node at once for a managed of the wrong type: it is read before the rest."""
     with pytest.raises((ParameterException, ValueError)):
         IkNode(cli_args=ARGS, parameter_overrides=[Parameter('managed', value=value)])
 
