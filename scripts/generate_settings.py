@@ -93,6 +93,9 @@ GROUPS = (
      "parameters (degrees where named); not the motion cueing's own settings, "
      ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
      ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.'),
+    ('MockPlatformSettings', 'MOCK_PLATFORM_PARAMETERS',
+     "mock_platform's simulated legs: the commands they take, their lag, the joint states' "
+     'rate, and the faults a test gives them.'),
 )
 
 #: The nodes: class name, what it is, and its groups (field name, class) in declaration order.
@@ -118,6 +121,10 @@ NODES = (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('frames', 'FrameSettings'), ('ramp', 'RampSettings'), ('motion', 'MotionSettings'),
         ('queue', 'QueueSettings'))),
+    ('MockPlatformNodeSettings',
+     "mock_platform's settings: one field per parameter group it declares, in that order.", (
+        ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
+        ('mock', 'MockPlatformSettings'), ('queue', 'QueueSettings'))),
 )
 
 #: The annotation of each parameter type.
