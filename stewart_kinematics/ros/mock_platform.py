@@ -121,6 +121,7 @@ class MockPlatform(Node):
             if mock.command_input in ('all', name):
                 self.accounting[name] = diagnostics.accounting(name)
                 create_input_subscription(self, MOCK_PLATFORM[name], callbacks[name], depth)
+        # After a jump back of the clock, rcl's timer ticks one period after it (rcl 9).
         self.create_timer(1.0 / mock.joint_state_rate, self.on_timer)
         self.get_logger().info(
             f'ready: legs at {np.round(self.legs.state.lengths, 6).tolist()} m, following '
