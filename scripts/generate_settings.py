@@ -96,6 +96,9 @@ GROUPS = (
      "parameters (degrees where named); not the motion cueing's own settings, "
      ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
      ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.'),
+    ('MockPlatformSettings', 'MOCK_PLATFORM_PARAMETERS',
+     "mock_platform's simulated legs: the commands they take, their lag, the joint states' "
+     'rate, and the faults a test gives them.'),
 )
 
 #: The nodes: class name, what it is, and its groups (field name, class) in declaration order.
@@ -125,6 +128,10 @@ NODES = (
         ('frames', 'FrameSettings'), ('ramp', 'RampSettings'), ('motion', 'MotionSettings'),
         ('queue', 'QueueSettings'),
         ('lifecycle', 'LifecycleSettings'))),
+    ('MockPlatformNodeSettings',
+     "mock_platform's settings: one field per parameter group it declares, in that order.", (
+        ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
+        ('mock', 'MockPlatformSettings'), ('queue', 'QueueSettings'))),
 )
 
 #: The annotation of each parameter type.

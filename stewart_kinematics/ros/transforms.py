@@ -40,7 +40,7 @@ except ImportError:  # ROS from PyPI wheels: tf2_msgs is not among them
 TF2_MSGS_MISSING = (
     'tf2_msgs is not installed, so nothing is broadcast on /tf and /tf_static; every other '
     'topic works. It comes with every ROS 2 installation (source /opt/ros/jazzy/setup.bash); '
-    'without one, scripts/build_tf2_msgs.sh builds it into a venv')
+    'without one, scripts/build_interfaces.sh builds it into a venv')
 
 
 def transform_stamped(parent: str, child: str, transform: Transform, stamp) -> TransformStamped:
