@@ -183,6 +183,11 @@ class IkNode(ManagedNode):
             self.command_filter.set_mass_properties(geometry)
         self.workspace.set_geometry(geometry)
 
+    def activate(self):
+        """Managed: send the cleared workspace markers (latched) that configure could not."""
+        if self.managed and self.workspace.resolution <= 0.0:
+            self.workspace.set_resolution(0.0)
+
     def deactivate(self):
         """Bring a stream in flight to rest within the limits, before the node goes quiet."""
         if self.command_filter is not None and self.command_filter.started:

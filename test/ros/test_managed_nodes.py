@@ -29,6 +29,7 @@ from rclpy.parameter import Parameter
 import reference
 from std_msgs.msg import Float64MultiArray
 from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker
 
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
@@ -216,3 +217,24 @@ def test_fk_node_publishes_nothing_while_inactive(build):
 
     assert node.accounting.received == 0 and node.accounting.published == 0
     assert node.ignored_inputs == {'leg_lengths': 1}
+
+
+def test_ik_node_sends_its_latched_cleared_markers_once_active(build, monkeypatch):
+    """workspace_resolution 0: the latched, cleared workspace_markers go out on activate."""
+    node = build(IkNode, MANAGED, Parameter('workspace_resolution', value=0.0))
+    assert node.trigger_configure() == SUCCESS
+    publisher = node.workspace.marker_publisher
+    sent = []
+    original = LifecyclePublisher.publish
+
+    def record(self, message):
+        if self is publisher and self.is_activated:
+            sent.append(message)
+        return original(self, message)
+    monkeypatch.setattr(LifecyclePublisher, 'publish', record)
+
+    node.workspace.set_resolution(0.0)   # inactive: dropped
+    assert sent == []
+    assert node.trigger_activate() == SUCCESS
+
+    assert len(sent) == 1 and sent[0].markers[0].action == Marker.DELETEALL
