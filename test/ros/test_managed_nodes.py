@@ -19,9 +19,12 @@ The transitions are taken with rclpy's ``trigger_*`` (the services call the same
 process tests call the services); the node's entities are read from rclpy's lists.
 """
 
+import math
 from pathlib import Path
 
 from geometry_msgs.msg import Pose
+from helpers import trajectory_message
+import numpy as np
 import pytest
 from rclpy.exceptions import ParameterException
 from rclpy.lifecycle import LifecyclePublisher, TransitionCallbackReturn
@@ -34,6 +37,7 @@ from visualization_msgs.msg import Marker
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
+from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 
 pytestmark = pytest.mark.node
@@ -44,6 +48,8 @@ ARGS = ['--ros-args', '--params-file', str(CONFIG / 'paper_platform.yaml'),
 MANAGED = Parameter('managed', value=True)
 SUCCESS, FAILURE = TransitionCallbackReturn.SUCCESS, TransitionCallbackReturn.FAILURE
 NODES = [IkNode, FkNode, TrajectoryNode, MotionCueingNode]
+#: Seconds within which trajectory_node plans 300 waypoints over 100 s (under 1 s here).
+PLANNING_TIME = 4.0
 
 
 def entities(node):
@@ -238,3 +244,28 @@ def test_ik_node_sends_its_latched_cleared_markers_once_active(build, monkeypatc
     assert node.trigger_activate() == SUCCESS
 
     assert len(sent) == 1 and sent[0].markers[0].action == Marker.DELETEALL
+
+
+def test_a_plan_under_way_at_deactivate_is_never_published(build, spin_until):
+    """trajectory_node: a long plan cancelled by deactivate never comes out, even once active."""
+    node = build(TrajectoryNode, MANAGED, Parameter('mode', value='off'))
+    executor = create_executor()
+    executor.add_node(node)
+    try:
+        assert node.trigger_configure() == SUCCESS and node.trigger_activate() == SUCCESS
+        on_trajectory = callback_of(node, '/pose_trajectory')
+        times = np.linspace(0.0, 100.0, 300)
+        waves = np.array(reference.HOME) + 0.01 * np.outer(
+            1.0 - np.cos(2.0 * math.pi * times / 100.0), [1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+        on_trajectory(trajectory_message(times, waves))
+        assert node.trigger_deactivate() == SUCCESS
+        assert node.trigger_activate() == SUCCESS
+        accounting = node.trajectory_accounting
+        # Planned whole it would be published within seconds (without the new worker it was).
+        spin_until(executor, lambda: accounting.published > 0, timeout=PLANNING_TIME)
+        assert accounting.published == 0 and accounting.received == 1
+        # The new worker plans what comes now.
+        on_trajectory(trajectory_message([0.0, 5.0], [reference.HOME, reference.HOME]))
+        assert spin_until(executor, lambda: accounting.published == 1)
+    finally:
+        executor.shutdown()
