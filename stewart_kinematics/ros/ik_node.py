@@ -184,7 +184,7 @@ class IkNode(ManagedNode):
         self.workspace.set_geometry(geometry)
 
     def activate(self):
-        """Managed: send the cleared workspace markers (latched) that configure could not."""
+        """Send the cleared workspace markers (latched) that a managed configure could not."""
         if self.managed and self.workspace.resolution <= 0.0:
             self.workspace.set_resolution(0.0)
 

@@ -32,13 +32,13 @@ from rclpy.parameter import Parameter
 import reference
 from std_msgs.msg import Float64MultiArray
 from std_srvs.srv import Trigger
-from visualization_msgs.msg import Marker
 
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 from stewart_kinematics.ros.node_main import create_executor
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
+from visualization_msgs.msg import Marker
 
 pytestmark = pytest.mark.node
 
