@@ -269,3 +269,16 @@ def test_a_plan_under_way_at_deactivate_is_never_published(build, spin_until):
         assert spin_until(executor, lambda: accounting.published == 1)
     finally:
         executor.shutdown()
+
+
+@pytest.mark.parametrize('node_class', NODES)
+def test_every_node_refuses_a_bad_limit_at_configure_and_takes_it_fixed(build, node_class):
+    """leg_velocity_max -1 m/s: configure fails naming it; set right, configure succeeds."""
+    node = build(node_class, MANAGED, Parameter('leg_velocity_max', value=-1.0))
+
+    assert node.trigger_configure() == FAILURE
+    assert 'leg_velocity_max' in str(node.configure_error)
+    assert node.lifecycle_state() == 'unconfigured'
+    assert node.set_parameters([Parameter('leg_velocity_max', value=0.05)])[0].successful
+    assert node.trigger_configure() == SUCCESS
+    assert node.trigger_shutdown() == SUCCESS and node.lifecycle_state() == 'finalized'
