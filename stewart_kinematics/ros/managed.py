@@ -220,7 +220,10 @@ class ManagedNode(LifecycleNodeMixin, Node):
         """Create a publisher; managed, a LifecyclePublisher (nothing sent while inactive)."""
         if getattr(self, '_built', None) is not None and self.managed and (
                 'publisher_class' not in kwargs):
-            return self.create_lifecycle_publisher(*args, **kwargs)
+            publisher = self.create_lifecycle_publisher(*args, **kwargs)
+            if self.active:   # made while active (lazily): it sends at once
+                publisher.on_activate(None)
+            return publisher
         return super().create_publisher(*args, **kwargs)
 
     def on_configure(self, state) -> TransitionCallbackReturn:

@@ -282,3 +282,17 @@ def test_every_node_refuses_a_bad_limit_at_configure_and_takes_it_fixed(build, n
     assert node.set_parameters([Parameter('leg_velocity_max', value=0.05)])[0].successful
     assert node.trigger_configure() == SUCCESS
     assert node.trigger_shutdown() == SUCCESS and node.lifecycle_state() == 'finalized'
+
+
+def test_a_publisher_made_while_active_sends_at_once(build):
+    """A publisher a managed node makes while active (lazily) is enabled; inactive, not."""
+    node = build(FkNode, MANAGED)
+    assert node.trigger_configure() == SUCCESS
+    inactive_made = node.create_publisher(Pose, 'made_inactive', 10)
+    assert node.trigger_activate() == SUCCESS
+    active_made = node.create_publisher(Pose, 'made_active', 10)
+
+    assert isinstance(active_made, LifecyclePublisher) and active_made.is_activated
+    assert inactive_made.is_activated   # enabled by activate with the others
+    assert node.trigger_deactivate() == SUCCESS
+    assert not active_made.is_activated and not inactive_made.is_activated
