@@ -83,14 +83,30 @@ def check_parameters(values) -> str:
 
 
 class MockPlatform(Node):
-    """Six simulated legs that follow the leg commands and publish their joint states."""
+    """
+    Six simulated legs that follow the leg commands and publish their joint states.
+
+    Built in the shape of the managed nodes (``PARAMETERS_CHECK``, :meth:`run_time_payload`,
+    :meth:`configure`), so that it becomes one by changing its base class.
+    """
+
+    SETTINGS = MockPlatformNodeSettings
+    #: ``check(values) -> reason`` between parameters: the stalled legs' names.
+    PARAMETERS_CHECK = staticmethod(check_parameters)
 
     def __init__(self, **kwargs):
         super().__init__('mock_platform', **kwargs)
         self.settings = declare_settings(
-            self, MockPlatformNodeSettings, on_change=self.on_parameter_change,
-            check=check_parameters, node_options=kwargs,
-            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
+            self, self.SETTINGS, on_change=self.on_parameter_change,
+            check=self.PARAMETERS_CHECK, node_options=kwargs, payload=self.run_time_payload())
+        self.configure()
+
+    def run_time_payload(self):
+        """Take a new payload at once: the efforts use it."""
+        return RunTimePayload(lambda: self.geometry, self.set_mass_properties)
+
+    def configure(self):
+        """Check the parameters, build the simulated legs, the publisher and subscriptions."""
         settings = self.settings
         reason = check_parameters(settings.mock.as_values() | settings.actuators.as_values())
         if reason:
@@ -161,6 +177,8 @@ class MockPlatform(Node):
         which would blur a step of 10 ms by 2e-5 of itself (and its acceleration with it).
         """
         if self.epoch is None:
+            if nanoseconds == 0:   # a simulated clock not started: its zero
+                return 0.0
             self.epoch = nanoseconds
         return (nanoseconds - self.epoch) * 1e-9
 
@@ -227,8 +245,8 @@ class MockPlatform(Node):
         efforts = None
         if not self.forces.massless:
             efforts, problem = self.forces.forces(state, self.legs.last_step)
+            self.report.forces_problem = problem or ''
             if problem:
-                self.report.forces_problem = problem
                 self.log_throttle.log('efforts', f'joint_states without efforts: {problem}')
         self.publisher.publish(joint_state_message(
             Header(stamp=stamp.to_msg()), self.legs.measure(), state.velocities,
