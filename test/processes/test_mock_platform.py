@@ -154,6 +154,9 @@ def test_joint_commands_leg_lengths_and_a_trajectory_are_followed_within_the_lim
     status = recorder.rejection('/mock_platform: joint_commands', 'invalid_leg_command')
     assert {value.key: value.value for value in status.values}['rejected'] == '3'
     recorder.rejection('/mock_platform: leg_lengths', 'invalid_leg_command')
+    recorder.publishers['leg_trajectory'].publish(JointTrajectory(joint_names=NAMES, points=[
+        JointTrajectoryPoint(positions=[float('inf')] * 6, time_from_start=Duration(sec=1))]))
+    recorder.rejection('/mock_platform: leg_trajectory', 'invalid_leg_command')
     client.spin_for(0.3)
     assert_allclose(positions(recorder.received['joint_states'][-1]), target, atol=REACHED)
 
@@ -242,3 +245,12 @@ def test_a_stalled_leg_and_noise_set_at_run_time_show_on_joint_states(
     # 1800 samples: the mean within 5 standard errors, the deviation within 15 %.
     assert np.abs(errors.mean()) < 5 * 0.001 / np.sqrt(errors.size)
     assert_allclose(errors.std(), 0.001, rtol=0.15)
+
+    # No noise, 2 mm of bias on leg 6: exactly that offset, on leg 6 only.
+    assert set_parameter(client, node, 'position_noise', 0.0).successful
+    bias = [0.0, 0.0, 0.0, 0.0, 0.0, 0.002]
+    assert set_parameter(client, node, 'position_bias', bias).successful
+    client.spin_for(0.2)
+    assert_allclose(positions(recorder.received['joint_states'][-1]), target + bias, atol=1e-12)
+    refused = set_parameter(client, node, 'position_bias', [0.0] * 5 + [float('nan')])
+    assert not refused.successful and 'position_bias' in refused.reason
