@@ -27,7 +27,7 @@ service show on joint_states: a stalled leg stays, noise has the asked deviation
 
 from builtin_interfaces.msg import Duration
 from geometry_msgs.msg import Pose
-from helpers import Recorder
+from helpers import pose_message, Recorder
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -177,23 +177,32 @@ def test_joint_commands_leg_lengths_and_a_trajectory_are_followed_within_the_lim
     check_limits(messages)
 
 
-def test_fk_node_estimates_the_commanded_pose_from_the_simulated_legs(
+def test_the_loop_closes_from_ik_node_through_the_simulated_legs_to_fk_node(
         client, start_node, config_directory):
-    """Command the lengths of Table 3's row 4: fk_node's pose is row 4 (1e-6 m, rad)."""
-    geometry, _ = home_lengths(config_directory)
+    """
+    Table 3's row 4 on ik_node's target_pose: fk_node's estimate is row 4 (1e-6 m, rad).
+
+    As doc/mock_platform.md closes the loop: ik_node's joint_commands drive mock_platform,
+    fk_node reads its joint_states (its own leg_lengths remapped away from ik_node's).
+    """
     pose = np.array(reference.TABLE_3[4])
-    lengths = np.array(reference.leg_lengths(pose, *geometry))
-    nodes = [start_node('mock_platform', mock_args(config_directory, '-p', 'time_constant:=0.02')),
-             start_node('fk_node', ['--ros-args', '--params-file',
-                                    str(config_directory / 'paper_platform.yaml'),
-                                    '--params-file',
-                                    str(config_directory / 'example_limits.yaml'),
-                                    '--params-file', str(config_directory / 'solver.yaml')])]
+    files = ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+             '--params-file', str(config_directory / 'example_limits.yaml')]
+    nodes = [start_node('ik_node', files),
+             start_node('mock_platform', mock_args(config_directory, '-p', 'time_constant:=0.02',
+                                                   '-p', "command_input:='joint_commands'")),
+             start_node('fk_node', files + ['--params-file', str(config_directory / 'solver.yaml'),
+                                            '-r', 'leg_lengths:=commanded_leg_lengths_unused'])]
     recorder = Recorder(client, nodes)
     recorder.subscribe(Pose, 'estimated_pose')
-    recorder.advertise(Float64MultiArray, 'leg_lengths')
+    recorder.subscribe(JointState, 'joint_states')
+    recorder.advertise(Pose, 'target_pose')
     recorder.connect()
-    recorder.publishers['leg_lengths'].publish(Float64MultiArray(data=lengths.tolist()))
+    # mock_platform subscribes joint_commands: ik_node builds them (only while subscribed).
+    client.wait(lambda: client.node.count_subscribers('joint_commands') >= 1,
+                "mock_platform's joint_commands subscription", nodes)
+    recorder.wait_for('estimated_pose', 1)
+    recorder.publishers['target_pose'].publish(pose_message(pose))
 
     expected = reference.quaternion_from_euler(*pose[3:])
 
