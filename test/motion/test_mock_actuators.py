@@ -307,3 +307,38 @@ def test_the_forces_at_rest_at_home_are_the_static_forces_of_the_payload():
     lengths, _ = forces.forces(LegState.at_rest(geometry.home_leg_lengths), 0.01)
     assert_allclose(lengths, [32.91, 33.73, 32.81, 33.39, 33.52, 32.95], atol=0.006)
     assert_allclose(geometry.home_pose, HOME, atol=1e-12)
+
+
+@budget(30)
+@given(st.lists(st.one_of(
+    st.tuples(st.just('time'), st.one_of(st.floats(-1e9, 1e9), st.just(math.nan),
+                                         st.floats(0.0, 0.05))),
+    st.tuples(st.just('lengths'), st.lists(st.one_of(st.floats(0.5, 1.1), st.just(math.nan),
+                                                     st.just(1e308)), min_size=5, max_size=7)),
+    st.tuples(st.just('trajectory'), st.lists(st.floats(0.6, 0.95), min_size=6, max_size=6),
+              st.floats(-1.0, 2.0), st.floats(0.01, 2.0))), min_size=1, max_size=60))
+def test_no_command_or_clock_moves_a_leg_beyond_a_limit_or_one_step(events):
+    """Commands (some absurd), trajectories and clocks that jump, go back or read NaN."""
+    limits = LegLimits(0.65, 0.90, 0.05, 0.25)
+    legs = MockActuators(limits, START, 0.05, max_time_step=0.1)
+    now = 0.0
+    legs.advance(now)
+    for event in events:
+        before = legs.state
+        if event[0] == 'time':
+            # Mostly small steps forward, some absolute jumps anywhere, some NaN.
+            now = now + event[1] if 0.0 <= event[1] <= 0.05 else event[1]
+            legs.advance(now)
+        elif event[0] == 'lengths':
+            legs.command_lengths(event[1])
+        else:
+            command, _ = trajectory_command(now + event[2], [0.0, event[3]],
+                                            [legs.state.lengths, event[1]], limits=limits,
+                                            now=now)
+            if command is not None:
+                legs.command_trajectory(command)
+        after = legs.state
+        assert np.all(after.lengths >= 0.65) and np.all(after.lengths <= 0.90)
+        assert np.abs(after.velocities).max() <= 0.05 * (1 + 1e-9)
+        assert np.abs(after.lengths - before.lengths).max() <= 0.05 * 0.1 * (1 + 1e-9)
+        assert np.abs(after.velocities - before.velocities).max() <= 0.25 * 0.1 * (1 + 1e-9)
