@@ -29,7 +29,7 @@ from properties import budget
 import pytest
 from reference import HOME, paper_geometry
 
-from stewart_kinematics import findings
+from stewart_kinematics import findings, inverse_kinematics, leg_forces, leg_velocities
 from stewart_kinematics.dynamics import MassProperties, RigidBody
 from stewart_kinematics.motion.mock_actuators import (
     braking_speed,
@@ -342,3 +342,30 @@ def test_no_command_or_clock_moves_a_leg_beyond_a_limit_or_one_step(events):
         assert np.abs(after.velocities).max() <= 0.05 * (1 + 1e-9)
         assert np.abs(after.lengths - before.lengths).max() <= 0.05 * 0.1 * (1 + 1e-9)
         assert np.abs(after.velocities - before.velocities).max() <= 0.25 * 0.1 * (1 + 1e-9)
+
+
+def test_the_forces_of_a_lift_accelerating_upward_weigh_as_in_a_stronger_gravity():
+    """
+    A payload lifted at 2 m/s^2: the forces of the rigid payload at rest under g + 2 m/s^2.
+
+    The legs' lengths and velocities are those of a pure vertical translation
+    ``z = z0 + a t^2 / 2`` at two instants 0.01 s apart; the twist's change over the step is
+    then exactly ``a``. Without rotation, accelerating up at ``a`` loads the legs as standing
+    still under gravity ``g + a`` would (no leg mass: no other term).
+    """
+    payload = RigidBody(20.0, [0.0, 0.0, 0.1], name='payload')
+    geometry = paper_geometry().with_mass_properties(MassProperties(payload=payload))
+    heavier = paper_geometry().with_mass_properties(MassProperties(
+        payload=payload, gravity=[0.0, 0.0, -(9.80665 + 2.0)]))
+    forces = SimulatedForces(geometry)
+    results = []
+    for time in (0.5, 0.51):
+        pose = np.array(HOME) + [0.0, 0.0, 0.5 * 2.0 * time ** 2, 0.0, 0.0, 0.0]
+        twist = [0.0, 0.0, 2.0 * time, 0.0, 0.0, 0.0]
+        state = LegState(inverse_kinematics(geometry, pose),
+                         leg_velocities(geometry, pose, twist))
+        results.append(forces.forces(state, 0.01))
+    (_, problem), (lifted, problem_after) = results
+    assert problem is None and problem_after is None
+    assert_allclose(lifted, leg_forces(heavier, pose), atol=1e-6)
+    assert np.all(lifted > leg_forces(geometry, pose) + 1.0)
