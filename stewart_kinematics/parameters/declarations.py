@@ -341,6 +341,15 @@ QUEUE_PARAMETERS = (
         default=10, read_only=True, validators=(InRange(1, 10000),)),
 )
 
+LIFECYCLE_PARAMETERS = (
+    ParameterSpec(
+        'managed', BOOL,
+        'Run as a managed (lifecycle) node: start unconfigured, publish nothing and act on no '
+        'command until configured and activated through ~/change_state (doc/lifecycle.md); '
+        'false: configure and activate at start-up, as ros2 run does',
+        default=False, read_only=True),
+)
+
 RAMP_PARAMETERS = (
     ParameterSpec(
         'position_start', DOUBLE_ARRAY, 'First row of the ramp: X, Y, Z in metres',
@@ -677,6 +686,7 @@ def all_specs():
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
+            + LIFECYCLE_PARAMETERS
             + RAMP_PARAMETERS + MOTION_PARAMETERS + STREAMING_PARAMETERS
             + MOTION_CUEING_PARAMETERS + MOCK_PLATFORM_PARAMETERS)
 

@@ -505,6 +505,24 @@ class QueueSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class LifecycleSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.LIFECYCLE_PARAMETERS`.
+
+    Whether a node runs managed (lifecycle); see :mod:`stewart_kinematics.ros.managed`.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.LIFECYCLE_PARAMETERS
+
+    managed: bool = False
+    """
+    Run as a managed (lifecycle) node: start unconfigured, publish nothing and act on no command
+    until configured and activated through ~/change_state (doc/lifecycle.md); false: configure and
+    activate at start-up, as ros2 run does. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class RampSettings(Settings):
     """
     One field per parameter of :data:`~stewart_kinematics.parameters.RAMP_PARAMETERS`.
@@ -931,6 +949,7 @@ class IkNodeSettings(NodeSettings):
     workspace: WorkspaceSettings
     streaming: StreamingSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -945,6 +964,7 @@ class FkNodeSettings(NodeSettings):
     fk_frames: FkFrameSettings
     markers: MarkerSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -955,6 +975,7 @@ class MotionCueingNodeSettings(NodeSettings):
     frames: FrameSettings
     cueing: CueingParameterSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -967,6 +988,7 @@ class TrajectoryNodeSettings(NodeSettings):
     ramp: RampSettings
     motion: MotionSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
