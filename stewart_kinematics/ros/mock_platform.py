@@ -34,7 +34,6 @@ on the log and ``/diagnostics``.
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 import numpy as np
-from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
@@ -54,6 +53,7 @@ from stewart_kinematics.parameters import (
     MockPlatformNodeSettings,
 )
 from stewart_kinematics.ros.interfaces import MOCK_PLATFORM
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import LogThrottle, NodeDiagnostics, WARNING_PERIOD
 from stewart_kinematics.ros.message_conversions import (
     joint_state_message,
@@ -66,7 +66,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 from trajectory_msgs.msg import JointTrajectory
 
 #: The inputs mock_platform can take, as ``command_input`` names them.
@@ -82,12 +82,14 @@ def check_parameters(values) -> str:
     return ''
 
 
-class MockPlatform(Node):
+class MockPlatform(ManagedNode):
     """
     Six simulated legs that follow the leg commands and publish their joint states.
 
-    Built in the shape of the managed nodes (``PARAMETERS_CHECK``, :meth:`run_time_payload`,
-    :meth:`configure`), so that it becomes one by changing its base class.
+    A managed node with ``managed: true`` (:class:`~stewart_kinematics.ros.managed.
+    ManagedNode`): configure builds the legs at their initial lengths, deactivate stops them
+    where they are (the simulated drives disabled), activate starts the simulation's clock
+    again from the next tick.
     """
 
     SETTINGS = MockPlatformNodeSettings
@@ -96,10 +98,6 @@ class MockPlatform(Node):
 
     def __init__(self, **kwargs):
         super().__init__('mock_platform', **kwargs)
-        self.settings = declare_settings(
-            self, self.SETTINGS, on_change=self.on_parameter_change,
-            check=self.PARAMETERS_CHECK, node_options=kwargs, payload=self.run_time_payload())
-        self.configure()
 
     def run_time_payload(self):
         """Take a new payload at once: the efforts use it."""
@@ -142,6 +140,14 @@ class MockPlatform(Node):
         self.get_logger().info(
             f'ready: legs at {np.round(self.legs.state.lengths, 6).tolist()} m, following '
             f'{mock.command_input} command(s) with a lag of {mock.time_constant:g} s')
+
+    def activate(self):
+        """Count the simulation's time from the next tick: no step across the inactive time."""
+        self.legs.hold()
+
+    def deactivate(self):
+        """Stop the legs where they are, at rest: the simulated drives are disabled."""
+        self.legs.hold()
 
     def apply_faults(self):
         """Hand the fault parameters (validated) to the simulated legs."""

@@ -369,3 +369,22 @@ def test_the_forces_of_a_lift_accelerating_upward_weigh_as_in_a_stronger_gravity
     assert problem is None and problem_after is None
     assert_allclose(lifted, leg_forces(heavier, pose), atol=1e-6)
     assert np.all(lifted > leg_forces(geometry, pose) + 1.0)
+
+
+def test_hold_stops_the_legs_at_rest_and_forgets_the_clock_and_the_commands():
+    """A running trajectory and a moving leg: hold stops both; the next advance only sets time."""
+    legs = MockActuators(EXAMPLE, START, 0.0)
+    legs.advance(0.0)
+    command, _ = trajectory_command(0.0, [0.0, 1.0], [START, START + 0.04], limits=EXAMPLE,
+                                    now=0.0)
+    legs.command_trajectory(command)
+    for step in range(1, 31):
+        legs.advance(step * 0.01)
+    moving = legs.state.lengths.copy()
+    assert np.all(moving > START) and np.all(legs.state.velocities > 0.0)
+    legs.hold()
+    assert_array_equal(legs.state.velocities, 0.0)
+    assert legs.trajectory is None and legs.pending is None
+    assert legs.advance(1000.0) is None        # no step across the time held
+    legs.advance(1000.5)
+    assert_array_equal(legs.state.lengths, moving)
