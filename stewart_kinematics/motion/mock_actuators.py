@@ -457,6 +457,20 @@ class MockActuators:
                              f'{preview(bias)}')
         self.bias = bias
 
+    def hold(self):
+        """
+        Stop the legs where they are, at rest, and forget the clock and the commands.
+
+        The legs follow their lengths now until the next command; the next :meth:`advance`
+        only sets the clock (a simulation paused, its drives disabled, as a managed node's
+        deactivate leaves it).
+        """
+        self.state = LegState.at_rest(self.state.lengths)
+        self.set_point = self.state.lengths.copy()
+        self.trajectory = self.pending = None
+        self.time = None
+        self.last_step = 0.0
+
     def command_lengths(self, lengths) -> Optional[Finding]:
         """
         Follow a new set point from now on (a running or pending trajectory is dropped).

@@ -34,7 +34,6 @@ on the log and ``/diagnostics``.
 
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 import numpy as np
-from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 
@@ -54,6 +53,7 @@ from stewart_kinematics.parameters import (
     MockPlatformNodeSettings,
 )
 from stewart_kinematics.ros.interfaces import MOCK_PLATFORM
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import LogThrottle, NodeDiagnostics, WARNING_PERIOD
 from stewart_kinematics.ros.message_conversions import (
     joint_state_message,
@@ -66,7 +66,7 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 from trajectory_msgs.msg import JointTrajectory
 
 #: The inputs mock_platform can take, as ``command_input`` names them.
@@ -82,15 +82,29 @@ def check_parameters(values) -> str:
     return ''
 
 
-class MockPlatform(Node):
-    """Six simulated legs that follow the leg commands and publish their joint states."""
+class MockPlatform(ManagedNode):
+    """
+    Six simulated legs that follow the leg commands and publish their joint states.
+
+    A managed node with ``managed: true`` (:class:`~stewart_kinematics.ros.managed.
+    ManagedNode`): configure builds the legs at their initial lengths, deactivate stops them
+    where they are (the simulated drives disabled), activate starts the simulation's clock
+    again from the next tick.
+    """
+
+    SETTINGS = MockPlatformNodeSettings
+    #: ``check(values) -> reason`` between parameters: the stalled legs' names.
+    PARAMETERS_CHECK = staticmethod(check_parameters)
 
     def __init__(self, **kwargs):
         super().__init__('mock_platform', **kwargs)
-        self.settings = declare_settings(
-            self, MockPlatformNodeSettings, on_change=self.on_parameter_change,
-            check=check_parameters, node_options=kwargs,
-            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
+
+    def run_time_payload(self):
+        """Take a new payload at once: the efforts use it."""
+        return RunTimePayload(lambda: self.geometry, self.set_mass_properties)
+
+    def configure(self):
+        """Check the parameters, build the simulated legs, the publisher and subscriptions."""
         settings = self.settings
         reason = check_parameters(settings.mock.as_values() | settings.actuators.as_values())
         if reason:
@@ -127,6 +141,14 @@ class MockPlatform(Node):
             f'ready: legs at {np.round(self.legs.state.lengths, 6).tolist()} m, following '
             f'{mock.command_input} command(s) with a lag of {mock.time_constant:g} s')
 
+    def activate(self):
+        """Count the simulation's time from the next tick: no step across the inactive time."""
+        self.legs.hold()
+
+    def deactivate(self):
+        """Stop the legs where they are, at rest: the simulated drives are disabled."""
+        self.legs.hold()
+
     def apply_faults(self):
         """Hand the fault parameters (validated) to the simulated legs."""
         mock = self.settings.mock
@@ -161,6 +183,8 @@ class MockPlatform(Node):
         which would blur a step of 10 ms by 2e-5 of itself (and its acceleration with it).
         """
         if self.epoch is None:
+            if nanoseconds == 0:   # a simulated clock not started: its zero
+                return 0.0
             self.epoch = nanoseconds
         return (nanoseconds - self.epoch) * 1e-9
 
@@ -227,8 +251,8 @@ class MockPlatform(Node):
         efforts = None
         if not self.forces.massless:
             efforts, problem = self.forces.forces(state, self.legs.last_step)
+            self.report.forces_problem = problem or ''
             if problem:
-                self.report.forces_problem = problem
                 self.log_throttle.log('efforts', f'joint_states without efforts: {problem}')
         self.publisher.publish(joint_state_message(
             Header(stamp=stamp.to_msg()), self.legs.measure(), state.velocities,

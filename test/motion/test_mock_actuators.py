@@ -29,7 +29,7 @@ from properties import budget
 import pytest
 from reference import HOME, paper_geometry
 
-from stewart_kinematics import findings
+from stewart_kinematics import findings, inverse_kinematics, leg_forces, leg_velocities
 from stewart_kinematics.dynamics import MassProperties, RigidBody
 from stewart_kinematics.motion.mock_actuators import (
     braking_speed,
@@ -307,3 +307,84 @@ def test_the_forces_at_rest_at_home_are_the_static_forces_of_the_payload():
     lengths, _ = forces.forces(LegState.at_rest(geometry.home_leg_lengths), 0.01)
     assert_allclose(lengths, [32.91, 33.73, 32.81, 33.39, 33.52, 32.95], atol=0.006)
     assert_allclose(geometry.home_pose, HOME, atol=1e-12)
+
+
+@budget(30)
+@given(st.lists(st.one_of(
+    st.tuples(st.just('time'), st.one_of(st.floats(-1e9, 1e9), st.just(math.nan),
+                                         st.floats(0.0, 0.05))),
+    st.tuples(st.just('lengths'), st.lists(st.one_of(st.floats(0.5, 1.1), st.just(math.nan),
+                                                     st.just(1e308)), min_size=5, max_size=7)),
+    st.tuples(st.just('trajectory'), st.lists(st.floats(0.6, 0.95), min_size=6, max_size=6),
+              st.floats(-1.0, 2.0), st.floats(0.01, 2.0))), min_size=1, max_size=60))
+def test_no_command_or_clock_moves_a_leg_beyond_a_limit_or_one_step(events):
+    """Commands (some absurd), trajectories and clocks that jump, go back or read NaN."""
+    limits = LegLimits(0.65, 0.90, 0.05, 0.25)
+    legs = MockActuators(limits, START, 0.05, max_time_step=0.1)
+    now = 0.0
+    legs.advance(now)
+    for event in events:
+        before = legs.state
+        if event[0] == 'time':
+            # Mostly small steps forward, some absolute jumps anywhere, some NaN.
+            now = now + event[1] if 0.0 <= event[1] <= 0.05 else event[1]
+            legs.advance(now)
+        elif event[0] == 'lengths':
+            legs.command_lengths(event[1])
+        else:
+            command, _ = trajectory_command(now + event[2], [0.0, event[3]],
+                                            [legs.state.lengths, event[1]], limits=limits,
+                                            now=now)
+            if command is not None:
+                legs.command_trajectory(command)
+        after = legs.state
+        assert np.all(after.lengths >= 0.65) and np.all(after.lengths <= 0.90)
+        assert np.abs(after.velocities).max() <= 0.05 * (1 + 1e-9)
+        assert np.abs(after.lengths - before.lengths).max() <= 0.05 * 0.1 * (1 + 1e-9)
+        assert np.abs(after.velocities - before.velocities).max() <= 0.25 * 0.1 * (1 + 1e-9)
+
+
+def test_the_forces_of_a_lift_accelerating_upward_weigh_as_in_a_stronger_gravity():
+    """
+    A payload lifted at 2 m/s^2: the forces of the rigid payload at rest under g + 2 m/s^2.
+
+    The legs' lengths and velocities are those of a pure vertical translation
+    ``z = z0 + a t^2 / 2`` at two instants 0.01 s apart; the twist's change over the step is
+    then exactly ``a``. Without rotation, accelerating up at ``a`` loads the legs as standing
+    still under gravity ``g + a`` would (no leg mass: no other term).
+    """
+    payload = RigidBody(20.0, [0.0, 0.0, 0.1], name='payload')
+    geometry = paper_geometry().with_mass_properties(MassProperties(payload=payload))
+    heavier = paper_geometry().with_mass_properties(MassProperties(
+        payload=payload, gravity=[0.0, 0.0, -(9.80665 + 2.0)]))
+    forces = SimulatedForces(geometry)
+    results = []
+    for time in (0.5, 0.51):
+        pose = np.array(HOME) + [0.0, 0.0, 0.5 * 2.0 * time ** 2, 0.0, 0.0, 0.0]
+        twist = [0.0, 0.0, 2.0 * time, 0.0, 0.0, 0.0]
+        state = LegState(inverse_kinematics(geometry, pose),
+                         leg_velocities(geometry, pose, twist))
+        results.append(forces.forces(state, 0.01))
+    (_, problem), (lifted, problem_after) = results
+    assert problem is None and problem_after is None
+    assert_allclose(lifted, leg_forces(heavier, pose), atol=1e-6)
+    assert np.all(lifted > leg_forces(geometry, pose) + 1.0)
+
+
+def test_hold_stops_the_legs_at_rest_and_forgets_the_clock_and_the_commands():
+    """A running trajectory and a moving leg: hold stops both; the next advance only sets time."""
+    legs = MockActuators(EXAMPLE, START, 0.0)
+    legs.advance(0.0)
+    command, _ = trajectory_command(0.0, [0.0, 1.0], [START, START + 0.04], limits=EXAMPLE,
+                                    now=0.0)
+    legs.command_trajectory(command)
+    for step in range(1, 31):
+        legs.advance(step * 0.01)
+    moving = legs.state.lengths.copy()
+    assert np.all(moving > START) and np.all(legs.state.velocities > 0.0)
+    legs.hold()
+    assert_array_equal(legs.state.velocities, 0.0)
+    assert legs.trajectory is None and legs.pending is None
+    assert legs.advance(1000.0) is None        # no step across the time held
+    legs.advance(1000.5)
+    assert_array_equal(legs.state.lengths, moving)

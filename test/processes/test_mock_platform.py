@@ -27,7 +27,7 @@ service show on joint_states: a stalled leg stays, noise has the asked deviation
 
 from builtin_interfaces.msg import Duration
 from geometry_msgs.msg import Pose
-from helpers import Recorder
+from helpers import pose_message, Recorder
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -154,6 +154,9 @@ def test_joint_commands_leg_lengths_and_a_trajectory_are_followed_within_the_lim
     status = recorder.rejection('/mock_platform: joint_commands', 'invalid_leg_command')
     assert {value.key: value.value for value in status.values}['rejected'] == '3'
     recorder.rejection('/mock_platform: leg_lengths', 'invalid_leg_command')
+    recorder.publishers['leg_trajectory'].publish(JointTrajectory(joint_names=NAMES, points=[
+        JointTrajectoryPoint(positions=[float('inf')] * 6, time_from_start=Duration(sec=1))]))
+    recorder.rejection('/mock_platform: leg_trajectory', 'invalid_leg_command')
     client.spin_for(0.3)
     assert_allclose(positions(recorder.received['joint_states'][-1]), target, atol=REACHED)
 
@@ -174,23 +177,32 @@ def test_joint_commands_leg_lengths_and_a_trajectory_are_followed_within_the_lim
     check_limits(messages)
 
 
-def test_fk_node_estimates_the_commanded_pose_from_the_simulated_legs(
+def test_the_loop_closes_from_ik_node_through_the_simulated_legs_to_fk_node(
         client, start_node, config_directory):
-    """Command the lengths of Table 3's row 4: fk_node's pose is row 4 (1e-6 m, rad)."""
-    geometry, _ = home_lengths(config_directory)
+    """
+    Table 3's row 4 on ik_node's target_pose: fk_node's estimate is row 4 (1e-6 m, rad).
+
+    As doc/mock_platform.md closes the loop: ik_node's joint_commands drive mock_platform,
+    fk_node reads its joint_states (its own leg_lengths remapped away from ik_node's).
+    """
     pose = np.array(reference.TABLE_3[4])
-    lengths = np.array(reference.leg_lengths(pose, *geometry))
-    nodes = [start_node('mock_platform', mock_args(config_directory, '-p', 'time_constant:=0.02')),
-             start_node('fk_node', ['--ros-args', '--params-file',
-                                    str(config_directory / 'paper_platform.yaml'),
-                                    '--params-file',
-                                    str(config_directory / 'example_limits.yaml'),
-                                    '--params-file', str(config_directory / 'solver.yaml')])]
+    files = ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+             '--params-file', str(config_directory / 'example_limits.yaml')]
+    nodes = [start_node('ik_node', files),
+             start_node('mock_platform', mock_args(config_directory, '-p', 'time_constant:=0.02',
+                                                   '-p', "command_input:='joint_commands'")),
+             start_node('fk_node', files + ['--params-file', str(config_directory / 'solver.yaml'),
+                                            '-r', 'leg_lengths:=commanded_leg_lengths_unused'])]
     recorder = Recorder(client, nodes)
     recorder.subscribe(Pose, 'estimated_pose')
-    recorder.advertise(Float64MultiArray, 'leg_lengths')
+    recorder.subscribe(JointState, 'joint_states')
+    recorder.advertise(Pose, 'target_pose')
     recorder.connect()
-    recorder.publishers['leg_lengths'].publish(Float64MultiArray(data=lengths.tolist()))
+    # mock_platform subscribes joint_commands: ik_node builds them (only while subscribed).
+    client.wait(lambda: client.node.count_subscribers('joint_commands') >= 1,
+                "mock_platform's joint_commands subscription", nodes)
+    recorder.wait_for('estimated_pose', 1)
+    recorder.publishers['target_pose'].publish(pose_message(pose))
 
     expected = reference.quaternion_from_euler(*pose[3:])
 
@@ -242,3 +254,12 @@ def test_a_stalled_leg_and_noise_set_at_run_time_show_on_joint_states(
     # 1800 samples: the mean within 5 standard errors, the deviation within 15 %.
     assert np.abs(errors.mean()) < 5 * 0.001 / np.sqrt(errors.size)
     assert_allclose(errors.std(), 0.001, rtol=0.15)
+
+    # No noise, 2 mm of bias on leg 6: exactly that offset, on leg 6 only.
+    assert set_parameter(client, node, 'position_noise', 0.0).successful
+    bias = [0.0, 0.0, 0.0, 0.0, 0.0, 0.002]
+    assert set_parameter(client, node, 'position_bias', bias).successful
+    client.spin_for(0.2)
+    assert_allclose(positions(recorder.received['joint_states'][-1]), target + bias, atol=1e-12)
+    refused = set_parameter(client, node, 'position_bias', [0.0] * 5 + [float('nan')])
+    assert not refused.successful and 'position_bias' in refused.reason

@@ -29,6 +29,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 import numpy as np
 from numpy.testing import assert_allclose, assert_array_equal
 import pytest
+from rclpy.exceptions import ParameterException
 from rclpy.executors import SingleThreadedExecutor
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
@@ -189,3 +190,19 @@ def test_with_masses_the_efforts_are_the_leg_forces_of_the_legs_pose(make_rig):
     assert_allclose(efforts, leg_forces(geometry, geometry.home_pose), atol=1e-6)
     # About a sixth of the weight each (28 kg and the legs, on legs about 54 degrees up).
     assert np.all(efforts > 30.0) and np.all(efforts < 120.0)
+
+
+@pytest.mark.parametrize('parameter, words', [
+    ('initial_leg_lengths:=[0.5, 0.5, 0.5, 0.5, 0.5, 0.5]',
+     'initial leg lengths: refused leg command: leg 1 length 0.5 m is outside the stroke'),
+    ("stalled_legs:='leg_7'", "'leg_7' is neither a joint name"),
+    ("stalled_legs:='0'", "parameter 'stalled_legs' must name legs by number 1..6"),
+    ("command_input:='joint_states'", "parameter 'command_input' must be one of all"),
+])
+def test_a_bad_start_parameter_stops_the_start_with_the_reason(ros, parameter, words):
+    """Initial lengths beyond the stroke, an unknown leg, an unknown input: refused."""
+    arguments = ['--ros-args', '--params-file', str(CONFIG / 'paper_platform.yaml'),
+                 '--params-file', str(CONFIG / 'example_limits.yaml'), '-p', parameter]
+    with pytest.raises((ParameterException, ValueError)) as raised:
+        MockPlatform(cli_args=arguments).destroy_node()
+    assert words in str(raised.value)
