@@ -57,6 +57,7 @@ setup(
             'stewart_forces = stewart_kinematics.tools.forces_report:main',
             'stewart_payload = stewart_kinematics.tools.payload:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
+            'mock_platform = stewart_kinematics.ros.mock_platform:main',
         ],
     },
 )

@@ -84,6 +84,9 @@ GROUPS = (
     ('MarkerSettings', 'MARKER_PARAMETERS', 'The RViz markers.'),
     ('WorkspaceSettings', 'WORKSPACE_PARAMETERS', "ik_node's workspace outputs."),
     ('QueueSettings', 'QUEUE_PARAMETERS', 'The queues of every subscription and publisher.'),
+    ('LifecycleSettings', 'LIFECYCLE_PARAMETERS',
+     'Whether a node runs managed (lifecycle); see '
+     ':mod:`stewart_kinematics.ros.managed`.'),
     ('RampSettings', 'RAMP_PARAMETERS', 'The Table 3 ramp and how trajectory_node plays it.'),
     ('MotionSettings', 'MOTION_PARAMETERS',
      'Trajectories and paths received by trajectory_node: checking, retiming, playing.'),
@@ -96,6 +99,9 @@ GROUPS = (
      "parameters (degrees where named); not the motion cueing's own settings, "
      ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
      ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.'),
+    ('MockPlatformSettings', 'MOCK_PLATFORM_PARAMETERS',
+     "mock_platform's simulated legs: the commands they take, their lag, the joint states' "
+     'rate, and the faults a test gives them.'),
 )
 
 #: The nodes: class name, what it is, and its groups (field name, class) in declaration order.
@@ -105,22 +111,30 @@ NODES = (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('frames', 'FrameSettings'), ('ik_frames', 'IkFrameSettings'),
         ('markers', 'MarkerSettings'), ('workspace', 'WorkspaceSettings'),
-        ('streaming', 'StreamingSettings'), ('queue', 'QueueSettings'))),
+        ('streaming', 'StreamingSettings'), ('queue', 'QueueSettings'),
+        ('lifecycle', 'LifecycleSettings'))),
     ('FkNodeSettings',
      "fk_node's settings: one field per parameter group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('solver', 'SolverSettings'), ('assembly_modes', 'AssemblyModeSettings'),
         ('frames', 'FrameSettings'), ('fk_frames', 'FkFrameSettings'),
-        ('markers', 'MarkerSettings'), ('queue', 'QueueSettings'))),
+        ('markers', 'MarkerSettings'), ('queue', 'QueueSettings'),
+        ('lifecycle', 'LifecycleSettings'))),
     ('MotionCueingNodeSettings',
      "motion_cueing_node's settings: one field per group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('frames', 'FrameSettings'),
-        ('cueing', 'CueingParameterSettings'), ('queue', 'QueueSettings'))),
+        ('cueing', 'CueingParameterSettings'), ('queue', 'QueueSettings'),
+        ('lifecycle', 'LifecycleSettings'))),
     ('TrajectoryNodeSettings',
      "trajectory_node's settings: one field per group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('frames', 'FrameSettings'), ('ramp', 'RampSettings'), ('motion', 'MotionSettings'),
-        ('action', 'ActionSettings'), ('queue', 'QueueSettings'))),
+        ('action', 'ActionSettings'), ('queue', 'QueueSettings'),
+        ('lifecycle', 'LifecycleSettings'))),
+    ('MockPlatformNodeSettings',
+     "mock_platform's settings: one field per parameter group it declares, in that order.", (
+        ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
+        ('mock', 'MockPlatformSettings'), ('queue', 'QueueSettings'))),
 )
 
 #: The annotation of each parameter type.

@@ -366,6 +366,22 @@ PAYLOAD_UNOBSERVABLE = _register(
     'all at one tilt, such as all level, see the centre only across gravity, not its height. '
     'The component is kept from the parameter file and named, with the condition number.')
 
+# The simulated platform (mock_platform) ------------------------------------------------------
+
+INVALID_LEG_COMMAND = _register(
+    'invalid_leg_command', 'refusal',
+    '`MockActuators`, `trajectory_command` (mock_platform: `leg_lengths`, `joint_commands`, '
+    '`leg_trajectory`)',
+    'A leg command mock_platform cannot follow: not six values (or the joint names missing or '
+    'repeated), a value not finite, a length outside the stroke, or a trajectory with no '
+    'point, times not increasing, absurd velocities or one that ended in the past. The legs '
+    'keep following the last valid command.')
+CLOCK_JUMP = _register(
+    'clock_jump', 'warning',
+    '`MockActuators.advance` (mock_platform)',
+    "The node's clock went back, or jumped forward by more than `max_time_step`: the legs "
+    'hold for that step, or move only as far as `max_time_step` allows; never a jump.')
+
 
 def codes_table() -> str:
     """

@@ -104,6 +104,8 @@ from stewart_kinematics.parameters import (
 
 #: Longest period of the input watchdog, seconds (``input_timeout / 2`` when that is shorter).
 WATCHDOG_PERIOD = 0.02
+#: Leg speed below which :meth:`MotionCueing.brake` takes the legs as resting, m/s.
+REST_SPEED = 1e-9
 
 
 @dataclass(frozen=True)
@@ -410,6 +412,43 @@ class MotionCueing:
             return None
         step = self.rest(now - last_watch, now)
         return step if step.command.accepted else None
+
+    def brake(self, command_time: float) -> Optional[CueStep]:
+        """
+        Slow the platform to rest where it is: the command gate's braking, a stop asked for.
+
+        Each call gives one braking command (every leg slowed at the gate's braking share of
+        the acceleration limit, within the velocity and acceleration limits; see
+        :meth:`stewart_kinematics.limits.CommandGate.brake`), which the motion follows on from,
+        as from a step the gate refused; called each period until it returns ``None``, the
+        platform rests. Then :meth:`reset` makes the next samples glide it home within the
+        limits. What a managed motion_cueing_node does when it is deactivated: easing home
+        takes the washout's time (tens of seconds from a sustained cue), braking a fraction of
+        a second.
+
+        :param command_time: when the command is sent, seconds (the node's clock, after the
+            last command).
+        :returns: the :class:`CueStep` whose accepted ``command`` is to be sent, or ``None``:
+            the legs rest already (every leg velocity within :data:`REST_SPEED`), no time
+            passed, or no braking command could be found. Never raises.
+        """
+        limiter = self.limiter
+        if np.all(np.abs(limiter.leg_velocities) <= REST_SPEED):
+            return None
+        try:
+            command_time = float(command_time)
+        except (TypeError, ValueError):
+            return None
+        interval = self.gate.elapsed(command_time)
+        if interval is None:
+            return None
+        previous = (limiter.pose.copy(), limiter.lengths.copy())
+        command = self.gate.brake(command_time)
+        if not command.accepted:
+            return None
+        limiter.take_sent(command.pose, command.lengths, interval, previous)
+        return CueStep(time=self.time, pose=command.pose, lengths=command.lengths,
+                       warnings=command.warnings, command=command)
 
     def _advance(self, time, specific_force, angular_velocity, refusal,
                  command_time) -> CueStep:

@@ -301,6 +301,30 @@ class DistinctNames(Validator):
         return 'distinct, non-empty names'
 
 
+@dataclass(frozen=True)
+class LegSelection(Validator):
+    """
+    Require legs named by number (1..6) or by name, separated by commas or spaces, or ``''``.
+
+    Whether a name is one of the platform's joint names is a rule between parameters, checked
+    where the names are known.
+    """
+
+    def reason(self, subject: str, value: Any) -> str:
+        """Refuse a number other than 1..6, or a word that is neither a number nor a name."""
+        for word in value.replace(',', ' ').split():
+            if word.isdigit() and word in ('1', '2', '3', '4', '5', '6'):
+                continue
+            if word[0].isdigit() or not all(c.isalnum() or c == '_' for c in word):
+                return (f'{subject} must name legs by number 1..6 or by joint name, separated '
+                        f'by commas or spaces, got {preview(word)} in {preview(value)}')
+        return ''
+
+    def describe(self) -> str:
+        """Return what a selection of legs may hold."""
+        return "leg numbers 1..6 or joint names, separated by commas or spaces, or ''"
+
+
 def first_reason(validators, subject: str, value: Any) -> str:
     """
     Check a value against several validators in order.

@@ -18,8 +18,9 @@ Motion: the reference ramp, platform trajectories, their checks, timing and stre
 :mod:`.ramp` (the paper's Table 3 ramp as a function of time), :mod:`.pose_trajectory`
 (waypoints interpolated on SE(3), played on a clock), :mod:`.trajectory_check` (every sample
 against every limit), :mod:`.retiming` (time-optimal timing with toppra), :mod:`.planning`
-(check, retime, decide), :mod:`.leg_trajectory` (the actuators' trajectory) and
-:mod:`.streaming` (jerk-limited streamed commands with ruckig).
+(check, retime, decide), :mod:`.leg_trajectory` (the actuators' trajectory),
+:mod:`.streaming` (jerk-limited streamed commands with ruckig) and :mod:`.mock_actuators`
+(mock_platform's simulated legs: a first-order lag within the leg limits, faults for tests).
 
 May import: :mod:`stewart_kinematics.model`, :mod:`stewart_kinematics.limits`,
 :mod:`stewart_kinematics.findings`, toppra and ruckig. Nothing here imports ROS.

@@ -365,6 +365,27 @@ class CommandFilter:
             started = True
         return StreamTarget(self._target.copy(), started=started)
 
+    def stopping_lengths(self) -> Optional[np.ndarray]:
+        """
+        Return where the legs come to rest if they stop as soon as the limits allow, metres.
+
+        The end of ruckig's braking plan from the command's state (every leg slowed within
+        the velocity, acceleration and jerk limits, none synchronised to another): set as the
+        target (:meth:`set_target`), the stream stops there, without a jump in any rate. What
+        a managed ik_node does when it is deactivated mid-stream.
+
+        :returns: shape (6,), or ``None`` when no braking plan could be made.
+        """
+        plan = self._new_plan(None)
+        if plan is None:
+            return None
+        try:
+            position, _, _ = plan.trajectory.at_time(plan.trajectory.duration)
+        except (ValueError, RuntimeError, ArithmeticError):
+            return None
+        stopped = np.array(position, dtype=float)
+        return stopped if np.all(np.isfinite(stopped)) else None
+
     @property
     def target(self) -> np.ndarray:
         """Return the leg lengths aimed at, metres, shape (6,)."""

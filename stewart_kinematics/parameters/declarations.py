@@ -25,7 +25,7 @@ import difflib
 import math
 
 from stewart_kinematics.limits.kinds import limit_parameters
-from stewart_kinematics.model.validators import InertiaTensor
+from stewart_kinematics.model.validators import InertiaTensor, LegSelection
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DistinctNames,
@@ -339,6 +339,15 @@ QUEUE_PARAMETERS = (
         'queue_depth', INTEGER,
         'Depth of the reliable, keep-last queues of every subscription and publisher, messages',
         default=10, read_only=True, validators=(InRange(1, 10000),)),
+)
+
+LIFECYCLE_PARAMETERS = (
+    ParameterSpec(
+        'managed', BOOL,
+        'Run as a managed (lifecycle) node: start unconfigured, publish nothing and act on no '
+        'command until configured and activated through ~/change_state (doc/lifecycle.md); '
+        'false: configure and activate at start-up, as ros2 run does',
+        default=False, read_only=True),
 )
 
 RAMP_PARAMETERS = (
@@ -682,13 +691,70 @@ MOTION_CUEING_PARAMETERS = (
 )
 
 
+#: mock_platform: the simulated legs, what they follow, and the faults a test gives them.
+MOCK_PLATFORM_PARAMETERS = (
+    ParameterSpec(
+        'command_input', STRING,
+        "The leg command mock_platform takes: 'all' (it subscribes to the three, and "
+        'whichever commands last wins: a set point on leg_lengths or joint_commands drops a '
+        'running trajectory, a leg_trajectory takes over from its start time), or only '
+        "'leg_lengths', 'joint_commands' or 'leg_trajectory'",
+        default='all', read_only=True,
+        validators=(OneOf('all', 'leg_lengths', 'joint_commands', 'leg_trajectory'),)),
+    ParameterSpec(
+        'time_constant', DOUBLE,
+        "Time constant of each simulated leg's first-order lag toward its command, seconds "
+        '(within the stroke and leg_velocity_max, leg_acceleration_max); 0.0: as fast as the '
+        'limits allow',
+        default=0.05, validators=(Finite(), InRange(0.0, 100.0))),
+    ParameterSpec(
+        'joint_state_rate', DOUBLE,
+        'Rate at which mock_platform advances the legs and publishes joint_states, hertz '
+        "(the node's clock: simulated time too)",
+        default=100.0, read_only=True, validators=(Finite(), InRange(1.0, 1000.0))),
+    ParameterSpec(
+        'max_time_step', DOUBLE,
+        'A longer time between two steps of the simulated legs (a clock jump, a process '
+        'paused) counts as this long, seconds, with a clock_jump warning; a clock that goes '
+        'back moves nothing',
+        default=0.1, validators=(Finite(), InRange(1e-4, 10.0))),
+    ParameterSpec(
+        'initial_leg_lengths', DOUBLE_ARRAY,
+        'Where the simulated legs start, at rest, metres, leg 1..6; all 0.0: the leg lengths '
+        'of the home pose',
+        default=[0.0] * 6, read_only=True,
+        validators=(FixedLength(6), Finite(), InRange(0.0, 1000.0)),
+        note='within the stroke, or all 0.0'),
+    ParameterSpec(
+        'stalled_legs', STRING,
+        'Legs that stall (a fault for tests): they stop where they are at once, and move '
+        'again when no longer named',
+        default='', validators=(LegSelection(),), note='names of joint_names'),
+    ParameterSpec(
+        'position_noise', DOUBLE,
+        'Standard deviation of the Gaussian noise added to each published position, metres '
+        '(a fault for tests: the simulated legs do not move with it)',
+        default=0.0, validators=(Finite(), InRange(0.0, 1.0))),
+    ParameterSpec(
+        'noise_seed', INTEGER,
+        'Seed of the noise; setting it (or position_noise) starts the sequence again',
+        default=0, validators=(InRange(0, 1_000_000_000),)),
+    ParameterSpec(
+        'position_bias', DOUBLE_ARRAY,
+        'A fixed offset added to each published position, metres, leg 1..6 (a fault for '
+        'tests: a miscalibrated sensor)',
+        default=[0.0] * 6, validators=(FixedLength(6), Finite(), InRange(-1.0, 1.0))),
+)
+
+
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
             + ASSEMBLY_MODE_PARAMETERS + FRAME_PARAMETERS + FK_FRAME_PARAMETERS
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
+            + LIFECYCLE_PARAMETERS
             + RAMP_PARAMETERS + MOTION_PARAMETERS + ACTION_PARAMETERS + STREAMING_PARAMETERS
-            + MOTION_CUEING_PARAMETERS)
+            + MOTION_CUEING_PARAMETERS + MOCK_PLATFORM_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

@@ -505,6 +505,24 @@ class QueueSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class LifecycleSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.LIFECYCLE_PARAMETERS`.
+
+    Whether a node runs managed (lifecycle); see :mod:`stewart_kinematics.ros.managed`.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.LIFECYCLE_PARAMETERS
+
+    managed: bool = False
+    """
+    Run as a managed (lifecycle) node: start unconfigured, publish nothing and act on no command
+    until configured and activated through ~/change_state (doc/lifecycle.md); false: configure and
+    activate at start-up, as ros2 run does. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class RampSettings(Settings):
     """
     One field per parameter of :data:`~stewart_kinematics.parameters.RAMP_PARAMETERS`.
@@ -933,6 +951,78 @@ class CueingParameterSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class MockPlatformSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.MOCK_PLATFORM_PARAMETERS`.
+
+    mock_platform's simulated legs: the commands they take, their lag, the joint states' rate, and
+    the faults a test gives them.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.MOCK_PLATFORM_PARAMETERS
+
+    command_input: str = 'all'
+    """
+    The leg command mock_platform takes: 'all' (it subscribes to the three, and whichever commands
+    last wins: a set point on leg_lengths or joint_commands drops a running trajectory, a
+    leg_trajectory takes over from its start time), or only 'leg_lengths', 'joint_commands' or
+    'leg_trajectory'. Allowed: 'all', 'leg_lengths', 'joint_commands' or 'leg_trajectory'.
+    Read-only at run time.
+    """
+
+    time_constant: float = 0.05
+    """
+    Time constant of each simulated leg's first-order lag toward its command, seconds (within the
+    stroke and leg_velocity_max, leg_acceleration_max); 0.0: as fast as the limits allow. Allowed:
+    in [0, 100].
+    """
+
+    joint_state_rate: float = 100.0
+    """
+    Rate at which mock_platform advances the legs and publishes joint_states, hertz (the node's
+    clock: simulated time too). Allowed: in [1, 1000]. Read-only at run time.
+    """
+
+    max_time_step: float = 0.1
+    """
+    A longer time between two steps of the simulated legs (a clock jump, a process paused) counts
+    as this long, seconds, with a clock_jump warning; a clock that goes back moves nothing.
+    Allowed: in [0.0001, 10].
+    """
+
+    initial_leg_lengths: Tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    """
+    Where the simulated legs start, at rest, metres, leg 1..6; all 0.0: the leg lengths of the home
+    pose. Allowed: 6 values in [0, 1000]; within the stroke, or all 0.0. Read-only at run time.
+    """
+
+    stalled_legs: str = ''
+    """
+    Legs that stall (a fault for tests): they stop where they are at once, and move again when no
+    longer named. Allowed: leg numbers 1..6 or joint names, separated by commas or spaces, or '';
+    names of joint_names.
+    """
+
+    position_noise: float = 0.0
+    """
+    Standard deviation of the Gaussian noise added to each published position, metres (a fault for
+    tests: the simulated legs do not move with it). Allowed: in [0, 1].
+    """
+
+    noise_seed: int = 0
+    """
+    Seed of the noise; setting it (or position_noise) starts the sequence again. Allowed: in [0,
+    1e+09].
+    """
+
+    position_bias: Tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    """
+    A fixed offset added to each published position, metres, leg 1..6 (a fault for tests: a
+    miscalibrated sensor). Allowed: 6 values in [-1, 1].
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class IkNodeSettings(NodeSettings):
     """ik_node's settings: one field per parameter group it declares, in that order."""
 
@@ -944,6 +1034,7 @@ class IkNodeSettings(NodeSettings):
     workspace: WorkspaceSettings
     streaming: StreamingSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -958,6 +1049,7 @@ class FkNodeSettings(NodeSettings):
     fk_frames: FkFrameSettings
     markers: MarkerSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -968,6 +1060,7 @@ class MotionCueingNodeSettings(NodeSettings):
     frames: FrameSettings
     cueing: CueingParameterSettings
     queue: QueueSettings
+    lifecycle: LifecycleSettings
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -980,4 +1073,15 @@ class TrajectoryNodeSettings(NodeSettings):
     ramp: RampSettings
     motion: MotionSettings
     action: ActionSettings
+    queue: QueueSettings
+    lifecycle: LifecycleSettings
+
+
+@dataclass(frozen=True, kw_only=True)
+class MockPlatformNodeSettings(NodeSettings):
+    """mock_platform's settings: one field per parameter group it declares, in that order."""
+
+    geometry: GeometrySettings
+    actuators: ActuatorSettings
+    mock: MockPlatformSettings
     queue: QueueSettings

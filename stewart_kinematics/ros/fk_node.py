@@ -59,7 +59,6 @@ finds no other real mode the platform could be in.
 from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
 import numpy as np
-from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64MultiArray, Header
 from std_srvs.srv import Trigger
@@ -71,7 +70,6 @@ from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     FkNodeSettings,
-    frame_parameters_reason,
     frames_from_settings,
     geometry_from_settings,
     SolverSettings,
@@ -79,6 +77,7 @@ from stewart_kinematics.parameters import (
 from stewart_kinematics.pose_decisions.pose_tracker import PoseTracker
 from stewart_kinematics.pose_decisions.tracker_status import ambiguity_status, margin_status
 from stewart_kinematics.ros.interfaces import FK_NODE
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import (
     LogThrottle,
     MessageAccounting,
@@ -99,20 +98,25 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.workers.margin_monitor import AssemblyModeMarginMonitor
 
 
-class FkNode(Node):
+class FkNode(ManagedNode):
     """Publish the platform pose that matches every set of leg lengths received, or refuse."""
+
+    SETTINGS = FkNodeSettings
 
     def __init__(self, **kwargs):
         super().__init__('fk_node', **kwargs)
-        self.settings = declare_settings(
-            self, FkNodeSettings, on_change=self.on_parameter_change,
-            check=frame_parameters_reason, node_options=kwargs,
-            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
+
+    def run_time_payload(self):
+        """Take a new payload at once: the wrench and the limits use it."""
+        return RunTimePayload(lambda: self.geometry, self.set_mass_properties)
+
+    def configure(self):
+        """Build the geometry, the tracker, every publisher, subscription and service."""
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuators = actuator_interface_from_settings(settings.actuators)
@@ -130,9 +134,7 @@ class FkNode(Node):
             self, FK_NODE['estimated_wrench'], depth)
         self.tf = TransformBroadcaster(self, dynamic=FK_NODE['/tf'], static=FK_NODE[
             '/tf_static']) if settings.fk_frames.publish_tf else None
-        if self.tf is not None:
-            self.tf.send_static(self.tracker.frames.static_transforms(),
-                                self.get_clock().now().to_msg())
+        self.send_static_frames()
         diagnostics = NodeDiagnostics(self)
         self.accounting = diagnostics.accounting('leg_lengths')
         self.joint_state_accounting = diagnostics.accounting('joint_states')
@@ -156,6 +158,17 @@ class FkNode(Node):
         self.get_logger().info(
             f'ready: tolerance {settings.solver.tolerance:g} m, '
             f'at most {settings.solver.max_iterations} iterations')
+
+    def send_static_frames(self):
+        """Send the user and tool frames on /tf_static (latched; managed: once active)."""
+        if self.tf is not None:
+            self.tf.send_static(self.tracker.frames.static_transforms(),
+                                self.get_clock().now().to_msg())
+
+    def activate(self):
+        """Send the static frames, which a managed node could not send while inactive."""
+        if self.managed:
+            self.send_static_frames()
 
     def on_parameter_change(self, name, value):
         """Pass a solver parameter (already validated) to the tracker; take a new tool frame."""
@@ -188,11 +201,10 @@ class FkNode(Node):
         if self.tracker.follow_margin(self.margin.monitor):
             self.get_logger().info(f'estimate unambiguous again: {self.tracker.anchored_by}')
 
-    def destroy_node(self):
-        """Stop the margin's worker process, then the node."""
+    def cleanup(self):
+        """Stop the margin's worker process."""
         if self.margin is not None:
             self.margin.monitor.close()
-        return super().destroy_node()
 
     def on_leg_lengths(self, message: Float64MultiArray):
         """Solve for the pose of the received lengths and publish it, or say why not."""

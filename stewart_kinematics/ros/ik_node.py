@@ -51,17 +51,18 @@ and counts each refusal with the core's reason (:mod:`stewart_kinematics.ros.
 message_accounting`).
 """
 
+import time
+
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
-from rclpy.node import Node
 from std_msgs.msg import Header
 
+from stewart_kinematics.limits.command_gate import BRAKING_SHARES
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     actuator_limits_from_settings,
-    frame_parameters_reason,
     frames_from_settings,
     geometry_from_settings,
     IkNodeSettings,
@@ -69,6 +70,7 @@ from stewart_kinematics.parameters import (
 from stewart_kinematics.pose_decisions.pose_commands import CommandCheck
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import IK_NODE
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.markers import PlatformMarkerPublisher
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import joint_state_message, legs_to_message
@@ -77,23 +79,32 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 from stewart_kinematics.ros.transforms import TransformBroadcaster
 from stewart_kinematics.ros.workspace_publishing import WorkspacePublisher
 
 #: Suffix of the commanded platform frame's name on /tf.
 COMMANDED_SUFFIX = '_commanded'
+#: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
+MAX_BRAKING_STEPS = 100_000
+#: Leg speed below which the deactivate transition takes the legs as resting, m/s.
+REST_SPEED = 1e-9
 
 
-class IkNode(Node):
+class IkNode(ManagedNode):
     """Publish the leg lengths of every pose received, or refuse it."""
+
+    SETTINGS = IkNodeSettings
 
     def __init__(self, **kwargs):
         super().__init__('ik_node', **kwargs)
-        self.settings = declare_settings(
-            self, IkNodeSettings, on_change=self.on_parameter_change,
-            check=frame_parameters_reason, node_options=kwargs,
-            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
+
+    def run_time_payload(self):
+        """Take a new payload at once: every pose from then on is judged with it."""
+        return RunTimePayload(lambda: self.geometry, self.set_mass_properties)
+
+    def configure(self):
+        """Build the geometry, the checks, the stream, every publisher and subscription."""
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         actuator_limits = actuator_limits_from_settings(settings.geometry)
@@ -172,10 +183,65 @@ class IkNode(Node):
             self.command_filter.set_mass_properties(geometry)
         self.workspace.set_geometry(geometry)
 
-    def destroy_node(self):
-        """Stop the workspace worker, then destroy the node."""
+    def activate(self):
+        """Send the cleared workspace markers (latched) that a managed configure could not."""
+        if self.managed and self.workspace.resolution <= 0.0:
+            self.workspace.set_resolution(0.0)
+
+    def deactivate(self):
+        """Bring a stream in flight to rest within the limits, before the node goes quiet."""
+        if self.command_filter is not None and self.command_filter.started:
+            self.brake_stream()
+
+    def brake_stream(self):
+        """
+        Stop the stream as soon as the limits allow, one command a period, until the legs rest.
+
+        The stream's target becomes where its braking plan ends
+        (:meth:`stewart_kinematics.CommandFilter.stopping_lengths`: every leg slowed within
+        the velocity, acceleration and jerk limits, from the command's own state), and each
+        step goes through the command gate as every streamed command does. The platform rests
+        where it can, short of the pose asked for. Runs in the deactivate transition, which
+        answers once the legs rest (the speed over the acceleration, plus the acceleration
+        over the jerk: 0.3 s with example_limits.yaml). The stream then rests there: the
+        next accepted pose, once active again, starts from it.
+        """
+        stream = self.command_filter
+        period = stream.period
+        stop = stream.stopping_lengths()
+        if stop is None or not stream.set_target(stop).accepted:
+            self.get_logger().warning('deactivated mid-stream: no braking plan; the gate '
+                                      'brakes the legs instead')
+        limits = stream.limits
+        gentlest = min(share for share in BRAKING_SHARES if share > 0.0)
+        steps = int((limits.velocity_max / limits.acceleration_max
+                     + limits.acceleration_max / limits.jerk_max)
+                    / gentlest / period) + 3
+        # Times on the gate's own line, a period apart: the executor (and with it a simulated
+        # clock) does not run meanwhile; the stamps are the clock's.
+        moment = stream.gate.last_time
+        last = None
+        for _ in range(min(steps, MAX_BRAKING_STEPS)):
+            moment += period
+            command = stream.send(moment)
+            if not command.accepted:
+                break
+            last = command
+            self.stream_accounting.receive()
+            send_command(self.joint_command_publisher, self.stream_accounting, command, Header(
+                stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame))
+            if np.abs(command.velocities).max() <= REST_SPEED:
+                break
+            time.sleep(period)
+        if last is not None:
+            stream.reset(last.lengths)
+            self.get_logger().info(
+                'deactivated mid-stream: braked to rest at leg lengths '
+                f'{np.array2string(last.lengths, precision=6, separator=", ")} m')
+
+    def cleanup(self):
+        """Stop the workspace worker."""
         self.workspace.shutdown()
-        return super().destroy_node()
 
     def on_target_pose(self, message: Pose):
         """Turn a pose into leg lengths; the outputs are stamped with the time of the answer."""

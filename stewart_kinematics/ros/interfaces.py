@@ -369,10 +369,37 @@ MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
     DIAGNOSTICS_TOPIC,
 ))
 
+MOCK_PLATFORM = NodeInterface('mock_platform', (
+    Endpoint('leg_lengths', SUBSCRIPTION, 'std_msgs/msg/Float64MultiArray', QUEUE,
+             "A set point: six leg lengths, metres, leg 1..6, as ik_node's `leg_lengths` "
+             '(`layout.data_offset` honoured); the legs follow the newest command.',
+             condition='`command_input` all or this topic'),
+    Endpoint('joint_commands', SUBSCRIPTION, 'sensor_msgs/msg/JointState', QUEUE,
+             "A set point as ik_node's `joint_commands`: the six joints `joint_names` (any "
+             'order, other joints ignored), positions plus `actuator_offsets` as leg lengths.',
+             condition='`command_input` all or this topic'),
+    Endpoint('leg_trajectory', SUBSCRIPTION, 'trajectory_msgs/msg/JointTrajectory', QUEUE,
+             "A leg trajectory as trajectory_node's `leg_trajectory`, followed as "
+             'joint_trajectory_controller follows one: from its header stamp (0: on arrival), '
+             'interpolated linearly, cubically (with velocities) or quintically (with '
+             "accelerations), from the legs' state to its first point, its last point held; a "
+             'new one replaces the old from its start.',
+             condition='`command_input` all or this topic'),
+    Endpoint('joint_states', PUBLISHER, 'sensor_msgs/msg/JointState', QUEUE,
+             "At `joint_state_rate`, stamped with the node's clock: the simulated legs as the "
+             'joints `joint_names`, positions (leg length minus `actuator_offsets`, with '
+             '`position_bias` and `position_noise`, m), velocities (m/s) and, when the '
+             'geometry carries masses, efforts: the leg forces (N, positive pushing) at the '
+             'pose of their forward kinematics, with its twist and acceleration.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + "; and the status `mock_platform: legs`: the legs' "
+             'lengths, the faults set, clock jumps.'),
+))
+
 #: Every node's interface, by node name.
 NODE_INTERFACES = {
     interface.node: interface
-    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE)}
+    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE, MOCK_PLATFORM)}
 
 
 def markdown_table(interface: NodeInterface) -> str:

@@ -37,6 +37,7 @@ from stewart_kinematics.model.rotations import (
     quaternion_to_euler_zyx,
 )
 from stewart_kinematics.motion.leg_trajectory import LegTrajectory
+from stewart_kinematics.motion.leg_trajectory import MAX_POINTS as MAX_LEG_POINTS
 from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint, MultiDOFJointTrajectory
 
@@ -126,7 +127,8 @@ def leg_lengths_from_message(message: Float64MultiArray) -> np.ndarray:
 
 
 def joint_state_message(header, lengths, velocities=None,
-                        actuators: ActuatorInterface = DEFAULT_ACTUATORS) -> JointState:
+                        actuators: ActuatorInterface = DEFAULT_ACTUATORS,
+                        efforts=None) -> JointState:
     """
     sensor_msgs/msg/JointState of the six legs as prismatic joints.
 
@@ -136,11 +138,15 @@ def joint_state_message(header, lengths, velocities=None,
     :param velocities: leg velocities in metres per second, shape (6,), or ``None`` if unknown
         (the message's velocity list is then empty, as JointState allows).
     :param actuators: joint names and offsets (default ``leg_1`` .. ``leg_6``, zero offsets).
+    :param efforts: leg forces in newtons, positive pushing, shape (6,), or ``None`` (the
+        message's effort list is then empty).
     """
     message = JointState(header=header, name=list(actuators.joint_names))
     message.position = actuators.positions(lengths).tolist()
     if velocities is not None:
         message.velocity = np.asarray(velocities, dtype=float).tolist()
+    if efforts is not None:
+        message.effort = np.asarray(efforts, dtype=float).tolist()
     return message
 
 
@@ -341,6 +347,56 @@ def joint_trajectory_message(header, trajectory: LegTrajectory) -> JointTrajecto
             trajectory.times.tolist(), trajectory.positions.tolist(),
             trajectory.velocities.tolist(), trajectory.accelerations.tolist(), efforts)]
     return message
+
+
+def leg_trajectory_from_message(message: JointTrajectory,
+                                actuators: ActuatorInterface = DEFAULT_ACTUATORS) -> dict:
+    """
+    Return the points of a JointTrajectory of the legs' joints, converted, not judged.
+
+    Joints are matched by name, in any order; other joints are ignored. Positions become leg
+    lengths (plus the actuator offsets). The values are checked where they enter the core
+    (:func:`stewart_kinematics.motion.mock_actuators.trajectory_command`).
+
+    :returns: keyword arguments of ``trajectory_command``: ``start`` (the header stamp,
+        integer nanoseconds; 0 for "on arrival": the caller places it on its clock),
+        ``times`` (time_from_start, seconds, (M,)), ``lengths`` (metres, (M, 6)) and
+        ``velocities``, ``accelerations`` (M, 6) or ``None`` when no point gives them.
+    :raises ValueError: if a leg's joint is missing or repeated, there are more than
+        :data:`~stewart_kinematics.motion.leg_trajectory.MAX_POINTS` points, or a point's
+        values are not one per joint name (velocities and accelerations: on every point or
+        none).
+    """
+    names = list(message.joint_names)
+    try:
+        order = actuators.order(names)
+    except ValueError as error:
+        raise ValueError(f'a leg trajectory must name each of '
+                         f'{", ".join(actuators.joint_names)}: {error}') from error
+    points = message.points
+    if len(points) > MAX_LEG_POINTS:
+        raise ValueError(f'a leg trajectory may have at most {MAX_LEG_POINTS:,} points, got '
+                         f'{len(points):,}: send it in parts')
+    arguments = {
+        'start': message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec,
+        'times': np.array([seconds(point.time_from_start) for point in points], dtype=float)}
+    for field, key in (('positions', 'lengths'), ('velocities', 'velocities'),
+                       ('accelerations', 'accelerations')):
+        counts = {len(getattr(point, field)) for point in points}
+        if not points:   # refused by the core, which says so
+            arguments[key] = np.zeros((0, 6)) if field == 'positions' else None
+            continue
+        if field != 'positions' and counts <= {0}:
+            arguments[key] = None
+            continue
+        if counts != {len(names)}:
+            raise ValueError(f'every point must give {field} for each of its {len(names)} '
+                             f'joint names{"" if field == "positions" else " (or none)"}, got '
+                             f'{preview(sorted(counts))} values')
+        values = np.array([getattr(point, field) for point in points],
+                          dtype=float).reshape(-1, len(names))[:, order]
+        arguments[key] = actuators.lengths(values) if field == 'positions' else values
+    return arguments
 
 
 def pose_message(position, rotation) -> Pose:

@@ -45,19 +45,21 @@ the start with the reason). Every one is read-only but the tool frame's (``tool_
 on.
 """
 
+import time
+
 from geometry_msgs.msg import AccelStamped, PoseStamped
-from rclpy.node import Node
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
+from stewart_kinematics.cueing.motion_cueing import WATCHDOG_PERIOD
 from stewart_kinematics.parameters import (
-    frame_parameters_reason,
     frames_from_settings,
     MotionCueingNodeSettings,
 )
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import command_pose_message, pose_to_message
 from stewart_kinematics.ros.node_main import (
@@ -66,20 +68,29 @@ from stewart_kinematics.ros.node_main import (
     create_output_publisher,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
+
+#: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
+MAX_BRAKING_STEPS = 10_000
 
 
-class MotionCueingNode(Node):
+class MotionCueingNode(ManagedNode):
     """Turn every vehicle IMU message into a platform pose within the limits."""
+
+    SETTINGS = MotionCueingNodeSettings
 
     def __init__(self, **kwargs):
         super().__init__('motion_cueing_node', **kwargs)
-        self.settings = declare_settings(
-            self, MotionCueingNodeSettings, on_change=self.on_parameter_change,
-            check=frame_parameters_reason, node_options=kwargs, payload=RunTimePayload(
-                lambda: self.cueing.geometry, self.set_mass_properties, lambda: '' if (
-                    self.cueing.settled()) else 'motion_cueing_node takes a new payload only '
-                'at rest at home: call reset, wait until the platform is home, then set it'))
+
+    def run_time_payload(self):
+        """Take a new payload only at rest at home."""
+        return RunTimePayload(
+            lambda: self.cueing.geometry, self.set_mass_properties, lambda: '' if (
+                self.cueing.settled()) else 'motion_cueing_node takes a new payload only '
+            'at rest at home: call reset, wait until the platform is home, then set it')
+
+    def configure(self):
+        """Build the motion cueing, every publisher, subscription, service and timer."""
         self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
                                                    frames_from_settings(self.settings.frames))
         depth = self.settings.queue.queue_depth
@@ -102,6 +113,32 @@ class MotionCueingNode(Node):
             f'ready: cueing vehicle_imu into target_pose (head at '
             f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
             f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
+
+    def deactivate(self):
+        """
+        Brake the platform to rest where it is, then wash out (the next samples glide it home).
+
+        One braking command a watchdog period (:meth:`stewart_kinematics.cueing.MotionCueing.
+        brake`), within the velocity and acceleration limits, until the legs rest: a fraction
+        of a second, where easing home would take the washout's tens of seconds. Runs in the
+        deactivate transition, which answers once the platform rests.
+        """
+        period = WATCHDOG_PERIOD
+        moment = self.cueing.gate.last_time
+        braked = 0
+        for _ in range(MAX_BRAKING_STEPS if moment is not None else 0):
+            moment += period
+            result = self.cueing.brake(moment)
+            if result is None:
+                break
+            self.target_publisher.publish(result.command)
+            self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
+            braked += 1
+            time.sleep(period)
+        if braked:
+            self.get_logger().info(f'deactivated: braked to rest in {braked} commands')
+        self.cueing.reset()
+        self.cueing.restart_time()
 
     def on_parameter_change(self, name, value):
         """Take a validated run-time change (the tool frame: the others are read-only)."""

@@ -44,6 +44,7 @@ from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.experimental import EventsExecutor
+from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import get_default_context, remove_ros_args
@@ -167,7 +168,7 @@ def executor_for_nodes(name: str, nodes):
         'do not keep to a simulated clock)')
 
 
-def run_nodes(node_classes, name: str, args=None) -> int:
+def run_nodes(node_classes, name: str, args=None, autostart: bool = False) -> int:
     """
     Initialise rclpy, build nodes and spin them in one executor until SIGINT or SIGTERM.
 
@@ -180,6 +181,9 @@ def run_nodes(node_classes, name: str, args=None) -> int:
     :param node_classes: the nodes' classes, each constructed without arguments, in order.
     :param name: the process's name, for the log of a failed start.
     :param args: command-line arguments (``--ros-args ...``); ``None`` reads ``sys.argv``.
+    :param autostart: configure then activate each managed node (``managed: true``) once it
+        spins, as a lifecycle manager's autostart would; a refused configure leaves that node
+        unconfigured (its log says why), the others go on.
     :returns: 0 after a clean stop, :data:`EXIT_START_FAILED` when a parameter file cannot
         be read, a node could not be built or the executor is unknown, with a fatal log that
         says why.
@@ -226,7 +230,14 @@ def run_nodes(node_classes, name: str, args=None) -> int:
             for node in nodes:
                 executor.add_node(node)
             rclpy.logging.get_logger(name).info(f'spinning on the {executor_kind} executor')
-            while not stop_requests and rclpy.ok():
+            for node in nodes if autostart else ():
+                if getattr(node, 'managed', False) and (
+                        node.trigger_configure() == TransitionCallbackReturn.SUCCESS):
+                    node.trigger_activate()
+            # A managed node's shutdown transition finalizes it: with every node finalized,
+            # the process has nothing left to do.
+            while not stop_requests and rclpy.ok() and not all(
+                    getattr(node, 'finalized', False) for node in nodes):
                 executor.spin_once(timeout_sec=SPIN_SLICE)
         except ExternalShutdownException:
             pass
@@ -258,7 +269,9 @@ def hand_to_executor(node, callback) -> bool:
     executor = node.executor
     if executor is None:
         return False
-    executor.create_task(callback)
+    # A managed node drops it while inactive (stewart_kinematics.ros.managed).
+    gated = getattr(node, 'gated', None)
+    executor.create_task(callback if gated is None else gated(callback))
     return True
 
 
@@ -307,6 +320,9 @@ def create_input_subscription(node, endpoint, callback, queue_depth=None):
     :param queue_depth: the node's ``queue_depth`` parameter, for an endpoint whose QoS keeps
         that many messages (messages); the others ignore it.
     """
+    gated = getattr(node, 'gated', None)
+    if gated is not None:   # a managed node ignores messages while inactive
+        callback = gated(callback, topic=endpoint.name)
     return node.create_subscription(
         endpoint.message_type, endpoint.name, callback, endpoint.qos.profile(queue_depth),
         qos_overriding_options=QoSOverridingOptions.with_default_policies())
@@ -318,5 +334,8 @@ def create_declared_service(node, endpoint, callback):
 
     :param endpoint: the service's :class:`~stewart_kinematics.ros.interfaces.Endpoint`.
     """
+    gated = getattr(node, 'gated', None)
+    if gated is not None:   # a managed node answers that it is inactive
+        callback = gated(callback, service=True)
     return node.create_service(endpoint.message_type, endpoint.name, callback,
                                qos_profile=endpoint.qos.profile())

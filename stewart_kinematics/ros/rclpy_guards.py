@@ -23,14 +23,21 @@ node can catch it, and the process exits with a traceback, on
   reason, handles the others of the request as usual, and refuses an atomic request whole;
 - a /clock message with negative seconds under ``use_sim_time`` (``Time(seconds=-5)``):
   :func:`guard_clock` skips it with a throttled warning, and the clock keeps its last time.
+- a lifecycle ChangeState request (a managed node's ``~/change_state``) by a transition id
+  that the state machine does not have from its state (``99``, or ``activate``'s id while
+  unconfigured): rclpy raises ``RCLError`` in the executor; :func:`guard_change_state`
+  refuses it (``success: false``) with a warning, and the state stays.
 
 :func:`guard_node` installs both, and again when ``use_sim_time`` is switched on at run time
 (rclpy then creates the /clock subscription). The guards wrap the ``callback`` attribute of
 rclpy's own service and subscription objects, which every executor calls.
 """
 
+from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import SetParametersResult
 from rcl_interfaces.srv import SetParameters, SetParametersAtomically
+# rclpy exposes it only from its C extension.
+from rclpy._rclpy_pybind11 import RCLError
 from rclpy.parameter import Parameter
 from rosgraph_msgs.msg import Clock
 
@@ -142,4 +149,33 @@ def _guard_clock_callback(callback, logger):
             return
         callback(message)
     guarded.guards_clock = True
+    return guarded
+
+
+def guard_change_state(node) -> None:
+    """
+    Make a lifecycle node's ``~/change_state`` refuse a transition its state does not have.
+
+    rclpy's service asks the state machine for the transition by id and raises ``RCLError``
+    inside the executor when there is none from the current state (a label is looked up
+    first, and refused without raising): the node would exit with a traceback. Wrapped here,
+    the request is answered ``success: false`` with a warning, as a label is. Idempotent.
+    """
+    for service in node.services:
+        if service.srv_type is ChangeState and not getattr(
+                service.callback, 'guards_transitions', False):
+            service.callback = _guard_change_state(service.callback, node.get_logger())
+
+
+def _guard_change_state(callback, logger):
+    """Wrap rclpy's change_state callback: a transition that does not exist is refused."""
+    def guarded(request, response):
+        try:
+            return callback(request, response)
+        except RCLError as error:
+            logger.warning(f'change_state: transition {request.transition.id} '
+                           f'{preview(request.transition.label)} refused: {error}')
+            response.success = False
+            return response
+    guarded.guards_transitions = True
     return guarded

@@ -39,6 +39,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import weakref
 
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.exceptions import ParameterException
 from rclpy.parameter import Parameter
 
 from stewart_kinematics import parameters
@@ -79,7 +80,8 @@ def descriptor(spec: parameters.ParameterSpec) -> ParameterDescriptor:
 
 def declare_parameters(node, specs, on_change=None, check=None,
                        node_options: Optional[dict] = None,
-                       payload: Optional['RunTimePayload'] = None) -> dict:
+                       payload: Optional['RunTimePayload'] = None,
+                       deferred: Optional['DeferredChecks'] = None) -> dict:
     """
     Declare ``specs`` on ``node`` with validation, and return their values.
 
@@ -94,6 +96,9 @@ def declare_parameters(node, specs, on_change=None, check=None,
         ``parameter_overrides``, ``use_global_arguments``), read for :class:`ParameterSources`.
     :param payload: how the node takes a new payload at run time (:class:`RunTimePayload`),
         or ``None``: the payload parameters are checked each alone, and not applied.
+    :param deferred: for a managed node (:class:`DeferredChecks`): nothing raises, a problem
+        of the values given is kept for its configure transition to refuse, and the read-only
+        parameters may be set while it is unconfigured; ``None``: every problem raises here.
     :returns: parameter name -> value, as set by parameter files, overrides or defaults.
     :raises rclpy.exceptions.ParameterException: if a value has the wrong type or is not
         allowed; the message gives the spec's reason.
@@ -104,10 +109,15 @@ def declare_parameters(node, specs, on_change=None, check=None,
     by_name = {spec.name: spec for spec in specs}
     sources = ParameterSources.of_node(node, node_options or {})
     # rclpy ignores overrides nobody declares: a misspelt name would silently keep a default.
-    parameters.check_known_names(
-        [name for name in sources.names()
-         if not (node.has_parameter(name) or name.startswith('qos_overrides.'))],
-        f'the parameters given to {node.get_fully_qualified_name()}')
+    try:
+        parameters.check_known_names(
+            [name for name in sources.names()
+             if not (node.has_parameter(name) or name.startswith('qos_overrides.'))],
+            f'the parameters given to {node.get_fully_qualified_name()}')
+    except ValueError as error:
+        if deferred is None:
+            raise
+        deferred.problems[DeferredChecks.SOURCES] = str(error)
     # rcl keeps one type per name across layered sources (the one given alone is checked as
     # it is declared): check the value of each source.
     layered = sources.layered_names()
@@ -117,7 +127,10 @@ def declare_parameters(node, specs, on_change=None, check=None,
         spec = by_name.get(name) if name in layered or _holds_marked_string(value) else None
         reason = spec.type_reason(value) if spec is not None else ''
         if reason:
-            raise ValueError(f'{reason}, in {source}')
+            if deferred is None:
+                raise ValueError(f'{reason}, in {source}')
+            deferred.problems.setdefault(name, f'{reason}, in {source}')
+    declaring = [True]
 
     def validate(parameters):
         for parameter in parameters:
@@ -130,9 +143,18 @@ def declare_parameters(node, specs, on_change=None, check=None,
             if spec is None or parameter.type_ == Parameter.Type.NOT_SET:
                 # Not ours, or a required parameter nobody set: reported after declaring.
                 continue
+            if deferred is not None:
+                if declaring[0]:
+                    continue   # a value given is checked by configure, which says why
+                if spec.read_only and not deferred.configurable():
+                    return SetParametersResult(successful=False, reason=(
+                        f'parameter {spec.name!r} is read-only while the node is configured: '
+                        'clean it up (cleanup transition), set it, configure again'))
             reason = spec.check(parameter.value)
             if reason:
                 return SetParametersResult(successful=False, reason=reason)
+        if deferred is not None and declaring[0]:
+            return SetParametersResult(successful=True)
         if check is not None and all(node.has_parameter(name) for name in by_name):
             values = {name: node.get_parameter(name).value for name in by_name}
             values.update({parameter.name: parameter.value for parameter in parameters
@@ -142,7 +164,8 @@ def declare_parameters(node, specs, on_change=None, check=None,
                 return SetParametersResult(successful=False, reason=reason)
         if payload is not None and any(parameter.name in PAYLOAD_PARAMETERS
                                        for parameter in parameters) and all(
-                node.has_parameter(name) for name in by_name):   # not while declaring
+                node.has_parameter(name) for name in by_name) and not (
+                deferred is not None and deferred.configurable()):   # not while declaring
             reason = payload.reason(node, parameters)
             if reason:
                 return SetParametersResult(successful=False, reason=reason)
@@ -152,10 +175,21 @@ def declare_parameters(node, specs, on_change=None, check=None,
     guard_node(node)
     for spec in specs:
         default = _ROS_TYPES[spec.value_type] if spec.default is None else spec.default
-        node.declare_parameter(spec.name, default, descriptor(spec))
+        if deferred is None:
+            node.declare_parameter(spec.name, default, descriptor(spec))
+        else:
+            deferred.declare(node, spec, default, descriptor(spec))
+    declaring[0] = False
 
+    if deferred is not None:
+        def forget_fixed(parameters):
+            for parameter in parameters:
+                deferred.problems.pop(parameter.name, None)
+        node.add_post_set_parameters_callback(forget_fixed)
     if on_change is not None or payload is not None:
         def apply(parameters):
+            if deferred is not None and deferred.configurable():
+                return   # unconfigured: configure reads every value
             for parameter in parameters:
                 if parameter.name in by_name and on_change is not None:
                     on_change(parameter.name, parameter.value)
@@ -166,13 +200,14 @@ def declare_parameters(node, specs, on_change=None, check=None,
         node.add_post_set_parameters_callback(apply)
     values = {spec.name: node.get_parameter_or(spec.name).value for spec in specs}
     # A required parameter that no file set was never validated: report it here.
-    parameters.check_values(specs, values)
+    if deferred is None:
+        parameters.check_values(specs, values)
     return values
 
 
 def declare_settings(node, settings_class, on_change=None, check=None,
                      node_options: Optional[dict] = None,
-                     payload: Optional['RunTimePayload'] = None):
+                     payload: Optional['RunTimePayload'] = None, deferred=None, skip=()):
     """
     Declare a node's parameters (:func:`declare_parameters`) and return them as its settings.
 
@@ -180,11 +215,71 @@ def declare_settings(node, settings_class, on_change=None, check=None,
         subclass, such as ``IkNodeSettings``: its specs are declared.
     :param node_options: as for :func:`declare_parameters`.
     :param payload: as for :func:`declare_parameters`.
+    :param deferred: as for :func:`declare_parameters`: then the values are returned as they
+        were given (a dict), checked later by :meth:`DeferredChecks.settings`.
+    :param skip: names of ``settings_class`` declared already (``managed``): read, not declared.
     :returns: an object of ``settings_class`` holding the values the node starts with.
     """
-    values = declare_parameters(node, settings_class.specs(), on_change=on_change, check=check,
-                                node_options=node_options, payload=payload)
-    return settings_class.from_values(values)
+    values = declare_parameters(
+        node, [spec for spec in settings_class.specs() if spec.name not in skip],
+        on_change=on_change, check=check, node_options=node_options, payload=payload,
+        deferred=deferred)
+    values.update({name: node.get_parameter(name).value for name in skip})
+    return values if deferred is not None else settings_class.from_values(values)
+
+
+class DeferredChecks:
+    """
+    How a managed node declares its parameters: what is wrong is refused by configure.
+
+    A managed node must exist, unconfigured, to be told what is wrong and to take a corrected
+    value (``set_parameters``) or another transition. So nothing raises at declaration: a name
+    no node declares or a value of the wrong type (the default is declared instead) is kept
+    as a problem until the parameter is set, and a value a spec refuses is kept as it is; the
+    configure transition refuses them (:meth:`settings`). Read-only parameters may be set
+    while the node is unconfigured, and are read-only while it is configured.
+
+    :param configurable: returns whether the node is unconfigured now.
+    :param settable: whether read-only parameters are declared settable (while unconfigured);
+        ``False`` declares them read-only, as an unmanaged node does.
+    """
+
+    #: The key of a problem of the parameter sources themselves (a name nobody declares).
+    SOURCES = ''
+
+    def __init__(self, configurable: Callable[[], bool], settable: bool = True):
+        self.configurable = configurable
+        self.settable = settable
+        #: Parameter name (or :data:`SOURCES`) -> why its value given cannot be used.
+        self.problems: Dict[str, str] = {}
+
+    def declare(self, node, spec, default, ros_descriptor) -> None:
+        """Declare one parameter settable while unconfigured; a wrong type: the default."""
+        if self.settable:
+            ros_descriptor.read_only = False
+        try:
+            node.declare_parameter(spec.name, default, ros_descriptor)
+        except ParameterException as error:
+            self.problems.setdefault(spec.name, str(error))
+            node.declare_parameter(spec.name, default, ros_descriptor, ignore_override=True)
+
+    def settings(self, node, settings_class, check=None):
+        """
+        Return the node's settings as its parameters are now, or raise why they cannot be.
+
+        :param check: ``check(values) -> reason`` between parameters, or ``None``.
+        :raises ValueError: with the first problem kept, else the first value a spec refuses,
+            else ``check``'s reason.
+        """
+        for problem in self.problems.values():
+            raise ValueError(problem)
+        values = {spec.name: node.get_parameter_or(spec.name).value
+                  for spec in settings_class.specs()}
+        parameters.check_values(settings_class.specs(), values)
+        reason = check(values) if check is not None else ''
+        if reason:
+            raise ValueError(reason)
+        return settings_class.from_values(values)
 
 
 class RunTimePayload:

@@ -24,6 +24,11 @@ process, as they do in a container: ``--params-file`` files give each node its o
     stewart_platform --play-ramp true --ros-args --params-file config/paper_platform.yaml \\
         --params-file config/solver.yaml --params-file config/table3_ramp.yaml
 
+With ``-p managed:=true`` the nodes are managed (lifecycle) nodes, each with its own
+lifecycle services; ``--autostart true`` configures and activates each at start, as the launch
+file's ``autostart`` does for nodes in processes of their own (launch_ros addresses a
+lifecycle node by its process).
+
 ``--executor single_threaded`` (before ``--ros-args``) spins them on rclpy's default executor
 instead of the EventsExecutor, as for every node (:mod:`stewart_kinematics.ros.node_main`).
 """
@@ -50,6 +55,9 @@ def parse_arguments(argv):
     parser = argparse.ArgumentParser(prog='stewart_platform', description=__doc__.split('\n')[1])
     parser.add_argument('--play-ramp', choices=('true', 'false'), default='false',
                         help='also run trajectory_node, which plays its ramp (default false)')
+    parser.add_argument('--autostart', choices=('true', 'false'), default='false',
+                        help='configure then activate every managed node (managed:=true) at '
+                        'start, as a lifecycle manager would (default false)')
     # Checked by run_nodes, as for the other nodes: an unknown name exits with code 1.
     parser.add_argument(EXECUTOR_OPTION, metavar='|'.join(EXECUTORS),
                         help=f'the executor (default: ${EXECUTOR_VARIABLE}, else '
@@ -63,7 +71,8 @@ def main(args=None) -> int:
     options = parse_arguments(remove_ros_args(argv)[1:])
     node_classes = [IkNode, FkNode] + ([TrajectoryNode] if options.play_ramp == 'true' else [])
     # rcl reads only what follows --ros-args: --play-ramp does not disturb it.
-    return run_nodes(node_classes, 'stewart_platform', args)
+    return run_nodes(node_classes, 'stewart_platform', args,
+                     autostart=options.autostart == 'true')
 
 
 if __name__ == '__main__':

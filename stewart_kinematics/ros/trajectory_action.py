@@ -37,6 +37,7 @@ executor (:func:`stewart_kinematics.ros.node_main.executor_for_nodes`).
 
 from dataclasses import dataclass, field
 import math
+import time
 from typing import Any, Optional
 
 import numpy as np
@@ -84,6 +85,8 @@ ACTION_NAME = 'follow_joint_trajectory'
 #: The planning job's name (its answers come back to :meth:`TrajectoryAction.on_planned`).
 JOB_NAME = 'follow_joint_trajectory'
 PREEMPTED = 'Current goal preempted by new incoming action.'
+#: Longest the lifecycle's deactivate streams a braking, seconds.
+MAX_DEACTIVATE_BRAKING = 2.0
 #: Goal states a finished goal is put in.
 SUCCEEDED, ABORTED, CANCELED = 'succeeded', 'aborted', 'canceled'
 
@@ -145,9 +148,46 @@ class TrajectoryAction:
         self.rest: Optional[tuple] = None          # (trajectory, clock time): where it rests
         self.server = ActionServer(
             node, node_action_type(), ACTION_NAME, execute_callback=self.execute,
-            goal_callback=lambda request: GoalResponse.ACCEPT,
+            goal_callback=self.on_goal,
             cancel_callback=self.on_cancel)
         self.timer = node.create_timer(1.0 / node.settings.ramp.publish_rate, self.tick)
+
+    def on_goal(self, request):
+        """Accept every goal while the node is active (it is then checked and answered)."""
+        if not getattr(self.node, 'active', True):
+            self.node.get_logger().warning(f'{ACTION_NAME}: goal rejected, the node is not '
+                                           'active', throttle_duration_sec=1.0)
+            return GoalResponse.REJECT
+        return GoalResponse.ACCEPT
+
+    def deactivate(self) -> None:
+        """
+        Abort the goals and bring the platform to rest (the lifecycle's deactivate).
+
+        As joint_trajectory_controller: "Current goal cancelled during deactivate transition."
+        (``INVALID_GOAL``). Streamed, the braking is sent now, at ``publish_rate`` (it lasts
+        what the leg acceleration limit needs, at most :data:`MAX_DEACTIVATE_BRAKING` s).
+        """
+        text = 'Current goal cancelled during deactivate transition.'
+        for record in (self.pending, self.waiting, self.active):
+            if record is not None:
+                self.finish(record, ABORTED, INVALID_GOAL, text,
+                            Finding(findings.GOAL_PREEMPTED, text))
+        self.brake()
+        motion = self.motion
+        if motion is not None and motion.gate is not None:
+            period = 1.0 / self.node.settings.ramp.publish_rate
+            deadline = motion.start + min(motion.trajectory.duration, MAX_DEACTIVATE_BRAKING)
+            while self.now() <= deadline + period:
+                self.stream(motion, self.now() - motion.start, self.now())
+                time.sleep(period)
+        if motion is not None:
+            self.rest = (motion.trajectory, motion.trajectory.duration)
+        self.motion = None
+
+    def destroy(self) -> None:
+        """Destroy the action server (the lifecycle's cleanup)."""
+        self.server.destroy()
 
     # Time ---------------------------------------------------------------------------------
 

@@ -50,7 +50,6 @@ start-up with it.
 from dataclasses import dataclass
 
 from nav_msgs.msg import Path
-from rclpy.node import Node
 from std_msgs.msg import Header
 
 from stewart_kinematics.model.actuators import ActuatorInterface
@@ -61,13 +60,13 @@ from stewart_kinematics.motion.retiming import load_retiming
 from stewart_kinematics.parameters import (
     actuator_interface_from_settings,
     actuator_limits_from_settings,
-    frame_parameters_reason,
     frames_from_settings,
     geometry_from_settings,
     TrajectoryNodeSettings,
 )
 from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import TRAJECTORY_NODE
+from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     command_pose_message,
@@ -81,7 +80,7 @@ from stewart_kinematics.ros.node_main import (
     hand_to_executor,
     run_node,
 )
-from stewart_kinematics.ros.ros_parameters import declare_settings, RunTimePayload
+from stewart_kinematics.ros.ros_parameters import RunTimePayload
 from stewart_kinematics.ros.trajectory_action import JOB_NAME, TrajectoryAction
 from trajectory_msgs.msg import MultiDOFJointTrajectory
 
@@ -89,18 +88,22 @@ from trajectory_msgs.msg import MultiDOFJointTrajectory
 WAIT_PERIOD = 0.05
 
 
-class TrajectoryNode(Node):
+class TrajectoryNode(ManagedNode):
     """Publish a ramp of poses on ``target_pose``; check, time and publish trajectories."""
 
+    SETTINGS = TrajectoryNodeSettings
     #: Its action server needs an executor that runs rclpy's action servers (node_main).
     SERVES_ACTIONS = True
 
     def __init__(self, **kwargs):
         super().__init__('trajectory_node', **kwargs)
-        self.settings = declare_settings(
-            self, TrajectoryNodeSettings, on_change=self.on_parameter_change,
-            check=frame_parameters_reason, node_options=kwargs,
-            payload=RunTimePayload(lambda: self.geometry, self.set_mass_properties))
+
+    def run_time_payload(self):
+        """Plan every message from the change on with the new payload."""
+        return RunTimePayload(lambda: self.geometry, self.set_mass_properties)
+
+    def configure(self):
+        """Build the geometry, the planner, the ramp (checked), the worker, every endpoint."""
         settings = self.settings
         self.geometry = geometry_from_settings(settings.geometry)
         self.actuator_limits = actuator_limits_from_settings(settings.geometry)
@@ -122,8 +125,7 @@ class TrajectoryNode(Node):
         self.path_accounting = diagnostics.accounting('pose_path')
         # Paths are always retimed: import toppra and scipy (seconds) now, beside the start-up
         # and the ramp, not in the first plan.
-        self.worker = PlanningWorker(lambda task: hand_to_executor(self, task), self.on_planned,
-                                     warm_up=load_retiming, name='trajectory planning')
+        self.worker = self.planning_worker(warm_up=load_retiming)
         #: The follow_joint_trajectory action server (ros/trajectory_action.py).
         self.action = TrajectoryAction(self, diagnostics.accounting('follow_joint_trajectory'))
         create_input_subscription(
@@ -141,6 +143,29 @@ class TrajectoryNode(Node):
             self.get_logger().info(
                 f'{settings.ramp.mode} ramp of {len(self.ramp.rows)} rows, '
                 + ('looping' if settings.ramp.loop else 'once'))
+
+    def planning_worker(self, warm_up=None) -> PlanningWorker:
+        """Return a new planning thread whose answers come back to the executor."""
+        return PlanningWorker(lambda task: hand_to_executor(self, task), self.on_planned,
+                              warm_up=warm_up, name='trajectory planning')
+
+    def deactivate(self):
+        """
+        Stop playing (the ramp, a trajectory) and planning: nothing more goes out.
+
+        A plan under way is cancelled and its answer dropped, with the worker: a new one
+        plans what comes once active again. The ramp does not resume: it plays once per
+        configure (what was published stays counted).
+        """
+        for timer in (self.timer, self.wait_timer, self.play_timer):
+            if timer is not None:
+                timer.cancel()
+        self.action.deactivate()
+        cancelled = self.worker.close()
+        if cancelled is not None:
+            self.get_logger().info(f'{cancelled.name}: planning cancelled, the node is '
+                                   'deactivated')
+        self.worker = self.planning_worker()
 
     def make_planner(self, settings) -> 'PlanSettings':
         """Build the planner and the output settings of ``settings``, as at start-up."""
@@ -165,12 +190,12 @@ class TrajectoryNode(Node):
         self.geometry = geometry
         self.planner = self.make_planner(self.settings)
 
-    def destroy_node(self):
-        """Stop the worker (a plan under way is cancelled), then destroy the node."""
+    def cleanup(self):
+        """Stop the worker (a plan under way is cancelled) and the action server."""
+        self.action.destroy()
         cancelled = self.worker.close()
         if cancelled is not None:
             self.get_logger().info(f'{cancelled.name}: planning cancelled, the node stops')
-        return super().destroy_node()
 
     def start_when_subscribed(self):
         """Start playing once ``min_subscribers`` subscriptions are matched."""

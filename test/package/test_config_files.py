@@ -31,6 +31,7 @@ from stewart_kinematics import parameters
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.fk_node import FkNode
 from stewart_kinematics.ros.ik_node import IkNode
+from stewart_kinematics.ros.mock_platform import MockPlatform
 from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
 from stewart_kinematics.ros.trajectory_node import TrajectoryNode
 import yaml
@@ -53,6 +54,7 @@ NODE_SPECS = {
                         + parameters.FRAME_PARAMETERS + parameters.RAMP_PARAMETERS
                         + parameters.MOTION_PARAMETERS + parameters.QUEUE_PARAMETERS),
     'motion_cueing_node': parameters.MotionCueingNodeSettings.specs(),
+    'mock_platform': parameters.MockPlatformNodeSettings.specs(),
 }
 #: Each node class and the config files it is meant to take, in order.
 NODE_FILES = {
@@ -63,6 +65,8 @@ NODE_FILES = {
                                          'table3_ramp.yaml')),
     'motion_cueing_node': (MotionCueingNode, ('paper_platform.yaml', 'example_limits.yaml',
                                               'motion_cueing.yaml')),
+    'mock_platform': (MockPlatform, ('paper_platform.yaml', 'example_limits.yaml',
+                                     'example_masses.yaml', 'mock_platform.yaml')),
 }
 #: The platform designs that share joints, each one file for every node (geometry, limits and
 #: trajectory_node's ramp), and the design its geometry must be.

@@ -43,6 +43,7 @@ import shutil
 import sys
 import types
 
+from lifecycle_msgs.msg import Transition
 import pytest
 from rclpy.validate_namespace import validate_namespace
 
@@ -51,10 +52,15 @@ pytestmark = pytest.mark.node
 ROOT = Path(__file__).resolve().parents[2]
 PACKAGE = 'stewart_kinematics'
 LAUNCH_FILE = ROOT / 'launch' / 'stewart_kinematics.launch.py'
-#: The modules the launch file may import: the stand-ins below, and the standard library's os.
+#: The modules the launch file may import: the stand-ins below, and the standard library's os
+#: and lifecycle_msgs (installed: its Transition ids are the real ones).
 STUBBED_MODULES = ('launch', 'launch.actions', 'launch.conditions', 'launch.substitutions',
-                   'launch_ros', 'launch_ros.actions', 'ament_index_python',
+                   'launch.events', 'launch_ros', 'launch_ros.actions',
+                   'launch_ros.event_handlers', 'launch_ros.events',
+                   'launch_ros.events.lifecycle', 'ament_index_python',
                    'ament_index_python.packages')
+#: Real modules the launch file may import.
+REAL_MODULES = ('os', 'lifecycle_msgs.msg')
 #: Keyword arguments that launch_ros's Node passes on to ExecuteProcess, ExecuteLocal and Action.
 EXECUTE_PROCESS_KEYWORDS = frozenset({
     'prefix', 'cwd', 'env', 'additional_env', 'shell', 'sigterm_timeout', 'sigkill_timeout',
@@ -141,6 +147,93 @@ class Node:
         self.condition = kwargs.get('condition')
 
 
+class LifecycleNode(Node):
+    """Stand-in for launch_ros.actions.LifecycleNode (Jazzy: name and namespace required)."""
+
+    def __init__(self, *, name, namespace, **kwargs):
+        """Check the arguments as the real constructor does, and keep them."""
+        super().__init__(name=name, namespace=namespace, **kwargs)
+
+
+class AndSubstitution:
+    """Stand-in for launch.substitutions.AndSubstitution: 'true' if both are true."""
+
+    def __init__(self, left, right):
+        """Keep both operands."""
+        self.left, self.right = left, right
+
+
+class NotSubstitution:
+    """Stand-in for launch.substitutions.NotSubstitution."""
+
+    def __init__(self, value):
+        """Keep the operand."""
+        self.value = value
+
+
+class EmitEvent:
+    """Stand-in for launch.actions.EmitEvent."""
+
+    def __init__(self, *, event, **kwargs):
+        """Check the arguments as the real constructor does, and keep them."""
+        unknown = set(kwargs) - {'condition'}
+        if unknown:
+            raise TypeError(f'EmitEvent got unexpected keyword arguments {unknown}')
+        self.event = event
+        self.condition = kwargs.get('condition')
+
+
+class RegisterEventHandler:
+    """Stand-in for launch.actions.RegisterEventHandler."""
+
+    def __init__(self, event_handler, **kwargs):
+        """Check the arguments as the real constructor does, and keep them."""
+        unknown = set(kwargs) - {'condition'}
+        if unknown:
+            raise TypeError(f'RegisterEventHandler got unexpected keyword arguments {unknown}')
+        if not isinstance(event_handler, OnStateTransition):
+            raise TypeError(f'unexpected event handler {event_handler!r}')
+        self.event_handler = event_handler
+        self.condition = kwargs.get('condition')
+
+
+class ChangeState:
+    """Stand-in for launch_ros.events.lifecycle.ChangeState."""
+
+    def __init__(self, *, lifecycle_node_matcher, transition_id):
+        """Keep the matcher and the transition, as the real constructor does."""
+        if not callable(lifecycle_node_matcher):
+            raise TypeError('lifecycle_node_matcher must be callable')
+        self.lifecycle_node_matcher = lifecycle_node_matcher
+        self.transition_id = transition_id
+
+
+class OnStateTransition:
+    """Stand-in for launch_ros.event_handlers.OnStateTransition (Jazzy's signature)."""
+
+    def __init__(self, *, entities=None, target_lifecycle_node=None, transition=None,
+                 start_state=None, goal_state=None, matcher=None, **kwargs):
+        """Check the arguments as the real constructor does, and keep them."""
+        if kwargs:
+            raise TypeError(f'OnStateTransition got unexpected keyword arguments {set(kwargs)}')
+        if target_lifecycle_node is not None and matcher is not None:
+            raise RuntimeError("Cannot specify both 'matcher' and 'target_lifecycle_node'")
+        if target_lifecycle_node is not None and not isinstance(
+                target_lifecycle_node, LifecycleNode):
+            raise TypeError("OnStateTransition requires a 'LifecycleNode' action as the target")
+        self.entities = list(entities or [])
+        self.target_lifecycle_node = target_lifecycle_node
+        self.transition, self.start_state, self.goal_state = transition, start_state, goal_state
+
+
+def matches_action(target_action):
+    """Stand-in for launch.events.matches_action: a matcher of one action."""
+    def matcher(action):
+        return action is target_action
+    matcher.target = target_action
+    return matcher
+
+
 class LaunchDescription:
     """Stand-in for launch.LaunchDescription."""
 
@@ -163,11 +256,18 @@ def stub_modules(share_directory):
     contents = {
         'launch': {'LaunchDescription': LaunchDescription},
         'launch.actions': {'DeclareLaunchArgument': DeclareLaunchArgument,
-                           'GroupAction': GroupAction},
+                           'GroupAction': GroupAction, 'EmitEvent': EmitEvent,
+                           'RegisterEventHandler': RegisterEventHandler},
         'launch.conditions': {'IfCondition': IfCondition, 'UnlessCondition': UnlessCondition},
-        'launch.substitutions': {'LaunchConfiguration': LaunchConfiguration},
+        'launch.events': {'matches_action': matches_action},
+        'launch.substitutions': {'LaunchConfiguration': LaunchConfiguration,
+                                 'AndSubstitution': AndSubstitution,
+                                 'NotSubstitution': NotSubstitution},
         'launch_ros': {},
-        'launch_ros.actions': {'Node': Node},
+        'launch_ros.actions': {'Node': Node, 'LifecycleNode': LifecycleNode},
+        'launch_ros.event_handlers': {'OnStateTransition': OnStateTransition},
+        'launch_ros.events': {},
+        'launch_ros.events.lifecycle': {'ChangeState': ChangeState},
         'ament_index_python': {},
         'ament_index_python.packages': {
             'get_package_share_directory': get_package_share_directory,
@@ -221,12 +321,17 @@ def launch(stand_ins):
     Its keyword arguments are the ``name:=value`` pairs of the command line. It returns one dict
     per node that would start: ``executable``, ``package``, ``namespace`` (expanded as
     launch_ros does: absolute, '/' for none), ``parameter_files`` (resolved paths, in order),
-    ``remappings``, ``arguments``.
+    ``remappings``, ``arguments``, ``ros_arguments``, ``lifecycle`` (a LifecycleNode), and
+    ``state``: for a lifecycle node, the state it reaches by the launch's own events
+    (:func:`run_lifecycle_events`; ``unconfigured`` without any).
     """
     def run(**arguments):
         description = launch_description()
         configurations = dict(arguments)
         nodes = []
+        actions = {}
+        emitted = []
+        handlers = []
 
         def visit(entities):
             for entity in entities:
@@ -237,11 +342,17 @@ def launch(stand_ins):
                     continue
                 elif isinstance(entity, Node):
                     nodes.append(expand(entity, configurations))
+                    actions[id(entity)] = nodes[-1]
                 elif isinstance(entity, GroupAction):
                     visit(entity.actions)
+                elif isinstance(entity, EmitEvent):
+                    emitted.append(entity.event)
+                elif isinstance(entity, RegisterEventHandler):
+                    handlers.append(entity.event_handler)
                 else:
                     raise AssertionError(f'unexpected launch entity {entity!r}')
         visit(description.entities)
+        run_lifecycle_events(actions, emitted, handlers)
         unknown = set(arguments) - {e.name for e in description.entities
                                     if isinstance(e, DeclareLaunchArgument)}
         assert not unknown, f'launch arguments {unknown} are not declared'
@@ -249,10 +360,65 @@ def launch(stand_ins):
     return run
 
 
+#: The lifecycle state machine (lifecycle_msgs): (state, transition) -> (intermediate, goal).
+LIFECYCLE = {
+    ('unconfigured', Transition.TRANSITION_CONFIGURE): ('configuring', 'inactive'),
+    ('inactive', Transition.TRANSITION_ACTIVATE): ('activating', 'active'),
+    ('active', Transition.TRANSITION_DEACTIVATE): ('deactivating', 'inactive'),
+    ('inactive', Transition.TRANSITION_CLEANUP): ('cleaningup', 'unconfigured'),
+}
+
+
+def run_lifecycle_events(actions, emitted, handlers):
+    """
+    Play the launch's ChangeState events on its lifecycle nodes, as launch_ros would.
+
+    Each node's transitions succeed (the node's part is tested in test/processes); an
+    OnStateTransition handler of a node fires its entities when the node goes from its
+    ``start_state`` to its ``goal_state``. A ChangeState of a transition not available in
+    the node's state fails the test, as launch_ros logs it.
+    """
+    for node in actions.values():
+        node['state'] = 'unconfigured' if node['lifecycle'] else None
+    queue = list(emitted)
+    for _ in range(100):
+        if not queue:
+            return
+        event = queue.pop(0)
+        assert isinstance(event, ChangeState), event
+        target = event.lifecycle_node_matcher.target
+        node = actions.get(id(target))
+        if node is None:   # its node does not start (a condition): launch_ros ignores it
+            continue
+        assert node['lifecycle'], 'ChangeState of a node that is no LifecycleNode'
+        step = LIFECYCLE.get((node['state'], event.transition_id))
+        assert step, f"{node['executable']}: transition {event.transition_id} from " \
+            f"{node['state']}"
+        start, (middle, goal) = node['state'], step
+        node['state'] = goal
+        for handler in handlers:
+            if handler.target_lifecycle_node is target and (
+                    handler.goal_state in (None, goal)) and handler.start_state in (
+                    None, start, middle):
+                for entity in handler.entities:
+                    assert isinstance(entity, EmitEvent), entity
+                    queue.append(entity.event)
+    raise AssertionError('the lifecycle events do not end')
+
+
 def resolve(value, configurations):
     """Resolve a substitution (text, LaunchConfiguration, Path or a list of them) to text."""
     if isinstance(value, str):
         return value
+    if isinstance(value, (AndSubstitution, NotSubstitution)):
+        operands = [value.left, value.right] if isinstance(value, AndSubstitution) else [
+            value.value]
+        truths = []
+        for operand in operands:
+            text = resolve(operand, configurations).lower()
+            assert text in ('true', '1', 'false', '0'), f"invalid boolean '{text}'"
+            truths.append(text in ('true', '1'))
+        return str(all(truths) if isinstance(value, AndSubstitution) else not truths[0]).lower()
     if isinstance(value, Path):
         return str(value)
     if isinstance(value, LaunchConfiguration):
@@ -299,6 +465,9 @@ def expand(node, configurations):
         'parameter_files': [resolve(p, configurations) for p in node.parameters],
         'remappings': node.remappings,
         'arguments': [resolve(argument, configurations) for argument in node.arguments],
+        'ros_arguments': [resolve(argument, configurations) for argument in node.ros_arguments],
+        'lifecycle': isinstance(node, LifecycleNode),
+        'name': node.name,
     }
 
 
@@ -325,7 +494,7 @@ def test_launch_file_parses_and_imports_only_what_is_stubbed():
             imported.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
             imported.add(node.module)
-    assert imported <= set(STUBBED_MODULES) | {'os'}, imported
+    assert imported <= set(STUBBED_MODULES) | set(REAL_MODULES), imported
     assert "glob('launch/*.py')" in (ROOT / 'setup.py').read_text(encoding='utf-8')
 
 
@@ -351,6 +520,8 @@ def test_default_launch_starts_the_three_nodes_with_the_installed_config(
             assert Path(path).is_file(), f'{path} is not installed'
             assert (ROOT / 'config' / Path(path).name).is_file()
         assert node['remappings'] == [] and node['arguments'] == []
+        # Unmanaged: plain nodes, the managed parameter left at its default.
+        assert not node['lifecycle'] and node['ros_arguments'] == []
 
 
 @pytest.mark.parametrize('namespace', ['platform_a', '/robots/platform_b'])
@@ -425,5 +596,67 @@ def test_docs_list_the_launch_arguments_and_their_defaults(stand_ins, share_dire
         'default_not_keyword', 'default_not_a_choice', 'group_condition_not_keyword'])
 def test_stand_ins_refuse_what_launch_refuses(construct):
     """The stand-ins are strict: a launch file misusing the real API fails here too."""
+    with pytest.raises((TypeError, RuntimeError)):
+        construct()
+
+
+@pytest.mark.parametrize('play_ramp', ['true', 'false'])
+def test_managed_starts_lifecycle_nodes_configured_and_activated(launch, play_ramp):
+    """managed:=true: LifecycleNodes given managed:=true, each configured then activated."""
+    nodes = launch(managed='true', play_ramp=play_ramp, namespace='platform_a')
+
+    expected = ['ik_node', 'fk_node'] + (['trajectory_node'] if play_ramp == 'true' else [])
+    assert [node['executable'] for node in nodes] == expected
+    for node in nodes:
+        assert node['lifecycle'], node
+        # launch_ros needs the name to address the node's lifecycle services.
+        assert node['name'] == node['executable']
+        assert node['ros_arguments'] == ['-p', 'managed:=true']
+        assert node['namespace'] == '/platform_a'
+        assert node['state'] == 'active', node
+
+
+def test_managed_without_autostart_leaves_the_nodes_unconfigured(launch):
+    """autostart:=false: no transition is asked for: a lifecycle manager drives them."""
+    nodes = launch(managed='true', autostart='false')
+
+    assert len(nodes) == 3
+    assert all(node['lifecycle'] and node['state'] == 'unconfigured' for node in nodes)
+
+
+def test_managed_keeps_the_parameter_files(launch):
+    """A managed node gets the same parameter files as an unmanaged one."""
+    plain = {node['executable']: node['parameter_files'] for node in launch()}
+    managed = {node['executable']: node['parameter_files'] for node in launch(managed='true')}
+
+    assert plain == managed
+
+
+@pytest.mark.parametrize('autostart', ['true', 'false'])
+def test_one_process_managed_passes_managed_and_autostart(launch, autostart):
+    """one_process:=true managed:=true: stewart_platform --autostart, its nodes managed."""
+    nodes = launch(one_process='true', managed='true', autostart=autostart)
+
+    assert [node['executable'] for node in nodes] == ['stewart_platform']
+    assert nodes[0]['arguments'] == ['--play-ramp', 'true', '--autostart', autostart]
+    assert nodes[0]['ros_arguments'] == ['-p', 'managed:=true']
+
+
+@pytest.mark.parametrize('name', ['managed', 'autostart'])
+def test_managed_and_autostart_accept_only_true_or_false(launch, name):
+    """Both are declared with their choices."""
+    with pytest.raises(AssertionError, match=name):
+        launch(**{name: 'yes'})
+
+
+@pytest.mark.parametrize('construct', [
+    lambda: LifecycleNode(package=PACKAGE, executable='ik_node', namespace=''),
+    lambda: OnStateTransition(target_lifecycle_node=Node(executable='ik_node')),
+    lambda: EmitEvent(ChangeState(lifecycle_node_matcher=print, transition_id=1)),
+    lambda: ChangeState(lifecycle_node_matcher='ik_node', transition_id=1),
+], ids=['lifecycle_node_without_name', 'handler_of_a_plain_node', 'event_not_keyword',
+        'matcher_not_callable'])
+def test_lifecycle_stand_ins_refuse_what_launch_refuses(construct):
+    """The lifecycle stand-ins are strict, as the others."""
     with pytest.raises((TypeError, RuntimeError)):
         construct()

@@ -33,6 +33,7 @@ from stewart_kinematics.model.validators import (
     FixedLength,
     InertiaTensor,
     InRange,
+    LegSelection,
     OneOf,
     ZeroOrInRange,
 )
@@ -109,6 +110,9 @@ def claims(spec):
         if text in (FRAME, FRAME + " or ''"):
             return [('tool_0', True), ('a b', False), ('/tool', False), ('tool\t', False),
                     ('', text.endswith("or ''"))]
+        if text == LegSelection().describe():
+            return [('', True), ('1, 6', True), ('2 3', True), ('leg_1', True), ('7', False),
+                    ('0', False), ('1;2', False), ('/leg_1', False)]
         assert QUOTED.match(text), text
         choices = re.findall(r"'([^']*)'", text)
         return [(choice, True) for choice in choices] + [('none_of_these', False), ('', False)]
@@ -178,7 +182,7 @@ def test_notes_are_few_and_say_what_no_validator_can():
     assert sorted(notes) == sorted([
         'base_joints', 'platform_joints', 'leg_length_min', 'leg_length_max', 'position_step',
         'orientation_step_deg', 'estimated_pose_frame', 'platform_inertia', 'payload_inertia',
-        'leg_lower_inertia', 'leg_upper_inertia'])
+        'leg_lower_inertia', 'leg_upper_inertia', 'initial_leg_lengths', 'stalled_legs'])
 
 
 @pytest.mark.parametrize('validator, text', [

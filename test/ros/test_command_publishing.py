@@ -52,6 +52,7 @@ COMMANDS = {
     'fk_node': set(),
     'trajectory_node': {'target_pose', 'leg_trajectory'},
     'motion_cueing_node': {'target_pose'},
+    'mock_platform': set(),
 }
 
 

@@ -27,6 +27,7 @@ from stewart_kinematics.ros.interfaces import (
     FK_NODE,
     IK_NODE,
     markdown_table,
+    MOCK_PLATFORM,
     MOTION_CUEING_NODE,
     NODE_INTERFACES,
     PUBLISHER,
@@ -48,10 +49,11 @@ def node_class(name):
     """Return the node class of a node name."""
     from stewart_kinematics.ros.fk_node import FkNode
     from stewart_kinematics.ros.ik_node import IkNode
+    from stewart_kinematics.ros.mock_platform import MockPlatform
     from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
     from stewart_kinematics.ros.trajectory_node import TrajectoryNode
     return {'ik_node': IkNode, 'fk_node': FkNode, 'trajectory_node': TrajectoryNode,
-            'motion_cueing_node': MotionCueingNode}[name]
+            'motion_cueing_node': MotionCueingNode, 'mock_platform': MockPlatform}[name]
 
 
 def absolute(name):
@@ -59,8 +61,8 @@ def absolute(name):
     return name if name.startswith('/') else '/' + name
 
 
-@pytest.mark.parametrize('interface', [IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE],
-                         ids=lambda interface: interface.node)
+@pytest.mark.parametrize('interface', [IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE,
+                                       MOCK_PLATFORM], ids=lambda interface: interface.node)
 def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directory, tmp_path,
                                                              interface):
     """Every optional endpoint on: the node's publishers, subscriptions and services."""
