@@ -296,7 +296,7 @@ def test_preemption_and_cancel_brake_within_the_limits(client, start_node, confi
         worst, times[worst[0]:worst[0] + 3] - times[0], cancel_time - times[0])
     # After the cancel: the speed only falls, over several commands (a braking, not a stop).
     after = times >= cancel_time
-    assert after.sum() >= 5
+    assert after.sum() >= 3
     speeds = np.abs(carried[after]).max(axis=1)
     assert np.all(np.diff(speeds) <= 1e-9) and speeds[0] > 0.01
     # At rest at the end: the last commands do not move.
