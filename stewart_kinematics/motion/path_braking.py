@@ -24,7 +24,9 @@ falls to 0 as fast as every leg's acceleration allows. With ``l_tau`` and ``l_ta
 legs' derivatives along the path, a leg's velocity is ``l_tau tau'`` (below its limit, since
 ``tau'`` never exceeds the trajectory's own rate there) and its acceleration ``l_tautau tau'^2
 + l_tau tau''``: each step takes the most negative ``tau''`` that keeps every leg within
-:data:`BRAKING_MARGIN` of ``leg_acceleration_max``. The result is a partial
+:data:`BRAKING_MARGIN` of ``leg_acceleration_max``; where the trajectory's own timing slows
+faster than that (a retimed trajectory braking at its limit), its own timing is followed to
+its end. The result is a partial
 :class:`~stewart_kinematics.motion.pose_trajectory.TimedTrajectory` (its clock from 0 at the
 moment of braking), sampled and sent like any other, and checked by the command gate as it is.
 
@@ -88,13 +90,18 @@ def braking_trajectory(trajectory: TimedTrajectory, time: float, geometry,
             # The path ends (at rest) within the step: reach its end at the rate left.
             remaining = end - tau
             new_rate = math.sqrt(max(rate ** 2 + 2.0 * change * remaining, 0.0))
+            # Never faster at the end than the trajectory itself (a retimed one stops there).
+            new_rate = min(new_rate, float(trajectory.rates[-1]))
             interval = 2.0 * remaining / (rate + new_rate)
             _append(grid_times, grid_taus, grid_rates, interval, end, new_rate)
             break
         new_tau = tau + advance
-        # Never faster than the trajectory itself there (its own timing kept the limits).
         own = float(trajectory.path_times(trajectory.clock_times([new_tau]))[1][0])
-        new_rate = min(new_rate, max(own, 0.0)) if new_rate > 0.0 else 0.0
+        if new_rate > own:
+            # The trajectory itself slows faster here (a retimed one, braking at its limit):
+            # follow its own timing to its end, which kept every limit.
+            _follow(trajectory, grid_times, grid_taus, grid_rates, tau, rate)
+            break
         _append(grid_times, grid_taus, grid_rates, interval, new_tau, new_rate)
         tau, rate = new_tau, new_rate
         if rate == 0.0:
@@ -103,6 +110,20 @@ def braking_trajectory(trajectory: TimedTrajectory, time: float, geometry,
         # Held back all along: follow the path to its end at the rate reached.
         _append(grid_times, grid_taus, grid_rates, (end - tau) / rate, end, rate)
     return TimedTrajectory(path, grid_times, grid_taus, grid_rates, partial=True)
+
+
+def _follow(trajectory, times, taus, rates, tau, rate):
+    """Append the trajectory's own gridpoints after path time ``tau`` (rate ``rate`` there)."""
+    later = trajectory.grid_taus > tau
+    grid_taus, grid_rates = trajectory.grid_taus[later], trajectory.rates[later]
+    previous_tau, previous_rate = tau, rate
+    for next_tau, next_rate in zip(grid_taus, grid_rates):
+        interval = 2.0 * (next_tau - previous_tau) / (previous_rate + next_rate) \
+            if previous_rate + next_rate > 0.0 else 0.0
+        if not interval > 0.0:
+            break
+        _append(times, taus, rates, interval, float(next_tau), float(next_rate))
+        previous_tau, previous_rate = next_tau, next_rate
 
 
 def _append(times, taus, rates, interval, tau, rate):

@@ -23,6 +23,7 @@ poses against forward kinematics, and the braking on the path within the acceler
 import math
 from pathlib import Path
 
+from hypothesis import assume, given, strategies as st
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -240,3 +241,26 @@ def test_braking_keeps_the_path_and_the_limits(geometry):
     assert taus[-1] < moving.path.times[-1]
     # At rest, or at the end: nothing to brake.
     assert braking_trajectory(moving, moving.duration, geometry, LIMITS) is None
+
+
+@given(st.floats(0.0, 1.0), st.floats(-0.03, 0.03), st.floats(-0.03, 0.03),
+       st.floats(-0.1, 0.1), st.booleans())
+def test_braking_anywhere_stays_within_the_acceleration_limit(geometry, share, dx, dz, yaw,
+                                                              retimed):
+    """Whenever a goal is braked, the legs slow within leg_acceleration_max, on the path."""
+    home = np.array(geometry.home_pose)
+    rows = [leg_positions(geometry, home + [dx, 0.0, dz, 0.0, 0.0, yaw])]
+    check = check_goal(request(times=(3.0,), positions=rows), SETS, 0.0)
+    motion = goal_motion(check, leg_positions(geometry, home), geometry, ACTUATORS, 0.01)
+    plan = plan_motion(motion.trajectory, geometry, LIMITS, retime_path=retimed)
+    assume(plan.accepted)
+    moving = plan.trajectory
+    braking = braking_trajectory(moving, share * moving.duration, geometry, LIMITS)
+    if braking is None:
+        assert share * moving.duration >= moving.duration or not np.any(
+            moving.legs(geometry, [share * moving.duration]).velocities)
+        return
+    legs = braking.legs(geometry, np.linspace(0.0, braking.duration, 300))
+    assert np.abs(legs.accelerations).max() <= LIMITS.acceleration_max
+    assert np.abs(legs.velocities).max() <= LIMITS.velocity_max * (1 + 1e-9)
+    assert_allclose(legs.velocities[-1], 0.0, atol=1e-9)

@@ -186,6 +186,9 @@ def rig(client, start_node, config_directory, *parameters):
     node = start_trajectory_node(start_node, config_directory, *parameters)
     platform = Platform(client, legs_of(HOME))
     action = MoveItLikeClient(client, [node])
+    # trajectory_node must hear joint_states before a goal: where it starts from.
+    client.wait(lambda: platform.publisher.get_subscription_count() >= 1,
+                'trajectory_node subscribed to joint_states', [node])
     client.settle()
     return node, platform, action
 
@@ -298,7 +301,7 @@ def test_preemption_and_cancel_brake_within_the_limits(client, start_node, confi
     after = times >= cancel_time
     assert after.sum() >= 3
     speeds = np.abs(carried[after]).max(axis=1)
-    assert np.all(np.diff(speeds) <= 1e-9) and speeds[0] > 0.01
+    assert np.all(np.diff(speeds) <= 1e-9) and speeds[0] > 0.005
     # At rest at the end: the last commands do not move.
     np.testing.assert_allclose(carried[-1], 0.0, atol=1e-9)
     np.testing.assert_allclose(positions[-1], positions[-2], rtol=0, atol=1e-5)

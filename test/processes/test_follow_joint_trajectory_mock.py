@@ -70,6 +70,10 @@ def test_closed_loop_over_mock_platform(client, start_node, config_directory, ex
     client.subscribe(JointState, '/joint_states', states.append)
     action = MoveItLikeClient(client, [node, mock])
     client.wait(lambda: len(states) > 5, 'joint_states from mock_platform', [node, mock])
+    # trajectory_node hears them too (the client's subscription and the node's).
+    client.wait(lambda: client.node.count_subscribers('/joint_states') >= 2,
+                'trajectory_node subscribed to joint_states', [node, mock])
+    client.settle()
     target = HOME + [0.01, -0.01, 0.01, 0.0, 0.02, 0.0]
     status, code, text = action.run(goal(LEGS, [2.0], [legs_of(target)]))
     assert (status, code) == (GoalStatus.STATUS_SUCCEEDED, Result.SUCCESSFUL), text
