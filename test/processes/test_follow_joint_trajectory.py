@@ -259,6 +259,8 @@ def test_every_result_code_and_feedback(client, start_node, config_directory):
     assert (status, code) == (GoalStatus.STATUS_ABORTED, Result.GOAL_TOLERANCE_VIOLATED), text
     assert 'leg_2 position error' in text and 'goal_time_tolerance 0.3 s' in text
     assert node.running()
+    # The events executor does not run action servers: the process said it spins on the other.
+    assert 'an action server: spinning on the single_threaded executor' in node.output()
 
 
 def test_preemption_and_cancel_brake_within_the_limits(client, start_node, config_directory):
