@@ -46,6 +46,7 @@ against every limit).
 Units: metres, radians, seconds. Nothing here imports ROS.
 """
 
+from collections import Counter
 from dataclasses import dataclass
 import math
 from typing import Optional, Sequence, Tuple
@@ -192,7 +193,7 @@ def joint_set(names: Sequence[str], sets: JointSets):
     if not names:
         return None, Finding(findings.INVALID_JOINTS,
                              f'the goal names no joints: give {described}')
-    repeated = sorted({name for name in names if names.count(name) > 1})
+    repeated = sorted(name for name, count in Counter(names).items() if count > 1)
     if repeated:
         return None, Finding(findings.INVALID_JOINTS, f'joint names repeated: '
                              f'{", ".join(map(repr, repeated[:6]))}; give {described}')

@@ -94,6 +94,12 @@ def test_joint_names_refused_invalid_joints(names, words):
     assert words in reason and 'in any order' in reason
 
 
+def test_a_hundred_thousand_names_are_refused_at_once():
+    names = [f'joint_{k}' for k in range(100_000)]
+    code, reason = refusal(request(names, times=(1.0,), positions=[[0.0] * len(names)]))
+    assert code == INVALID_JOINTS and 'and 99994 more' in reason and len(reason) < 400
+
+
 def test_either_joint_set_in_any_order(geometry):
     order = (3, 0, 5, 1, 4, 2)
     names = [LEG_NAMES[i] for i in order]
