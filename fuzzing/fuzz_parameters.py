@@ -80,9 +80,12 @@ EITHER = 'either'
 #: Integers worth trying on an integer parameter.
 HOSTILE_INTEGERS = (0, -1, 1, 2 ** 31, 2 ** 63 - 1, -2 ** 63, 10 ** 6)
 #: What a start-up variant leaves as the parameter files set it: the platform, its limits, its
-#: actuators and its frames, which the output checks and the plausible messages read.
+#: actuators and its frames, which the output checks and the plausible messages read; and
+#: ``managed``, since a managed node waits, silent, for a lifecycle manager the fuzzer is not
+#: (test/processes/test_lifecycle_adversary.py attacks the lifecycle itself).
 FIXED_AT_START = frozenset(spec.name for spec in parameters.GEOMETRY_PARAMETERS
-                           + parameters.ACTUATOR_PARAMETERS + parameters.FRAME_PARAMETERS)
+                           + parameters.ACTUATOR_PARAMETERS + parameters.FRAME_PARAMETERS
+                           + parameters.LIFECYCLE_PARAMETERS)
 
 
 @dataclass(frozen=True)
