@@ -128,11 +128,13 @@ class TrajectoryAction:
         ``geometry``, ``actuator_limits``, ``actuators``, ``worker``, ``leg_trajectory_publisher``
         and clock are read at each goal (a parameter change applies from the next goal).
     :param accounting: the action's diagnostics accounting.
+    :param joint_state_accounting: the diagnostics accounting of ``joint_states``.
     """
 
-    def __init__(self, node, accounting):
+    def __init__(self, node, accounting, joint_state_accounting):
         self.node = node
         self.accounting = accounting
+        self.joint_state_accounting = joint_state_accounting
         depth = node.settings.queue.queue_depth
         self.commands_publisher = create_output_publisher(
             node, TRAJECTORY_NODE['joint_commands'], depth,
@@ -198,19 +200,26 @@ class TrajectoryAction:
     # The measured state -------------------------------------------------------------------
 
     def on_joint_states(self, message):
-        """Keep the latest measured leg positions (actuator coordinates) and velocities."""
+        """
+        Keep the latest measured leg positions (actuator coordinates) and velocities.
+
+        One that names none of the legs belongs to another platform: skipped, not counted. A
+        malformed one is refused (logged and counted on ``/diagnostics`` as ``invalid_lengths``,
+        as fk_node does) and the last measurement stays.
+        """
         if not self.node.actuators.concerns(list(message.name)):
             return
+        self.joint_state_accounting.receive()
         try:
             lengths, velocities = legs_from_joint_state(message, self.node.actuators)
         except ValueError as error:
-            self.node.get_logger().warning(f'joint_states skipped: {error}',
-                                           throttle_duration_sec=5.0)
+            self.joint_state_accounting.reject(Finding(findings.INVALID_LENGTHS, str(error)))
             return
         positions = self.node.actuators.positions(lengths)
         if not np.all(np.isfinite(positions)):
             positions = np.full(6, math.nan)   # a lost measurement breaks the tolerances
         self.measured = (positions, velocities, self.now())
+        self.joint_state_accounting.use()
 
     # Goals --------------------------------------------------------------------------------
 

@@ -127,7 +127,8 @@ class TrajectoryNode(ManagedNode):
         # and the ramp, not in the first plan.
         self.worker = self.planning_worker(warm_up=load_retiming)
         #: The follow_joint_trajectory action server (ros/trajectory_action.py).
-        self.action = TrajectoryAction(self, diagnostics.accounting('follow_joint_trajectory'))
+        self.action = TrajectoryAction(self, diagnostics.accounting('follow_joint_trajectory'),
+                                       diagnostics.accounting('joint_states'))
         create_input_subscription(
             self, TRAJECTORY_NODE['pose_trajectory'], self.on_pose_trajectory, depth)
         create_input_subscription(self, TRAJECTORY_NODE['pose_path'], self.on_pose_path, depth)

@@ -50,7 +50,7 @@ FILES = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
 COMMANDS = {
     'ik_node': {'leg_lengths', 'leg_extensions', 'joint_commands', 'leg_velocities'},
     'fk_node': set(),
-    'trajectory_node': {'target_pose', 'leg_trajectory'},
+    'trajectory_node': {'target_pose', 'leg_trajectory', 'joint_commands'},
     'motion_cueing_node': {'target_pose'},
     'mock_platform': set(),
 }

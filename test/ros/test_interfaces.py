@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Each node offers exactly the topics and services its declaration in ros/interfaces.py names.
+Each node offers exactly the topics, services and actions its ros/interfaces.py declaration names.
 
 With the QoS declared there: each publisher's, subscription's and service's actual profile is
 the declared one (at a queue_depth other than any fixed depth, so a depth taken from elsewhere
@@ -24,6 +24,7 @@ import pytest
 
 from stewart_kinematics.ros import interfaces
 from stewart_kinematics.ros.interfaces import (
+    ACTION,
     FK_NODE,
     IK_NODE,
     markdown_table,
@@ -65,7 +66,8 @@ def absolute(name):
                                        MOCK_PLATFORM], ids=lambda interface: interface.node)
 def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directory, tmp_path,
                                                              interface):
-    """Every optional endpoint on: the node's publishers, subscriptions and services."""
+    """Every optional endpoint on: the node's publishers, subscriptions, services, actions."""
+    from rclpy.action import get_action_server_names_and_types_by_node
     arguments = ['--ros-args']
     for name in ('paper_platform.yaml', 'solver.yaml', 'table3_ramp.yaml'):
         arguments += ['--params-file', str(config_directory / name)]
@@ -97,6 +99,9 @@ def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directo
                 for service in node.services
                 if not absolute(service.srv_name).startswith(parameter_services)
                 } == declared(SERVICE)
+        # An action server shows in the graph as the action (its services and topics are hidden).
+        assert {name: types[0] for name, types in get_action_server_names_and_types_by_node(
+            node, node.get_name(), node.get_namespace())} == declared(ACTION)
 
         def actual(entities, name_of):
             return {name_of(entity): entity.qos_profile for entity in entities}
