@@ -68,7 +68,7 @@ def braking_trajectory(trajectory: TimedTrajectory, time: float, geometry,
     :param step: clock step of the grid, seconds.
     :returns: the braking, a partial :class:`TimedTrajectory` whose clock starts at 0 at the
         moment of braking and ends at rest; ``None`` when the trajectory is already at rest there
-        (its end, or a rate of 0).
+        (its end, or a rate of 0 or too small to move it in floating point).
     """
     path = trajectory.path
     taus, rates, _ = trajectory.path_times([float(time)])
@@ -86,7 +86,14 @@ def braking_trajectory(trajectory: TimedTrajectory, time: float, geometry,
         if new_rate <= 0.0:
             interval, new_rate = rate / -change, 0.0
         advance = rate * interval + 0.5 * change * interval ** 2
-        if tau + advance >= end or advance <= 0.0:
+        if advance <= 0.0:
+            # So slow that the stop moves no path time in floating point (a rate of 1e-313
+            # underflows): at rest where it is.
+            if len(grid_times) == 1:
+                return None
+            grid_rates[-1] = 0.0
+            break
+        if tau + advance >= end:
             # The path ends (at rest) within the step: reach its end at the rate left.
             remaining = end - tau
             new_rate = math.sqrt(max(rate ** 2 + 2.0 * change * remaining, 0.0))

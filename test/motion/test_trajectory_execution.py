@@ -23,7 +23,7 @@ poses against forward kinematics, and the braking on the path within the acceler
 import math
 from pathlib import Path
 
-from hypothesis import assume, given, strategies as st
+from hypothesis import assume, example, given, strategies as st
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -251,6 +251,8 @@ def test_braking_keeps_the_path_and_the_limits(geometry):
 
 @given(st.floats(0.0, 1.0), st.floats(-0.03, 0.03), st.floats(-0.03, 0.03),
        st.floats(-0.1, 0.1), st.booleans())
+# Braked 1e-313 s after a retimed start: a rate that underflows gave a braking lasting inf s.
+@example(share=2.2250738585e-313, dx=0.0, dz=0.0, yaw=0.0625, retimed=True)
 def test_braking_anywhere_stays_within_the_acceleration_limit(geometry, share, dx, dz, yaw,
                                                               retimed):
     """Whenever a goal is braked, the legs slow within leg_acceleration_max, on the path."""
@@ -263,8 +265,9 @@ def test_braking_anywhere_stays_within_the_acceleration_limit(geometry, share, d
     moving = plan.trajectory
     braking = braking_trajectory(moving, share * moving.duration, geometry, LIMITS)
     if braking is None:
-        assert share * moving.duration >= moving.duration or not np.any(
-            moving.legs(geometry, [share * moving.duration]).velocities)
+        # Nothing to brake: at the end, or at rest (within 1e-12 m/s).
+        assert share * moving.duration >= moving.duration or np.abs(
+            moving.legs(geometry, [share * moving.duration]).velocities).max() <= 1e-12
         return
     legs = braking.legs(geometry, np.linspace(0.0, braking.duration, 300))
     assert np.abs(legs.accelerations).max() <= LIMITS.acceleration_max

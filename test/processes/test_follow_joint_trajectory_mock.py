@@ -18,8 +18,9 @@ follow_joint_trajectory closed over mock_platform, both as processes: the whole 
 mock_platform follows leg_trajectory (as joint_trajectory_controller would) or joint_commands
 with its first-order lag and publishes joint_states; trajectory_node checks the goal against
 them. A good goal succeeds, in either execution; a stalled leg breaks the path tolerance; a
-biased sensor breaks the goal tolerance. The client is the MoveIt-like one of
-test_follow_joint_trajectory.py.
+biased sensor breaks the goal tolerance; the refusals have their codes; a new goal preempts;
+a cancel brings the simulated legs to rest within their limits. The client is the MoveIt-like
+one of test_follow_joint_trajectory.py.
 """
 
 from action_msgs.msg import GoalStatus
@@ -39,6 +40,7 @@ from test_follow_joint_trajectory import (
     legs_of,
     MoveItLikeClient,
 )
+from trajectory_msgs.msg import JointTrajectory
 
 pytestmark = pytest.mark.process
 
@@ -93,6 +95,77 @@ def test_closed_loop_over_mock_platform(client, start_node, config_directory, ex
                                          goal_time_tolerance=duration(0.5)))
     assert (status, code) == (GoalStatus.STATUS_ABORTED, Result.GOAL_TOLERANCE_VIOLATED), text
     assert 'leg_5 position error' in text
+    assert node.running() and mock.running()
+
+
+def test_refusals_preemption_and_cancel_over_mock_platform(client, start_node, config_directory):
+    """
+    The other codes, preemption and cancel, over mock_platform (goals sent on leg_trajectory).
+
+    INVALID_JOINTS, INVALID_GOAL (a limit) and OLD_HEADER_TIMESTAMP leave the legs at rest; a
+    new goal preempts the running one with JTC's words; a cancel ends the next CANCELED and the
+    measured legs slow to rest within leg_velocity_max and leg_acceleration_max (0.05 m/s,
+    0.25 m/s^2 in example_limits.yaml), no jump.
+    """
+    mock = start_node('mock_platform', files(config_directory) + ['-p', 'time_constant:=0.02'])
+    node = start_node('trajectory_node', files(config_directory) + [
+        '-p', "mode:='off'", '-p', 'publish_rate:=100.0'])
+    states, sent = [], []
+    client.subscribe(JointState, '/joint_states', states.append)
+    client.subscribe(JointTrajectory, '/leg_trajectory', sent.append)
+    action = MoveItLikeClient(client, [node, mock])
+    client.wait(lambda: client.node.count_subscribers('/joint_states') >= 2,
+                'trajectory_node subscribed to joint_states', [node, mock])
+    client.wait(lambda: len(states) > 5, 'joint_states from mock_platform', [node, mock])
+    client.settle()
+
+    status, code, text = action.run(goal(LEGS[:5] + ['elbow'], [1.0], [legs_of(HOME)]))
+    assert (status, code) == (GoalStatus.STATUS_ABORTED, Result.INVALID_JOINTS), text
+    status, code, text = action.run(goal(LEGS, [30.0], [legs_of(HOME) + 0.3]))
+    assert code == Result.INVALID_GOAL and 'leg_length_max' in text, text
+    old = goal(LEGS, [1.0], [legs_of(HOME)])
+    old.trajectory.header.stamp.sec = 1000
+    status, code, text = action.run(old)
+    assert code == Result.OLD_HEADER_TIMESTAMP, text
+    assert np.abs(np.array(states[-1].velocity)).max() == 0.0   # nothing moved
+
+    first = action.send(goal(LEGS, [4.0], [legs_of(HOME + [0.0, 0.0, 0.04, 0.0, 0.0, 0.0])]))
+    client.wait(lambda: np.abs(states[-1].velocity).max() > 0.01, 'the legs moving',
+                [node, mock])
+    second = action.send(goal(LEGS, [3.0], [legs_of(HOME - [0.0, 0.0, 0.03, 0.0, 0.0, 0.0])]))
+    status, code, text = action.result(first)
+    assert (status, code, text) == (GoalStatus.STATUS_ABORTED, Result.INVALID_GOAL,
+                                    'Current goal preempted by new incoming action.')
+    client.wait(lambda: np.min(states[-1].velocity) < -0.01, 'the second goal moving',
+                [node, mock])
+    cancelled_at, trajectories = len(states), len(sent)
+    future = second.cancel_goal_async()
+    client.wait(future.done, 'cancel response', [node, mock])
+    status, _, text = action.result(second)
+    assert status == GoalStatus.STATUS_CANCELED, text
+    client.wait(lambda: len(states) > cancelled_at + 10
+                and np.abs(states[-1].velocity).max() == 0.0, 'the legs at rest',
+                [node, mock], timeout=10.0)
+    # From integer nanoseconds after the first: seconds since 1970 in a float lose 0.2 us.
+    nanoseconds = [m.header.stamp.sec * 10**9 + m.header.stamp.nanosec for m in states]
+    stamps = np.array([(value - nanoseconds[0]) * 1e-9 for value in nanoseconds])
+    velocities = np.array([m.velocity for m in states])
+    assert np.abs(velocities).max() <= 0.05 * (1 + 1e-9)
+    accelerations = np.diff(velocities, axis=0) / np.diff(stamps)[:, None]
+    assert np.abs(accelerations).max() <= 0.25 * (1 + 1e-6)
+    # What trajectory_node sent on the cancel: a braking from the motion's speed, within the
+    # limits, ending at rest; not a stop.
+    assert len(sent) == trajectories + 1
+    braking = sent[-1]
+    times = np.array([point.time_from_start.sec + point.time_from_start.nanosec * 1e-9
+                      for point in braking.points])
+    rates = np.array([point.velocities for point in braking.points])
+    # From the speed of the motion (over 0.01 m/s), no sooner than the limit allows.
+    assert np.abs(rates[0]).max() > 0.01 and len(times) >= 3
+    assert times[-1] >= np.abs(rates[0]).max() / 0.25 * (1 - 1e-9)
+    assert np.abs(rates).max() <= 0.05 * (1 + 1e-9)
+    assert np.abs(np.diff(rates, axis=0) / np.diff(times)[:, None]).max() <= 0.25 * (1 + 1e-6)
+    np.testing.assert_allclose(rates[-1], 0.0, atol=1e-12)
     assert node.running() and mock.running()
 
 
