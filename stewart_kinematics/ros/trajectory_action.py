@@ -180,9 +180,12 @@ class TrajectoryAction:
         if motion is not None and motion.gate is not None:
             period = 1.0 / self.node.settings.ramp.publish_rate
             deadline = motion.start + min(motion.trajectory.duration, MAX_DEACTIVATE_BRAKING)
-            while self.now() <= deadline + period:
+            while self.now() < deadline:
                 self.stream(motion, self.now() - motion.start, self.now())
                 time.sleep(period)
+            if motion.trajectory.duration <= MAX_DEACTIVATE_BRAKING:
+                # Its end, at rest, whatever the sleeps left out: the last command never moves.
+                self.stream(motion, motion.trajectory.duration, self.now())
         if motion is not None:
             self.rest = (motion.trajectory, motion.trajectory.duration)
         self.motion = None
