@@ -164,8 +164,8 @@ def canal_step(t, size, long, short=0.1, adaptation=30.0):
 def test_otolith_closed_form_is_the_models():
     """The closed form's start, slope and end: 0, K tau_a / (tau_L tau_S) per second, K."""
     assert otolith_step(0.0, 1.0) == pytest.approx(0.0, abs=1e-15)
-    assert otolith_step(1e-7, 1.0) / 1e-7 == pytest.approx(0.4 * 13.2 / (5.33 * 0.66),
-                                                          rel=1e-5)
+    slope = 0.4 * 13.2 / (5.33 * 0.66)
+    assert otolith_step(1e-7, 1.0) / 1e-7 == pytest.approx(slope, rel=1e-5)
     assert otolith_step(1e4, 1.0) == pytest.approx(0.4)
     # The peak, by hand: the derivative vanishes where e^(t (1/tau_S - 1/tau_L)) =
     # (tau_a - tau_S) tau_L / ((tau_a - tau_L) tau_S) = 12.868, at t = 1.9245 s, where the
