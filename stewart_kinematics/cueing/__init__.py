@@ -20,7 +20,8 @@ model and followed within the actuators' speed (:mod:`.cue_limiter`, its limit c
 :mod:`.limit_margins`), the motion felt at the head (:mod:`.perception`), all behind one decision
 object (:class:`MotionCueing`, :mod:`.motion_cueing`); :func:`replay` (:mod:`.replay`) runs a
 whole input through it, :mod:`.scenarios` generates nine test drives and :mod:`.evaluation`
-measures the result as a person perceives it (:mod:`.vestibular`). Settings: :class:`CueingSettings` (:mod:`.settings`).
+measures the result as a person perceives it (:mod:`.vestibular`). Settings:
+:class:`CueingSettings` (:mod:`.settings`).
 
 May import: :mod:`stewart_kinematics.model`, :mod:`~stewart_kinematics.limits`,
 :mod:`~stewart_kinematics.findings`, :mod:`~stewart_kinematics.parameters`,
