@@ -562,7 +562,7 @@ class MotionCueing:
             self._apply_gains()
 
     def gain_refusal(self, intensity=None, translation_scale=None, tilt_scale=None,
-                     rotation_scale=None) -> Optional[Finding]:
+                     rotation_scale=None, check_travel: bool = True) -> Optional[Finding]:
         """
         Say why gains cannot be taken (``gain_refused``), or return ``None``.
 
@@ -585,6 +585,8 @@ class MotionCueing:
             return Finding(GAIN_REFUSED, str(error))
         if not self._washout_gain_setter().supported:
             return Finding(GAIN_REFUSED, 'this washout takes no gain change at run time')
+        if not check_travel:
+            return None
         new = effective_gains(self.controls.cueing_intensity if intensity is None
                               else float(intensity), settings.translation_scale,
                               settings.tilt_scale, settings.rotation_scale)
@@ -596,7 +598,8 @@ class MotionCueing:
         return Finding(GAIN_REFUSED, reason) if reason else None
 
     def set_gains(self, intensity=None, translation_scale=None, tilt_scale=None,
-                  rotation_scale=None, ramp_time: Optional[float] = None) -> Optional[Finding]:
+                  rotation_scale=None, ramp_time: Optional[float] = None,
+                  check_travel: bool = True) -> Optional[Finding]:
         """
         Change the master intensity and channel gains, ramped: never a jump in the cue.
 
@@ -606,10 +609,14 @@ class MotionCueing:
 
         :param intensity: in [0, 1], or ``None``: as now; the gains likewise (see
             :meth:`gain_refusal`).
+        :param check_travel: ``False``: the travel was checked already (a node checks a
+            request setting several parameters as a whole, then sets them one by one); the
+            values are checked all the same.
         :returns: ``None`` when taken, else the ``gain_refused`` finding (nothing changes).
             Never raises.
         """
-        refusal = self.gain_refusal(intensity, translation_scale, tilt_scale, rotation_scale)
+        refusal = self.gain_refusal(intensity, translation_scale, tilt_scale, rotation_scale,
+                                    check_travel)
         if refusal is not None:
             return refusal
         if ramp_time is not None:
