@@ -273,10 +273,12 @@ class GainCheck:
         cue[3:5] = np.arcsin(tilt)
         return cue
 
-    def refusal(self, old_gains, new_gains, names: Tuple[str, ...] = ()) -> str:
+    def refusal(self, old_gains, new_gains, intensity: float, names: Tuple[str, ...] = ()) -> str:
         """
         Return ``''`` if ``new_gains`` may replace ``old_gains`` (effective, shape (8,)), else why.
 
+        :param intensity: the master intensity of ``new_gains`` (their channel gains are
+            ``new_gains / intensity``), for the message.
         :param names: what is being changed, for the message (``'cueing_intensity'``, ...).
         """
         old = self.cues(old_gains)
@@ -284,28 +286,32 @@ class GainCheck:
         travel = self.travel()
         unit = self.unit_cues()
         for index in range(8):
-            if new[index] > travel[index] and new[index] > old[index] + 1e-12:
-                channel = ('translation_scale' if index < 3 else 'tilt_scale' if index < 5
-                           else 'rotation_scale')
-                what = ' and '.join(names) or channel
-                if index < 3:
-                    cue = f'{new[index]:.3f} m, beyond the {travel[index]:.3f} m of travel'
-                    largest = travel[index] / unit[index]
-                    reference = f'{self.specific_force:g} m/s^2'
-                elif index < 5:
-                    cue = (f'{math.degrees(new[index]):.2f} deg of tilt, beyond the '
-                           f'{math.degrees(travel[index]):.2f} deg of travel')
-                    largest = math.sin(travel[index]) / unit[index]
-                    reference = f'{self.specific_force:g} m/s^2'
-                else:
-                    cue = (f'{math.degrees(new[index]):.2f} deg, beyond the '
-                           f'{math.degrees(travel[index]):.2f} deg of travel')
-                    largest = travel[index] / unit[index]
-                    reference = f'{self.angular_velocity:g} rad/s'
-                return (f'{what}: the effective {channel} {GAIN_AXES[index]} would be '
-                        f'{new_gains[index]:.4g} (cueing_intensity times {channel}), whose cue '
-                        f'of a sustained {reference} peaks at {cue} along {GAIN_AXES[index]} '
-                        f'(within the cue margins); at most {largest:.4g} is allowed there')
+            if not (new[index] > travel[index] and new[index] > old[index] + 1e-12):
+                continue
+            channel = ('translation_scale' if index < 3 else 'tilt_scale' if index < 5
+                       else 'rotation_scale')
+            axis = GAIN_AXES[index]
+            if index < 3:
+                cue = f'{new[index]:.3f} m, beyond the {travel[index]:.3f} m of travel'
+                largest = travel[index] / unit[index]
+                reference = f'{self.specific_force:g} m/s^2'
+            elif index < 5:
+                cue = (f'{math.degrees(new[index]):.2f} deg of tilt, beyond the '
+                       f'{math.degrees(travel[index]):.2f} deg of travel')
+                largest = math.sin(travel[index]) / unit[index]
+                reference = f'{self.specific_force:g} m/s^2'
+            else:
+                cue = (f'{math.degrees(new[index]):.2f} deg, beyond the '
+                       f'{math.degrees(travel[index]):.2f} deg of travel')
+                largest = travel[index] / unit[index]
+                reference = f'{self.angular_velocity:g} rad/s'
+            # intensity > 0 here: at 0 the cue is 0, never beyond the travel.
+            return (f'{" and ".join(names) or channel}: at {channel} {axis} = '
+                    f'{new_gains[index] / intensity:.4g} times cueing_intensity '
+                    f'{intensity:.4g}, the cue of a sustained {reference} would peak at {cue} '
+                    f'along {axis} (within the cue margins); {channel} {axis} at most '
+                    f'{largest / intensity:.4g} at this intensity (cueing_intensity at most '
+                    f'{min(1.0, largest / (new_gains[index] / intensity)):.4g} at this gain)')
         return ''
 
 

@@ -594,7 +594,9 @@ class MotionCueing:
             self._gain_check = GainCheck(self.settings, self.limiter,
                                          self.controls.gain_check_specific_force,
                                          self.controls.gain_check_angular_velocity)
-        reason = self._gain_check.refusal(self.gains.target, new, names)
+        reason = self._gain_check.refusal(
+            self.gains.target, new,
+            self.controls.cueing_intensity if intensity is None else float(intensity), names)
         return Finding(GAIN_REFUSED, reason) if reason else None
 
     def set_gains(self, intensity=None, translation_scale=None, tilt_scale=None,

@@ -200,7 +200,8 @@ def test_a_gain_whose_cue_leaves_the_travel_is_refused_with_the_largest_allowed(
     refusal = cueing.set_gains(translation_scale=[2.0, 0.2, 0.2])
     assert refusal.code == 'gain_refused'
     message = refusal.message
-    assert 'translation_scale x would be 2' in message and 'travel' in message, message
+    assert 'translation_scale x = 2 times cueing_intensity 1' in message, message
+    assert '0.804 m, beyond the 0.352 m of travel' in message, message
     largest = float(message.split('at most ')[1].split(' ')[0])
     assert 0.2 < largest < 2.0
     assert cueing.set_gains(translation_scale=[largest * 1.01, 0.2, 0.2]) is not None
