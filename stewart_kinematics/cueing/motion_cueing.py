@@ -777,7 +777,7 @@ class MotionCueing:
                        warnings=command.warnings, command=command)
 
     def _held(self, time: float) -> CueStep:
-        """A sample not cued (not cueing): its time is kept, nothing moves."""
+        """Keep the time of a sample not cued (not cueing): nothing moves."""
         self.time = time
         return CueStep(time=time, pose=None, warnings=(Finding(
             CUEING_HELD, f'the sample is not cued: the platform is {self.mode} (start, stop, '

@@ -292,8 +292,9 @@ class MotionCueingNode(ManagedNode):
 
     def on_watchdog(self):
         """
-        Step a start, stop or pause (``operate``); else, without input for input_timeout, ease
-        the platform home until it rests (``watch``).
+        Step a start, stop or pause; else, without input, ease the platform home.
+
+        The core's ``operate``, else ``watch`` (no input for input_timeout: until it rests).
         """
         now = self.get_clock().now()
         result = self.cueing.operate(self.command_time(now))

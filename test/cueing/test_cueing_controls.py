@@ -13,13 +13,14 @@
 # limitations under the License.
 
 """
-The run-time controls of MotionCueing: intensity and gains ramped or refused, soft start and
-stop, pause and resume.
+MotionCueing's run-time controls: intensity and gains, soft start and stop, pause and resume.
 
-Leg lengths are recomputed from the poses sent with the leg formula of ``reference``; the
-limits are example_limits.yaml's (0.05 m/s, 0.25 m/s^2 per leg). About 10 s for the module.
+The gains ramped or refused, park, the soft motions, the pause held. Leg lengths are
+recomputed from the poses sent with the leg formula of ``reference``; the limits are
+example_limits.yaml's (0.05 m/s, 0.25 m/s^2 per leg). About 15 s for the module.
 """
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -62,7 +63,7 @@ def make_cueing(**controls):
 
 
 def drive(time):
-    """A vehicle's motion: specific force and angular velocity at ``time`` (seconds)."""
+    """Return a vehicle's specific force and angular velocity at ``time`` (seconds)."""
     force = [1.5 * math.sin(2.0 * time) + 0.8 * math.sin(5.1 * time),
              1.2 * math.sin(1.3 * time + 0.4), G + 0.6 * math.sin(3.7 * time)]
     rate = [0.2 * math.sin(1.1 * time), 0.15 * math.sin(0.7 * time), 0.3 * math.sin(0.9 * time)]
@@ -75,7 +76,7 @@ def legs(pose):
 
 
 def assert_leg_limits(poses, times):
-    """The leg velocities and accelerations of consecutive commands keep the limits."""
+    """Check the leg velocities and accelerations of consecutive commands; return lengths."""
     lengths = np.array([legs(pose) for pose in poses])
     intervals = np.diff(np.asarray(times))[:, None]
     velocities = np.diff(lengths, axis=0) / intervals
@@ -210,8 +211,8 @@ def test_a_gain_whose_cue_leaves_the_travel_is_refused_with_the_largest_allowed(
     # Independently: a sustained reference force (4 m/s^2, soft-limited) at the largest gain
     # peaks at the travel, and the pose of the travel is the edge of the narrowed limits.
     settings = cueing.settings
-    washout = ClassicalWashout(type(settings)(**{**settings.__dict__,
-                                                  'translation_scale': (largest, 0.2, 0.2)}))
+    washout = ClassicalWashout(dataclasses.replace(settings,
+                                                   translation_scale=(largest, 0.2, 0.2)))
     washout.step([0.0, 0.0, G], [0.0, 0.0, 0.0], 0.0)
     peak = max(washout.step([4.0, 0.0, G], [0.0, 0.0, 0.0], 0.01).displacement[0]
                for _ in range(4000))

@@ -134,8 +134,8 @@ def test_intensity_set_mid_stream_stays_smooth_and_stop_parks(client, start_node
     assert abs(park_legs.min() - 0.66) < 1e-6
 
     def parked():
-        return len(received) > count and np.allclose(legs(received[-1][1]), park_legs,
-                                                      rtol=0, atol=1e-6)
+        return len(received) > count and np.allclose(
+            legs(received[-1][1]), park_legs, rtol=0, atol=1e-6)
     client.wait(parked, 'the platform parked', [cueing])
     after = np.array([legs(message) for _, message in received[count - 1:]])
     moments = np.array([moment for moment, _ in received[count - 1:]])
