@@ -770,7 +770,8 @@ class CueingParameterSettings(Settings):
     translation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
     """
     Gain on the specific force of the translational channel, x y z (vehicle frame: x forward, y
-    left, z up). Allowed: 3 values in [0, 10]. Read-only at run time.
+    left, z up); changeable at run time: ramped over gain_ramp_time, refused where its worst-case
+    cue leaves the travel (doc/motion_cueing.md). Allowed: 3 values in [0, 10].
     """
 
     translation_input_limit: float = math.inf
@@ -805,8 +806,8 @@ class CueingParameterSettings(Settings):
 
     tilt_scale: Tuple[float, ...] = (0.5, 0.5)
     """
-    Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll). Allowed: 2
-    values in [0, 10]. Read-only at run time.
+    Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll); changeable at
+    run time as translation_scale. Allowed: 2 values in [0, 10].
     """
 
     tilt_complementary: bool = False
@@ -843,8 +844,8 @@ class CueingParameterSettings(Settings):
 
     rotation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
     """
-    Gain on the angular velocity, roll pitch yaw. Allowed: 3 values in [0, 10]. Read-only at run
-    time.
+    Gain on the angular velocity, roll pitch yaw; changeable at run time as translation_scale.
+    Allowed: 3 values in [0, 10].
     """
 
     rotation_order: int = 2
@@ -947,6 +948,70 @@ class CueingParameterSettings(Settings):
     When no vehicle_imu message came for this long, the platform eases to neutral as if the vehicle
     were at rest, seconds (node clock); 0.0 turns this off. Allowed: in [0, 3600]. Read-only at run
     time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
+class CueingControlSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.CUEING_CONTROL_PARAMETERS`.
+
+    motion_cueing_node's run-time controls: intensity and gain ramps, soft start and stop, park
+    (:mod:`stewart_kinematics.cueing.controls`).
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.CUEING_CONTROL_PARAMETERS
+
+    cueing_intensity: float = 1.0
+    """
+    Master intensity of the cue, 0 (no motion: the platform eases to neutral) to 1 (the gains as
+    set): it multiplies translation_scale, tilt_scale and rotation_scale; a change is ramped over
+    gain_ramp_time and refused where the cue would leave the travel. Allowed: in [0, 1].
+    """
+
+    gain_ramp_time: float = 2.0
+    """
+    Time over which a change of cueing_intensity or of a gain is ramped (smoothstep: no jump in the
+    gain or its rate), seconds; applies from the next change. Allowed: in [0.01, 600].
+    """
+
+    gain_check_specific_force: float = 4.0
+    """
+    The sustained change of specific force (m/s^2, each axis) a gain change is checked with: a
+    change whose cue of it would leave the travel (within the cue margins) is refused. Allowed: in
+    (0, 1000]. Read-only at run time.
+    """
+
+    gain_check_angular_velocity: float = 0.5
+    """
+    The sustained angular velocity (rad/s, each axis) a rotation_scale change is checked with, as
+    gain_check_specific_force. Allowed: in (0, 100]. Read-only at run time.
+    """
+
+    soft_start_time: float = 3.0
+    """
+    The start service moves the platform from park to the neutral cueing pose in this time (longer
+    when the leg velocity or acceleration limits need), seconds. Allowed: in [0.1, 600].
+    """
+
+    soft_stop_time: float = 3.0
+    """
+    The stop service brakes the platform to rest, then moves it to park in this time (longer when
+    the leg limits need), seconds. Allowed: in [0.1, 600].
+    """
+
+    park_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    The park pose's X, Y, Z, metres, base frame, oriented as home: where stop takes the platform
+    and start_parked starts it; all 0.0: the lowest pose straight below home that keeps the cue
+    margins (leg_length_margin inside the stroke). Allowed: 3 values in [-1000, 1000]; within every
+    limit, or all 0.0. Read-only at run time.
+    """
+
+    start_parked: bool = False
+    """
+    Start with the platform at park: nothing is cued until the start service; false: the platform
+    is taken to be at home, cueing at once. Read-only at run time.
     """
 
 
@@ -1059,6 +1124,7 @@ class MotionCueingNodeSettings(NodeSettings):
     geometry: GeometrySettings
     frames: FrameSettings
     cueing: CueingParameterSettings
+    controls: CueingControlSettings
     queue: QueueSettings
     lifecycle: LifecycleSettings
 
