@@ -146,11 +146,10 @@ class PoseLegs:
         return cls(*leg_arrays(geometry, positions, rotation), rotation)
 
     def _arrays(self):
-        """Build the arrays of one pose's :attr:`floats` (as ``leg_arrays`` builds them)."""
-        legs = np.array(self.floats)
-        self._lengths = legs[:, 0:1]
-        self._vectors = tuple(legs[:, column:column + 1] for column in range(1, 7))
-        self._rotation = tuple(np.array([entry]) for entry in self.float_rotation)
+        """Build the arrays of one pose's :attr:`floats`, as ``leg_arrays`` builds them."""
+        columns = np.array(self.floats).T[:, :, None]   # (7, 6, 1): views of one array
+        self._lengths = columns[0]
+        self._vectors = tuple(columns[1:])
 
     @property
     def lengths(self):
@@ -170,7 +169,7 @@ class PoseLegs:
     def rotation(self):
         """``(r11, ..., r33)``, each shape (n,)."""
         if self._rotation is None:
-            self._arrays()
+            self._rotation = tuple(np.array([entry]) for entry in self.float_rotation)
         return self._rotation
 
     @property
