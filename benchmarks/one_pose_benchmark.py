@@ -68,7 +68,7 @@ FORCE_LIMITS = {'leg_force_min': -500.0, 'leg_force_max': 2000.0}
 
 
 def geometries(package, root):
-    """Return a revision's (example limits, every limit kind) geometries of the paper's platform."""
+    """Return a revision's (example limits, every limit kind) geometries of the platform."""
     config = Path(root) / 'config'
     load = package.load_geometry
     limited = load([str(config / 'paper_platform.yaml'), str(config / 'example_limits.yaml')])

@@ -284,7 +284,7 @@ def single_static_forces_of_legs(legs, rotation, mass_properties) -> list:
 
 
 def _single_static_forces(legs, entries, mass_properties):
-    """The forces of :func:`single_static_forces_of_legs`, or raise where singular."""
+    """Return the forces of :func:`single_static_forces_of_legs`; raise where singular."""
     motion = _AT_REST * 2
     rows = twist_rows(legs)
     gravity = mass_properties.gravity
