@@ -140,7 +140,7 @@ def _cone_terms(lx, ly, lz, home, platform_home, rotation, sqrt):
 
 
 def _angle_terms(lx, ly, lz, hx, hy, hz, sqrt):
-    """The angle between ``l`` and ``h`` as ``(|l x h|, l . h)``: its atan2 is any angle."""
+    """Return the angle between ``l`` and ``h`` as ``(|l x h|, l . h)``, its atan2's terms."""
     cx = ly * hz - lz * hy
     cy = lz * hx - lx * hz
     cz = lx * hy - ly * hx

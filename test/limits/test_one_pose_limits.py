@@ -65,7 +65,7 @@ def test_every_kind_is_on_and_broken_somewhere():
 
 
 def assert_same(one, batch):
-    """The same violations: limit, legs and order exactly, values to 1e-12 relative."""
+    """Assert the same violations: limits, legs and order exactly, values to 1e-12."""
     assert [(v.limit, v.leg, v.other_leg, v.allowed, v.unit) for v in one] == \
         [(v.limit, v.leg, v.other_leg, v.allowed, v.unit) for v in batch]
     np.testing.assert_allclose([v.value for v in one], [v.value for v in batch], rtol=1e-12,
