@@ -58,6 +58,8 @@ VARIANTS = {
     'noworkspace': "ik_node's workspace reporter timer (travel ranges, markers)",
     'noparamsrv': 'the parameter services (start_parameter_services=False)',
     'work90': 'echo only: a busy loop of 90 us in the callback, before the republish',
+    'nomargin': "fk_node's assembly-mode margin (-p assembly_mode_margin_period:=0.0): its "
+                'worker process computes every assembly mode of the last solution',
     'spinonce': "the main loop's old slice on the events executor: spin_once, which returns "
                 'after each callback (node_main.spin_slice runs every callback of 0.1 s)',
 }
@@ -135,15 +137,16 @@ def serve(kind, variants, timing_file, arguments):
             timing_file or work_ns) else callback, *args, **kwargs)
     rclpy.node.Node.create_subscription = timed_subscription
     create_timer = rclpy.node.Node.create_timer
-    ticks = []
+    ticks, timers = [], []
 
     def timed_timer(self, period, callback, *args, **kwargs):
-        clock, record = time.perf_counter_ns, ticks.append
+        clock, record, index = time.perf_counter_ns, ticks.append, len(timers)
+        timers.append(period)
 
         def timed():
             start = clock()
             callback()
-            record((round(period * 1e9), start, clock()))
+            record((index, round(period * 1e9), start, clock()))
         return create_timer(self, period, timed if timing_file else callback, *args, **kwargs)
     rclpy.node.Node.create_timer = timed_timer
     try:
@@ -159,7 +162,7 @@ def serve(kind, variants, timing_file, arguments):
         if timing_file:
             np.save(timing_file, np.array(times, dtype=np.int64).reshape(-1, 4))
             np.save(timing_file.replace('.npy', '_timers.npy'),
-                    np.array(ticks, dtype=np.int64).reshape(-1, 3))
+                    np.array(ticks, dtype=np.int64).reshape(-1, 4))
 
 
 def histogram_lines(label, times):
@@ -184,17 +187,19 @@ def histogram_lines(label, times):
 
 
 def timer_lines(ticks):
-    """Return the lines that describe the ticks of each timer period (rows: period, start, end)."""
+    """Return the lines that describe each timer's ticks (rows: index, period, start, end)."""
     lines = []
-    for period in np.unique(ticks[:, 0]):
-        starts = np.sort(ticks[ticks[:, 0] == period, 1])
+    for index in np.unique(ticks[:, 0]):
+        period = ticks[ticks[:, 0] == index, 1][0]
+        starts = np.sort(ticks[ticks[:, 0] == index, 2])
         if len(starts) < 3:
             continue
         intervals = np.diff(starts) / 1e6
         p50, p99, top = np.percentile(intervals, [50, 99, 100])
         expected = (starts[-1] - starts[0]) / period + 1
-        lines.append(f'  timer of {period / 1e6:g} ms: {len(starts)} ticks of {expected:.0f} due; '
-                     f'interval ms p50 {p50:.3f}, p99 {p99:.3f}, max {top:.3f}')
+        lines.append(f'  timer {index} of {period / 1e6:g} ms: {len(starts)} ticks of '
+                     f'{expected:.0f} due; interval ms p50 {p50:.3f}, p99 {p99:.3f}, '
+                     f'max {top:.3f}')
     return lines
 
 
@@ -235,6 +240,8 @@ def measure(options):
             arguments += ['--executor', executor, '--ros-args', '-r', f'__ns:=/{label}',
                           *(params if kind != 'echo' else params[-2:]), *extra,
                           *node_arguments]
+            if 'nomargin' in variants:
+                arguments += ['-p', 'assembly_mode_margin_period:=0.0']
             processes[label] = NodeProcess('python', arguments)
         rclpy.init()
         try:
