@@ -289,7 +289,7 @@ def test_the_translational_channel_high_passes_the_rotated_force():
 
 def coordinated_turn(bank=math.radians(30.0), speed=60.0, roll_time=3.0, hold=10.0):
     """
-    An aircraft's coordinated turn at 100 Hz: level 1 s, roll in, hold, roll out, level.
+    Return an aircraft's coordinated turn at 100 Hz: level 1 s, roll in, hold, out, level.
 
     Roll rate ``p = bank / roll_time`` in and out; in the turn the heading turns at
     ``g tan(phi) / V`` (body pitch and yaw rates its components ``sin(phi)`` and
@@ -308,7 +308,7 @@ def coordinated_turn(bank=math.radians(30.0), speed=60.0, roll_time=3.0, hold=10
 
 
 def felt_lateral(washout, times, force, rates):
-    """The lateral specific force felt at the head: ``(R^T (d'' + [0, 0, g]))_y``, m/s^2."""
+    """Return the lateral force felt at the head, ``(R^T (d'' + [0, 0, g]))_y``, m/s^2."""
     from stewart_kinematics.model.rotations import euler_zyx_to_matrix
     felt, previous = [], times[0]
     for time, f, w in zip(times, force, rates):
@@ -327,10 +327,11 @@ def test_a_coordinated_turn_with_and_without_the_simulator_attitude():
     m/s^2 at the literature's gains (k 0.5, p 10 deg/s). With L_IS the translational
     channel is asked for ``-k_t F sin(roll)``: at the literature's gains its high-pass (2.5
     rad/s, third order) passes about |HP(j 1)| = 0.13 of the roll's content (about 1 rad/s),
-    (times ``k_t F / g``, 0.58) so the felt force changes by under 15 % of its peak. With a channel that passes it (scale 1, second
-    order at 0.1 rad/s, a simulator with metres of travel) the roll-in's felt force falls
-    below 40 %; the high-pass must give back the net lateral velocity ``k_r bank F`` the
-    offsetting asks for (2.9 m/s here), so a tail of the other sign, under 0.13 m/s^2, stays.
+    times ``k_t F / g`` (0.58), so the felt force changes by under 15 % of its peak. With a
+    channel that passes it (scale 1, second order at 0.1 rad/s, a simulator with metres of
+    travel) the roll-in's felt force falls below 40 %; the high-pass must give back the net
+    lateral velocity ``k_r bank F`` the offsetting asks for (2.9 m/s here), so a tail of the
+    other sign, under 0.13 m/s^2, stays.
     """
     times, force, rates = coordinated_turn()
     hand = G * math.sin(0.5 * math.radians(10.0) / math.e)
