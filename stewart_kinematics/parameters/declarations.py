@@ -621,6 +621,13 @@ MOTION_CUEING_PARAMETERS = (
         default=[1.0, 1.0, 1.0], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
+        'attitude_aware_specific_force', BOOL,
+        "Turn the vehicle's specific force into the simulator's frame through the platform's "
+        "cue attitude before the translational high-pass (Reid and Nahon's L_IS): a "
+        'coordinated turn rolled by the rotational channel asks for the sideways acceleration '
+        'that offsets the gravity the roll shows; false: the force as it comes',
+        default=False, read_only=True),
+    ParameterSpec(
         'head_position', DOUBLE_ARRAY,
         "The cueing reference point (the driver's head) in the platform frame, metres: the "
         "cue's rotations turn about it, and the perceived specific force is computed there",
@@ -632,6 +639,15 @@ MOTION_CUEING_PARAMETERS = (
         'velocity or acceleration limits held it back, rad/s',
         default=10.0, read_only=True,
         validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
+    ParameterSpec(
+        'follower_weights', DOUBLE_ARRAY,
+        "Weights of the follower's least-squares step where the legs cannot follow the cue: "
+        'the squared miss of the platform twist along x, y, z (per m/s) and roll, pitch, yaw '
+        '(per rad/s) costs its weight; a larger weight keeps that axis closer to the cue '
+        '(only their ratios matter); heave weighted 30: limiting at the literature gains then '
+        'keeps wrong-way heave on the mixed drive within 10 % of the unlimited cue',
+        default=[1.0, 1.0, 30.0, 1.0, 1.0, 1.0], read_only=True,
+        validators=(FixedLength(6), Finite(), InRange(1e-3, 1e3))),
     ParameterSpec(
         'workspace_recovery_rate', DOUBLE,
         'Fastest rise of the workspace scale (the share of the cue kept inside the limits) '

@@ -866,6 +866,14 @@ class CueingParameterSettings(Settings):
     Read-only at run time.
     """
 
+    attitude_aware_specific_force: bool = False
+    """
+    Turn the vehicle's specific force into the simulator's frame through the platform's cue
+    attitude before the translational high-pass (Reid and Nahon's L_IS): a coordinated turn rolled
+    by the rotational channel asks for the sideways acceleration that offsets the gravity the roll
+    shows; false: the force as it comes. Read-only at run time.
+    """
+
     head_position: Tuple[float, ...] = (0.0, 0.0, 0.5)
     """
     The cueing reference point (the driver's head) in the platform frame, metres: the cue's
@@ -877,6 +885,15 @@ class CueingParameterSettings(Settings):
     """
     Bandwidth of the follower that brings the platform back onto the cue after the leg velocity or
     acceleration limits held it back, rad/s. Allowed: in (0, 1000]. Read-only at run time.
+    """
+
+    follower_weights: Tuple[float, ...] = (1.0, 1.0, 30.0, 1.0, 1.0, 1.0)
+    """
+    Weights of the follower's least-squares step where the legs cannot follow the cue: the squared
+    miss of the platform twist along x, y, z (per m/s) and roll, pitch, yaw (per rad/s) costs its
+    weight; a larger weight keeps that axis closer to the cue (only their ratios matter); heave
+    weighted 30: limiting at the literature gains then keeps wrong-way heave on the mixed drive
+    within 10 % of the unlimited cue. Allowed: 6 values in [0.001, 1000]. Read-only at run time.
     """
 
     workspace_recovery_rate: float = 0.5
