@@ -86,7 +86,9 @@ def assert_within_every_limit(geometry, times, poses, lengths):
 def test_hostile_cues_keep_every_limit(geometry, rate, jitter, seed):
     """The literature's gains on this small platform: scaled and slowed, never out of limits."""
     rng = np.random.default_rng(seed)
-    count = int(40.0 * rate) if rate < 500 else int(8.0 * rate)
+    # 20 s at 100 Hz, 4 s at 1 kHz: the follower scales and slows from the first seconds on
+    # (workspace_scale < 1 from 2 s, acceleration_scale from 1 s; both in most steps after).
+    count = int(20.0 * rate) if rate < 500 else int(4.0 * rate)
     steps = (1.0 + jitter * rng.uniform(-1.0, 1.0, size=count)) / rate
     times = np.cumsum(steps)
     force, rates = hostile_input(times, seed)
@@ -99,11 +101,12 @@ def test_hostile_cues_keep_every_limit(geometry, rate, jitter, seed):
 
 
 def test_platform_returns_home_after_hostile_cues(geometry):
-    """After 30 s of hostile input and 40 s at rest the platform is home (no freeze)."""
-    times = np.arange(1, 7001) * 0.01
+    """After 10 s of hostile input and 30 s at rest the platform is home (no freeze)."""
+    # Home about 22 s into the rest (after 10 s or 30 s of hostile input alike).
+    times = np.arange(1, 4001) * 0.01
     force, rates = hostile_input(times, 7)
-    force[times > 30.0] = [0.0, 0.0, G]
-    rates[times > 30.0] = 0.0
+    force[times > 10.0] = [0.0, 0.0, G]
+    rates[times > 10.0] = 0.0
     cueing = MotionCueing(geometry, CueingSettings(), LIMITS)
     poses, lengths, _ = drive(cueing, times, force, rates)
     assert_within_every_limit(geometry, times, poses, lengths)
