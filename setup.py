@@ -29,6 +29,9 @@ setup(
          sorted(glob('config/*.yaml')) + sorted(glob('config/*.rviz'))),
         # Examples for ros2_control (doc/how-to/joint_trajectory_controller.md).
         ('share/' + package_name + '/config/ros2_control', sorted(glob('config/ros2_control/*'))),
+        # Motion cueing per vehicle (doc/how-to/simulator.md).
+        ('share/' + package_name + '/config/cueing_presets',
+         sorted(glob('config/cueing_presets/*.yaml'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
     install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig'],
@@ -58,6 +61,8 @@ setup(
             'stewart_payload = stewart_kinematics.tools.payload:main',
             'motion_cueing_node = stewart_kinematics.ros.motion_cueing_node:main',
             'mock_platform = stewart_kinematics.ros.mock_platform:main',
+            'telemetry_bridge = stewart_kinematics.ros.telemetry_bridge:main',
+            'telemetry_sender = stewart_kinematics.tools.telemetry_sender:main',
         ],
     },
 )

@@ -105,6 +105,8 @@ GROUPS = (
     ('MockPlatformSettings', 'MOCK_PLATFORM_PARAMETERS',
      "mock_platform's simulated legs: the commands they take, their lag, the joint states' "
      'rate, and the faults a test gives them.'),
+    ('TelemetrySettings', 'TELEMETRY_PARAMETERS',
+     "telemetry_bridge's UDP socket, the stream's timeout and the vehicle_imu frame."),
 )
 
 #: The nodes: class name, what it is, and its groups (field name, class) in declaration order.
@@ -138,6 +140,10 @@ NODES = (
      "mock_platform's settings: one field per parameter group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),
         ('mock', 'MockPlatformSettings'), ('queue', 'QueueSettings'))),
+    ('TelemetryBridgeNodeSettings',
+     "telemetry_bridge's settings: one field per parameter group it declares, in that order.", (
+        ('telemetry', 'TelemetrySettings'), ('queue', 'QueueSettings'),
+        ('lifecycle', 'LifecycleSettings'))),
 )
 
 #: The annotation of each parameter type.

@@ -342,6 +342,26 @@ GAIN_REFUSED = _register(
     '(`gain_check_specific_force`, `gain_check_angular_velocity`); the gains stay as they were.')
 
 
+# The telemetry bridge (telemetry_bridge) ----------------------------------------------------
+
+MALFORMED_PACKET = _register(
+    'malformed_packet', 'refusal',
+    '`TelemetryDecoder` (telemetry_bridge: its UDP port)',
+    'A datagram that is not a telemetry packet: not 68 bytes, another magic, another version '
+    'or reserved flags set (the layout: `cueing/telemetry_packet.py`, and the simulator '
+    'how-to). Nothing is published.')
+INVALID_PACKET_VALUES = _register(
+    'invalid_packet_values', 'refusal',
+    '`TelemetryDecoder` (telemetry_bridge: its UDP port)',
+    'A telemetry packet whose specific force or angular velocity is not finite or beyond '
+    '1000 m/s^2 or 100 rad/s, or whose timestamp is beyond a ROS time. Nothing is published.')
+PACKET_OUT_OF_ORDER = _register(
+    'packet_out_of_order', 'refusal',
+    '`TelemetryDecoder` (telemetry_bridge: its UDP port)',
+    'A telemetry packet whose sequence number or timestamp is not after the last accepted '
+    "packet's: a duplicate, or one overtaken on the way. Nothing is published; after "
+    '`telemetry_timeout` of silence any sequence number starts a new stream.')
+
 # The geometry report (stewart_geometry) ---------------------------------------------------
 
 _by_report = '`geometry_report` (`stewart_geometry`)'

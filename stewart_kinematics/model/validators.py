@@ -43,6 +43,7 @@ type is checked before it.
 
 import array
 from dataclasses import dataclass
+import ipaddress
 import math
 from typing import Any, Callable, Tuple
 
@@ -323,6 +324,24 @@ class LegSelection(Validator):
     def describe(self) -> str:
         """Return what a selection of legs may hold."""
         return "leg numbers 1..6 or joint names, separated by commas or spaces, or ''"
+
+
+@dataclass(frozen=True)
+class IPv4Address(Validator):
+    """Require an IPv4 address in dotted decimal (``'127.0.0.1'``, ``'0.0.0.0'``): a socket's."""
+
+    def reason(self, subject: str, value: Any) -> str:
+        """Refuse anything ``ipaddress.IPv4Address`` refuses (names, IPv6, leading zeros)."""
+        try:
+            ipaddress.IPv4Address(value)
+        except ValueError:
+            return (f"{subject} must be an IPv4 address such as '127.0.0.1' or '0.0.0.0', got "
+                    f'{preview(value)}')
+        return ''
+
+    def describe(self) -> str:
+        """Return what an address may be."""
+        return "an IPv4 address, such as '127.0.0.1' or '0.0.0.0'"
 
 
 def first_reason(validators, subject: str, value: Any) -> str:

@@ -66,6 +66,7 @@ from stewart_kinematics.parameters.declarations import (
     REPLACED_PARAMETERS,
     SOLVER_PARAMETERS,
     STREAMING_PARAMETERS,
+    TELEMETRY_PARAMETERS,
     WORKSPACE_PARAMETERS,
 )
 from stewart_kinematics.parameters.files import (
@@ -97,6 +98,8 @@ from stewart_kinematics.parameters.settings import (
     RampSettings,
     SolverSettings,
     StreamingSettings,
+    TelemetryBridgeNodeSettings,
+    TelemetrySettings,
     TrajectoryNodeSettings,
     WorkspaceSettings,
 )
@@ -203,6 +206,9 @@ __all__ = [
     'StreamingSettings',
     'STRING',
     'STRING_ARRAY',
+    'TELEMETRY_PARAMETERS',
+    'TelemetryBridgeNodeSettings',
+    'TelemetrySettings',
     'TrajectoryNodeSettings',
     'Validator',
     'WORKSPACE_PARAMETERS',

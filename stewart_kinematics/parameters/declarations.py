@@ -25,7 +25,7 @@ import difflib
 import math
 
 from stewart_kinematics.limits.kinds import limit_parameters
-from stewart_kinematics.model.validators import InertiaTensor, LegSelection
+from stewart_kinematics.model.validators import InertiaTensor, IPv4Address, LegSelection
 from stewart_kinematics.parameters.spec import (
     BOOL,
     DistinctNames,
@@ -819,6 +819,37 @@ MOCK_PLATFORM_PARAMETERS = (
 )
 
 
+#: telemetry_bridge: the UDP stream it listens to and the vehicle_imu it publishes.
+TELEMETRY_PARAMETERS = (
+    ParameterSpec(
+        'telemetry_address', STRING,
+        "The address telemetry_bridge's UDP socket binds to: 127.0.0.1 takes packets from "
+        'this machine only, 0.0.0.0 from every interface (a simulator on another computer), '
+        "or one interface's IPv4 address",
+        default='127.0.0.1', read_only=True, validators=(IPv4Address(),)),
+    ParameterSpec(
+        'telemetry_port', INTEGER,
+        'The UDP port telemetry_bridge receives the telemetry packets on',
+        default=47800, read_only=True, validators=(InRange(1, 65535),)),
+    ParameterSpec(
+        'telemetry_frame_id', STRING,
+        "The header.frame_id of the vehicle_imu it publishes: motion_cueing_node's "
+        'vehicle_frame (the packets are in the vehicle frame, x forward, y left, z up)',
+        default='base_link', read_only=True, validators=(NonEmpty(), FrameName())),
+    ParameterSpec(
+        'telemetry_timeout', DOUBLE,
+        'Seconds without a valid packet after which the stream is reported stale on '
+        '/diagnostics (nothing is published meanwhile) and the next packet starts a new '
+        'stream, whatever its sequence number',
+        default=0.5, read_only=True, validators=(Finite(), InRange(0.01, 60.0))),
+    ParameterSpec(
+        'telemetry_poll_rate', DOUBLE,
+        'How often telemetry_bridge empties its socket, hertz: each packet waits at most one '
+        'period (the executor never blocks on the socket)',
+        default=1000.0, read_only=True, validators=(Finite(), InRange(10.0, 10000.0))),
+)
+
+
 def all_specs():
     """Return every parameter spec of the package, each name once."""
     return (GEOMETRY_PARAMETERS + ACTUATOR_PARAMETERS + SOLVER_PARAMETERS
@@ -826,7 +857,8 @@ def all_specs():
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
             + LIFECYCLE_PARAMETERS
             + RAMP_PARAMETERS + MOTION_PARAMETERS + ACTION_PARAMETERS + STREAMING_PARAMETERS
-            + MOTION_CUEING_PARAMETERS + CUEING_CONTROL_PARAMETERS + MOCK_PLATFORM_PARAMETERS)
+            + MOTION_CUEING_PARAMETERS + CUEING_CONTROL_PARAMETERS + MOCK_PLATFORM_PARAMETERS
+            + TELEMETRY_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

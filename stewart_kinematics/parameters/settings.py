@@ -1105,6 +1105,50 @@ class MockPlatformSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class TelemetrySettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.TELEMETRY_PARAMETERS`.
+
+    telemetry_bridge's UDP socket, the stream's timeout and the vehicle_imu frame.
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.TELEMETRY_PARAMETERS
+
+    telemetry_address: str = '127.0.0.1'
+    """
+    The address telemetry_bridge's UDP socket binds to: 127.0.0.1 takes packets from this machine
+    only, 0.0.0.0 from every interface (a simulator on another computer), or one interface's IPv4
+    address. Allowed: an IPv4 address, such as '127.0.0.1' or '0.0.0.0'. Read-only at run time.
+    """
+
+    telemetry_port: int = 47800
+    """
+    The UDP port telemetry_bridge receives the telemetry packets on. Allowed: in [1, 65535].
+    Read-only at run time.
+    """
+
+    telemetry_frame_id: str = 'base_link'
+    """
+    The header.frame_id of the vehicle_imu it publishes: motion_cueing_node's vehicle_frame (the
+    packets are in the vehicle frame, x forward, y left, z up). Allowed: a frame name (no spaces,
+    no leading '/'). Read-only at run time.
+    """
+
+    telemetry_timeout: float = 0.5
+    """
+    Seconds without a valid packet after which the stream is reported stale on /diagnostics
+    (nothing is published meanwhile) and the next packet starts a new stream, whatever its sequence
+    number. Allowed: in [0.01, 60]. Read-only at run time.
+    """
+
+    telemetry_poll_rate: float = 1000.0
+    """
+    How often telemetry_bridge empties its socket, hertz: each packet waits at most one period (the
+    executor never blocks on the socket). Allowed: in [10, 10000]. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class IkNodeSettings(NodeSettings):
     """ik_node's settings: one field per parameter group it declares, in that order."""
 
@@ -1168,3 +1212,12 @@ class MockPlatformNodeSettings(NodeSettings):
     actuators: ActuatorSettings
     mock: MockPlatformSettings
     queue: QueueSettings
+
+
+@dataclass(frozen=True, kw_only=True)
+class TelemetryBridgeNodeSettings(NodeSettings):
+    """telemetry_bridge's settings: one field per parameter group it declares, in that order."""
+
+    telemetry: TelemetrySettings
+    queue: QueueSettings
+    lifecycle: LifecycleSettings

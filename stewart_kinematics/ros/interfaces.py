@@ -408,10 +408,26 @@ MOCK_PLATFORM = NodeInterface('mock_platform', (
              'lengths, the faults set, clock jumps.'),
 ))
 
+TELEMETRY_BRIDGE = NodeInterface('telemetry_bridge', (
+    Endpoint('vehicle_imu', PUBLISHER, 'sensor_msgs/msg/Imu', QUEUE,
+             'One message per accepted telemetry packet of its UDP port (`telemetry_address`, '
+             '`telemetry_port`; the layout: [Put it on your simulator](how-to/simulator.md)), '
+             'for motion_cueing_node: the specific force (linear_acceleration, m/s^2) and '
+             'angular velocity (rad/s) in the vehicle frame (x forward, y left, z up), '
+             "header.stamp the packet's timestamp, header.frame_id `telemetry_frame_id`, no "
+             'orientation (orientation_covariance[0] = -1). Nothing while the stream is stale.'),
+    Endpoint('/diagnostics', PUBLISHER, 'diagnostic_msgs/msg/DiagnosticArray', DIAGNOSTICS,
+             DIAGNOSTICS_TOPIC.meaning + ', for the UDP port (status `telemetry_bridge: udp '
+             '<address>:<port>`); and the status `telemetry_bridge: stream`: OK while packets '
+             'come, STALE after `telemetry_timeout` without one, with the packets the sequence '
+             'numbers say were lost.'),
+))
+
 #: Every node's interface, by node name.
 NODE_INTERFACES = {
     interface.node: interface
-    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE, MOCK_PLATFORM)}
+    for interface in (IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE, MOCK_PLATFORM,
+                      TELEMETRY_BRIDGE)}
 
 
 def markdown_table(interface: NodeInterface) -> str:

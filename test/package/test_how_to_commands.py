@@ -43,7 +43,7 @@ ROOT = doc_blocks.ROOT
 BIN = Path(sys.executable).parent
 #: The package's command-line tools a guide may run (the nodes take --ros-args instead).
 TOOLS = ('stewart_geometry', 'stewart_calibrate', 'stewart_cueing', 'stewart_workspace',
-         'stewart_forces', 'stewart_payload')
+         'stewart_forces', 'stewart_payload', 'telemetry_sender')
 #: The JTC's "at rest" at the last point: ``std::numeric_limits<float>::epsilon()``.
 FLOAT_EPSILON = float(np.finfo(np.float32).eps)
 JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
@@ -51,6 +51,7 @@ JTC_TOPIC = '/joint_trajectory_controller/joint_trajectory'
 EXPECTED_OUTPUT = {'how-to/calibrate.md': [r'outliers: \[12, 31\]', r'wrote poses\.csv',
                                            r'calibrated +position +\d'],
                    'how-to/motion_cueing.md': [r'zero limit violations: 0'],
+                   'how-to/simulator.md': [r'sent 101 packets of slalom to 127\.0\.0\.1:47800'],
                    'how-to/size_actuators.md': [
                        r'4 \| +223\.3 \(2\.000\) \| +0\.0 \(-\)',
                        r'beyond leg_velocity_max 0\.05 m/s', r'wrote forces\.png',

@@ -34,7 +34,7 @@ import pytest
 from stewart_kinematics import load_geometry
 from stewart_kinematics.parameters import (ActuatorSettings, FkNodeSettings, FrameSettings,
                                            IkNodeSettings, MotionCueingNodeSettings,
-                                           TrajectoryNodeSettings)
+                                           TelemetryBridgeNodeSettings, TrajectoryNodeSettings)
 from stewart_kinematics.ros.interfaces import NODE_INTERFACES, PUBLISHER, SERVICE
 import yaml
 
@@ -45,7 +45,8 @@ CONFIG = ROOT / 'config'
 #: The settings class of each node: the parameters it declares.
 NODE_SETTINGS = {'ik_node': IkNodeSettings, 'fk_node': FkNodeSettings,
                  'trajectory_node': TrajectoryNodeSettings,
-                 'motion_cueing_node': MotionCueingNodeSettings}
+                 'motion_cueing_node': MotionCueingNodeSettings,
+                 'telemetry_bridge': TelemetryBridgeNodeSettings}
 #: Parameters every rclpy node has besides the package's.
 ROS_PARAMETERS = {'use_sim_time'}
 #: Programs a guide may run that are not the package's: ROS 2's, and the shell's.

@@ -33,6 +33,7 @@ from stewart_kinematics.model.validators import (
     FixedLength,
     InertiaTensor,
     InRange,
+    IPv4Address,
     LegSelection,
     OneOf,
     ZeroOrInRange,
@@ -110,6 +111,10 @@ def claims(spec):
         if text in (FRAME, FRAME + " or ''"):
             return [('tool_0', True), ('a b', False), ('/tool', False), ('tool\t', False),
                     ('', text.endswith("or ''"))]
+        if text == IPv4Address().describe():
+            return [('127.0.0.1', True), ('0.0.0.0', True), ('192.168.1.20', True), ('', False),
+                    ('localhost', False), ('300.1.1.1', False), ('::1', False), ('1.2.3', False),
+                    ('01.2.3.4', False)]
         if text == LegSelection().describe():
             return [('', True), ('1, 6', True), ('2 3', True), ('leg_1', True), ('7', False),
                     ('0', False), ('1;2', False), ('/leg_1', False)]

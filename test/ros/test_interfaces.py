@@ -35,6 +35,7 @@ from stewart_kinematics.ros.interfaces import (
     Qos,
     SERVICE,
     SUBSCRIPTION,
+    TELEMETRY_BRIDGE,
     TRAJECTORY_NODE,
 )
 
@@ -52,9 +53,11 @@ def node_class(name):
     from stewart_kinematics.ros.ik_node import IkNode
     from stewart_kinematics.ros.mock_platform import MockPlatform
     from stewart_kinematics.ros.motion_cueing_node import MotionCueingNode
+    from stewart_kinematics.ros.telemetry_bridge import TelemetryBridge
     from stewart_kinematics.ros.trajectory_node import TrajectoryNode
     return {'ik_node': IkNode, 'fk_node': FkNode, 'trajectory_node': TrajectoryNode,
-            'motion_cueing_node': MotionCueingNode, 'mock_platform': MockPlatform}[name]
+            'motion_cueing_node': MotionCueingNode, 'mock_platform': MockPlatform,
+            'telemetry_bridge': TelemetryBridge}[name]
 
 
 def absolute(name):
@@ -63,7 +66,8 @@ def absolute(name):
 
 
 @pytest.mark.parametrize('interface', [IK_NODE, FK_NODE, TRAJECTORY_NODE, MOTION_CUEING_NODE,
-                                       MOCK_PLATFORM], ids=lambda interface: interface.node)
+                                       MOCK_PLATFORM, TELEMETRY_BRIDGE],
+                         ids=lambda interface: interface.node)
 def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directory, tmp_path,
                                                              interface):
     """Every optional endpoint on: the node's publishers, subscriptions, services, actions."""
