@@ -146,7 +146,7 @@ def start_node():
 @pytest.fixture(scope='session')
 def shipped_cueing_report(tmp_path_factory):
     """
-    Run ``stewart_cueing --strict`` once a session: the four scenarios with the shipped tuning.
+    Run ``stewart_cueing --strict`` once a session: the first four scenarios, shipped tuning.
 
     Their replay is the longest computation of the core tier, and two modules judge it:
     test/tools/test_cueing_report.py the tool's exit code, output and figures, and
@@ -170,7 +170,10 @@ def shipped_cueing_report(tmp_path_factory):
         arguments += ['--params-file', str(CONFIG_DIRECTORY / name)]
     with mock.patch.object(cueing_report, 'run', recorded_run), \
             contextlib.redirect_stdout(io.StringIO()) as output:
-        code = cueing_report.main(arguments + ['--output', str(folder), '--quiet', '--strict'])
+        code = cueing_report.main(arguments + ['--output', str(folder), '--quiet', '--strict']
+                                  + [word for name in ('acceleration_braking', 'slalom',
+                                                       'multi_sine', 'lap')
+                                     for word in ('--scenario', name)])
     [(results, _)] = runs
     return SimpleNamespace(exit_code=code, output=output.getvalue(), folder=folder,
                            evaluations=dict(results))

@@ -13,12 +13,13 @@
 # limitations under the License.
 
 """
-The four test drives of the motion cueing, generated: specific force and angular velocity.
+The nine test drives of the motion cueing, generated: specific force and angular velocity.
 
 Each :class:`Scenario` samples what an IMU at the driver's head reads (vehicle frame: x
 forward, y left, z up; specific force ``[0, 0, g]`` at rest) at ``rate`` hertz, and says when
 the input comes to rest for good (``rest_time``), after which the platform must return to
-neutral. Every scenario starts and ends at rest, with smooth (raised-cosine) onsets.
+neutral. Every scenario starts and ends at rest, with smooth (raised-cosine) onsets, except
+where a step is the point (``brake_step``'s end).
 
 - ``acceleration_braking``: a sustained 3 m/s^2 acceleration for 4 s, coasting, then braking
   at 6 m/s^2 to a stop.
@@ -31,6 +32,25 @@ neutral. Every scenario starts and ends at rest, with smooth (raised-cosine) ons
   3 m/s^2 of forward and 7 m/s^2 of braking acceleration allow, from standstill to
   standstill; the body's roll and pitch follow the accelerations, and a seeded road noise
   (0.15 m/s^2 RMS, 0.05 rad/s RMS, low-passed at about 8 Hz) is added.
+- ``brake_step``: from 15 m/s, braking at 6 m/s^2 (a 0.3 s raised-cosine onset) to
+  standstill, where the force ends in a step (from -6 m/s^2 to 0 in one sample: the car has
+  stopped). The felt-at-rest case: anything still felt after the stop is a false cue.
+- ``lane_change``: at 25 m/s, one full sine period of lateral acceleration, 0.4 g
+  (3.92 m/s^2) peak at 0.5 Hz (2 s: left, then right, about 2.5 m aside), with the yaw rate
+  ``a_y / v`` that goes with it; the 4 s manoeuvre judged is the sine and the 2 s after it.
+- ``coordinated_turn``: an aircraft at 100 m/s rolls into a 30 deg bank in 3 s (raised
+  cosine bank angle: roll rate up to 15.7 deg/s), turns for 10 s, rolls out in 3 s. The
+  turn is coordinated: the specific force stays along the body z (``g / cos(bank)``, 1.15 g),
+  with no lateral force in the vehicle frame; the body rates are the roll rate and the turn
+  rate ``g tan(bank) / V`` resolved in the body (pitch ``sin(bank)``, yaw ``cos(bank)``).
+- ``mixed_drive``: 60 s of driving from standstill to standstill, seeded: accelerations,
+  corners, lane changes and braking in a random order and strength (speed kept within 5 to
+  30 m/s before the final stop), yaw rate ``a_y / v``, the body's roll and pitch following
+  the accelerations, and road noise (0.1 m/s^2 RMS).
+- ``bumpy_road``: 20 s at a steady 15 m/s over a rough road: band-passed road noise (about 1
+  to 10 Hz) of 0.5 m/s^2 RMS in heave and 0.03 rad/s RMS in pitch rate, plus five bumps (a
+  4 Hz period of heave, 3 m/s^2 peak, and the pitch rate of the front, then the rear wheels
+  2.7 m behind).
 
 Nothing here imports ROS.
 """
@@ -44,7 +64,8 @@ import numpy as np
 from stewart_kinematics.cueing.settings import STANDARD_GRAVITY
 
 #: The scenarios' names, in the order of the documentation's table.
-SCENARIO_NAMES = ('acceleration_braking', 'slalom', 'multi_sine', 'lap')
+SCENARIO_NAMES = ('acceleration_braking', 'slalom', 'multi_sine', 'lap', 'brake_step',
+                  'lane_change', 'coordinated_turn', 'mixed_drive', 'bumpy_road')
 #: Default sampling rate, hertz (a game's or a vehicle model's telemetry).
 DEFAULT_RATE = 100.0
 #: Seconds of rest after the input comes to rest: long enough to judge the return to neutral.
@@ -221,6 +242,189 @@ def lap(rate: float = DEFAULT_RATE, seed: int = 23) -> Scenario:
                      rates=rates, rest_time=rest_time)
 
 
+def brake_step(rate: float = DEFAULT_RATE, gravity: float = STANDARD_GRAVITY) -> Scenario:
+    """Return braking at 6 m/s^2 from 15 m/s to standstill, the force ending in a step."""
+    start, speed, level, ramp = 1.0, 15.0, 6.0, 0.3
+    # The raised-cosine onset takes off level * ramp / 2; the rest is braked at the level.
+    stop = start + ramp + (speed - 0.5 * level * ramp) / level
+    times = _times(stop + REST_AFTER, rate)
+    forward = np.where(times < stop, -level * _smooth_step(times, start, ramp), 0.0)
+    return _assemble('brake_step', 'braking at 6 m/s^2 from 15 m/s to standstill, the force '
+                     'ending in a step at the stop', times, forward, 0.0, rest_time=stop,
+                     gravity=gravity)
+
+
+#: The lane change: speed m/s, peak lateral acceleration in g, frequency Hz.
+LANE_CHANGE = (25.0, 0.4, 0.5)
+
+
+def lane_change(rate: float = DEFAULT_RATE, gravity: float = STANDARD_GRAVITY) -> Scenario:
+    """Return one full sine period of 0.4 g lateral acceleration at 0.5 Hz, at 25 m/s."""
+    speed, peak, frequency = LANE_CHANGE
+    start = 1.0
+    rest_time = start + 1.0 / frequency
+    times = _times(rest_time + REST_AFTER, rate)
+    inside = (times >= start) & (times < rest_time)
+    lateral = np.where(inside, peak * gravity * np.sin(2.0 * math.pi * frequency
+                                                       * (times - start)), 0.0)
+    rates = np.zeros((times.size, 3))
+    rates[:, 2] = lateral / speed
+    return _assemble('lane_change', 'lane change at 25 m/s: one sine period of 0.4 g lateral '
+                     'acceleration at 0.5 Hz', times, 0.0, lateral, rates=rates,
+                     rest_time=rest_time, gravity=gravity)
+
+
+#: The coordinated turn: airspeed m/s, bank degrees, roll-in seconds, turn seconds.
+COORDINATED_TURN = (100.0, 30.0, 3.0, 10.0)
+
+
+def coordinated_turn(rate: float = DEFAULT_RATE,
+                     gravity: float = STANDARD_GRAVITY) -> Scenario:
+    """Return an aircraft's coordinated turn: roll in to 30 deg, turn 10 s, roll out."""
+    speed, bank_deg, roll_time, turn_time = COORDINATED_TURN
+    start = 1.0
+    rest_time = start + 2.0 * roll_time + turn_time
+    times = _times(rest_time + REST_AFTER, rate)
+    bank = math.radians(bank_deg)
+    out_start = start + roll_time + turn_time
+    phi = bank * (_smooth_step(times, start, roll_time)
+                  - _smooth_step(times, out_start, roll_time))
+
+    def step_rate(begin):
+        # The derivative of _smooth_step(times, begin, roll_time).
+        phase = (times - begin) / roll_time
+        inside = (phase > 0.0) & (phase < 1.0)
+        return np.where(inside, 0.5 * math.pi / roll_time * np.sin(math.pi * phase), 0.0)
+
+    turn_rate = gravity * np.tan(phi) / speed
+    rates = np.zeros((times.size, 3))
+    rates[:, 0] = bank * (step_rate(start) - step_rate(out_start))
+    rates[:, 1] = turn_rate * np.sin(phi)
+    rates[:, 2] = turn_rate * np.cos(phi)
+    # Coordinated: the force stays along the body z, 1 / cos(bank) g; none sideways.
+    vertical = gravity / np.cos(phi) - gravity
+    return _assemble('coordinated_turn', 'aircraft at 100 m/s: roll into a 30 deg coordinated '
+                     'turn in 3 s, turn 10 s, roll out in 3 s (no lateral force)', times, 0.0,
+                     0.0, vertical=vertical, rates=rates, rest_time=rest_time, gravity=gravity)
+
+
+def _band_noise(rng, times, rate, rms, low=1.0, high=10.0):
+    """Return white noise band-passed by moving averages (about ``low`` to ``high`` Hz)."""
+    raw = rng.standard_normal(times.size)
+    smooth = _moving_average(raw, max(1, int(round(rate / high))))
+    band = smooth - _moving_average(smooth, max(1, int(round(rate / low))))
+    return rms * band / max(float(np.std(band)), 1e-12)
+
+
+#: The mixed drive: length of the drive, s; top and lowest speed while driving, m/s.
+MIXED_DRIVE = (60.0, 30.0, 5.0)
+
+
+def mixed_drive(rate: float = DEFAULT_RATE, seed: int = 31,
+                gravity: float = STANDARD_GRAVITY) -> Scenario:
+    """Return 60 s of accelerations, corners, lane changes and braking (see the module)."""
+    duration, top, lowest = MIXED_DRIVE
+    start = 1.0
+    rest_time = start + duration
+    times = _times(rest_time + REST_AFTER, rate)
+    rng = np.random.default_rng(seed)
+    forward = np.zeros(times.size)
+    lateral = np.zeros(times.size)
+    ramp = 0.5
+    # Launch: 3 m/s^2 for 4 s (ramps included 4.5 s): 13.5 m/s.
+    forward += _pulse(times, start, 4.0, ramp, 3.0)
+    t, v = start + 5.0, 13.5
+    while True:
+        kind = ('accelerate', 'brake', 'corner', 'lane_change')[int(rng.integers(4))]
+        if kind == 'accelerate' and v > top - 5.0:
+            kind = 'brake'
+        if kind == 'brake' and v < lowest + 5.0:
+            kind = 'accelerate'
+        if kind == 'accelerate':
+            level, hold = rng.uniform(1.5, 3.0), rng.uniform(1.0, 3.0)
+            hold = min(hold, (top - v) / level - ramp)
+            length, change = hold + 2.0 * ramp, level * (hold + ramp)
+        elif kind == 'brake':
+            level, hold = -rng.uniform(3.0, 6.0), rng.uniform(0.5, 2.0)
+            hold = min(hold, (v - lowest) / -level - ramp)
+            length, change = hold + 2.0 * ramp, level * (hold + ramp)
+        elif kind == 'corner':
+            level, hold, corner_ramp = rng.choice([-1.0, 1.0]) * rng.uniform(3.0, 6.0), \
+                rng.uniform(2.0, 5.0), 1.0
+            length, change = hold + 2.0 * corner_ramp, 0.0
+        else:
+            level, frequency = rng.choice([-1.0, 1.0]) * rng.uniform(2.0, 4.0), \
+                rng.uniform(0.3, 0.6)
+            length, change = 1.0 / frequency, 0.0
+        pause = rng.uniform(0.5, 2.0)
+        # Leave room for the final stop at no more than 4 m/s^2.
+        if t + length + pause + (v + change) / 4.0 + 2.0 * ramp > rest_time:
+            break
+        if kind in ('accelerate', 'brake'):
+            forward += _pulse(times, t, max(hold, 0.0), ramp, level)
+        elif kind == 'corner':
+            lateral += _pulse(times, t, hold, corner_ramp, level)
+        else:
+            inside = (times >= t) & (times < t + length)
+            lateral += np.where(inside, level * np.sin(2.0 * math.pi * frequency * (times - t)),
+                                0.0)
+        t, v = t + length + pause, v + change
+    # The final stop ends at rest_time: hold + 2 ramps long, taking off v.
+    hold = rest_time - t - 2.0 * ramp
+    forward += _pulse(times, t, hold, ramp, -v / (hold + ramp))
+    driving = (times >= start) & (times < rest_time)
+    steps = np.diff(times, prepend=times[0])
+    speed = np.maximum(np.cumsum(forward * steps), 1.0)
+    rates = np.zeros((times.size, 3))
+    rates[:, 2] = lateral / speed * driving
+    # The body leans: 0.5 deg of roll per m/s^2 lateral, 0.4 deg of pitch per m/s^2 braking.
+    rates[:, 0] = math.radians(0.5) * np.gradient(lateral, times) * driving
+    rates[:, 1] = -math.radians(0.4) * np.gradient(forward, times) * driving
+
+    def noise(rms):
+        return _band_noise(rng, times, rate, rms, low=0.5, high=8.0) * driving
+
+    return _assemble('mixed_drive', '60 s of accelerations, corners, lane changes and braking, '
+                     'standstill to standstill, seeded, with road noise', times,
+                     forward + noise(0.1), lateral + noise(0.1), vertical=noise(0.1),
+                     rates=rates, rest_time=rest_time, gravity=gravity)
+
+
+#: The bumpy road: speed m/s, wheelbase m, bumps, a wheel's bump (peak m/s^2, Hz).
+BUMPY_ROAD = (15.0, 2.7, 5, 6.0, 4.0)
+
+
+def bumpy_road(rate: float = DEFAULT_RATE, seed: int = 7,
+               gravity: float = STANDARD_GRAVITY) -> Scenario:
+    """Return 20 s over a rough road with five bumps, in heave and pitch (see the module)."""
+    speed, wheelbase, bumps, peak, frequency = BUMPY_ROAD
+    start, duration, taper = 1.0, 20.0, 0.5
+    rest_time = start + duration
+    times = _times(rest_time + REST_AFTER, rate)
+    rng = np.random.default_rng(seed)
+    window = _smooth_step(times, start, taper) * (1.0 - _smooth_step(times, rest_time - taper,
+                                                                     taper))
+    heave = _band_noise(rng, times, rate, 0.5)
+    pitch_rate = _band_noise(rng, times, rate, 0.03)
+    lag = wheelbase / speed
+    for hit in np.sort(rng.uniform(start + 2.0, rest_time - 2.0, size=bumps)):
+        for wheel, sign in ((hit, -1.0), (hit + lag, 1.0)):
+            phase = 2.0 * math.pi * frequency * (times - wheel)
+            inside = (times >= wheel) & (times < wheel + 1.0 / frequency)
+            # The wheel's vertical acceleration and velocity over one period of the bump.
+            acceleration = np.where(inside, peak * np.sin(phase), 0.0)
+            velocity = np.where(inside, peak / (2.0 * math.pi * frequency)
+                                * (1.0 - np.cos(phase)), 0.0)
+            heave += 0.5 * acceleration
+            # Front wheel up: nose up (negative pitch rate about y left); rear: nose down.
+            pitch_rate += sign * velocity / wheelbase
+    rates = np.zeros((times.size, 3))
+    rates[:, 1] = pitch_rate * window
+    return _assemble('bumpy_road', '20 s at 15 m/s over a rough road: road noise and five '
+                     'bumps in heave and pitch', times, 0.0, 0.0, vertical=heave * window,
+                     rates=rates, rest_time=rest_time, gravity=gravity)
+
+
 def scenario(name: str, rate: float = DEFAULT_RATE) -> Scenario:
     """
     Return the scenario named ``name`` sampled at ``rate`` hertz.
@@ -228,12 +432,14 @@ def scenario(name: str, rate: float = DEFAULT_RATE) -> Scenario:
     :raises ValueError: for an unknown name or a rate that is not positive.
     """
     makers = {'acceleration_braking': acceleration_braking, 'slalom': slalom,
-              'multi_sine': multi_sine, 'lap': lap}
+              'multi_sine': multi_sine, 'lap': lap, 'brake_step': brake_step,
+              'lane_change': lane_change, 'coordinated_turn': coordinated_turn,
+              'mixed_drive': mixed_drive, 'bumpy_road': bumpy_road}
     if name not in makers:
         raise ValueError(f'unknown scenario {name!r}; known: {", ".join(SCENARIO_NAMES)}')
     return makers[name](rate)
 
 
 def all_scenarios(rate: float = DEFAULT_RATE) -> Tuple[Scenario, ...]:
-    """Return the four scenarios, in :data:`SCENARIO_NAMES` order."""
+    """Return every scenario, in :data:`SCENARIO_NAMES` order."""
     return tuple(scenario(name, rate) for name in SCENARIO_NAMES)
