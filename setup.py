@@ -31,7 +31,7 @@ setup(
         ('share/' + package_name + '/config/ros2_control', sorted(glob('config/ros2_control/*'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
-    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig'],
+    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig', 'daqp'],
     zip_safe=True,
     maintainer='stewart_kinematics developers',
     maintainer_email='maintainer@example.com',

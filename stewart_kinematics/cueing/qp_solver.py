@@ -26,7 +26,6 @@ Nothing here imports ROS.
 
 from dataclasses import dataclass
 
-import daqp
 import numpy as np
 
 #: DAQP's sense flags: an inequality, an equality, a soft inequality.
@@ -67,6 +66,8 @@ class QpSolver:
     """
 
     def __init__(self, hessian, max_iterations: int = 1000, hard_rows=None, bounds=None):
+        import daqp   # here: only cueing_method mpc needs it
+        self._daqp = daqp
         self.hessian = np.ascontiguousarray(hessian, dtype=float)
         self.max_iterations = int(max_iterations)
         self.hard_rows = hard_rows
@@ -99,7 +100,7 @@ class QpSolver:
         if self.hard_rows is not None:
             sense[self.bounds + self.hard_rows:] = _SOFT
         if self._model is None:
-            self._model = daqp.Model()
+            self._model = self._daqp.Model()
             flag, _ = self._model.setup(self.hessian, gradient, a, bupper, blower, sense)
             if flag < 0:
                 self._model = None

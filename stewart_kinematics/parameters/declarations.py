@@ -696,15 +696,15 @@ MOTION_CUEING_PARAMETERS = (
         default='classical', read_only=True, validators=(OneOf('classical', 'mpc'),)),
     ParameterSpec(
         'mpc_horizon', INTEGER, 'Steps of the MPC horizon (cueing_method mpc)',
-        default=20, read_only=True, validators=(InRange(2, 100),)),
+        default=10, read_only=True, validators=(InRange(2, 100),)),
     ParameterSpec(
         'mpc_step', DOUBLE,
         'Length of one MPC step, seconds (the horizon is mpc_horizon times this)',
-        default=0.1, read_only=True, validators=(Finite(), InRange(0.005, 1.0))),
+        default=0.2, read_only=True, validators=(Finite(), InRange(0.005, 1.0))),
     ParameterSpec(
         'mpc_force_scale', DOUBLE_ARRAY,
         "Share of the vehicle's perceived specific force the MPC aims at, x y z",
-        default=[1.0, 1.0, 1.0], read_only=True,
+        default=[0.3, 0.3, 0.3], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'mpc_force_weight', DOUBLE_ARRAY,
@@ -723,11 +723,11 @@ MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'mpc_velocity_weight', DOUBLE_ARRAY,
         "MPC weight on the head's velocity, x y z, per (m/s)^2",
-        default=[1.0, 1.0, 1.0], read_only=True,
+        default=[0.1, 0.1, 0.1], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
     ParameterSpec(
         'mpc_tilt_weight', DOUBLE, 'MPC weight on the tilt from neutral, per rad^2',
-        default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
+        default=20.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
     ParameterSpec(
         'mpc_tilt_rate_weight', DOUBLE, 'MPC weight on the tilt rate, per (rad/s)^2',
         default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
@@ -741,12 +741,12 @@ MOTION_CUEING_PARAMETERS = (
         'mpc_reference_time_constant', DOUBLE,
         "The MPC predicts the vehicle's current input held over the horizon, fading with this "
         'time constant, seconds; .inf holds it, 0.0 lets it drop to rest at once',
-        default=math.inf, read_only=True, validators=(InRange(0.0, math.inf),)),
+        default=0.5, read_only=True, validators=(InRange(0.0, math.inf),)),
     ParameterSpec(
         'mpc_limit_share', DOUBLE,
         "Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC "
         'plans with (the rest absorbs its linearisation; the limiter keeps the limits anyway)',
-        default=0.9, read_only=True,
+        default=0.8, read_only=True,
         validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),
     ParameterSpec(
         'mpc_workspace_share', DOUBLE,

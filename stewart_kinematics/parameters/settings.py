@@ -957,18 +957,18 @@ class CueingParameterSettings(Settings):
     run time.
     """
 
-    mpc_horizon: int = 20
+    mpc_horizon: int = 10
     """
     Steps of the MPC horizon (cueing_method mpc). Allowed: in [2, 100]. Read-only at run time.
     """
 
-    mpc_step: float = 0.1
+    mpc_step: float = 0.2
     """
     Length of one MPC step, seconds (the horizon is mpc_horizon times this). Allowed: in [0.005,
     1]. Read-only at run time.
     """
 
-    mpc_force_scale: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    mpc_force_scale: Tuple[float, ...] = (0.3, 0.3, 0.3)
     """
     Share of the vehicle's perceived specific force the MPC aims at, x y z. Allowed: 3 values in
     [0, 10]. Read-only at run time.
@@ -992,13 +992,13 @@ class CueingParameterSettings(Settings):
     values in [0, 1e+06]. Read-only at run time.
     """
 
-    mpc_velocity_weight: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    mpc_velocity_weight: Tuple[float, ...] = (0.1, 0.1, 0.1)
     """
     MPC weight on the head's velocity, x y z, per (m/s)^2. Allowed: 3 values in [0, 1e+06].
     Read-only at run time.
     """
 
-    mpc_tilt_weight: float = 1.0
+    mpc_tilt_weight: float = 20.0
     """
     MPC weight on the tilt from neutral, per rad^2. Allowed: in [0, 1e+06]. Read-only at run time.
     """
@@ -1015,14 +1015,14 @@ class CueingParameterSettings(Settings):
     Read-only at run time.
     """
 
-    mpc_reference_time_constant: float = math.inf
+    mpc_reference_time_constant: float = 0.5
     """
     The MPC predicts the vehicle's current input held over the horizon, fading with this time
     constant, seconds; .inf holds it, 0.0 lets it drop to rest at once. Allowed: >= 0; .inf
     allowed. Read-only at run time.
     """
 
-    mpc_limit_share: float = 0.9
+    mpc_limit_share: float = 0.8
     """
     Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC plans with
     (the rest absorbs its linearisation; the limiter keeps the limits anyway). Allowed: in (0, 1].
