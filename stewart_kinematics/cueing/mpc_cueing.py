@@ -289,6 +289,7 @@ class MpcCueing:
         self._plan_time = 0.0
         self._input = np.zeros(DOF)
         self._last_yaw = None
+        self._last_dt = self.step_time
         self._yaw_rate = 0.0
         self._yaw.reset()
         self.solver.reset()
@@ -327,6 +328,7 @@ class MpcCueing:
             self.state = phi @ self.state + gamma @ self._input
             self._vehicle.step(vehicle, dt)
             self._plan_time += dt
+            self._last_dt = dt
         yaw_angle = float(yaw.rotation[2])
         if self._last_yaw is not None and dt > 0.0:
             self._yaw_rate = (yaw_angle - self._last_yaw) / dt
@@ -437,15 +439,16 @@ class MpcCueing:
         """
         Return ``(input, reason)`` when the QP failed: the last plan's next input, or braking.
 
-        Braking: each degree of freedom's rate to zero within one MPC step, scaled so that no
-        leg's acceleration passes its limit (the linearised legs).
+        Braking: each degree of freedom's rate to zero over the next sample (as long as the last
+        one), scaled so that no leg's acceleration passes its limit (the linearised legs) and
+        the tilt's acceleration stays within ``tilt_acceleration_max``.
         """
         if self._plan is not None:
             index = int(self._plan_time // self.step_time)
             if index < self.horizon:
                 return self._plan[index].copy(), 'solver failed; the last plan'
         rates = np.concatenate([self.state[VELOCITY], self.state[TILT_RATE]])
-        wanted = -rates / self.step_time
+        wanted = -rates / self._last_dt
         try:
             _, legs = self.leg_jacobian(0.0)
             leg_acceleration = np.max(np.abs(legs[:, :DOF] @ wanted))
@@ -454,6 +457,9 @@ class MpcCueing:
         scale = 1.0
         if leg_acceleration > self._acceleration_max:
             scale = self._acceleration_max / leg_acceleration
+        tilt_acceleration = float(np.max(np.abs(wanted[3:5])))
+        if tilt_acceleration > self.settings.tilt_acceleration_max:
+            scale = min(scale, self.settings.tilt_acceleration_max / tilt_acceleration)
         if not math.isfinite(scale):
             scale = 0.0
         return wanted * scale, 'solver failed; braking'

@@ -718,7 +718,7 @@ MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'mpc_position_weight', DOUBLE_ARRAY,
         "MPC weight on the head's displacement from neutral (the washout), x y z, per m^2",
-        default=[1.0, 1.0, 1.0], read_only=True,
+        default=[0.3, 0.3, 0.3], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
     ParameterSpec(
         'mpc_velocity_weight', DOUBLE_ARRAY,
@@ -727,7 +727,7 @@ MOTION_CUEING_PARAMETERS = (
         validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
     ParameterSpec(
         'mpc_tilt_weight', DOUBLE, 'MPC weight on the tilt from neutral, per rad^2',
-        default=20.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
+        default=5.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
     ParameterSpec(
         'mpc_tilt_rate_weight', DOUBLE, 'MPC weight on the tilt rate, per (rad/s)^2',
         default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),

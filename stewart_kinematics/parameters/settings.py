@@ -986,7 +986,7 @@ class CueingParameterSettings(Settings):
     Read-only at run time.
     """
 
-    mpc_position_weight: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    mpc_position_weight: Tuple[float, ...] = (0.3, 0.3, 0.3)
     """
     MPC weight on the head's displacement from neutral (the washout), x y z, per m^2. Allowed: 3
     values in [0, 1e+06]. Read-only at run time.
@@ -998,7 +998,7 @@ class CueingParameterSettings(Settings):
     Read-only at run time.
     """
 
-    mpc_tilt_weight: float = 20.0
+    mpc_tilt_weight: float = 5.0
     """
     MPC weight on the tilt from neutral, per rad^2. Allowed: in [0, 1e+06]. Read-only at run time.
     """
