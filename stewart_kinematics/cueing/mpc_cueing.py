@@ -69,8 +69,8 @@ from stewart_kinematics.model.jacobians import jacobian
 #: Degrees of freedom the MPC moves: x, y, z of the head, roll and pitch of the tilt.
 DOF = 5
 #: States: p (3), v (3), tilt (2), tilt rate (2), the vestibular bank's (15).
-POSITION, VELOCITY, TILT, TILT_RATE, VESTIBULAR = (slice(0, 3), slice(3, 6), slice(6, 8),
-                                                  slice(8, 10), slice(10, 25))
+POSITION, VELOCITY, TILT, TILT_RATE, VESTIBULAR = (
+    slice(0, 3), slice(3, 6), slice(6, 8), slice(8, 10), slice(10, 25))
 STATES = 25
 #: Outputs weighed per step: perceived force (3) and roll, pitch rate (2), q (5), q' (5).
 OUTPUTS = 15

@@ -744,7 +744,7 @@ MOTION_CUEING_PARAMETERS = (
         default=0.5, read_only=True, validators=(InRange(0.0, math.inf),)),
     ParameterSpec(
         'mpc_limit_share', DOUBLE,
-        "Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC "
+        'Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC '
         'plans with (the rest absorbs its linearisation; the limiter keeps the limits anyway)',
         default=0.8, read_only=True,
         validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),

@@ -242,7 +242,7 @@ def test_bad_parameters_are_refused_with_the_reason(name, value, words):
 
 
 def test_settings_refuse_a_method_that_is_not_a_word():
-    """CueingSettings checks the kind of the new fields too."""
+    """The settings check the kind of the new fields too."""
     with pytest.raises(ValueError, match='cueing_method'):
         CueingSettings(cueing_method=3)
     with pytest.raises(ValueError, match='mpc_horizon'):
