@@ -37,7 +37,8 @@ solves one quadratic programme (QP) and applies the first input for the sample's
 - **constraints**: every leg's length within its stroke less the cue's margin, its velocity
   and acceleration within ``mpc_limit_share`` of the actuator limits (the leg Jacobian rows of
   :func:`~stewart_kinematics.model.jacobians.jacobian`, linearised about the current cue's
-  pose), the tilt rate within ``tilt_rate_max`` (below the threshold of perceived rotation),
+  pose), the tilt rate and the perceived (canals') roll and pitch rate within
+  ``tilt_rate_max`` (below the threshold of perceived rotation),
   the tilt within ``tilt_max``, and the platform at rest at the horizon's end (so that the
   plan can always stop inside the stroke).
 
@@ -232,6 +233,7 @@ class MpcCueing:
         self._q_rows, self._rate_rows = rows[:, 5:10], rows[:, 10:15]
         self._gamma_q = self._gamma_z[self._q_rows]           # (N, 5, 5N)
         self._gamma_rate = self._gamma_z[self._rate_rows]     # (N, 5, 5N)
+        self._perceived_rate_rows = rows[:, 3:5]
         # The vehicle's perception: the same bank, driven by the vehicle's motion.
         self._vehicle = vestibular_bank()
         self._reference_matrices(s)
@@ -418,21 +420,24 @@ class MpcCueing:
         acceleration = np.kron(np.eye(n), jac)
         tilt_rate = self._gamma_rate[:, 3:5].reshape(2 * n, DOF * n)
         box = self._gamma_q.reshape(DOF * n, DOF * n)
+        perceived_rate = self._gamma_z[self._perceived_rate_rows].reshape(2 * n, DOF * n)
         rest = self._gamma_rate[-1]
         # Hard rows first (leg accelerations: inputs only; the tilt rate; rest at the end),
         # then the soft ones (leg lengths and velocities, the box: the linearisation may put
-        # the state itself outside them).
-        a = np.vstack([acceleration, tilt_rate, rest, stroke, speed, box])
+        # the state itself outside them; the perceived roll and pitch rate).
+        a = np.vstack([acceleration, tilt_rate, rest, stroke, speed, box, perceived_rate])
         v, acc, rate = self._velocity_max, self._acceleration_max, self._tilt_rate_max
         tilt_max = self.settings.tilt_max
         box_low = np.maximum(self._box[0], [-math.inf] * 3 + [-tilt_max] * 2)
         box_high = np.minimum(self._box[1], [math.inf] * 3 + [tilt_max] * 2)
         lower = np.concatenate([
             np.full(6 * n, -acc), -rate - free[:, 13:15].ravel(), -free[-1, 10:15],
-            self._length_min - stroke_free, -v - speed_free, (box_low - free[:, 5:10]).ravel()])
+            self._length_min - stroke_free, -v - speed_free, (box_low - free[:, 5:10]).ravel(),
+            -rate - free[:, 3:5].ravel()])
         upper = np.concatenate([
             np.full(6 * n, acc), rate - free[:, 13:15].ravel(), -free[-1, 10:15],
-            self._length_max - stroke_free, v - speed_free, (box_high - free[:, 5:10]).ravel()])
+            self._length_max - stroke_free, v - speed_free, (box_high - free[:, 5:10]).ravel(),
+            rate - free[:, 3:5].ravel()])
         return (gradient, a, lower, upper) + self._input_bounds
 
     def _fallback(self):
