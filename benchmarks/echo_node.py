@@ -34,7 +34,8 @@ from rclpy.node import Node
 from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
-from stewart_kinematics.ros.node_main import create_executor, executor_name, SPIN_SLICE
+from stewart_kinematics.ros import node_main
+from stewart_kinematics.ros.node_main import create_executor, executor_name
 
 #: Queue depth when no ``queue_depth`` parameter is given.
 DEFAULT_QUEUE_DEPTH = 100
@@ -63,7 +64,7 @@ def main(args=None) -> int:
     executor.add_node(node)
     try:
         while not stop and rclpy.ok():
-            executor.spin_once(timeout_sec=SPIN_SLICE)
+            node_main.spin_slice(executor)
     except ExternalShutdownException:
         pass
     finally:

@@ -99,6 +99,9 @@ GROUPS = (
      "parameters (degrees where named); not the motion cueing's own settings, "
      ':class:`stewart_kinematics.cueing.CueingSettings` (SI units), which '
      ':meth:`~stewart_kinematics.cueing.CueingSettings.from_parameters` builds from these.'),
+    ('CueingControlSettings', 'CUEING_CONTROL_PARAMETERS',
+     "motion_cueing_node's run-time controls: intensity and gain ramps, soft start and stop, "
+     'park (:mod:`stewart_kinematics.cueing.controls`).'),
     ('MockPlatformSettings', 'MOCK_PLATFORM_PARAMETERS',
      "mock_platform's simulated legs: the commands they take, their lag, the joint states' "
      'rate, and the faults a test gives them.'),
@@ -123,8 +126,8 @@ NODES = (
     ('MotionCueingNodeSettings',
      "motion_cueing_node's settings: one field per group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('frames', 'FrameSettings'),
-        ('cueing', 'CueingParameterSettings'), ('queue', 'QueueSettings'),
-        ('lifecycle', 'LifecycleSettings'))),
+        ('cueing', 'CueingParameterSettings'), ('controls', 'CueingControlSettings'),
+        ('queue', 'QueueSettings'), ('lifecycle', 'LifecycleSettings'))),
     ('TrajectoryNodeSettings',
      "trajectory_node's settings: one field per group it declares, in that order.", (
         ('geometry', 'GeometrySettings'), ('actuators', 'ActuatorSettings'),

@@ -334,6 +334,18 @@ MPC_FALLBACK = _register(
     "The model-predictive cueing's QP was not solved (infeasible, out of iterations): the rest "
     'of the last plan was applied, or, once it ran out, the cue braked to rest; the limiter '
     'keeps every limit all the same.')
+CUEING_HELD = _register(
+    'cueing_held', 'warning',
+    '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
+    'A sample not cued because the platform is parked, starting from park, stopping to park '
+    'or paused (the start, stop, pause and resume services): its time is kept, nothing else.')
+GAIN_REFUSED = _register(
+    'gain_refused', 'refusal',
+    '`MotionCueing.set_gains` (motion_cueing_node: `cueing_intensity`, the `*_scale` '
+    'parameters)',
+    'A change of intensity or of a channel gain that is not a number in its range, or whose '
+    "cue of the reference input would leave the platform's travel within the cue margins "
+    '(`gain_check_specific_force`, `gain_check_angular_velocity`); the gains stay as they were.')
 
 
 # The geometry report (stewart_geometry) ---------------------------------------------------

@@ -19,8 +19,9 @@ The classical washout (:mod:`.washout`, filters in :mod:`.filters`), scaled into
 model and followed within the actuators' speed (:mod:`.cue_limiter`, its limit calls in
 :mod:`.limit_margins`), the motion felt at the head (:mod:`.perception`), all behind one decision
 object (:class:`MotionCueing`, :mod:`.motion_cueing`); :func:`replay` (:mod:`.replay`) runs a
-whole input through it, :mod:`.scenarios` generates four test drives and :mod:`.evaluation`
-measures the result. Settings: :class:`CueingSettings` (:mod:`.settings`).
+whole input through it, :mod:`.scenarios` generates nine test drives and :mod:`.evaluation`
+measures the result as a person perceives it (:mod:`.vestibular`). Settings:
+:class:`CueingSettings` (:mod:`.settings`).
 
 May import: :mod:`stewart_kinematics.model`, :mod:`~stewart_kinematics.limits`,
 :mod:`~stewart_kinematics.findings`, :mod:`~stewart_kinematics.parameters`,

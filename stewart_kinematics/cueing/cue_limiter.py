@@ -174,6 +174,7 @@ class CueLimiter:
         self.home_rotation = euler_zyx_to_matrix(home[3:])
         self._home_is_level = bool(np.all(home[3:] == 0.0))
         self.head_position = np.array(settings.head_position, dtype=float)
+        self._follower_weights = np.array(settings.follower_weights, dtype=float)
         self.head_home = home[:3] + self.home_rotation @ self.head_position
         self.home_lengths = inverse_kinematics(geometry, home)
         self.reset()
@@ -360,8 +361,8 @@ class CueLimiter:
         When the leg velocities that reach ``wanted_pose`` break a leg's bounds
         (:meth:`_leg_bounds`), the next leg velocities are those within every bound whose
         motion differs least from the wanted one: a least-squares problem in the platform's
-        twist (metres and radians alike: a degree of rotation costs as much as 17 mm) through
-        the legs' twist Jacobian, with box constraints on each leg
+        twist, each axis weighted by ``follower_weights`` (:meth:`_twist_metric`), through the
+        legs' twist Jacobian, with box constraints on each leg
         (:func:`box_least_squares`). The pose is then the forward kinematics of those lengths,
         started at the wanted pose. ``share`` is 1 minus the part of the wanted change of
         motion that the legs could not follow (in that metric).
@@ -386,14 +387,16 @@ class CueLimiter:
 
     def _twist_metric(self) -> np.ndarray:
         """
-        Return ``J^-T J^-1`` at the current pose, ``J`` the twist Jacobian.
+        Return ``J^-T W J^-1`` at the current pose, ``J`` the twist Jacobian.
 
-        A change of the leg velocities ``dv`` moves the platform by the twist ``J^-1 dv``; its
-        squared size, metres and radians alike, is ``dv^T J^-T J^-1 dv``.
+        A change of the leg velocities ``dv`` moves the platform by the twist ``J^-1 dv``
+        (m/s along x, y, z, rad/s about them); its weighted squared size is
+        ``dv^T J^-T W J^-1 dv``, ``W = diag(follower_weights)``: with weights all 1, metres and
+        radians alike (a degree of rotation costs as much as 17 mm).
         """
         inverse = np.linalg.inv(twist_jacobian(self.geometry, self.pose[:3],
                                                euler_zyx_to_matrix(self.pose[3:])))
-        return inverse.T @ inverse
+        return inverse.T @ (self._follower_weights[:, None] * inverse)
 
     def _brake(self, dt, guess):
         """

@@ -50,6 +50,17 @@ The vehicle's frame: samples are in the vehicle frame (x forward, y left, z up);
 ``frame_id``, one in ``imu_frame`` is turned into the vehicle frame by
 ``imu_orientation_rpy``, and one in a frame it cannot place is refused (``wrong_frame``).
 
+Run-time controls (:mod:`.controls`): :meth:`MotionCueing.set_gains` changes the master
+intensity and the channel gains, ramped over ``gain_ramp_time`` (never a jump), refused with the
+reason where the cue would leave the platform's travel; :meth:`MotionCueing.stop` brakes the
+platform to rest and takes it down to park over ``soft_stop_time``, :meth:`MotionCueing.start`
+up from park to neutral over ``soft_start_time`` (leg velocity and acceleration within the
+actuator limits: ruckig's motion, each command through the command gate);
+:meth:`MotionCueing.pause` brakes the platform to rest where it is and holds it there, the
+washout frozen, and :meth:`MotionCueing.resume` goes on cueing from that state. The motions of
+start, stop and pause are stepped by :meth:`MotionCueing.operate`, on a timer. While not cueing
+(:attr:`MotionCueing.mode`), samples are not cued (``cueing_held``) and the watchdog rests.
+
 Refusals: :meth:`MotionCueing.cue` (the decision, as a node uses it) never raises for what it
 is given: a malformed, non-finite or absurd sample (beyond ``max_specific_force`` or
 ``max_angular_velocity``) is refused with an ``invalid_vehicle_motion`` finding, and the
@@ -68,22 +79,35 @@ exception instead: it raises ``ValueError`` naming the argument. Nothing here im
 'invalid_vehicle_motion'
 """
 
+import dataclasses
 from dataclasses import dataclass
 import math
 from typing import Optional, Tuple
 
 import numpy as np
 
+from stewart_kinematics.cueing.controls import (
+    ControlAnswer,
+    effective_gains,
+    GainCheck,
+    GainRamp,
+    lowest_pose,
+    SoftMotion,
+    WashoutGains,
+)
 from stewart_kinematics.cueing.cue_limiter import CueLimiter, FORCE_SCALE_MIN
+from stewart_kinematics.cueing.limit_margins import pose_violations
 from stewart_kinematics.cueing.mpc_cueing import MpcCueing
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout
 from stewart_kinematics.findings import (
     COMMAND_BRAKING,
+    CUEING_HELD,
     Decision,
     Finding,
     FORCE_LIMITED,
+    GAIN_REFUSED,
     INPUT_GAP,
     INVALID_VEHICLE_MOTION,
     TIME_NOT_INCREASING,
@@ -93,10 +117,14 @@ from stewart_kinematics.findings import (
 from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
 from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.arrays import as_float_array, preview
+from stewart_kinematics.model.forward import forward_kinematics
+from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import (
     actuator_limits_from_settings,
     check_values,
+    CUEING_CONTROL_PARAMETERS,
+    CueingControlSettings,
     defaults,
     geometry_from_settings,
     GeometrySettings,
@@ -107,6 +135,15 @@ from stewart_kinematics.parameters import (
 WATCHDOG_PERIOD = 0.02
 #: Leg speed below which :meth:`MotionCueing.brake` takes the legs as resting, m/s.
 REST_SPEED = 1e-9
+
+#: What the platform does (:attr:`MotionCueing.mode`): cues the samples; brakes to rest to
+#: pause, then holds; rests at park; moves up from park; brakes, then moves down to park.
+CUEING = 'cueing'
+PAUSING = 'pausing'
+PAUSED = 'paused'
+PARKED = 'parked'
+STARTING = 'starting'
+STOPPING = 'stopping'
 
 
 @dataclass(frozen=True)
@@ -164,11 +201,15 @@ class MotionCueing:
     :param actuator_limits: leg velocity and acceleration limits (default: none).
     :param frames: the :class:`stewart_kinematics.FrameTree` of the ``target_pose`` messages
         (their tool frame), or ``None``: the platform frame.
-    :raises ValueError: if the margins leave no room around the home pose.
+    :param controls: the run-time controls' settings (intensity, ramp and soft times, park),
+        a :class:`~stewart_kinematics.parameters.CueingControlSettings` (default: defaults).
+    :raises ValueError: if the margins leave no room around the home pose, or ``park_position``
+        gives a pose beyond a limit.
     """
 
     def __init__(self, geometry, settings: Optional[CueingSettings] = None,
-                 actuator_limits: Optional[ActuatorLimits] = None, frames=None):
+                 actuator_limits: Optional[ActuatorLimits] = None, frames=None,
+                 controls: Optional[CueingControlSettings] = None):
         self.geometry = geometry
         self.settings = settings if settings is not None else CueingSettings()
         self.actuator_limits = (actuator_limits if actuator_limits is not None
@@ -195,6 +236,7 @@ class MotionCueing:
         #: and the last call of :meth:`watch`.
         self._last_input = None
         self._last_watch = None
+        self._init_controls(controls if controls is not None else CueingControlSettings())
 
     @classmethod
     def from_parameters(cls, values: dict, frames=None) -> 'MotionCueing':
@@ -206,14 +248,14 @@ class MotionCueing:
             motion_cueing.yaml.
         :raises ValueError: naming the parameter, for a value that is not allowed.
         """
-        cueing_values = {spec.name: values[spec.name] for spec in MOTION_CUEING_PARAMETERS
-                         if spec.name in values}
-        merged = defaults(MOTION_CUEING_PARAMETERS)
-        merged.update(cueing_values)
-        check_values(MOTION_CUEING_PARAMETERS, merged)
+        specs = MOTION_CUEING_PARAMETERS + CUEING_CONTROL_PARAMETERS
+        merged = defaults(specs)
+        merged.update({spec.name: values[spec.name] for spec in specs if spec.name in values})
+        check_values(specs, merged)
         geometry = GeometrySettings.from_values(values)
         return cls(geometry_from_settings(geometry), CueingSettings.from_parameters(merged),
-                   actuator_limits_from_settings(geometry), frames)
+                   actuator_limits_from_settings(geometry), frames,
+                   CueingControlSettings.from_values(merged))
 
     @property
     def pose(self) -> np.ndarray:
@@ -335,6 +377,8 @@ class MotionCueing:
             return CueStep(time=self.time, pose=None, refusal=refusal)
         if command_time is not None:
             self._last_input = float(command_time)   # input, for the watchdog
+        if self.mode != CUEING:
+            return self._held(float(time))
         if refusal is None and frame_id is not None:
             refusal = self.vehicle_frame_refusal(frame_id)
             if refusal is None and frame_id and frame_id == self.settings.imu_frame:
@@ -356,6 +400,8 @@ class MotionCueing:
         refusal = self.refusal(time, specific_force, angular_velocity)
         if refusal is not None:
             raise ValueError(refusal.message)
+        if self.mode != CUEING:
+            return self._held(float(time))
         return self._advance(float(time), specific_force, angular_velocity, None, command_time)
 
     def rest(self, dt: float, command_time: Optional[float] = None) -> CueStep:
@@ -374,6 +420,7 @@ class MotionCueing:
         time = (self.time or 0.0)
         if command_time is None and self.gate.last_time is not None:
             command_time = self.gate.last_time + dt
+        self._ramp_gains(min(dt, self.settings.max_input_gap))
         return self._move(time, min(dt, self.settings.max_input_gap), self._rest_force,
                           np.zeros(3), None, [], command_time)
 
@@ -408,6 +455,8 @@ class MotionCueing:
             return None
         last_watch, self._last_watch = self._last_watch, now
         timeout = self.settings.input_timeout
+        if self.mode != CUEING:
+            return None   # parked, paused, or moving on operate(): nothing to ease
         if timeout <= 0.0 or self._last_input is None or now - self._last_input < timeout:
             return None
         self.restart_time()   # whatever comes next starts a new time line
@@ -453,6 +502,290 @@ class MotionCueing:
         return CueStep(time=self.time, pose=command.pose, lengths=command.lengths,
                        warnings=command.warnings, command=command)
 
+    # Run-time controls ------------------------------------------------------------------------
+
+    def _init_controls(self, controls: CueingControlSettings) -> None:
+        """Take the controls' settings: the gains at the intensity, the park pose, the mode."""
+        self.controls = controls
+        settings = self.settings
+        #: The effective gains (intensity times each channel gain), ramped on changes.
+        self.gains = GainRamp(effective_gains(controls.cueing_intensity,
+                                              settings.translation_scale, settings.tilt_scale,
+                                              settings.rotation_scale))
+        self._washout_gains = None
+        self._gain_check = None
+        if controls.cueing_intensity != 1.0:
+            self._apply_gains()
+        self._park = None
+        if any(controls.park_position):
+            park = np.array(list(controls.park_position)
+                            + list(self.geometry.home_pose[3:]), dtype=float)
+            violations = pose_violations(self.geometry, park[:3], euler_zyx_to_matrix(park[3:]))
+            if violations:
+                raise ValueError(
+                    f'park_position {list(controls.park_position)} m puts the platform beyond '
+                    f'its limits: {"; ".join(map(str, violations))}; give a pose within every '
+                    'limit, or all 0.0 for the lowest pose below home')
+            self._park = park
+        #: What the platform does: CUEING, PAUSING, PAUSED, PARKED, STARTING or STOPPING.
+        self.mode = CUEING
+        #: The soft motion under way (start or stop), or ``None``.
+        self._soft = None
+        if controls.start_parked:
+            self._place(self.park_pose)
+            self.mode = PARKED
+
+    @property
+    def park_pose(self) -> np.ndarray:
+        """Return the park pose: ``park_position`` oriented as home, or the lowest below home."""
+        if self._park is None:
+            self._park = lowest_pose(self.geometry, self.limiter)
+        return self._park.copy()
+
+    def _place(self, pose) -> None:
+        """Put the platform at rest at ``pose`` (not commanded: where it is taken to be)."""
+        lengths = inverse_kinematics(self.geometry, pose)
+        self.limiter.reset()
+        self.limiter.take_sent(pose, lengths, 1.0, (pose, lengths))
+        self.gate.reset(lengths, pose)
+
+    def _washout_gain_setter(self) -> WashoutGains:
+        """Return the gains' setter of the washout in use (made again if it was replaced)."""
+        if self._washout_gains is None or self._washout_gains.washout is not self.washout:
+            self._washout_gains = WashoutGains(self.washout)
+        return self._washout_gains
+
+    def _apply_gains(self) -> None:
+        """Make the ramp's gains the washout's."""
+        self._washout_gain_setter().apply(self.gains.value)
+
+    def _ramp_gains(self, dt: float) -> None:
+        """Advance the gain ramp by ``dt`` seconds (the washout's step) and apply it."""
+        if self.gains.advance(dt):
+            self._apply_gains()
+
+    def gain_refusal(self, intensity=None, translation_scale=None, tilt_scale=None,
+                     rotation_scale=None, check_travel: bool = True) -> Optional[Finding]:
+        """
+        Say why gains cannot be taken (``gain_refused``), or return ``None``.
+
+        :param intensity: the master intensity, in [0, 1], or ``None``: as now.
+        :param translation_scale: 3 gains, or ``None``: as now; ``tilt_scale`` 2,
+            ``rotation_scale`` 3, likewise (each in its parameter's range).
+
+        Refused: a value not allowed by its parameter, or a change that raises the cue of the
+        reference input beyond the travel (:class:`~.controls.GainCheck`). Never raises.
+        """
+        changes = {name: value for name, value in (
+            ('translation_scale', translation_scale), ('tilt_scale', tilt_scale),
+            ('rotation_scale', rotation_scale)) if value is not None}
+        names = tuple(changes) + (('cueing_intensity',) if intensity is not None else ())
+        try:
+            if intensity is not None:
+                self.controls.replace(cueing_intensity=intensity)
+            settings = dataclasses.replace(self.settings, **changes)
+        except (TypeError, ValueError) as error:
+            return Finding(GAIN_REFUSED, str(error))
+        if not self._washout_gain_setter().supported:
+            return Finding(GAIN_REFUSED, 'this washout takes no gain change at run time')
+        if not check_travel:
+            return None
+        new = effective_gains(self.controls.cueing_intensity if intensity is None
+                              else float(intensity), settings.translation_scale,
+                              settings.tilt_scale, settings.rotation_scale)
+        if self._gain_check is None:
+            self._gain_check = GainCheck(self.settings, self.limiter,
+                                         self.controls.gain_check_specific_force,
+                                         self.controls.gain_check_angular_velocity)
+        reason = self._gain_check.refusal(
+            self.gains.target, new,
+            self.controls.cueing_intensity if intensity is None else float(intensity), names)
+        return Finding(GAIN_REFUSED, reason) if reason else None
+
+    def set_gains(self, intensity=None, translation_scale=None, tilt_scale=None,
+                  rotation_scale=None, ramp_time: Optional[float] = None,
+                  check_travel: bool = True) -> Optional[Finding]:
+        """
+        Change the master intensity and channel gains, ramped: never a jump in the cue.
+
+        The effective gains (intensity times each channel gain) move from where they are to
+        the new ones over ``ramp_time`` (default ``gain_ramp_time``) seconds of the input's
+        clock, along a smoothstep; the washout's filters keep their states.
+
+        :param intensity: in [0, 1], or ``None``: as now; the gains likewise (see
+            :meth:`gain_refusal`).
+        :param check_travel: ``False``: the travel was checked already (a node checks a
+            request setting several parameters as a whole, then sets them one by one); the
+            values are checked all the same.
+        :returns: ``None`` when taken, else the ``gain_refused`` finding (nothing changes).
+            Never raises.
+        """
+        refusal = self.gain_refusal(intensity, translation_scale, tilt_scale, rotation_scale,
+                                    check_travel)
+        if refusal is not None:
+            return refusal
+        if ramp_time is not None:
+            try:
+                self.controls.replace(gain_ramp_time=ramp_time)
+            except (TypeError, ValueError) as error:
+                return Finding(GAIN_REFUSED, str(error))
+        changes = {name: tuple(float(entry) for entry in value) for name, value in (
+            ('translation_scale', translation_scale), ('tilt_scale', tilt_scale),
+            ('rotation_scale', rotation_scale)) if value is not None}
+        self.settings = dataclasses.replace(self.settings, **changes)
+        if intensity is not None:
+            self.controls = self.controls.replace(cueing_intensity=float(intensity))
+        self.gains.set_target(
+            effective_gains(self.controls.cueing_intensity, self.settings.translation_scale,
+                            self.settings.tilt_scale, self.settings.rotation_scale),
+            self.controls.gain_ramp_time if ramp_time is None else float(ramp_time))
+        return None
+
+    def start(self) -> ControlAnswer:
+        """
+        Start from park: move up to the neutral cueing pose over ``soft_start_time``.
+
+        Then the washout starts afresh (settled on the next sample) and cueing goes on. From
+        any other mode there is nothing to start (cueing, paused: answered, nothing done) or
+        it is refused (moving to park: start again once parked).
+        """
+        if self.mode == PARKED:
+            self._soft = SoftMotion(self.actuator_limits, self.geometry, self.limiter.lengths,
+                                    self.limiter.home_lengths, self.controls.soft_start_time,
+                                    WATCHDOG_PERIOD)
+            self.mode = STARTING
+            return ControlAnswer(True, f'starting: from park to neutral in about '
+                                 f'{self.controls.soft_start_time:g} s, then cueing')
+        if self.mode == STARTING:
+            return ControlAnswer(True, 'already starting from park')
+        if self.mode == STOPPING:
+            return ControlAnswer(False, 'stopping to park: call start again once parked')
+        return ControlAnswer(True, f'already started ({self.mode}): nothing to do')
+
+    def stop(self) -> ControlAnswer:
+        """
+        Stop to park: brake to rest, then move down to park over ``soft_stop_time``.
+
+        From any mode: cueing or paused (braked first), starting (the motion turns to park
+        from where it is, without stopping first); parked or stopping: nothing to do.
+        """
+        if self.mode in (PARKED, STOPPING):
+            return ControlAnswer(True, f'already {self.mode}: nothing to do')
+        if self.mode == STARTING and self._soft is not None and self._soft.retarget(
+                inverse_kinematics(self.geometry, self.park_pose)):
+            self.mode = STOPPING
+            return ControlAnswer(True, 'stopping during the start: turning back to park')
+        self._soft = None   # braking first; the motion to park is planned at rest
+        self.mode = STOPPING
+        return ControlAnswer(True, f'stopping: braking to rest, then to park in about '
+                             f'{self.controls.soft_stop_time:g} s')
+
+    def pause(self) -> ControlAnswer:
+        """
+        Pause: brake to rest where the platform is and hold it; samples are not cued.
+
+        The washout's state is kept (frozen), so :meth:`resume` goes on from it. Only while
+        cueing (paused already: nothing to do; starting, stopping, parked: refused).
+        """
+        if self.mode in (PAUSING, PAUSED):
+            return ControlAnswer(True, f'already {self.mode}: nothing to do')
+        if self.mode != CUEING:
+            return ControlAnswer(False, f'cannot pause while {self.mode}: pause is for cueing')
+        self.mode = PAUSING
+        return ControlAnswer(True, 'pausing: braking to rest where the platform is, then '
+                             'holding; the washout is frozen until resume')
+
+    def resume(self) -> ControlAnswer:
+        """
+        Resume after a pause: the next sample is cued from the washout's frozen state.
+
+        The next sample starts a new time line (no step over the pause), the cue goes on
+        from where it was, and the follower brings the held platform back onto it within the
+        actuator limits. Only after a pause (cueing: nothing to do; else refused).
+        """
+        if self.mode in (PAUSING, PAUSED):
+            self.mode = CUEING
+            self.restart_time()
+            return ControlAnswer(True, 'resumed: cueing from the held state')
+        if self.mode == CUEING:
+            return ControlAnswer(True, 'not paused: nothing to do')
+        return ControlAnswer(False, f'cannot resume while {self.mode}: resume follows pause')
+
+    def operate(self, command_time: float) -> Optional[CueStep]:
+        """
+        Step the motion of a start, stop or pause: one command, on the node's clock.
+
+        Called on a timer (every :data:`WATCHDOG_PERIOD` or so) with the node's clock.
+
+        :returns: the :class:`CueStep` whose accepted ``command`` is to be sent, or ``None``:
+            nothing to send (cueing, parked, paused and at rest, no time passed, a time that
+            is not a finite number). Never raises.
+        """
+        try:
+            now = float(command_time)
+        except (TypeError, ValueError):
+            return None
+        if not math.isfinite(now) or self.mode in (CUEING, PARKED, PAUSED):
+            return None
+        if self.mode == PAUSING or self.mode == STOPPING and self._soft is None:
+            step = self.brake(now)
+            if step is not None or self.gate.last_time is not None and not (
+                    now > self.gate.last_time):
+                return step
+            # At rest: paused, or the motion to park is planned from here.
+            if self.mode == PAUSING:
+                self.mode = PAUSED
+                return None
+            self._soft = SoftMotion(self.actuator_limits, self.geometry, self.limiter.lengths,
+                                    inverse_kinematics(self.geometry, self.park_pose),
+                                    self.controls.soft_stop_time, WATCHDOG_PERIOD)
+        return self._soft_step(now)
+
+    def _soft_step(self, now: float) -> Optional[CueStep]:
+        """One command of the soft motion under way; the mode changes when it ends."""
+        interval = self.gate.elapsed(now)
+        if interval is None:
+            return None
+        limiter = self.limiter
+        previous = (limiter.pose.copy(), limiter.lengths.copy())
+        lengths = self._soft.step(interval)
+        command = None
+        if lengths is not None:
+            solution = forward_kinematics(self.geometry, lengths, initial_guess=limiter.pose)
+            if solution.converged:
+                pose = np.asarray(solution.pose, dtype=float)
+                command = self.gate.pose_vector(self._tool_pose(pose), now)
+        if command is None or not command.accepted:
+            replaced = command.refusal if command is not None else Finding(
+                COMMAND_BRAKING, 'no pose of the next step toward park or neutral was found')
+            command = self.gate.brake(now, replaced=replaced)
+            if not command.accepted:
+                return None
+            self._soft = None   # planned again from rest (stopping), or ...
+            if self.mode == STARTING:
+                self.mode = STOPPING   # ... a start that cannot go on parks again
+        pose = command.pose
+        limiter.take_sent(pose, command.lengths, interval, previous)
+        if self._soft is not None and self._soft.settled:
+            self._soft = None
+            if self.mode == STARTING:
+                # At rest at neutral: the cueing starts afresh from the next sample.
+                limiter.reset()
+                self.washout.reset()
+                self.restart_time()
+                self.mode = CUEING
+            else:
+                self.mode = PARKED
+        return CueStep(time=self.time, pose=pose, lengths=command.lengths,
+                       warnings=command.warnings, command=command)
+
+    def _held(self, time: float) -> CueStep:
+        """Keep the time of a sample not cued (not cueing): nothing moves."""
+        self.time = time
+        return CueStep(time=time, pose=None, warnings=(Finding(
+            CUEING_HELD, f'the sample is not cued: the platform is {self.mode} (start, stop, '
+            'pause and resume say what it does)', (('mode', self.mode),)),))
+
     def _advance(self, time, specific_force, angular_velocity, refusal,
                  command_time) -> CueStep:
         warnings = []
@@ -467,6 +800,7 @@ class MotionCueing:
                     (('gap', f'{dt:.6g} s'),)))
                 dt = self.settings.max_input_gap
         self.time = time
+        self._ramp_gains(dt)
         return self._move(time, dt, specific_force, angular_velocity, refusal, warnings,
                           command_time)
 

@@ -43,14 +43,19 @@ where a step is the point (``brake_step``'s end).
   turn is coordinated: the specific force stays along the body z (``g / cos(bank)``, 1.15 g),
   with no lateral force in the vehicle frame; the body rates are the roll rate and the turn
   rate ``g tan(bank) / V`` resolved in the body (pitch ``sin(bank)``, yaw ``cos(bank)``).
-- ``mixed_drive``: 60 s of driving from standstill to standstill, seeded: accelerations,
-  corners, lane changes and braking in a random order and strength (speed kept within 5 to
-  30 m/s before the final stop), yaw rate ``a_y / v``, the body's roll and pitch following
-  the accelerations, and road noise (0.1 m/s^2 RMS).
+- ``mixed_drive``: 60 s of driving from standstill to standstill, seeded: a launch at
+  3 m/s^2, then accelerations (1.5 to 3 m/s^2), braking (3 to 6 m/s^2), corners (3 to 6 m/s^2
+  lateral, 2 to 5 s) and lane changes (one sine period of 2 to 4 m/s^2 at 0.3 to 0.6 Hz) in a
+  random order and strength, 0.5 to 2 s apart (speed kept within 5 to 30 m/s), and a final
+  stop at no more than 4 m/s^2; yaw rate ``a_y / v``, the body's roll and pitch following the
+  accelerations (0.5 deg per m/s^2 lateral, 0.4 per m/s^2 forward), and road noise (0.1 m/s^2
+  RMS, 0.5 to 8 Hz). Peaks about 6 m/s^2 forward and lateral.
 - ``bumpy_road``: 20 s at a steady 15 m/s over a rough road: band-passed road noise (about 1
-  to 10 Hz) of 0.5 m/s^2 RMS in heave and 0.03 rad/s RMS in pitch rate, plus five bumps (a
-  4 Hz period of heave, 3 m/s^2 peak, and the pitch rate of the front, then the rear wheels
-  2.7 m behind).
+  to 10 Hz) of 0.5 m/s^2 RMS in heave and 0.03 rad/s RMS in pitch rate, plus five bumps at
+  seeded times: each wheel rises over one 4 Hz period of 6 m/s^2 vertical acceleration, the
+  rear wheels 2.7 m (0.18 s) after the front; the head takes their mean (3.0 m/s^2 peak of a
+  bump alone) and the pitch rate their difference over the wheelbase (10.1 deg/s peak); with
+  the noise, about 4.1 m/s^2 and 13.9 deg/s. No force along x or y, no roll or yaw.
 
 Nothing here imports ROS.
 """
@@ -68,6 +73,8 @@ SCENARIO_NAMES = ('acceleration_braking', 'slalom', 'multi_sine', 'lap', 'brake_
                   'lane_change', 'coordinated_turn', 'mixed_drive', 'bumpy_road')
 #: Default sampling rate, hertz (a game's or a vehicle model's telemetry).
 DEFAULT_RATE = 100.0
+#: Largest sampling rate, hertz (``stewart_cueing --rate`` allows as much).
+MAX_RATE = 10000.0
 #: Seconds of rest after the input comes to rest: long enough to judge the return to neutral.
 REST_AFTER = 12.0
 #: Frequencies of the multi-sine, hertz.
@@ -109,8 +116,10 @@ def _pulse(times, start, hold, ramp, level):
 
 
 def _times(duration, rate):
-    if not (math.isfinite(rate) and rate > 0.0):
-        raise ValueError(f'rate must be a positive number of hertz, got {rate!r}')
+    if isinstance(rate, bool) or not isinstance(rate, (int, float, np.integer, np.floating)) \
+            or not (math.isfinite(rate) and 0.0 < rate <= MAX_RATE):
+        raise ValueError(f'rate must be a positive number of hertz up to {MAX_RATE:g}, got '
+                         f'{rate!r}')
     return np.arange(int(round(duration * rate)) + 1) / rate
 
 

@@ -49,12 +49,15 @@ _VECTORS = {
     'translation_scale': 3, 'translation_frequency': 3, 'translation_damping': 3,
     'translation_break_frequency': 3, 'tilt_scale': 2, 'rotation_scale': 3,
     'rotation_frequency': 3, 'rotation_damping': 3, 'head_position': 3,
-    'imu_orientation_rpy': 3, 'mpc_force_scale': 3, 'mpc_force_weight': 3,
-    'mpc_position_weight': 3, 'mpc_velocity_weight': 3, 'mpc_input_weight': 2,
+    'imu_orientation_rpy': 3, 'follower_weights': 6, 'mpc_force_scale': 3,
+    'mpc_force_weight': 3, 'mpc_position_weight': 3, 'mpc_velocity_weight': 3,
+    'mpc_input_weight': 2,
 }
 #: Fields in radians here and in degrees as parameters (``<name>_deg``).
 DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_angle_margin',
                  'imu_orientation_rpy')
+#: Fields that are true or false.
+_BOOLS = ('tilt_complementary', 'attitude_aware_specific_force')
 #: Fields that are names.
 _NAMES = ('vehicle_frame', 'imu_frame')
 #: Fields that are one of a few words, and integer fields besides the filters' orders.
@@ -98,7 +101,7 @@ def _converted(name: str, value):
         if not isinstance(value, str):
             raise ValueError(f'{name} must be a word, got {preview(value)}')
         return value
-    if name == 'tilt_complementary':
+    if name in _BOOLS:
         if not isinstance(value, bool):
             raise ValueError(f'{name} must be true or false, got {preview(value)}')
         return value
@@ -144,10 +147,17 @@ class CueingSettings:
         (2 returns the angle to neutral after a sustained rate).
     :param rotation_frequency: its omega, rad/s, roll pitch yaw.
     :param rotation_damping: its zeta, roll pitch yaw.
+    :param attitude_aware_specific_force: turn the specific force into the simulator's frame
+        through the cue's attitude before the translational channel (Reid and Nahon's
+        ``L_IS``, see :mod:`.washout`), so that a tilt or a coordinated turn is not felt as a
+        sideways force; ``False``: the translational channel takes the force as it comes.
     :param head_position: the cueing reference point (the driver's head) in the platform frame,
         metres: the cue's rotations turn about it, and the perceived motion is computed there.
     :param follower_frequency: bandwidth of the limit-aware follower that brings the platform
         back onto the cue after the actuator limits held it back, rad/s.
+    :param follower_weights: weights of the follower's least-squares step where the legs
+        cannot follow the cue, per axis of the platform's twist: x, y, z (per m/s) and roll,
+        pitch, yaw (per rad/s), positive; a larger weight keeps that axis closer to the cue.
     :param workspace_recovery_rate: fastest rise of the workspace scale back toward 1, 1/s.
     :param leg_length_margin: the cue keeps this far inside the stroke, metres (raised to the
         actuators' braking distance when that is longer).
@@ -207,8 +217,10 @@ class CueingSettings:
     rotation_order: int = _default('rotation_order')
     rotation_frequency: Tuple[float, ...] = _default('rotation_frequency')
     rotation_damping: Tuple[float, ...] = _default('rotation_damping')
+    attitude_aware_specific_force: bool = _default('attitude_aware_specific_force')
     head_position: Tuple[float, ...] = _default('head_position')
     follower_frequency: float = _default('follower_frequency')
+    follower_weights: Tuple[float, ...] = _default('follower_weights')
     workspace_recovery_rate: float = _default('workspace_recovery_rate')
     leg_length_margin: float = _default('leg_length_margin')
     joint_angle_margin: float = _default('joint_angle_margin')
@@ -264,7 +276,7 @@ class CueingSettings:
                                             if item.name in _VECTORS else math.radians(value))
             elif item.name in values:
                 value = values[item.name]
-                arguments[item.name] = tuple(value) if item.name in _VECTORS else value
+                arguments[item.name] = value   # made a tuple, or refused, by _converted
         try:
             return cls(**arguments)
         except ValueError as error:

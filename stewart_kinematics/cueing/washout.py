@@ -21,8 +21,14 @@ driver's head. Output: the cue, the head's displacement ``d`` (metres) and the p
 rotation angles (roll, pitch, yaw, radians) from neutral. The channels (Reid and Nahon 1985,
 *Flight simulation motion-base drive algorithms: part 1*, UTIAS Report 296):
 
-- translational: ``a = k_t (f - [0, 0, g])`` high-passed and integrated twice,
-  ``d = HP(s) a / s^2``. With the default third-order high-pass
+- translational: ``a = k_t (L_IS f - [0, 0, g])`` high-passed and integrated twice,
+  ``d = HP(s) a / s^2``. ``L_IS`` is the rotation of the simulator's attitude, the cue's own
+  angles (tilt plus rotation) at the previous sample (Reid and Nahon's ``a = L_IS f + g``):
+  the vehicle's force is taken in the simulator's frame, so a force along the tilted seat's z
+  (an aircraft's coordinated turn, rolled by the rotational channel) asks for the sideways
+  acceleration that cancels the gravity the roll shows the driver, rather than for nothing.
+  With ``attitude_aware_specific_force`` false, ``L_IS`` is the identity (the force as it
+  comes); at zero attitude the two are the same. With the default third-order high-pass
   ``HP = s^2 / (s^2 + 2 zeta omega s + omega^2) * s / (s + omega_b)`` the position filter is
   ``G(s) = s / ((s^2 + 2 zeta omega s + omega^2)(s + omega_b))``: no pole at the origin, so
   the displacement after a sustained acceleration returns to neutral. It never reverses
@@ -56,6 +62,7 @@ from stewart_kinematics.cueing.filters import (
 )
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.model.arrays import preview
+from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 #: Rows of the filter bank's outputs: the translational channel's position, velocity and
 #: acceleration per axis, the tilt low-pass per axis, the rotational angle and rate per axis.
@@ -150,6 +157,7 @@ class ClassicalWashout:
         self.filters = FilterBank(9, blocks)
         self._input_limit = s.translation_input_limit
         self._sin_tilt_max = math.sin(s.tilt_max)
+        self._attitude_aware = bool(s.attitude_aware_specific_force)
         self.reset()
 
     def reset(self) -> None:
@@ -157,6 +165,22 @@ class ClassicalWashout:
         self._settled = False
         self._tilt = [0.0, 0.0]
         self._tilt_rate = [0.0, 0.0]
+        #: The cue's roll, pitch and yaw at the last sample (the simulator's attitude), rad.
+        self.attitude = np.zeros(3)
+
+    def simulator_force(self, specific_force) -> np.ndarray:
+        """
+        Return ``L_IS f``: the specific force turned into the simulator's frame, m/s^2, (3,).
+
+        ``L_IS`` is the rotation of :attr:`attitude` (``Rz Ry Rx``, the package's convention);
+        ``f`` unchanged when ``attitude_aware_specific_force`` is false.
+
+        :param specific_force: ``f``, m/s^2, vehicle frame, shape (3,), finite.
+        """
+        force = np.asarray(specific_force, dtype=float)
+        if not self._attitude_aware:
+            return force
+        return euler_zyx_to_matrix(self.attitude) @ force
 
     @staticmethod
     def filter_input(specific_force, angular_velocity, gravity: float) -> np.ndarray:
@@ -190,10 +214,14 @@ class ClassicalWashout:
         """:meth:`step` for inputs already checked (3 finite floats each, ``dt >= 0``)."""
         s = self.settings
         u = self.filter_input(specific_force, angular_velocity, s.gravity)
+        translational = u[:3]
+        if self._attitude_aware and np.any(self.attitude):
+            translational = self.simulator_force(specific_force)
+            translational[2] -= s.gravity
         if self._input_limit != math.inf:
-            u[6:] = self._input_limit * np.tanh(u[:3] / self._input_limit)
+            u[6:] = self._input_limit * np.tanh(translational / self._input_limit)
         else:
-            u[6:] = u[:3]
+            u[6:] = translational
         if self._settled:
             y = self.filters.step(u, dt)
         else:
@@ -212,6 +240,7 @@ class ClassicalWashout:
         tilt = np.array(self._tilt)
         angles = rotation.copy()
         angles[:2] += tilt
+        self.attitude = angles.copy()
         return WashoutStep(
             displacement=y[_TRANSLATION_ROWS[0]], velocity=y[_TRANSLATION_ROWS[1]],
             acceleration=y[_TRANSLATION_ROWS[2]], tilt=tilt, tilt_rate=np.array(self._tilt_rate),

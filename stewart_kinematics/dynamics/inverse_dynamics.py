@@ -263,6 +263,42 @@ def static_forces_of_legs(lengths, vectors, rotation, mass_properties) -> np.nda
     return forces.T
 
 
+def single_static_forces_of_legs(legs, rotation, mass_properties) -> list:
+    """
+    :func:`static_forces_of_legs` of one pose, in floats: the same terms, in the same order.
+
+    :param legs: per leg ``(l, lx, ly, lz, ax, ay, az)``, floats
+        (:func:`stewart_kinematics.model.formulas.legs_of`).
+    :param rotation: the nine entries of the platform-to-base rotation, floats.
+    :param mass_properties: a :class:`MassProperties`.
+    :returns: six forces, newtons; NaN for every leg of a singular pose or one whose forces
+        are not finite.
+    """
+    if mass_properties.massless:
+        return [0.0] * 6
+    try:
+        forces = _single_static_forces(legs, rotation, mass_properties)
+    except (ZeroDivisionError, np.linalg.LinAlgError):   # a leg of length 0: singular
+        return [math.nan] * 6
+    return forces if all(map(math.isfinite, forces)) else [math.nan] * 6
+
+
+def _single_static_forces(legs, entries, mass_properties):
+    """Return the forces of :func:`single_static_forces_of_legs`; raise where singular."""
+    motion = _AT_REST * 2
+    rows = twist_rows(legs)
+    gravity = mass_properties.gravity
+    fx, fy, fz, mx, my, mz = body_wrench(entries, motion, mass_properties.moving_body, gravity)
+    if not mass_properties.legs_massless:
+        leg_bodies = _leg_bodies(mass_properties)
+        for leg in legs:
+            gx, gy, gz, nx, ny, nz = leg_wrench(leg, motion, leg_bodies, gravity)
+            fx, fy, fz, mx, my, mz = fx + gx, fy + gy, fz + gz, mx + nx, my + ny, mz + nz
+    with np.errstate(all='ignore'):
+        return np.linalg.solve(np.array(rows).reshape(6, 6).T,
+                               [fx, fy, fz, mx, my, mz]).tolist()
+
+
 def _balance(entries, lengths, vectors, motion, mass_properties):
     """
     Return ``(J^T, wrench)`` of a block of poses: shapes (n, 6, 6) and (n, 6, 1).

@@ -28,11 +28,12 @@ and their time derivatives. Nothing here imports ROS.
 """
 
 from dataclasses import dataclass
-from typing import Tuple
+from typing import List, Tuple
 
 import numpy as np
 
 from stewart_kinematics.limits.violation import Violation
+from stewart_kinematics.model.formulas import constants_of, single_legs
 from stewart_kinematics.model.inverse import leg_arrays
 from stewart_kinematics.model.rotations import zyx_entries
 
@@ -100,12 +101,35 @@ class PoseLegs:
         platform joints ``R p_i``, each (6, n), metres, base frame.
     :param rotation: ``(r11, ..., r33)``, the entries of each platform-to-base rotation, each
         shape (n,).
+
+    The legs of one pose (:meth:`of_pose`) also keep :attr:`floats`, the same figures as
+    Python floats, which the evaluators' one-pose paths (:meth:`Limit.violations_of_one`)
+    read; their arrays are then built only when an evaluator asks for them.
     """
 
-    __slots__ = ('lengths', 'vectors', 'rotation')
+    __slots__ = ('_lengths', '_vectors', '_rotation', 'floats', 'float_rotation')
 
     def __init__(self, lengths, vectors, rotation):
-        self.lengths, self.vectors, self.rotation = lengths, vectors, rotation
+        self._lengths, self._vectors, self._rotation = lengths, vectors, rotation
+        #: One pose: per leg ``(l, lx, ly, lz, ax, ay, az)`` in floats
+        #: (:func:`stewart_kinematics.model.formulas.legs_of`); ``None`` for a batch.
+        self.floats = None
+        #: One pose: the nine rotation entries ``(r11, ..., r33)`` as floats; else ``None``.
+        self.float_rotation = None
+
+    @classmethod
+    def of_pose(cls, geometry, position, rotation) -> 'PoseLegs':
+        """
+        Legs of one pose: position (three floats) and rotation entries (nine floats, by rows).
+
+        Computed in floats (:func:`stewart_kinematics.model.formulas.single_legs`, the one leg
+        formula), as :func:`~stewart_kinematics.model.inverse.leg_arrays` computes one pose:
+        the same values to the bit.
+        """
+        legs = cls(None, None, None)
+        legs.floats = single_legs(constants_of(geometry), position, rotation)
+        legs.float_rotation = rotation
+        return legs
 
     @classmethod
     def of_poses(cls, geometry, poses) -> 'PoseLegs':
@@ -121,10 +145,37 @@ class PoseLegs:
         rotation = tuple(rotations[:, row, column] for row in range(3) for column in range(3))
         return cls(*leg_arrays(geometry, positions, rotation), rotation)
 
+    def _arrays(self):
+        """Build the arrays of one pose's :attr:`floats`, as ``leg_arrays`` builds them."""
+        columns = np.array(self.floats).T[:, :, None]   # (7, 6, 1): views of one array
+        self._lengths = columns[0]
+        self._vectors = tuple(columns[1:])
+
+    @property
+    def lengths(self):
+        """Leg lengths, metres, shape (6, n)."""
+        if self._lengths is None:
+            self._arrays()
+        return self._lengths
+
+    @property
+    def vectors(self):
+        """``(lx, ly, lz, ax, ay, az)``, each (6, n), metres, base frame."""
+        if self._vectors is None:
+            self._arrays()
+        return self._vectors
+
+    @property
+    def rotation(self):
+        """``(r11, ..., r33)``, each shape (n,)."""
+        if self._rotation is None:
+            self._rotation = tuple(np.array([entry]) for entry in self.float_rotation)
+        return self._rotation
+
     @property
     def count(self) -> int:
         """Return n, the number of poses."""
-        return self.lengths.shape[1]
+        return 1 if self.floats is not None else self.lengths.shape[1]
 
     def take(self, columns) -> 'PoseLegs':
         """Return the legs of some of the poses: ``columns``, indices into the n poses."""
@@ -208,3 +259,30 @@ class Limit:
         """
         return tuple((values, bound.broken(values))
                      for bound, values in zip(self.bounds, self.values(arrays)))
+
+    def violations_of_one(self, legs) -> List[Violation]:
+        """
+        Every bound that the one pose of ``legs`` breaks, in report order (bound, then row).
+
+        :param legs: a :class:`PoseLegs` of one pose. This runs :meth:`evaluate` on its arrays;
+            an evaluator whose formulas run on floats too overrides it with them (a fraction
+            of the arrays' cost on one pose).
+        """
+        return violations_in(self.bounds, self.evaluate(legs))
+
+
+def violations_in(bounds, results) -> List[Violation]:
+    """Return the violations of one pose or sample (column 0) in an evaluator's results."""
+    return [bound.violation(row, float(values[row, 0]))
+            for bound, (values, broken) in zip(bounds, results) if broken.any()
+            for row in np.flatnonzero(broken[:, 0])]
+
+
+def row_violations(bound, values) -> List[Violation]:
+    """
+    Return the violations of one bound by one pose's values, floats by row: where not held.
+
+    The comparisons of :meth:`Bound.broken` in floats (NaN breaks the bound).
+    """
+    holds = bound.holds
+    return [bound.violation(row, value) for row, value in enumerate(values) if not holds(value)]

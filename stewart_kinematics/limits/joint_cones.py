@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.limits.base import Bound, LEG, Limit, row_violations
 from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.model.validators import Finite, InRange
@@ -55,6 +55,8 @@ class JointCones(Limit):
         platform_home = home @ euler_zyx_to_matrix(geometry.home_pose[3:])
         self._home = tuple(home[:, axis:axis + 1].copy() for axis in range(3))
         self._platform_home = tuple(platform_home[:, axis:axis + 1].copy() for axis in range(3))
+        # The same, leg by leg in floats, for one pose.
+        self._float_homes = tuple(zip(home.tolist(), platform_home.tolist()))
         allowed = (base_joint_max_angle, platform_joint_max_angle)
         self._set = tuple(angle < math.pi for angle in allowed)
         self.bounds = tuple(
@@ -68,12 +70,8 @@ class JointCones(Limit):
         :param legs: a :class:`~stewart_kinematics.limits.base.PoseLegs`.
         """
         lx, ly, lz = legs.vectors[:3]
-        base = _angle(lx, ly, lz, *self._home)
-        r11, r12, r13, r21, r22, r23, r31, r32, r33 = legs.rotation
-        cx, cy, cz = self._platform_home
-        # R (R_home^T u_home): the platform's home direction, turned with the platform.
-        platform = _angle(lx, ly, lz, r11 * cx + r12 * cy + r13 * cz,
-                          r21 * cx + r22 * cy + r23 * cz, r31 * cx + r32 * cy + r33 * cz)
+        base, platform = _cone_angles(lx, ly, lz, self._home, self._platform_home,
+                                      legs.rotation, np.sqrt, np.arctan2)
         # A leg of zero length has no direction (atan2 would say 0): no angle at all.
         zero = legs.lengths == 0.0
         if zero.any():
@@ -84,13 +82,69 @@ class JointCones(Limit):
         """Return the angles of the cones that are set, radians, each (6, n)."""
         return tuple(angles for angles, is_set in zip(self.angles(arrays), self._set) if is_set)
 
+    def violations_of_one(self, legs):
+        """
+        See :meth:`Limit.violations_of_one`: the formulas of :meth:`angles` on floats, leg by leg.
 
-def _angle(lx, ly, lz, hx, hy, hz):
-    """Angles between ``l`` and ``h``: atan2 of ``|l x h|`` and ``l . h`` (any angle)."""
+        The arctangents of the twelve angles in one ``numpy.arctan2`` (whose results differ
+        from ``math.atan2``'s in the last bit), so that they equal the arrays' to the bit.
+        """
+        if legs.floats is None:
+            return super().violations_of_one(legs)
+        rotation = legs.float_rotation
+        sines, cosines, zero = [], [], []
+        for row, ((length, lx, ly, lz, *_), (home, platform_home)) in enumerate(
+                zip(legs.floats, self._float_homes)):
+            for sine, cosine in _cone_terms(lx, ly, lz, home, platform_home, rotation, math.sqrt):
+                sines.append(sine)
+                cosines.append(cosine)
+            if length == 0.0:
+                zero.append(row)
+        angles = np.arctan2(sines, cosines).tolist()
+        values = [angles[0::2], angles[1::2]]
+        for row in zero:   # no direction: no angle at all (as in angles)
+            values[0][row] = values[1][row] = math.nan
+        return [violation for bound, angles in zip(
+            self.bounds, (angles for angles, is_set in zip(values, self._set) if is_set))
+            for violation in row_violations(bound, angles)]
+
+
+def _cone_angles(lx, ly, lz, home, platform_home, rotation, sqrt, atan2):
+    """
+    Both cone angles of legs ``l`` (arrays (6, n)): :func:`_cone_terms`' arctangents.
+
+    :returns: ``(base, platform)``, radians.
+    """
+    (base_sine, base_cosine), (sine, cosine) = _cone_terms(lx, ly, lz, home, platform_home,
+                                                           rotation, sqrt)
+    return atan2(base_sine, base_cosine), atan2(sine, cosine)
+
+
+def _cone_terms(lx, ly, lz, home, platform_home, rotation, sqrt):
+    """
+    Both cone angles of legs ``l`` as ``(|l x h|, l . h)``: to ``home`` and ``R platform_home``.
+
+    The one formula of the cone angles (``atan2`` of the two terms), on floats for one leg
+    (``math.sqrt``) or on arrays (6, n) for the legs of poses (``numpy.sqrt``).
+
+    :param home: the home direction's x, y, z (base frame); ``platform_home``: that of the
+        platform joint, ``R_home^T u_home`` (platform frame).
+    :param rotation: ``(r11, ..., r33)`` of the platform-to-base rotation.
+    """
+    r11, r12, r13, r21, r22, r23, r31, r32, r33 = rotation
+    cx, cy, cz = platform_home
+    # R (R_home^T u_home): the platform's home direction, turned with the platform.
+    return (_angle_terms(lx, ly, lz, *home, sqrt),
+            _angle_terms(lx, ly, lz, r11 * cx + r12 * cy + r13 * cz,
+                         r21 * cx + r22 * cy + r23 * cz, r31 * cx + r32 * cy + r33 * cz, sqrt))
+
+
+def _angle_terms(lx, ly, lz, hx, hy, hz, sqrt):
+    """Return the angle between ``l`` and ``h`` as ``(|l x h|, l . h)``, its atan2's terms."""
     cx = ly * hz - lz * hy
     cy = lz * hx - lx * hz
     cz = lx * hy - ly * hx
-    return np.arctan2(np.sqrt(cx * cx + cy * cy + cz * cz), lx * hx + ly * hy + lz * hz)
+    return sqrt(cx * cx + cy * cy + cz * cz), lx * hx + ly * hy + lz * hz
 
 
 def _narrowed(limits, margins) -> dict:

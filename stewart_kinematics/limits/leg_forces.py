@@ -27,8 +27,12 @@ breaks the limit there. Nothing here imports ROS.
 
 import math
 
-from stewart_kinematics.dynamics.inverse_dynamics import masses_of, static_forces_of_legs
-from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.dynamics.inverse_dynamics import (
+    masses_of,
+    single_static_forces_of_legs,
+    static_forces_of_legs,
+)
+from stewart_kinematics.limits.base import Bound, LEG, Limit, row_violations
 from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
 from stewart_kinematics.model.validators import InRange
 
@@ -57,6 +61,14 @@ class LegForces(Limit):
         forces = static_forces_of_legs(arrays.lengths, arrays.vectors, arrays.rotation,
                                        self._masses)
         return (forces,) * len(self.bounds)
+
+    def violations_of_one(self, legs):
+        """See :meth:`Limit.violations_of_one`: the same forces, in floats."""
+        if legs.floats is None:
+            return super().violations_of_one(legs)
+        forces = single_static_forces_of_legs(legs.floats, legs.float_rotation, self._masses)
+        return [violation for bound in self.bounds
+                for violation in row_violations(bound, forces)]
 
 
 def _evaluator(geometry, limits) -> LegForces:

@@ -38,7 +38,15 @@ from typing import Dict, List, Optional
 import numpy as np
 
 from stewart_kinematics.limits import kinds
-from stewart_kinematics.limits.base import LEG, LegSamples, PAIR, PLATFORM, PoseLegs
+from stewart_kinematics.limits.base import (
+    LEG,
+    LegSamples,
+    PAIR,
+    PLATFORM,
+    PoseLegs,
+    row_violations,
+    violations_in,
+)
 from stewart_kinematics.limits.leg_rates import LegRate
 from stewart_kinematics.limits.singularity import SingularityMargin
 from stewart_kinematics.limits.violation import Violation
@@ -152,27 +160,34 @@ class LimitModel:
         if position.shape != (3,) or rotation.shape != (3, 3):
             raise ValueError(f'expected a position (3,) and a rotation (3, 3), got shapes '
                              f'{position.shape} and {rotation.shape}')
-        if not all(map(math.isfinite, position.tolist() + rotation.ravel().tolist())):
-            raise ValueError(f'pose must be finite, got position {position.tolist()}')
+        position, entries = position.tolist(), rotation.ravel().tolist()
+        if not all(map(math.isfinite, position + entries)):
+            raise ValueError(f'pose must be finite, got position {position}')
         if not self.pose_limits:
             return []
-        legs = self.pose_legs(position, rotation)
-        if not np.all(np.isfinite(legs.lengths)):
+        legs = PoseLegs.of_pose(self.geometry, position, entries)
+        if not all(math.isfinite(leg[0]) for leg in legs.floats):
             raise ValueError(f'leg lengths must be finite (metres), got '
-                             f'{legs.lengths[:, 0].tolist()}: a pose beyond any reach')
+                             f'{[leg[0] for leg in legs.floats]}: a pose beyond any reach')
         return self.violations_of(legs, condition=condition)
 
     def pose_legs(self, position, rotation) -> PoseLegs:
         """
         Return the legs of one pose, as every pose limit reads them (for :meth:`violations_of`).
 
+        In floats (:meth:`PoseLegs.of_pose`), with their arrays built when read.
+
         :param position: metres, shape (3,), finite; ``rotation``: shape (3, 3), finite.
         """
-        return PoseLegs.of_matrices(self.geometry, position[None, :], rotation[None, :, :])
+        return PoseLegs.of_pose(self.geometry, np.asarray(position, dtype=float).tolist(),
+                                np.asarray(rotation, dtype=float).ravel().tolist())
 
     def violations_of(self, legs: PoseLegs, *, condition=None) -> List[Violation]:
         """
         Every pose limit that the one pose of ``legs`` breaks, in report order.
+
+        Each evaluator's one-pose path (:meth:`~.base.Limit.violations_of_one`: floats where
+        its formulas run on them), the same violations as :meth:`check_poses` gives the pose.
 
         :param legs: :meth:`pose_legs` of a pose whose lengths are finite.
         :param condition: its condition number when already known, or ``None``.
@@ -180,11 +195,9 @@ class LimitModel:
         violations = []
         for limit in self.pose_limits:
             if condition is not None and isinstance(limit, SingularityMargin):
-                values = np.array([[float(condition)]])
-                results = ((values, limit.bounds[0].broken(values)),)
+                violations += row_violations(limit.bounds[0], (float(condition),))
             else:
-                results = limit.evaluate(legs)
-            violations += _violations(limit.bounds, results)
+                violations += limit.violations_of_one(legs)
         return violations
 
     # Many poses -------------------------------------------------------------------------------
@@ -285,7 +298,7 @@ class LimitModel:
         for limit in self.leg_state_limits:
             if getattr(samples, limit.quantity) is None:
                 continue
-            violations += _violations(limit.bounds, limit.evaluate(samples))
+            violations += violations_in(limit.bounds, limit.evaluate(samples))
         return violations
 
     def leg_state_allowed(self, **sample) -> bool:
@@ -362,13 +375,6 @@ class LimitModel:
             for limit, result in zip(dear, results):
                 _store(limit, result, target, values, broken, allowed)
         return LimitChecks(self, tuple(bounds), values, broken, allowed)
-
-
-def _violations(bounds, results) -> List[Violation]:
-    """Return the violations of one pose or sample (column 0) in an evaluator's results."""
-    return [bound.violation(row, float(values[row, 0]))
-            for bound, (values, broken) in zip(bounds, results) if broken.any()
-            for row in np.flatnonzero(broken[:, 0])]
 
 
 def _store(limit, results, target, values, broken, allowed):

@@ -27,9 +27,13 @@ import math
 
 import numpy as np
 
-from stewart_kinematics.limits.base import Bound, Limit, PLATFORM
+from stewart_kinematics.limits.base import Bound, Limit, PLATFORM, row_violations
 from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
-from stewart_kinematics.model.jacobians import conditions_of_jacobians, dimensionless_jacobians
+from stewart_kinematics.model.jacobians import (
+    conditions_of_jacobians,
+    dimensionless_jacobians,
+    single_condition,
+)
 from stewart_kinematics.model.validators import InRange
 
 #: Relative rounding allowance of the pivots of the proof (see :func:`proved_within`).
@@ -59,6 +63,19 @@ class SingularityMargin(Limit):
         """Condition numbers, shape (1, n)."""
         jacobians = dimensionless_jacobians(self._geometry, arrays.lengths, arrays.vectors)
         return (conditions_of_jacobians(jacobians)[None, :],)
+
+    def violations_of_one(self, legs):
+        """
+        See :meth:`Limit.violations_of_one`: the Jacobian's rows in floats, one 6x6 SVD.
+
+        The rows of :func:`~stewart_kinematics.model.formulas.float_twist_rows` and
+        :func:`~stewart_kinematics.model.jacobians.single_singular_values`, the one-pose path
+        of the same formulas as :meth:`values` (forward kinematics results use it too).
+        """
+        if legs.floats is None:
+            return super().violations_of_one(legs)
+        (bound,) = self.bounds
+        return row_violations(bound, (single_condition(self._geometry, legs.floats),))
 
     def evaluate(self, arrays, exact=True):
         """See :meth:`Limit.evaluate`; inexact: NaN (not broken) where proved within."""

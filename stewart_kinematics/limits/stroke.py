@@ -22,7 +22,7 @@ streamed commands). Nothing here imports ROS.
 
 import math
 
-from stewart_kinematics.limits.base import Bound, LEG, Limit
+from stewart_kinematics.limits.base import Bound, LEG, Limit, row_violations
 from stewart_kinematics.limits.kind import BoundLook, LimitKind, LimitParameter
 from stewart_kinematics.model.validators import Finite, InRange
 
@@ -53,6 +53,13 @@ class Stroke(Limit):
     def values(self, arrays):
         """Return the leg lengths, (6, n), for each bound."""
         return (arrays.lengths,) * len(self.bounds)
+
+    def violations_of_one(self, legs):
+        """See :meth:`Limit.violations_of_one`: the lengths in floats."""
+        lengths = [leg[0] for leg in legs.floats] if legs.floats is not None else \
+            legs.lengths[:, 0].tolist()
+        return [violation for bound in self.bounds
+                for violation in row_violations(bound, lengths)]
 
     def allows(self, sample: dict) -> bool:
         """Whether six lengths (floats, ``sample['lengths']``) keep the stroke."""

@@ -25,6 +25,8 @@ result through :func:`single_dimensionless_jacobian` and :func:`single_singular_
 same figures for one pose, in a fifth of the time).
 """
 
+import math
+
 import numpy as np
 
 from stewart_kinematics.model.arrays import check_finite_output
@@ -162,6 +164,21 @@ def conditions_of_jacobians(jacobians) -> np.ndarray:
     return condition_number(singular_values_of(jacobians))
 
 
+def single_condition(geometry, legs) -> float:
+    """
+    :func:`conditions_of_jacobians` of one pose, from its legs in floats (:func:`legs_of`).
+
+    :param legs: per leg ``(l, lx, ly, lz, ax, ay, az)``, floats.
+    :returns: the condition number; ``inf`` where the Jacobian is singular or has a zero row.
+    """
+    jacobian, zero_row = _dimensionless_of_legs(geometry, legs)
+    largest, *_, smallest = single_singular_values(jacobian, zero_row)
+    # condition_number's division, in floats: x / 0 is inf (NaN for 0 / 0), as numpy's.
+    if smallest == 0.0:
+        return math.inf if largest > 0.0 else math.nan
+    return largest / smallest
+
+
 def single_dimensionless_jacobian(geometry, pose):
     """
     Return the dimensionless Jacobian of one pose (6, 6), and whether it has a zero row.
@@ -171,7 +188,12 @@ def single_dimensionless_jacobian(geometry, pose):
 
     :param pose: ``[X, Y, Z, alpha, beta, gamma]``, six floats.
     """
-    rows = float_twist_rows(single_euler_legs(constants_of(geometry), pose))
+    return _dimensionless_of_legs(geometry, single_euler_legs(constants_of(geometry), pose))
+
+
+def _dimensionless_of_legs(geometry, legs):
+    """:func:`single_dimensionless_jacobian` of one pose's legs (:func:`legs_of`, floats)."""
+    rows = float_twist_rows(legs)
     jacobian = np.array(rows).reshape(6, 6)
     jacobian[:, 3:] /= geometry.platform_radius
     return jacobian, any(not any(rows[start:start + 6]) for start in range(0, 36, 6))

@@ -529,8 +529,9 @@ MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'translation_scale', DOUBLE_ARRAY,
         'Gain on the specific force of the translational channel, x y z (vehicle frame: x '
-        'forward, y left, z up)',
-        default=[0.5, 0.5, 0.5], read_only=True,
+        'forward, y left, z up); changeable at run time: ramped over gain_ramp_time, refused '
+        'where its worst-case cue leaves the travel (doc/motion_cueing.md)',
+        default=[0.5, 0.5, 0.5], read_only=False,
         validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'translation_input_limit', DOUBLE,
@@ -562,8 +563,9 @@ MOTION_CUEING_PARAMETERS = (
         validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
     ParameterSpec(
         'tilt_scale', DOUBLE_ARRAY,
-        'Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll)',
-        default=[0.5, 0.5], read_only=True,
+        'Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll); '
+        'changeable at run time as translation_scale',
+        default=[0.5, 0.5], read_only=False,
         validators=(FixedLength(2), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'tilt_complementary', BOOL,
@@ -598,8 +600,10 @@ MOTION_CUEING_PARAMETERS = (
         default=15.0, read_only=True,
         validators=(Finite(), InRange(0.0, 45.0, low_inclusive=False))),
     ParameterSpec(
-        'rotation_scale', DOUBLE_ARRAY, 'Gain on the angular velocity, roll pitch yaw',
-        default=[0.5, 0.5, 0.5], read_only=True,
+        'rotation_scale', DOUBLE_ARRAY,
+        'Gain on the angular velocity, roll pitch yaw; changeable at run time as '
+        'translation_scale',
+        default=[0.5, 0.5, 0.5], read_only=False,
         validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
     ParameterSpec(
         'rotation_order', INTEGER,
@@ -617,6 +621,13 @@ MOTION_CUEING_PARAMETERS = (
         default=[1.0, 1.0, 1.0], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(0.0, 10.0, low_inclusive=False))),
     ParameterSpec(
+        'attitude_aware_specific_force', BOOL,
+        "Turn the vehicle's specific force into the simulator's frame through the platform's "
+        "cue attitude before the translational high-pass (Reid and Nahon's L_IS): a "
+        'coordinated turn rolled by the rotational channel asks for the sideways acceleration '
+        'that offsets the gravity the roll shows; false: the force as it comes',
+        default=False, read_only=True),
+    ParameterSpec(
         'head_position', DOUBLE_ARRAY,
         "The cueing reference point (the driver's head) in the platform frame, metres: the "
         "cue's rotations turn about it, and the perceived specific force is computed there",
@@ -628,6 +639,15 @@ MOTION_CUEING_PARAMETERS = (
         'velocity or acceleration limits held it back, rad/s',
         default=10.0, read_only=True,
         validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
+    ParameterSpec(
+        'follower_weights', DOUBLE_ARRAY,
+        "Weights of the follower's least-squares step where the legs cannot follow the cue: "
+        'the squared miss of the platform twist along x, y, z (per m/s) and roll, pitch, yaw '
+        '(per rad/s) costs its weight; a larger weight keeps that axis closer to the cue '
+        '(only their ratios matter); heave weighted 30: limiting at the literature gains then '
+        'keeps wrong-way heave on the mixed drive within 10 % of the unlimited cue',
+        default=[1.0, 1.0, 30.0, 1.0, 1.0, 1.0], read_only=True,
+        validators=(FixedLength(6), Finite(), InRange(1e-3, 1e3))),
     ParameterSpec(
         'workspace_recovery_rate', DOUBLE,
         'Fastest rise of the workspace scale (the share of the cue kept inside the limits) '
@@ -761,6 +781,58 @@ MOTION_CUEING_PARAMETERS = (
 )
 
 
+#: motion_cueing_node: what an operator changes at run time (stewart_kinematics.cueing.controls):
+#: the intensity and the gains (ramped), the soft start from park and the soft stop to park.
+CUEING_CONTROL_PARAMETERS = (
+    ParameterSpec(
+        'cueing_intensity', DOUBLE,
+        'Master intensity of the cue, 0 (no motion: the platform eases to neutral) to 1 (the '
+        'gains as set): it multiplies translation_scale, tilt_scale and rotation_scale; a '
+        'change is ramped over gain_ramp_time and refused where the cue would leave the travel',
+        default=1.0, validators=(Finite(), InRange(0.0, 1.0))),
+    ParameterSpec(
+        'gain_ramp_time', DOUBLE,
+        'Time over which a change of cueing_intensity or of a gain is ramped (smoothstep: no '
+        'jump in the gain or its rate), seconds; applies from the next change',
+        default=2.0, validators=(Finite(), InRange(0.01, 600.0))),
+    ParameterSpec(
+        'gain_check_specific_force', DOUBLE,
+        'The sustained change of specific force (m/s^2, each axis) a gain change is checked '
+        'with: a change whose cue of it would leave the travel (within the cue margins) is '
+        'refused',
+        default=4.0, read_only=True,
+        validators=(Finite(), InRange(0.0, 1000.0, low_inclusive=False))),
+    ParameterSpec(
+        'gain_check_angular_velocity', DOUBLE,
+        'The sustained angular velocity (rad/s, each axis) a rotation_scale change is checked '
+        'with, as gain_check_specific_force',
+        default=0.5, read_only=True,
+        validators=(Finite(), InRange(0.0, 100.0, low_inclusive=False))),
+    ParameterSpec(
+        'soft_start_time', DOUBLE,
+        'The start service moves the platform from park to the neutral cueing pose in this '
+        'time (longer when the leg velocity or acceleration limits need), seconds',
+        default=3.0, validators=(Finite(), InRange(0.1, 600.0))),
+    ParameterSpec(
+        'soft_stop_time', DOUBLE,
+        'The stop service brakes the platform to rest, then moves it to park in this time '
+        '(longer when the leg limits need), seconds',
+        default=3.0, validators=(Finite(), InRange(0.1, 600.0))),
+    ParameterSpec(
+        'park_position', DOUBLE_ARRAY,
+        "The park pose's X, Y, Z, metres, base frame, oriented as home: where stop takes the "
+        'platform and start_parked starts it; all 0.0: the lowest pose straight below home '
+        'that keeps the cue margins (leg_length_margin inside the stroke)',
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(-1000.0, 1000.0)),
+        note='within every limit, or all 0.0'),
+    ParameterSpec(
+        'start_parked', BOOL,
+        'Start with the platform at park: nothing is cued until the start service; false: '
+        'the platform is taken to be at home, cueing at once',
+        default=False, read_only=True),
+)
+
 #: mock_platform: the simulated legs, what they follow, and the faults a test gives them.
 MOCK_PLATFORM_PARAMETERS = (
     ParameterSpec(
@@ -824,7 +896,7 @@ def all_specs():
             + IK_FRAME_PARAMETERS + MARKER_PARAMETERS + WORKSPACE_PARAMETERS + QUEUE_PARAMETERS
             + LIFECYCLE_PARAMETERS
             + RAMP_PARAMETERS + MOTION_PARAMETERS + ACTION_PARAMETERS + STREAMING_PARAMETERS
-            + MOTION_CUEING_PARAMETERS + MOCK_PLATFORM_PARAMETERS)
+            + MOTION_CUEING_PARAMETERS + CUEING_CONTROL_PARAMETERS + MOCK_PLATFORM_PARAMETERS)
 
 
 #: Parameters that were replaced, and what replaces them: named in the refusal of an old file.

@@ -770,7 +770,8 @@ class CueingParameterSettings(Settings):
     translation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
     """
     Gain on the specific force of the translational channel, x y z (vehicle frame: x forward, y
-    left, z up). Allowed: 3 values in [0, 10]. Read-only at run time.
+    left, z up); changeable at run time: ramped over gain_ramp_time, refused where its worst-case
+    cue leaves the travel (doc/motion_cueing.md). Allowed: 3 values in [0, 10].
     """
 
     translation_input_limit: float = math.inf
@@ -805,8 +806,8 @@ class CueingParameterSettings(Settings):
 
     tilt_scale: Tuple[float, ...] = (0.5, 0.5)
     """
-    Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll). Allowed: 2
-    values in [0, 10]. Read-only at run time.
+    Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll); changeable at
+    run time as translation_scale. Allowed: 2 values in [0, 10].
     """
 
     tilt_complementary: bool = False
@@ -843,8 +844,8 @@ class CueingParameterSettings(Settings):
 
     rotation_scale: Tuple[float, ...] = (0.5, 0.5, 0.5)
     """
-    Gain on the angular velocity, roll pitch yaw. Allowed: 3 values in [0, 10]. Read-only at run
-    time.
+    Gain on the angular velocity, roll pitch yaw; changeable at run time as translation_scale.
+    Allowed: 3 values in [0, 10].
     """
 
     rotation_order: int = 2
@@ -865,6 +866,14 @@ class CueingParameterSettings(Settings):
     Read-only at run time.
     """
 
+    attitude_aware_specific_force: bool = False
+    """
+    Turn the vehicle's specific force into the simulator's frame through the platform's cue
+    attitude before the translational high-pass (Reid and Nahon's L_IS): a coordinated turn rolled
+    by the rotational channel asks for the sideways acceleration that offsets the gravity the roll
+    shows; false: the force as it comes. Read-only at run time.
+    """
+
     head_position: Tuple[float, ...] = (0.0, 0.0, 0.5)
     """
     The cueing reference point (the driver's head) in the platform frame, metres: the cue's
@@ -876,6 +885,15 @@ class CueingParameterSettings(Settings):
     """
     Bandwidth of the follower that brings the platform back onto the cue after the leg velocity or
     acceleration limits held it back, rad/s. Allowed: in (0, 1000]. Read-only at run time.
+    """
+
+    follower_weights: Tuple[float, ...] = (1.0, 1.0, 30.0, 1.0, 1.0, 1.0)
+    """
+    Weights of the follower's least-squares step where the legs cannot follow the cue: the squared
+    miss of the platform twist along x, y, z (per m/s) and roll, pitch, yaw (per rad/s) costs its
+    weight; a larger weight keeps that axis closer to the cue (only their ratios matter); heave
+    weighted 30: limiting at the literature gains then keeps wrong-way heave on the mixed drive
+    within 10 % of the unlimited cue. Allowed: 6 values in [0.001, 1000]. Read-only at run time.
     """
 
     workspace_recovery_rate: float = 0.5
@@ -1044,6 +1062,70 @@ class CueingParameterSettings(Settings):
 
 
 @dataclass(frozen=True, kw_only=True)
+class CueingControlSettings(Settings):
+    """
+    One field per parameter of :data:`~stewart_kinematics.parameters.CUEING_CONTROL_PARAMETERS`.
+
+    motion_cueing_node's run-time controls: intensity and gain ramps, soft start and stop, park
+    (:mod:`stewart_kinematics.cueing.controls`).
+    """
+
+    SPECS: ClassVar[Tuple[ParameterSpec, ...]] = declarations.CUEING_CONTROL_PARAMETERS
+
+    cueing_intensity: float = 1.0
+    """
+    Master intensity of the cue, 0 (no motion: the platform eases to neutral) to 1 (the gains as
+    set): it multiplies translation_scale, tilt_scale and rotation_scale; a change is ramped over
+    gain_ramp_time and refused where the cue would leave the travel. Allowed: in [0, 1].
+    """
+
+    gain_ramp_time: float = 2.0
+    """
+    Time over which a change of cueing_intensity or of a gain is ramped (smoothstep: no jump in the
+    gain or its rate), seconds; applies from the next change. Allowed: in [0.01, 600].
+    """
+
+    gain_check_specific_force: float = 4.0
+    """
+    The sustained change of specific force (m/s^2, each axis) a gain change is checked with: a
+    change whose cue of it would leave the travel (within the cue margins) is refused. Allowed: in
+    (0, 1000]. Read-only at run time.
+    """
+
+    gain_check_angular_velocity: float = 0.5
+    """
+    The sustained angular velocity (rad/s, each axis) a rotation_scale change is checked with, as
+    gain_check_specific_force. Allowed: in (0, 100]. Read-only at run time.
+    """
+
+    soft_start_time: float = 3.0
+    """
+    The start service moves the platform from park to the neutral cueing pose in this time (longer
+    when the leg velocity or acceleration limits need), seconds. Allowed: in [0.1, 600].
+    """
+
+    soft_stop_time: float = 3.0
+    """
+    The stop service brakes the platform to rest, then moves it to park in this time (longer when
+    the leg limits need), seconds. Allowed: in [0.1, 600].
+    """
+
+    park_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    The park pose's X, Y, Z, metres, base frame, oriented as home: where stop takes the platform
+    and start_parked starts it; all 0.0: the lowest pose straight below home that keeps the cue
+    margins (leg_length_margin inside the stroke). Allowed: 3 values in [-1000, 1000]; within every
+    limit, or all 0.0. Read-only at run time.
+    """
+
+    start_parked: bool = False
+    """
+    Start with the platform at park: nothing is cued until the start service; false: the platform
+    is taken to be at home, cueing at once. Read-only at run time.
+    """
+
+
+@dataclass(frozen=True, kw_only=True)
 class MockPlatformSettings(Settings):
     """
     One field per parameter of :data:`~stewart_kinematics.parameters.MOCK_PLATFORM_PARAMETERS`.
@@ -1152,6 +1234,7 @@ class MotionCueingNodeSettings(NodeSettings):
     geometry: GeometrySettings
     frames: FrameSettings
     cueing: CueingParameterSettings
+    controls: CueingControlSettings
     queue: QueueSettings
     lifecycle: LifecycleSettings
 

@@ -202,9 +202,10 @@ class FkNode(ManagedNode):
             self.get_logger().info(f'estimate unambiguous again: {self.tracker.anchored_by}')
 
     def cleanup(self):
-        """Stop the margin's worker process."""
-        if self.margin is not None:
-            self.margin.monitor.close()
+        """Stop the margin's worker process, if configure got as far as starting it."""
+        margin = getattr(self, 'margin', None)
+        if margin is not None:
+            margin.monitor.close()
 
     def on_leg_lengths(self, message: Float64MultiArray):
         """Solve for the pose of the received lengths and publish it, or say why not."""

@@ -240,8 +240,10 @@ class IkNode(ManagedNode):
                 f'{np.array2string(last.lengths, precision=6, separator=", ")} m')
 
     def cleanup(self):
-        """Stop the workspace worker."""
-        self.workspace.shutdown()
+        """Stop the workspace worker, if configure got as far as starting it."""
+        workspace = getattr(self, 'workspace', None)
+        if workspace is not None:
+            workspace.shutdown()
 
     def on_target_pose(self, message: Pose):
         """Turn a pose into leg lengths; the outputs are stamped with the time of the answer."""

@@ -366,6 +366,18 @@ MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
     Endpoint('reset', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
              'Wash out to neutral: the washout forgets its history, the platform glides home '
              'within the actuator limits'),
+    Endpoint('start', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Soft start: from park up to the neutral cueing pose over soft_start_time (leg '
+             'velocity and acceleration within the actuator limits), then cueing'),
+    Endpoint('stop', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Soft stop: brake to rest, then down to park over soft_stop_time; during a start, '
+             'turn back to park from where the platform is'),
+    Endpoint('pause', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             'Pause: brake to rest where the platform is and hold it there, the washout frozen; '
+             'samples are not cued (cueing_held)'),
+    Endpoint('resume', SERVICE, 'std_srvs/srv/Trigger', SERVICE_QOS,
+             "Resume after pause: cueing goes on from the washout's held state, without a "
+             'jump'),
     DIAGNOSTICS_TOPIC,
 ))
 

@@ -138,7 +138,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
         #: The settings the node runs with (a dict of the values given while unconfigured).
         self.settings = declare_settings(
             self, self.SETTINGS, on_change=self.on_parameter_change,
-            check=self.PARAMETERS_CHECK, node_options=kwargs, payload=self.run_time_payload(),
+            check=self.parameters_check, node_options=kwargs, payload=self.run_time_payload(),
             deferred=self._deferred, skip=('managed',))
         if not self.managed:
             # The same parts as the transitions, called in turn: the node is active.
@@ -151,6 +151,10 @@ class ManagedNode(LifecycleNodeMixin, Node):
     def run_time_payload(self):
         """Return how the node takes a new payload at run time, or ``None``."""
         return None
+
+    def parameters_check(self, values) -> str:
+        """Return ``''`` if the parameter values (all, after a change) may be set, else why not."""
+        return self.PARAMETERS_CHECK(values)
 
     def on_parameter_change(self, name, value):
         """Take a validated run-time change of a parameter (the node is configured)."""
@@ -239,7 +243,7 @@ class ManagedNode(LifecycleNodeMixin, Node):
         try:
             if self._deferred is not None:
                 self.settings = self._deferred.settings(self, self.SETTINGS,
-                                                        self.PARAMETERS_CHECK)
+                                                        self.parameters_check)
             self._built = _entities(self)
             self.configure()
         except Exception as error:  # noqa: B902 - a managed node stays alive, whatever failed

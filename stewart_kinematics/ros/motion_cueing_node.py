@@ -39,10 +39,22 @@ home on the node's clock until it rests (:meth:`stewart_kinematics.cueing.Motion
 called on a timer; ``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
 Refusals and warnings are counted on ``/diagnostics``.
 
+Run-time controls (doc/motion_cueing.md, "The node at run time"): ``cueing_intensity`` and the
+gains ``translation_scale``, ``tilt_scale``, ``rotation_scale`` may be set at run time
+(``ros2 param set``, the parameter services): the change is ramped over ``gain_ramp_time``, or
+refused with the reason (the value, the cue it would give and the travel) where the cue of the
+reference input would leave the platform's travel. The ``start``, ``stop``, ``pause`` and
+``resume`` services (std_srvs/srv/Trigger) move the platform up from park, down to park, hold
+it and go on; their motions are stepped on the node's clock by a timer
+(:meth:`stewart_kinematics.cueing.MotionCueing.operate`), and while the platform is not cueing
+the samples are counted as ``cueing_held`` and not cued. ``start_parked`` starts the node at
+park, waiting for ``start``.
+
 Parameters are declared as for the other nodes (a bad parameter file or a misspelt name stops
 the start with the reason). Every one is read-only but the tool frame's (``tool_frame``,
 ``tool_frame_position``, ``tool_frame_orientation_deg``), which applies from the next command
-on.
+on, the gains and intensity above, and ``gain_ramp_time``, ``soft_start_time`` and
+``soft_stop_time`` (from the next ramp, start or stop).
 """
 
 import time
@@ -54,6 +66,7 @@ from std_msgs.msg import Header
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.cueing.motion_cueing import WATCHDOG_PERIOD
 from stewart_kinematics.parameters import (
+    frame_parameters_reason,
     frames_from_settings,
     MotionCueingNodeSettings,
 )
@@ -72,6 +85,10 @@ from stewart_kinematics.ros.ros_parameters import RunTimePayload
 
 #: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
 MAX_BRAKING_STEPS = 10_000
+#: The parameters that set the cue's gains at run time (ramped, checked against the travel).
+GAIN_PARAMETERS = ('cueing_intensity', 'translation_scale', 'tilt_scale', 'rotation_scale')
+#: The control times, taken from the next ramp, start or stop.
+CONTROL_TIMES = ('gain_ramp_time', 'soft_start_time', 'soft_stop_time')
 
 
 class MotionCueingNode(ManagedNode):
@@ -103,12 +120,14 @@ class MotionCueingNode(ManagedNode):
         self.accounting = NodeDiagnostics(self).accounting('vehicle_imu')
         create_input_subscription(self, interface['vehicle_imu'], self.on_imu, depth)
         create_declared_service(self, interface['reset'], self.on_reset)
+        for name in ('start', 'stop', 'pause', 'resume'):
+            create_declared_service(self, interface[name], self.control_service(name))
         #: The first stamp, nanoseconds: times are kept relative to it (float precision).
         self.origin_ns = None
         #: The node clock's origin, nanoseconds: the commands' times are seconds since it.
         self.clock_origin_ns = self.get_clock().now().nanoseconds
-        if self.cueing.watchdog_period is not None:
-            self.create_timer(self.cueing.watchdog_period, self.on_watchdog)
+        # The watchdog's timer also steps start, stop and pause (operate).
+        self.create_timer(self.cueing.watchdog_period or WATCHDOG_PERIOD, self.on_watchdog)
         self.get_logger().info(
             f'ready: cueing vehicle_imu into target_pose (head at '
             f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
@@ -140,16 +159,64 @@ class MotionCueingNode(ManagedNode):
         self.cueing.reset()
         self.cueing.restart_time()
 
+    def parameters_check(self, values) -> str:
+        """
+        Return ``''`` if the values after a change may be set, else why not.
+
+        The frames' rules, then (configured) a change of intensity or gains: refused where the
+        cue of the reference input would leave the travel (the core's ``gain_refusal``).
+        """
+        reason = frame_parameters_reason(values)
+        if reason or not self.configured or getattr(self, 'cueing', None) is None:
+            return reason
+        cueing = self.cueing
+        now = {'cueing_intensity': cueing.controls.cueing_intensity,
+               'translation_scale': cueing.settings.translation_scale,
+               'tilt_scale': cueing.settings.tilt_scale,
+               'rotation_scale': cueing.settings.rotation_scale}
+        changed = {name: values[name] for name in GAIN_PARAMETERS if name in values
+                   and _differs(values[name], now[name])}
+        if not changed:
+            return ''
+        refusal = cueing.gain_refusal(
+            intensity=changed.get('cueing_intensity'),
+            translation_scale=changed.get('translation_scale'),
+            tilt_scale=changed.get('tilt_scale'), rotation_scale=changed.get('rotation_scale'))
+        return refusal.message if refusal is not None else ''
+
     def on_parameter_change(self, name, value):
-        """Take a validated run-time change (the tool frame: the others are read-only)."""
+        """Take a validated run-time change: tool frame, gains (ramped), control times."""
         self.settings = self.settings.replace(**{name: value})
         if name.startswith('tool_frame'):
             self.cueing.set_frames(frames_from_settings(self.settings.frames))
+        elif name in GAIN_PARAMETERS:
+            # Every gain as now set (a request setting several is checked as a whole).
+            cueing, controls = self.settings.cueing, self.settings.controls
+            refusal = self.cueing.set_gains(
+                controls.cueing_intensity, cueing.translation_scale, cueing.tilt_scale,
+                cueing.rotation_scale, check_travel=False)
+            if refusal is not None:   # checked before the set: not expected
+                self.get_logger().error(f'{name} not taken: {refusal.message}')
+            else:
+                self.get_logger().info(
+                    f'{name} set to {value}: ramping over '
+                    f'{self.cueing.controls.gain_ramp_time:g} s')
+        elif name in CONTROL_TIMES:
+            self.cueing.controls = self.cueing.controls.replace(**{name: value})
 
     def set_mass_properties(self, geometry):
         """Cue with a new payload (the platform rests at home): a new cueing of the settings."""
         self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
                                                    frames_from_settings(self.settings.frames))
+
+    def control_service(self, name):
+        """Return the callback of the ``start``, ``stop``, ``pause`` or ``resume`` service."""
+        def answer(request, response):
+            result = getattr(self.cueing, name)()
+            response.success, response.message = result.success, result.message
+            self.get_logger().info(f'{name}: {result.message}')
+            return response
+        return answer
 
     def on_imu(self, message: Imu):
         """
@@ -168,8 +235,11 @@ class MotionCueingNode(ManagedNode):
                                  (force.x, force.y, force.z), (rate.x, rate.y, rate.z),
                                  self.command_time(self.get_clock().now()),
                                  message.header.frame_id)
-        if result.command is None:   # a refused time: nothing moved
-            self.accounting.reject(result.refusal)
+        if result.command is None:   # a refused time, or not cueing: nothing moved
+            if result.refusal is not None:
+                self.accounting.reject(result.refusal)
+            for finding in result.warnings:
+                self.accounting.warn(finding)
             return
         if result.refusal is not None:
             # The sample is refused; the step taken at rest (easing home) is still sent.
@@ -221,14 +291,27 @@ class MotionCueingNode(ManagedNode):
         return response
 
     def on_watchdog(self):
-        """Without input for input_timeout, ease the platform home until it rests (the core's)."""
+        """
+        Step a start, stop or pause; else, without input, ease the platform home.
+
+        The core's ``operate``, else ``watch`` (no input for input_timeout: until it rests).
+        """
         now = self.get_clock().now()
-        result = self.cueing.watch(self.command_time(now))
+        result = self.cueing.operate(self.command_time(now))
+        if result is None and self.cueing.watchdog_period is not None:
+            result = self.cueing.watch(self.command_time(now))
         if result is None:
             return
         self.target_publisher.publish(result.command)
         # No sample to stamp the felt force with: only the pose, stamped now.
         self.publish_extras(result, now.to_msg(), perceived=False)
+
+
+def _differs(value, now) -> bool:
+    """Whether a parameter value (a number or a list) differs from the cueing's (a tuple)."""
+    if isinstance(now, tuple):
+        return [float(entry) for entry in value] != list(now)
+    return float(value) != now
 
 
 def main(args=None) -> int:

@@ -47,6 +47,7 @@ from rclpy.experimental import EventsExecutor
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.signals import SignalHandlerOptions
+from rclpy.task import Future
 from rclpy.utilities import get_default_context, remove_ros_args
 
 from stewart_kinematics.ros.command_publishing import CommandPublisher
@@ -82,6 +83,8 @@ EXECUTOR_OPTION = '--executor'
 #: published a sample twice and not the next one (test/processes/test_sim_time.py failed 5 of
 #: 14 runs with two busy processes beside it, and none of 8 on this executor).
 SIM_TIME_EXECUTOR = 'single_threaded'
+#: The future a slice of the EventsExecutor waits for (:func:`spin_slice`): never done.
+_NEVER_DONE = Future()
 
 
 def executor_name(arguments=(), environment=None) -> str:
@@ -132,6 +135,27 @@ def create_executor(name=None, context=None):
         if handler is not None and signal.getsignal(number) is not handler:
             signal.signal(number, handler)
     return executor
+
+
+def spin_slice(executor, seconds: float = SPIN_SLICE) -> None:
+    """
+    Run the executor's callbacks for up to ``seconds``, then return; safe to call in a loop.
+
+    The EventsExecutor runs every callback that comes within the slice without coming back to
+    Python between two (``spin_until_future_complete`` on a future that never completes):
+    its ``spin_once`` returns after each callback, and the Python loop around it then costs
+    every message its own round trip. The single-threaded executor returns after each callback
+    whatever it is asked (its ``spin_until_future_complete`` loops on ``spin_once`` in
+    Python), so it spins once.
+
+    :param executor: an executor of :data:`EXECUTORS`.
+    :param seconds: the longest the call takes when callbacks keep coming, and the longest it
+        waits for one, seconds.
+    """
+    if isinstance(executor, SingleThreadedExecutor):
+        executor.spin_once(timeout_sec=seconds)
+    else:
+        executor.spin_until_future_complete(_NEVER_DONE, timeout_sec=seconds)
 
 
 def run_node(node_class, name: str, args=None) -> int:
@@ -238,7 +262,7 @@ def run_nodes(node_classes, name: str, args=None, autostart: bool = False) -> in
             # the process has nothing left to do.
             while not stop_requests and rclpy.ok() and not all(
                     getattr(node, 'finalized', False) for node in nodes):
-                executor.spin_once(timeout_sec=SPIN_SLICE)
+                spin_slice(executor)
         except ExternalShutdownException:
             pass
         finally:

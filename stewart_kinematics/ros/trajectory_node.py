@@ -192,9 +192,12 @@ class TrajectoryNode(ManagedNode):
         self.planner = self.make_planner(self.settings)
 
     def cleanup(self):
-        """Stop the worker (a plan under way is cancelled) and the action server."""
-        self.action.destroy()
-        cancelled = self.worker.close()
+        """Stop the worker (a plan under way is cancelled) and the action server, if built."""
+        action = getattr(self, 'action', None)
+        if action is not None:
+            action.destroy()
+        worker = getattr(self, 'worker', None)
+        cancelled = worker.close() if worker is not None else None
         if cancelled is not None:
             self.get_logger().info(f'{cancelled.name}: planning cancelled, the node stops')
 

@@ -13,13 +13,16 @@
 # limitations under the License.
 
 """
-The motion felt at the head against the definition, evaluated with finite differences here.
+The motion felt at the head against the definition, and what is perceived of it, by hand.
 
 A smooth analytic motion of the platform (sines in every pose coordinate); the reference is
 ``f = R^T (h'' + [0, 0, g])`` with ``h = p + R head`` and ``w = (R^T R')^v``, the derivatives
 taken by central differences with a step of 1e-4 s on the analytic motion, the rotation from
 the elementary matrices of test/reference.py. The package samples the motion every millisecond
 and differences the samples: the two agree to the order of the sampling step squared.
+
+What is perceived (the vestibular model, vehicle and platform alike) is checked against the
+closed forms of the otoliths' and the canals' step responses, written out here.
 """
 
 import math
@@ -31,6 +34,7 @@ from reference import rotation_zyx
 
 from stewart_kinematics.cueing.perception import (
     perceived_motion,
+    perception,
     PerceptionEstimator,
     specific_force,
 )
@@ -124,3 +128,99 @@ def test_malformed_motion_is_refused(times, poses):
     """Too few samples, wrong shapes, repeated times: ValueError."""
     with pytest.raises(ValueError, match='times'):
         perceived_motion(times, poses, HEAD, G)
+
+
+def otolith_step(t, size, gain=0.4, lead=13.2, long=5.33, short=0.66):
+    """
+    Return the otolith's response to a step of specific force of ``size`` at t = 0 (closed form).
+
+    ``K (tau_a s + 1) / ((tau_L s + 1)(tau_S s + 1))`` times ``size / s``, by partial
+    fractions: ``K size (1 + (tau_a - tau_L) / (tau_L - tau_S) e^(-t / tau_L) - (tau_a -
+    tau_S) / (tau_L - tau_S) e^(-t / tau_S))`` for t >= 0.
+    """
+    t = np.asarray(t, dtype=float)
+    value = gain * size * (1.0 + (lead - long) / (long - short) * np.exp(-t / long)
+                           - (lead - short) / (long - short) * np.exp(-t / short))
+    return np.where(t >= 0.0, value, 0.0)
+
+
+def canal_step(t, size, long, short=0.1, adaptation=30.0):
+    """
+    Return the canals' response to a step of rate of ``size`` at t = 0 (closed form).
+
+    ``tau_a tau_L s^2 / ((tau_a s + 1)(tau_L s + 1)(tau_S s + 1))`` times ``size / s`` is
+    ``size / tau_S * s / ((s - p1)(s - p2)(s - p3))`` with ``p = -1 / tau``: the sum over the
+    poles of ``p_i e^(p_i t) / prod_(j != i) (p_i - p_j)``.
+    """
+    t = np.asarray(t, dtype=float)
+    poles = [-1.0 / adaptation, -1.0 / long, -1.0 / short]
+    value = np.zeros_like(t)
+    for i, pole in enumerate(poles):
+        others = np.prod([pole - other for j, other in enumerate(poles) if j != i])
+        value += pole * np.exp(pole * np.maximum(t, 0.0)) / others
+    return np.where(t >= 0.0, size / short * value, 0.0)
+
+
+def test_otolith_closed_form_is_the_models():
+    """The closed form's start, slope and end: 0, K tau_a / (tau_L tau_S) per second, K."""
+    assert otolith_step(0.0, 1.0) == pytest.approx(0.0, abs=1e-15)
+    slope = 0.4 * 13.2 / (5.33 * 0.66)
+    assert otolith_step(1e-7, 1.0) / 1e-7 == pytest.approx(slope, rel=1e-5)
+    assert otolith_step(1e4, 1.0) == pytest.approx(0.4)
+    # The peak, by hand: the derivative vanishes where e^(t (1/tau_S - 1/tau_L)) =
+    # (tau_a - tau_S) tau_L / ((tau_a - tau_L) tau_S) = 12.868, at t = 1.9245 s, where the
+    # response is 0.4 (1 + 1.68522 * 0.69693 - 2.68522 * 0.05416) = 0.8116.
+    times = np.linspace(0.0, 30.0, 300001)
+    assert np.max(otolith_step(times, 1.0)) == pytest.approx(0.8116, abs=1e-4)
+    assert times[np.argmax(otolith_step(times, 1.0))] == pytest.approx(1.9245, abs=1e-3)
+
+
+def test_perception_of_a_vehicle_step_is_the_otoliths_step_response():
+    """
+    The vehicle steps to 2 m/s^2 forward and 1 m/s^2 up at 2 s, and to 0.2 rad/s of yaw.
+
+    Each sample is held over the interval that ends with it, so the continuous step starts one
+    step before the sample that carries it; the discretisation is exact: the perceived force
+    follows the closed form to 1e-9, and the raw series (gravity removed) stay beside it.
+    """
+    step = 0.01
+    times = np.arange(0.0, 30.0, step)
+    force = np.tile([0.0, 0.0, G], (times.size, 1))
+    rates = np.zeros((times.size, 3))
+    on = times >= 2.0
+    force[on, 0] += 2.0
+    force[on, 2] += 1.0
+    rates[on, 2] = 0.2
+    seen = perception(times, force, rates, G)
+    since = times - (times[np.argmax(on)] - step)
+    assert_allclose(seen.perceived_force[:, 0], otolith_step(since, 2.0), atol=1e-9)
+    assert_allclose(seen.perceived_force[:, 1], 0.0, atol=1e-15)
+    assert_allclose(seen.perceived_force[:, 2], otolith_step(since, 1.0), atol=1e-9)
+    assert_allclose(seen.perceived_rate[:, 2], canal_step(since, 0.2, long=10.2), atol=1e-9)
+    assert_allclose(seen.perceived_rate[:, :2], 0.0, atol=1e-15)
+    # Hand values: 0.8116 of the step at its peak (1.92 s on), 0.4 of it at the end.
+    assert np.max(seen.perceived_force[:, 0]) == pytest.approx(2.0 * 0.8116, abs=2e-4)
+    assert seen.perceived_force[-1, 0] == pytest.approx(0.8, abs=0.05)
+    assert_allclose(seen.raw[:, :3], force - [0.0, 0.0, G], atol=0)
+    assert_allclose(seen.raw[:, 3:], rates, atol=0)
+    assert_allclose(seen.perceived[:, 3:], seen.perceived_rate, atol=0)
+    assert_allclose(seen.thresholds, [0.17, 0.17, 0.28, math.radians(3.0), math.radians(3.6),
+                                      math.radians(2.6)], rtol=1e-12)
+
+
+def test_perception_at_rest_is_nothing():
+    """A vehicle at rest (gravity only): nothing perceived, below every threshold."""
+    times = np.arange(0.0, 5.0, 0.01)
+    seen = perception(times, np.tile([0.0, 0.0, G], (times.size, 1)),
+                      np.zeros((times.size, 3)), G)
+    assert_allclose(seen.perceived, 0.0, atol=0)
+
+
+@pytest.mark.parametrize('value', [math.nan, math.inf, 1e308 * 10])
+def test_perception_refuses_non_finite_motion(value):
+    """A non-finite sample: ValueError naming what must be finite."""
+    times = np.arange(0.0, 1.0, 0.1)
+    force = np.tile([0.0, 0.0, G], (times.size, 1))
+    force[4, 1] = value
+    with pytest.raises(ValueError, match='finite'):
+        perception(times, force, np.zeros((times.size, 3)), G)

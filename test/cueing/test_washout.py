@@ -229,3 +229,139 @@ def test_filter_bank_low_pass_and_complement():
         integrated(high_pass(2, 1.0, 1.0), 3)
     with pytest.raises(ValueError, match='improper'):
         FilterBank(1, [(np.array([1.0, 0.0, 0.0]), np.array([1.0, 1.0]), 0, (0,))])
+
+
+# Attitude-aware specific force (Reid and Nahon's L_IS).
+
+
+def test_at_zero_attitude_the_attitude_aware_washout_changes_nothing():
+    """L_IS is the identity at neutral: every output equal to 1e-12 on a random input."""
+    rng = np.random.default_rng(31)
+    forces = REST + rng.normal(0.0, 3.0, size=(400, 3))
+    rates = rng.normal(0.0, 0.5, size=(400, 3))
+    steps = rng.uniform(0.001, 0.03, size=400)
+    aware, plain = (ClassicalWashout(settings(attitude_aware_specific_force=flag,
+                                              translation_input_limit=2.0))
+                    for flag in (True, False))
+    for force, rate, dt in zip(forces, rates, steps):
+        a, b = aware.step(force, rate, dt), plain.step(force, rate, dt)
+        assert_allclose(aware.attitude, 0.0, atol=0.0)
+        for name in ('displacement', 'velocity', 'acceleration', 'tilt', 'rotation', 'angles'):
+            assert_allclose(getattr(a, name), getattr(b, name), rtol=0.0, atol=1e-12)
+    assert_allclose(aware.simulator_force(forces[0]), forces[0], rtol=0.0, atol=0.0)
+
+
+def test_a_tilted_simulator_takes_the_force_in_its_own_frame():
+    """Rolled 10 deg (left side up): f = [0, 0, F] is [0, -F sin, F cos] in the simulator."""
+    washout = ClassicalWashout(settings(attitude_aware_specific_force=True))
+    roll, pitch, force = math.radians(10.0), math.radians(-4.0), G / math.cos(math.radians(30))
+    washout.attitude = np.array([roll, 0.0, 0.0])
+    assert_allclose(washout.simulator_force([0.0, 0.0, force]),
+                    [0.0, -force * math.sin(roll), force * math.cos(roll)], atol=1e-12)
+    # Pitched (nose up for a negative pitch), then yawed 90 deg: forward becomes left.
+    washout.attitude = np.array([0.0, pitch, math.pi / 2])
+    assert_allclose(washout.simulator_force([2.0, 0.0, G]),
+                    [0.0, 2.0 * math.cos(pitch) + G * math.sin(pitch),
+                     -2.0 * math.sin(pitch) + G * math.cos(pitch)], atol=1e-12)
+    # Off: the force as it comes.
+    plain = ClassicalWashout(settings(attitude_aware_specific_force=False))
+    plain.attitude = np.array([roll, 0.0, 0.0])
+    assert_allclose(plain.simulator_force([0.0, 0.0, force]), [0.0, 0.0, force], atol=0.0)
+
+
+def test_the_translational_channel_high_passes_the_rotated_force():
+    """At a roll held by hand, the channel moves as for the hand-rotated force as it comes."""
+    roll, force = math.radians(10.0), G / math.cos(math.radians(30))
+    aware = ClassicalWashout(settings(attitude_aware_specific_force=True))
+    plain = ClassicalWashout(settings(attitude_aware_specific_force=False))
+    aware.step(REST, STILL, 0.0)
+    plain.step(REST, STILL, 0.0)
+    rotated = [0.0, -force * math.sin(roll), force * math.cos(roll)]
+    for _ in range(50):
+        aware.attitude = np.array([roll, 0.0, 0.0])   # as if the rotational channel held it
+        a = aware.step([0.0, 0.0, force], STILL, 0.01)
+        b = plain.step(rotated, STILL, 0.01)
+        assert_allclose(a.displacement, b.displacement, rtol=0.0, atol=1e-12)
+        assert_allclose(a.acceleration, b.acceleration, rtol=0.0, atol=1e-12)
+    # The simulator is pushed to the right (-y), away from the gravity its roll shows.
+    assert a.displacement[1] < -1e-3
+
+
+def coordinated_turn(bank=math.radians(30.0), speed=60.0, roll_time=3.0, hold=10.0):
+    """
+    Return an aircraft's coordinated turn at 100 Hz: level 1 s, roll in, hold, out, level.
+
+    Roll rate ``p = bank / roll_time`` in and out; in the turn the heading turns at
+    ``g tan(phi) / V`` (body pitch and yaw rates its components ``sin(phi)`` and
+    ``cos(phi)``), and the specific force is ``[0, 0, g / cos(phi)]``: no lateral component.
+    """
+    times = np.arange(-100, int(100 * (2 * roll_time + hold + 10))) * 0.01
+    rate = bank / roll_time
+    phi = (np.clip(times / roll_time, 0.0, 1.0)
+           - np.clip((times - roll_time - hold) / roll_time, 0.0, 1.0)) * bank
+    roll_rate = rate * (((times >= 0.0) & (times < roll_time)).astype(float)
+                        - ((times >= roll_time + hold) & (times < 2 * roll_time + hold)))
+    heading_rate = G * np.tan(phi) / speed
+    rates = np.stack([roll_rate, heading_rate * np.sin(phi), heading_rate * np.cos(phi)], 1)
+    force = np.stack([0.0 * times, 0.0 * times, G / np.cos(phi)], 1)
+    return times, force, rates
+
+
+def felt_lateral(washout, times, force, rates):
+    """Return the lateral force felt at the head, ``(R^T (d'' + [0, 0, g]))_y``, m/s^2."""
+    from stewart_kinematics.model.rotations import euler_zyx_to_matrix
+    felt, previous = [], times[0]
+    for time, f, w in zip(times, force, rates):
+        step = washout.step(f, w, time - previous)
+        previous = time
+        felt.append((euler_zyx_to_matrix(step.angles).T @ (step.acceleration + REST))[1])
+    return np.array(felt)
+
+
+def test_a_coordinated_turn_with_and_without_the_simulator_attitude():
+    """
+    The turn's roll shows gravity sideways; L_IS offsets it only where the high-pass passes.
+
+    Hand values: the rotational channel rolls ``k p t exp(-t)`` during the roll-in (omega 1
+    rad/s), so without L_IS the head feels ``g sin(k p / e)`` sideways at t = 1 s, 0.315
+    m/s^2 at the literature's gains (k 0.5, p 10 deg/s). With L_IS the translational
+    channel is asked for ``-k_t F sin(roll)``: at the literature's gains its high-pass (2.5
+    rad/s, third order) passes about |HP(j 1)| = 0.13 of the roll's content (about 1 rad/s),
+    times ``k_t F / g`` (0.58), so the felt force changes by under 15 % of its peak. With a
+    channel that passes it (scale 1, second order at 0.1 rad/s, a simulator with metres of
+    travel) the roll-in's felt force falls below 40 %; the high-pass must give back the net
+    lateral velocity ``k_r bank F`` the offsetting asks for (2.9 m/s here), so a tail of the
+    other sign, under 0.13 m/s^2, stays.
+    """
+    times, force, rates = coordinated_turn()
+    hand = G * math.sin(0.5 * math.radians(10.0) / math.e)
+    in_turn = {}
+    for label, changes in (('literature', {}), ('wide', {
+            'translation_scale': (1.0, 1.0, 1.0), 'translation_order': 2,
+            'translation_frequency': (0.1, 0.1, 0.1)})):
+        for aware in (False, True):
+            washout = ClassicalWashout(CueingSettings(
+                tilt_scale=(0.0, 0.0), attitude_aware_specific_force=aware, **changes))
+            in_turn[label, aware] = felt_lateral(washout, times, force, rates)
+    plain = in_turn['literature', False]
+    assert plain[times.searchsorted(1.0)] == pytest.approx(hand, rel=0.01)
+    assert np.max(np.abs(plain)) == pytest.approx(hand, rel=0.01)
+
+    def false_time(felt):
+        return 0.01 * np.count_nonzero(np.abs(felt) > 0.1)
+
+    # Without L_IS, both channel settings feel the same roll (and a little of the heave
+    # channel's sin(roll) d''_z): about 11.6 s beyond 0.1 m/s^2.
+    assert false_time(plain) == pytest.approx(11.6, abs=0.2)
+    assert_allclose(in_turn['wide', False], plain, atol=0.04)
+    # At the literature's gains L_IS changes little (measured: peak +7 %, time -0.3 s).
+    literature = in_turn['literature', True]
+    assert np.max(np.abs(literature - plain)) < 0.15 * hand
+    assert np.max(np.abs(literature)) == pytest.approx(hand, rel=0.1)
+    assert false_time(literature) == pytest.approx(false_time(plain), rel=0.1)
+    # Where the translational channel passes the roll, L_IS takes most of it away.
+    wide = in_turn['wide', True]
+    roll_in = (times >= 0.0) & (times <= 3.0)
+    assert np.max(np.abs(wide[roll_in])) < 0.4 * hand
+    assert np.max(np.abs(wide)) < 0.45 * hand
+    assert false_time(wide) < 0.3 * false_time(plain)

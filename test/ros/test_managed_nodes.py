@@ -284,6 +284,15 @@ def test_every_node_refuses_a_bad_limit_at_configure_and_takes_it_fixed(build, n
     assert node.trigger_shutdown() == SUCCESS and node.lifecycle_state() == 'finalized'
 
 
+@pytest.mark.parametrize('node_class', NODES)
+def test_cleanup_of_a_configure_refused_before_its_workers_started(build, node_class):
+    """Cleanup runs after any refused configure: with nothing built it has nothing to stop."""
+    node = build(node_class, MANAGED)
+
+    node.cleanup()  # raised AttributeError in ik_node, fk_node and trajectory_node
+    assert node.trigger_configure() == SUCCESS
+
+
 def test_a_publisher_made_while_active_sends_at_once(build):
     """A publisher a managed node makes while active (lazily) is enabled; inactive, not."""
     node = build(FkNode, MANAGED)

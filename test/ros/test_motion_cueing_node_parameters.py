@@ -42,10 +42,13 @@ FILES = ['--params-file', str(CONFIG / 'paper_platform.yaml'),
          '--params-file', str(CONFIG / 'example_limits.yaml'),
          '--params-file', str(CONFIG / 'motion_cueing.yaml')]
 G = 9.80665
-#: The tool frame and payload parameters: the only ones a user may change while the node runs
-#: (a payload only while the platform rests at home: test_payload_parameters.py).
+#: The tool frame, payload and control parameters: the only ones a user may change while the
+#: node runs (a payload only while the platform rests at home: test_payload_parameters.py; the
+#: gains ramped or refused: test_cueing_controls.py).
 WRITABLE = {'tool_frame', 'tool_frame_position', 'tool_frame_orientation_deg', 'use_sim_time',
-            'payload_mass', 'payload_center_of_mass', 'payload_inertia'}
+            'payload_mass', 'payload_center_of_mass', 'payload_inertia', 'cueing_intensity',
+            'translation_scale', 'tilt_scale', 'rotation_scale', 'gain_ramp_time',
+            'soft_start_time', 'soft_stop_time'}
 
 
 def imu(stamp_ns):
@@ -113,3 +116,18 @@ def test_every_other_parameter_is_read_only(node):
     [result] = node.set_parameters([Parameter('input_timeout', value=2.0)])
     assert not result.successful
     assert node.cueing.settings.input_timeout == 0.5
+
+
+def test_gains_set_together_are_checked_as_a_whole_and_taken_together(node):
+    """A gain beyond the travel at intensity 1, with an intensity that brings it in: taken."""
+    [alone] = node.set_parameters([Parameter('translation_scale', value=[2.0, 0.2, 0.2])])
+    assert not alone.successful and 'travel' in alone.reason
+    result = node.set_parameters_atomically([
+        Parameter('translation_scale', value=[2.0, 0.2, 0.2]),
+        Parameter('cueing_intensity', value=0.2)])
+    assert result.successful, result.reason
+    assert_allclose(node.cueing.gains.target[:3], [0.4, 0.04, 0.04], rtol=1e-12)
+    assert node.cueing.settings.translation_scale == (2.0, 0.2, 0.2)
+    [raised] = node.set_parameters([Parameter('cueing_intensity', value=1.0)])
+    assert not raised.successful and 'cueing_intensity' in raised.reason
+    assert_allclose(node.cueing.gains.target[:3], [0.4, 0.04, 0.04], rtol=1e-12)

@@ -183,6 +183,18 @@ def test_strict_exits_3_on_the_slalom_alone(capsys, tmp_path):
     assert 'MISSED perceived correlation >= 0.6 (y)' in out
 
 
+def test_a_file_named_as_a_scenario_is_judged_as_a_file(tmp_path):
+    """A CSV called ``slalom`` is not the slalom: its targets are the limits, neutral, tilt."""
+    rows = [[k / 50.0, 1.0 if 1.0 <= k / 50.0 < 2.0 else 0.0, 0.0, 9.80665, 0.0, 0.0, 0.0]
+            for k in range(300)]
+    path = write_csv(tmp_path / 'slalom', rows)
+    output = tmp_path / 'out'
+    assert main(TUNED + ['--csv', str(path), '--output', str(output), '--no-figures',
+                         '--quiet']) == 0
+    numbers = yaml.safe_load((output / 'cueing_results.yaml').read_text(encoding='utf-8'))
+    assert len(numbers['slalom']['targets']) == 2  # ends 6 s in: no return to neutral judged
+
+
 def test_markdown_table_shows_unknowns_as_dashes():
     """Show NaN correlations (a constant axis) and delays beyond the window as such."""
     assert cueing_report._number(math.nan) == '-'
