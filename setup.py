@@ -34,7 +34,7 @@ setup(
          sorted(glob('config/cueing_presets/*.yaml'))),
         ('share/' + package_name + '/launch', sorted(glob('launch/*.py'))),
     ],
-    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig'],
+    install_requires=['setuptools', 'numpy', 'pyyaml', 'scipy', 'toppra', 'ruckig', 'daqp'],
     zip_safe=True,
     maintainer='stewart_kinematics developers',
     maintainer_email='maintainer@example.com',

@@ -32,9 +32,20 @@ node part starts processes on an isolated ROS domain; ``--no-node`` skips it). P
   rounds, the median decides;
 - the targets of issue 23: core step under 100 us (median), node loss-free at 1 kHz (every
   round).
+
+``--mpc`` measures the model-predictive cueing instead (``cueing_method: mpc``, issue 31): the
+MPC's own step (:meth:`stewart_kinematics.cueing.mpc_cueing.MpcCueing.step_checked`: the QP
+built, solved warm-started, the plan applied) over the lane change and the mixed drive at
+100 Hz, median and p99 against the targets (2 ms, 5 ms); then the same recorded QPs solved
+by DAQP, OSQP and ProxQP, each warm-started from its previous solution (median and p99 per
+solve, iterations, failures, and the largest difference from DAQP's solution): the
+measurement that chose the solver (doc/motion_cueing_mpc.md). OSQP and ProxQP come from
+benchmarks/requirements.txt; a solver that is not installed is reported as such.
 """
 
 import argparse
+import math
+import os
 from pathlib import Path
 import platform
 import statistics
@@ -272,6 +283,185 @@ def node_benchmark(rounds, seconds, input_name='multi_sine'):
     return at_target
 
 
+MPC_SCENARIOS = ('lane_change', 'mixed_drive')
+MPC_MEDIAN_TARGET = 2e-3
+MPC_P99_TARGET = 5e-3
+
+
+def mpc_cueing():
+    """Return the core from the shipped files with ``cueing_method: mpc``."""
+    values = {}
+    for path in FILES:
+        values.update(read_parameter_file(path, 'motion_cueing_node'))
+    values['cueing_method'] = 'mpc'
+    return MotionCueing.from_parameters(values)
+
+
+def mpc_steps(rate=100.0):
+    """Run the MPC scenarios; return the MPC step's seconds per sample and the QPs solved."""
+    times, problems = [], []
+    clock = time.perf_counter
+    for name in MPC_SCENARIOS:
+        generated = scenario(name, rate)
+        core = mpc_cueing()
+        mpc = core.washout
+        step = mpc.step_checked
+        solve = mpc.solver.solve
+
+        def recording_solve(*problem, solve=solve):
+            problems.append(tuple(np.array(part) for part in problem))
+            return solve(*problem)
+
+        def timed_step(*arguments, step=step):
+            start = clock()
+            result = step(*arguments)
+            times.append(clock() - start)
+            return result
+
+        mpc.solver.solve = recording_solve
+        mpc.step_checked = timed_step
+        for t, force, angular in zip(generated.times, generated.specific_force.tolist(),
+                                     generated.angular_velocity.tolist()):
+            core.step(t, force, angular)
+        hessian = mpc.hessian
+    # Recording the problems costs copies: time the step again without it, in wall-clock time
+    # and in the thread's CPU time (which a busy machine's preemption does not inflate).
+    times, cpu_times = [], []
+    cpu_clock = time.thread_time
+    for name in MPC_SCENARIOS:
+        generated = scenario(name, rate)
+        core = mpc_cueing()
+        step = core.washout.step_checked
+
+        def timed_step(*arguments, step=step):
+            start, cpu_start = clock(), cpu_clock()
+            result = step(*arguments)
+            times.append(clock() - start)
+            cpu_times.append(cpu_clock() - cpu_start)
+            return result
+
+        core.washout.step_checked = timed_step
+        for t, force, angular in zip(generated.times, generated.specific_force.tolist(),
+                                     generated.angular_velocity.tolist()):
+            core.step(t, force, angular)
+    return np.array(times[1:]), np.array(cpu_times[1:]), problems, hessian
+
+
+class _Osqp:
+    """OSQP (sparse ADMM), warm-started, the constraint matrix's values updated each QP."""
+
+    name = 'OSQP'
+
+    def __init__(self, hessian):
+        import osqp
+        from scipy import sparse
+        self.osqp, self.sparse = osqp, sparse
+        self.hessian = sparse.triu(sparse.csc_matrix(hessian), format='csc')
+        self.solver = None
+
+    def solve(self, gradient, a, lower, upper, bounds_lower, bounds_upper):
+        full = np.vstack([np.eye(a.shape[1]), a])
+        low = np.concatenate([bounds_lower, lower])
+        high = np.concatenate([bounds_upper, upper])
+        matrix = self.sparse.csc_matrix(np.where(full == 0.0, 1e-300, full))
+        if self.solver is None:
+            self.solver = self.osqp.OSQP()
+            self.solver.setup(self.hessian, gradient, matrix, low, high, verbose=False,
+                              warm_starting=True, eps_abs=1e-6, eps_rel=1e-6, max_iter=4000,
+                              polishing=True)
+        else:
+            self.solver.update(q=gradient, l=low, u=high, Ax=matrix.data)
+        result = self.solver.solve()
+        solved = result.info.status_val in (1, 2)
+        return result.x, solved, result.info.iter
+
+
+class _ProxQp:
+    """ProxQP (dense proximal augmented Lagrangian), warm-started with its previous result."""
+
+    name = 'ProxQP'
+
+    def __init__(self, hessian):
+        import proxsuite
+        self.proxsuite = proxsuite
+        self.hessian = hessian
+        self.qp = None
+
+    def solve(self, gradient, a, lower, upper, bounds_lower, bounds_upper):
+        proxqp = self.proxsuite.proxqp
+        if self.qp is None:
+            self.qp = proxqp.dense.QP(a.shape[1], 0, a.shape[0], True)
+            self.qp.settings.eps_abs = 1e-6
+            self.qp.settings.initial_guess = proxqp.InitialGuess.WARM_START_WITH_PREVIOUS_RESULT
+            self.qp.init(self.hessian, gradient, None, None, a, lower, upper, bounds_lower,
+                         bounds_upper)
+        else:
+            self.qp.update(None, gradient, None, None, a, lower, upper, bounds_lower,
+                           bounds_upper)
+        self.qp.solve()
+        status = self.qp.results.info.status
+        return (np.array(self.qp.results.x), status == proxqp.QPSolverOutput.PROXQP_SOLVED,
+                self.qp.results.info.iter)
+
+
+class _Daqp:
+    """DAQP (dual active set), the package's own wrapper, every row hard."""
+
+    name = 'DAQP'
+
+    def __init__(self, hessian):
+        from stewart_kinematics.cueing.qp_solver import QpSolver
+        self.solver = QpSolver(hessian)
+
+    def solve(self, *problem):
+        result = self.solver.solve(*problem)
+        return result.x, result.solved, result.iterations
+
+
+def mpc_benchmark():
+    """Print the MPC step's cost and the solvers' comparison; return (median, p99)."""
+    measured, cpu, problems, hessian = mpc_steps()
+    median, p99 = float(np.median(cpu)), float(np.percentile(cpu, 99))
+    load = os.getloadavg()[0] if hasattr(os, 'getloadavg') else math.nan
+    print(f'MPC step, {measured.size:,} samples ({", ".join(MPC_SCENARIOS)} at 100 Hz), '
+          f'shipped mpc_* tuning: {problems[0][1].shape[1]} variables, '
+          f'{problems[0][1].shape[0]} constraint rows + bounds')
+    print(f'  step, CPU time: median {median * 1e3:.3f} ms, p90 '
+          f'{np.percentile(cpu, 90) * 1e3:.3f} ms, p99 {p99 * 1e3:.3f} ms, max '
+          f'{cpu.max() * 1e3:.2f} ms')
+    print(f'  step, wall clock: median {np.median(measured) * 1e3:.3f} ms, p90 '
+          f'{np.percentile(measured, 90) * 1e3:.3f} ms, p99 '
+          f'{np.percentile(measured, 99) * 1e3:.3f} ms, max {measured.max() * 1e3:.2f} ms '
+          f'(load average {load:.1f} on {os.cpu_count()} cores: preemption shows here)')
+    print(f'Solvers on the same {len(problems):,} QPs, warm-started (every row hard), CPU '
+          'time per solve:')
+    reference = None
+    for kind in (_Daqp, _Osqp, _ProxQp):
+        try:
+            solver = kind(hessian)
+        except ImportError as error:
+            print(f'  {kind.name}: not installed ({error})')
+            continue
+        times, iterations, failures, solutions = [], [], 0, []
+        for problem in problems:
+            start = time.thread_time()
+            x, solved, count = solver.solve(*problem)
+            times.append(time.thread_time() - start)
+            iterations.append(count)
+            failures += not solved
+            solutions.append(x if solved else None)
+        if reference is None:
+            reference = solutions
+        differences = [float(np.max(np.abs(x - y))) for x, y in zip(solutions, reference)
+                       if x is not None and y is not None]
+        times = np.array(times[1:])
+        print(f'  {kind.name:6}: median {np.median(times) * 1e3:.3f} ms, p99 '
+              f'{np.percentile(times, 99) * 1e3:.3f} ms, max {times.max() * 1e3:.2f} ms; '
+              f'iterations median {np.median(iterations):.0f}; failures {failures}; '
+              f'largest difference from DAQP {max(differences, default=math.nan):.2g}')
+    return median, p99
+
+
 def main(argv=None) -> int:
     """Run the benchmarks and print the targets; return 0."""
     parser = argparse.ArgumentParser(description='Motion cueing benchmark (issue 23).')
@@ -283,7 +473,17 @@ def main(argv=None) -> int:
     parser.add_argument('--rounds', type=int, default=3, help='node rounds (default 3)')
     parser.add_argument('--seconds', type=float, default=2.0,
                         help='seconds per rung (default 2)')
+    parser.add_argument('--mpc', action='store_true',
+                        help='the model-predictive cueing and its solvers only (issue 31)')
     options = parser.parse_args(argv)
+    if options.mpc:
+        median, p99 = mpc_benchmark()
+        print()
+        print(f'{"Target":<44} {"Met":>4}  This run')
+        for label, value, target in (('MPC step < 2 ms (median, CPU)', median, MPC_MEDIAN_TARGET),
+                                     ('MPC step < 5 ms (p99, CPU)', p99, MPC_P99_TARGET)):
+            print(f'{label:<44} {"yes" if value < target else "no":>4}  {value * 1e3:.3f} ms')
+        return 0
     print(f'Motion cueing benchmark: Python {platform.python_version()}, numpy '
           f'{np.__version__}, {platform.machine()}')
     median = None if options.no_core else core_benchmark()

@@ -328,6 +328,12 @@ ACTUATOR_LIMITED = _register(
     '`MotionCueing` (motion_cueing_node)',
     'The cue asked more leg velocity or acceleration than the actuators allow: the platform '
     'followed as closely as they allow (or braked, or headed home).')
+MPC_FALLBACK = _register(
+    'mpc_fallback', 'warning',
+    '`MotionCueing` (motion_cueing_node, `cueing_method: mpc`)',
+    "The model-predictive cueing's QP was not solved (infeasible, out of iterations): the rest "
+    'of the last plan was applied, or, once it ran out, the cue braked to rest; the limiter '
+    'keeps every limit all the same.')
 CUEING_HELD = _register(
     'cueing_held', 'warning',
     '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',

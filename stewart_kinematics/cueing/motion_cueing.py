@@ -97,6 +97,7 @@ from stewart_kinematics.cueing.controls import (
 )
 from stewart_kinematics.cueing.cue_limiter import CueLimiter, FORCE_SCALE_MIN
 from stewart_kinematics.cueing.limit_margins import pose_violations
+from stewart_kinematics.cueing.mpc_cueing import MpcCueing
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
 from stewart_kinematics.cueing.washout import ClassicalWashout
@@ -214,8 +215,10 @@ class MotionCueing:
         self.actuator_limits = (actuator_limits if actuator_limits is not None
                                 else ActuatorLimits())
         self.frames = frames
-        self.washout = ClassicalWashout(self.settings)
         self.limiter = CueLimiter(geometry, self.actuator_limits, self.settings)
+        self.washout = (MpcCueing(self.settings, self.limiter)
+                        if self.settings.cueing_method == 'mpc'
+                        else ClassicalWashout(self.settings))
         #: The last check of every command, as sent: a motion (leg rates by the send times).
         self.gate = CommandGate(geometry, self.actuator_limits, timing=MOTION, frames=frames,
                                 sends='poses')
@@ -816,7 +819,7 @@ class MotionCueing:
         acceleration_scale = 1.0
         checks_forces = interval is not None and self.gate.force_range is not None
         state = limiter.state() if checks_forces else None
-        given = list(warnings)
+        given = list(warnings) + list(getattr(washout, 'findings', ()))
         strained = ()
         while True:
             if interval is not None:

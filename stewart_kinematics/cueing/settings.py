@@ -49,7 +49,9 @@ _VECTORS = {
     'translation_scale': 3, 'translation_frequency': 3, 'translation_damping': 3,
     'translation_break_frequency': 3, 'tilt_scale': 2, 'rotation_scale': 3,
     'rotation_frequency': 3, 'rotation_damping': 3, 'head_position': 3,
-    'imu_orientation_rpy': 3, 'follower_weights': 6,
+    'imu_orientation_rpy': 3, 'follower_weights': 6, 'mpc_force_scale': 3,
+    'mpc_force_weight': 3, 'mpc_position_weight': 3, 'mpc_velocity_weight': 3,
+    'mpc_input_weight': 2,
 }
 #: Fields in radians here and in degrees as parameters (``<name>_deg``).
 DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_angle_margin',
@@ -58,6 +60,9 @@ DEGREE_FIELDS = ('tilt_rate_max', 'tilt_acceleration_max', 'tilt_max', 'joint_an
 _BOOLS = ('tilt_complementary', 'attitude_aware_specific_force')
 #: Fields that are names.
 _NAMES = ('vehicle_frame', 'imu_frame')
+#: Fields that are one of a few words, and integer fields besides the filters' orders.
+_CHOICES = ('cueing_method',)
+_INTEGERS = ('mpc_horizon', 'mpc_max_iterations')
 #: The parameter of each field: ``<name>_deg`` for a field in radians, else its own name.
 _SPECS = {spec.name.removesuffix('_deg') if spec.name.removesuffix('_deg') in DEGREE_FIELDS
           else spec.name: spec for spec in MOTION_CUEING_PARAMETERS}
@@ -92,11 +97,15 @@ def _converted(name: str, value):
         if not isinstance(value, str):
             raise ValueError(f'{name} must be a frame name, got {preview(value)}')
         return value
+    if name in _CHOICES:
+        if not isinstance(value, str):
+            raise ValueError(f'{name} must be a word, got {preview(value)}')
+        return value
     if name in _BOOLS:
         if not isinstance(value, bool):
             raise ValueError(f'{name} must be true or false, got {preview(value)}')
         return value
-    if name.endswith('_order'):
+    if name.endswith('_order') or name in _INTEGERS:
         if isinstance(value, bool) or not isinstance(value, int):
             raise ValueError(f'{name} must be an integer, got {preview(value)}')
         return value
@@ -167,6 +176,26 @@ class CueingSettings:
     :param input_timeout: without a sample for this long (the commands' clock), the input is
         lost and the platform eases home (:meth:`~stewart_kinematics.cueing.MotionCueing.
         watch`), seconds; 0 turns the watchdog off.
+    :param cueing_method: ``'classical'`` (:class:`~.washout.ClassicalWashout`) or ``'mpc'``
+        (:class:`~.mpc_cueing.MpcCueing`, with the ``mpc_*`` settings below).
+    :param mpc_horizon: steps of the MPC's horizon.
+    :param mpc_step: seconds per MPC step.
+    :param mpc_force_scale: share of the vehicle's perceived specific force aimed at, x y z.
+    :param mpc_force_weight: weight of the perceived specific-force error, per (m/s^2)^2.
+    :param mpc_rate_weight: weight of the perceived roll and pitch rate error, per (rad/s)^2.
+    :param mpc_position_weight: weight of the head's displacement, x y z, per m^2.
+    :param mpc_velocity_weight: weight of its velocity, per (m/s)^2.
+    :param mpc_tilt_weight: weight of the tilt, per rad^2.
+    :param mpc_tilt_rate_weight: weight of the tilt rate, per (rad/s)^2.
+    :param mpc_input_weight: weights of the head's acceleration, per (m/s^2)^2, and of the
+        tilt's acceleration, per (rad/s^2)^2.
+    :param mpc_reference_time_constant: the vehicle's input is predicted held, fading with
+        this time constant, seconds (``inf``: held).
+    :param mpc_limit_share: share of the leg velocity and acceleration limits and of
+        ``tilt_rate_max`` the MPC plans with.
+    :param mpc_workspace_share: the MPC keeps each cue coordinate within this share of its
+        reach alone inside the cue's limits.
+    :param mpc_max_iterations: the QP solver's iteration limit.
     :raises ValueError: naming the setting, for a value out of its range or of the wrong size.
     """
 
@@ -204,6 +233,21 @@ class CueingSettings:
     imu_frame: str = _default('imu_frame')
     imu_orientation_rpy: Tuple[float, ...] = _default('imu_orientation_rpy')
     input_timeout: float = _default('input_timeout')
+    cueing_method: str = _default('cueing_method')
+    mpc_horizon: int = _default('mpc_horizon')
+    mpc_step: float = _default('mpc_step')
+    mpc_force_scale: Tuple[float, ...] = _default('mpc_force_scale')
+    mpc_force_weight: Tuple[float, ...] = _default('mpc_force_weight')
+    mpc_rate_weight: float = _default('mpc_rate_weight')
+    mpc_position_weight: Tuple[float, ...] = _default('mpc_position_weight')
+    mpc_velocity_weight: Tuple[float, ...] = _default('mpc_velocity_weight')
+    mpc_tilt_weight: float = _default('mpc_tilt_weight')
+    mpc_tilt_rate_weight: float = _default('mpc_tilt_rate_weight')
+    mpc_input_weight: Tuple[float, ...] = _default('mpc_input_weight')
+    mpc_reference_time_constant: float = _default('mpc_reference_time_constant')
+    mpc_limit_share: float = _default('mpc_limit_share')
+    mpc_workspace_share: float = _default('mpc_workspace_share')
+    mpc_max_iterations: int = _default('mpc_max_iterations')
 
     def __post_init__(self):
         for item in fields(self):

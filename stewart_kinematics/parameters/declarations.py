@@ -708,6 +708,76 @@ MOTION_CUEING_PARAMETERS = (
         'When no vehicle_imu message came for this long, the platform eases to neutral as if '
         'the vehicle were at rest, seconds (node clock); 0.0 turns this off',
         default=0.5, read_only=True, validators=(Finite(), InRange(0.0, 3600.0))),
+    ParameterSpec(
+        'cueing_method', STRING,
+        "How the vehicle's motion becomes a cue: 'classical' (the washout filters) or 'mpc' "
+        '(model-predictive: translation and tilt traded over a horizon against the perceived '
+        'specific force, within the legs; doc/motion_cueing_mpc.md)',
+        default='classical', read_only=True, validators=(OneOf('classical', 'mpc'),)),
+    ParameterSpec(
+        'mpc_horizon', INTEGER, 'Steps of the MPC horizon (cueing_method mpc)',
+        default=10, read_only=True, validators=(InRange(2, 100),)),
+    ParameterSpec(
+        'mpc_step', DOUBLE,
+        'Length of one MPC step, seconds (the horizon is mpc_horizon times this)',
+        default=0.2, read_only=True, validators=(Finite(), InRange(0.005, 1.0))),
+    ParameterSpec(
+        'mpc_force_scale', DOUBLE_ARRAY,
+        "Share of the vehicle's perceived specific force the MPC aims at, x y z",
+        default=[0.3, 0.3, 0.3], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(0.0, 10.0))),
+    ParameterSpec(
+        'mpc_force_weight', DOUBLE_ARRAY,
+        'MPC weight on the perceived specific-force error, x y z, per (m/s^2)^2',
+        default=[1.0, 1.0, 1.0], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_rate_weight', DOUBLE,
+        'MPC weight on the perceived roll and pitch rate error, per (rad/s)^2',
+        default=10.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_position_weight', DOUBLE_ARRAY,
+        "MPC weight on the head's displacement from neutral (the washout), x y z, per m^2",
+        default=[0.3, 0.3, 0.3], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_velocity_weight', DOUBLE_ARRAY,
+        "MPC weight on the head's velocity, x y z, per (m/s)^2",
+        default=[0.1, 0.1, 0.1], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_tilt_weight', DOUBLE, 'MPC weight on the tilt from neutral, per rad^2',
+        default=5.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_tilt_rate_weight', DOUBLE, 'MPC weight on the tilt rate, per (rad/s)^2',
+        default=1.0, read_only=True, validators=(Finite(), InRange(0.0, 1e6))),
+    ParameterSpec(
+        'mpc_input_weight', DOUBLE_ARRAY,
+        "MPC weight on its inputs: the head's acceleration per (m/s^2)^2 and the tilt's "
+        'acceleration per (rad/s^2)^2; positive (they keep the QP strictly convex)',
+        default=[0.01, 0.01], read_only=True,
+        validators=(FixedLength(2), Finite(), InRange(0.0, 1e6, low_inclusive=False))),
+    ParameterSpec(
+        'mpc_reference_time_constant', DOUBLE,
+        "The MPC predicts the vehicle's current input held over the horizon, fading with this "
+        'time constant, seconds; .inf holds it, 0.0 lets it drop to rest at once',
+        default=0.5, read_only=True, validators=(InRange(0.0, math.inf),)),
+    ParameterSpec(
+        'mpc_limit_share', DOUBLE,
+        'Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC '
+        'plans with (the rest absorbs its linearisation; the limiter keeps the limits anyway)',
+        default=0.8, read_only=True,
+        validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),
+    ParameterSpec(
+        'mpc_workspace_share', DOUBLE,
+        "The MPC keeps each cue coordinate (the head's x, y, z, roll, pitch) within this share "
+        'of how far it reaches alone inside the limits (a box inside the workspace)',
+        default=0.5, read_only=True,
+        validators=(Finite(), InRange(0.0, 1.0, low_inclusive=False))),
+    ParameterSpec(
+        'mpc_max_iterations', INTEGER,
+        "Iteration limit of the MPC's QP solver; beyond it the cue falls back on the last plan",
+        default=1000, read_only=True, validators=(InRange(1, 100000),)),
 )
 
 

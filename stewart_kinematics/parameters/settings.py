@@ -967,6 +967,99 @@ class CueingParameterSettings(Settings):
     time.
     """
 
+    cueing_method: str = 'classical'
+    """
+    How the vehicle's motion becomes a cue: 'classical' (the washout filters) or 'mpc'
+    (model-predictive: translation and tilt traded over a horizon against the perceived specific
+    force, within the legs; doc/motion_cueing_mpc.md). Allowed: 'classical' or 'mpc'. Read-only at
+    run time.
+    """
+
+    mpc_horizon: int = 10
+    """
+    Steps of the MPC horizon (cueing_method mpc). Allowed: in [2, 100]. Read-only at run time.
+    """
+
+    mpc_step: float = 0.2
+    """
+    Length of one MPC step, seconds (the horizon is mpc_horizon times this). Allowed: in [0.005,
+    1]. Read-only at run time.
+    """
+
+    mpc_force_scale: Tuple[float, ...] = (0.3, 0.3, 0.3)
+    """
+    Share of the vehicle's perceived specific force the MPC aims at, x y z. Allowed: 3 values in
+    [0, 10]. Read-only at run time.
+    """
+
+    mpc_force_weight: Tuple[float, ...] = (1.0, 1.0, 1.0)
+    """
+    MPC weight on the perceived specific-force error, x y z, per (m/s^2)^2. Allowed: 3 values in
+    [0, 1e+06]. Read-only at run time.
+    """
+
+    mpc_rate_weight: float = 10.0
+    """
+    MPC weight on the perceived roll and pitch rate error, per (rad/s)^2. Allowed: in [0, 1e+06].
+    Read-only at run time.
+    """
+
+    mpc_position_weight: Tuple[float, ...] = (0.3, 0.3, 0.3)
+    """
+    MPC weight on the head's displacement from neutral (the washout), x y z, per m^2. Allowed: 3
+    values in [0, 1e+06]. Read-only at run time.
+    """
+
+    mpc_velocity_weight: Tuple[float, ...] = (0.1, 0.1, 0.1)
+    """
+    MPC weight on the head's velocity, x y z, per (m/s)^2. Allowed: 3 values in [0, 1e+06].
+    Read-only at run time.
+    """
+
+    mpc_tilt_weight: float = 5.0
+    """
+    MPC weight on the tilt from neutral, per rad^2. Allowed: in [0, 1e+06]. Read-only at run time.
+    """
+
+    mpc_tilt_rate_weight: float = 1.0
+    """
+    MPC weight on the tilt rate, per (rad/s)^2. Allowed: in [0, 1e+06]. Read-only at run time.
+    """
+
+    mpc_input_weight: Tuple[float, ...] = (0.01, 0.01)
+    """
+    MPC weight on its inputs: the head's acceleration per (m/s^2)^2 and the tilt's acceleration per
+    (rad/s^2)^2; positive (they keep the QP strictly convex). Allowed: 2 values in (0, 1e+06].
+    Read-only at run time.
+    """
+
+    mpc_reference_time_constant: float = 0.5
+    """
+    The MPC predicts the vehicle's current input held over the horizon, fading with this time
+    constant, seconds; .inf holds it, 0.0 lets it drop to rest at once. Allowed: >= 0; .inf
+    allowed. Read-only at run time.
+    """
+
+    mpc_limit_share: float = 0.8
+    """
+    Share of the leg velocity and acceleration limits and of tilt_rate_max_deg the MPC plans with
+    (the rest absorbs its linearisation; the limiter keeps the limits anyway). Allowed: in (0, 1].
+    Read-only at run time.
+    """
+
+    mpc_workspace_share: float = 0.5
+    """
+    The MPC keeps each cue coordinate (the head's x, y, z, roll, pitch) within this share of how
+    far it reaches alone inside the limits (a box inside the workspace). Allowed: in (0, 1].
+    Read-only at run time.
+    """
+
+    mpc_max_iterations: int = 1000
+    """
+    Iteration limit of the MPC's QP solver; beyond it the cue falls back on the last plan. Allowed:
+    in [1, 100000]. Read-only at run time.
+    """
+
 
 @dataclass(frozen=True, kw_only=True)
 class CueingControlSettings(Settings):

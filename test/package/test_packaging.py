@@ -47,6 +47,7 @@ PYTHON_ROSDEP_KEYS = {
 #: Python libraries with no rosdep key, installed from PyPI only (import name -> distribution):
 #: package.xml cannot declare them, so setup.py and requirements.txt must.
 PYPI_ONLY = {
+    'daqp': 'daqp',
     'mcap': 'mcap',
     'mcap_ros2': 'mcap-ros2-support',
     'rosbags': 'rosbags',
