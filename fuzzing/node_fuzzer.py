@@ -54,6 +54,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 import random
 import signal
+import socket
 import sys
 import time
 from typing import Dict, List, Optional, Sequence
@@ -81,6 +82,7 @@ from stewart_kinematics.ros.interfaces import (
     SERVICE,
     SUBSCRIPTION,
 )
+from stewart_kinematics.cueing.telemetry_packet import encode
 from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.node_processes import (
@@ -292,6 +294,41 @@ def _fuzz_once(settings: FuzzSettings, drawn: dict, context) -> FuzzReport:
     return report
 
 
+def _datagram_input(client, services, node):
+    """
+    Return ``(status name, send)`` for a node fed by UDP: ``send(rng)`` sends one datagram.
+
+    The datagrams: well-formed telemetry packets with plausible or hostile values (NaN, inf,
+    1e308, a sequence going back), truncated or padded ones, and random bytes of any length up
+    to the largest datagram, to the node's ``telemetry_address`` and ``telemetry_port``.
+    """
+    answer = client.call(services[GetParameters], GetParameters.Request(
+        names=['telemetry_address', 'telemetry_port']), DEADLINE)
+    address, port = answer.values[0].string_value, answer.values[1].integer_value
+    udp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    sequence = [0]
+
+    def send(rng):
+        sequence[0] = (sequence[0] + rng.choice((1, 1, 1, 0, -1))) % 2 ** 32
+        values = [rng.choice((rng.uniform(-20.0, 20.0), float('nan'), float('inf'), 1e308,
+                              -1e308)) if rng.random() < 0.2 else rng.uniform(-20.0, 20.0)
+                  for _ in range(6)]
+        packet = encode(sequence[0], time.time_ns() + rng.randint(-10 ** 9, 10 ** 9),
+                        values[:3], values[3:])
+        kind = rng.choice(('packet', 'packet', 'truncated', 'padded', 'bytes', 'huge'))
+        if kind == 'truncated':
+            packet = packet[:rng.randrange(len(packet))]
+        elif kind == 'padded':
+            packet += bytes(rng.randrange(1, 64))
+        elif kind == 'bytes':
+            packet = rng.randbytes(rng.randrange(0, 256))
+        elif kind == 'huge':
+            packet = rng.randbytes(rng.randrange(1024, 65507))
+        udp.sendto(packet, (address, port))
+        return f'datagram {kind}'
+    return f'udp {address}:{port}', send
+
+
 def _start_refusal(output: str) -> str:
     """Return the reason of a node's fatal 'cannot start' log line, or ''."""
     for line in output.splitlines():
@@ -363,20 +400,28 @@ def _run(settings, interface, process, client, rng, invariants, hints, report, c
         index = (number + 1) * settings.messages // (len(special) + 1)
         huge_at[index] = (topic, publisher, kind) + (
             generator.message(kind) if place is None else generator.oversized(place))
+    datagrams = None if inputs else _datagram_input(client, services, settings.node)
     start = time.monotonic()
     recent = {topic: [] for topic, _, _ in inputs}
     for index in paced(settings.rate, settings.messages):
-        if index in huge_at:
+        if datagrams is not None:
+            # A node whose input is a UDP socket (telemetry_bridge): hostile datagrams.
+            topic, send = datagrams
+            kind = send(rng)
+            report.sent[topic] = report.sent.get(topic, 0) + 1
+            report.kinds[kind] = report.kinds.get(kind, 0) + 1
+        elif index in huge_at:
             topic, publisher, kind, message, done = huge_at[index]
         else:
             topic, publisher, generator = inputs[rng.randrange(len(inputs))]
             kind = choose_kind(rng)
             message, done = generator.message(kind)
-        publisher.publish(message)
-        report.sent[topic] = report.sent.get(topic, 0) + 1
-        report.kinds[kind] = report.kinds.get(kind, 0) + 1
-        recent[topic] = (recent[topic] + [f'#{index} {kind}: {summarize(done) or "as drawn"}'])[
-            -KEPT_DESCRIPTIONS:]
+        if datagrams is None:
+            publisher.publish(message)
+            report.sent[topic] = report.sent.get(topic, 0) + 1
+            report.kinds[kind] = report.kinds.get(kind, 0) + 1
+            recent[topic] = (recent[topic] + [
+                f'#{index} {kind}: {summarize(done) or "as drawn"}'])[-KEPT_DESCRIPTIONS:]
         if settings.parameter_every and index % settings.parameter_every == 0:
             atomic = rng.random() < 0.1
             changes = fuzzer.changes(rng.randint(1, 3))

@@ -395,6 +395,11 @@ def cueing_scenario(run: ScenarioRun, bursts) -> None:
     lost = []
     stamp = 0
     reset = run.client.node.create_client(Trigger, 'reset')
+    # The flood called every service, stop among them: let a stop reach park, then start
+    # (a start runs from park to neutral as the bursts' easing lets the clock run).
+    _ease_home(run, clock, poses, waiter)
+    run.client.call(run.client.node.create_client(Trigger, 'start'), Trigger.Request(),
+                    STEP_DEADLINE)
     for kind, steps, speed_up in bursts:
         # From rest, the washout reset to take the first sample as it is: what a fresh node
         # starts from (reset before easing too: the platform goes home sooner).

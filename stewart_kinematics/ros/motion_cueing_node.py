@@ -238,6 +238,10 @@ class MotionCueingNode(ManagedNode):
         if result.command is None:   # a refused time, or not cueing: nothing moved
             if result.refusal is not None:
                 self.accounting.reject(result.refusal)
+            else:
+                # Held (parked, starting, stopping, paused): its time is kept, nothing cued;
+                # it ends counted as used, as every message ends as an output or a refusal.
+                self.accounting.use()
             for finding in result.warnings:
                 self.accounting.warn(finding)
             return

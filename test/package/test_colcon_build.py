@@ -108,7 +108,7 @@ def test_installed_layout_is_what_ros2_run_needs(install_base):
     for name in config:
         assert filecmp.cmp(share / 'config' / name, ROOT / 'config' / name, shallow=False)
     launch_files = sorted(path.name for path in (ROOT / 'launch').glob('*.launch.py'))
-    assert launch_files == ['stewart_kinematics.launch.py']
+    assert launch_files == ['motion_cueing.launch.py', 'stewart_kinematics.launch.py']
     assert sorted(path.name for path in (share / 'launch').iterdir()) == launch_files
 
 

@@ -336,3 +336,20 @@ def test_one_stamp_far_in_the_future_does_not_freeze_the_node(wall_clock_rig):
         f'still refused after {stream_cued_again.index} messages: '
         f'{accounting.rejections_by_code}')
     assert accounting.rejections_by_code.get('time_not_increasing', 0) >= 1
+
+
+def test_held_samples_end_counted_as_used_so_every_sample_adds_up(ros, spin_until):
+    """Parked, a sample is not cued: counted used (with cueing_held), received = used + refused."""
+    rig = Rig(ros, spin_until, ARGUMENTS + ['-p', 'start_parked:=true'])
+    try:
+        rig.send([imu(2_000_000_000 + k * 10_000_000) for k in range(5)])
+        rig.send([imu(2_040_000_000)])   # a repeated stamp: refused
+        accounting = rig.node.accounting
+        assert accounting.received == 6
+        assert accounting.warnings_by_code == {'cueing_held': 5}
+        assert accounting.rejections_by_code == {'time_not_increasing': 1}
+        # Before: the five held samples were neither published nor refused.
+        assert accounting.published + accounting.rejected == accounting.received
+        assert rig.inbox['target_pose'] == []
+    finally:
+        rig.close()
