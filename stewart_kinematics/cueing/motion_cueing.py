@@ -574,7 +574,8 @@ class MotionCueing:
             ``rotation_scale`` 3, likewise (each in its parameter's range).
 
         Refused: a value not allowed by its parameter, or a change that raises the cue of the
-        reference input beyond the travel (:class:`~.controls.GainCheck`). Never raises.
+        reference input beyond the travel (:class:`~.controls.GainCheck`; with the MPC, whose
+        plan keeps the travel whatever its aim, only the yaw gain is checked). Never raises.
         """
         changes = {name: value for name, value in (
             ('translation_scale', translation_scale), ('tilt_scale', tilt_scale),
@@ -593,6 +594,10 @@ class MotionCueing:
         new = effective_gains(self.controls.cueing_intensity if intensity is None
                               else float(intensity), settings.translation_scale,
                               settings.tilt_scale, settings.rotation_scale)
+        if getattr(self.washout, 'keeps_travel', False):
+            # The MPC plans within the travel whatever its aim (MpcCueing.keeps_travel): only
+            # its classical yaw channel (the last gain) is checked.
+            new = np.where(np.arange(new.size) == new.size - 1, new, self.gains.target)
         if self._gain_check is None:
             self._gain_check = GainCheck(self.settings, self.limiter,
                                          self.controls.gain_check_specific_force,

@@ -30,7 +30,8 @@ solves one quadratic programme (QP) and applies the first input for the sample's
   gravity tilt coordination is part of the model; the products of angles and accelerations
   are dropped, below 1 % for the 10 degrees of tilt allowed);
 - **cost**: over ``mpc_horizon`` steps, the perceived specific force and roll and pitch rate
-  against the vehicle's perceived ones (scaled by ``mpc_force_scale`` and ``rotation_scale``),
+  against the vehicle's perceived ones (scaled by ``mpc_force_scale`` and ``rotation_scale``,
+  and at run time by the intensity and gains: :meth:`MpcCueing.set_gains`),
   the reference being the vehicle's current input held over the horizon and fading with
   ``mpc_reference_time_constant`` (``inf``: held), plus small weights on the displacement,
   velocity, tilt and tilt rate (the washout to neutral) and on the inputs;
@@ -56,6 +57,7 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from stewart_kinematics.cueing.controls import WashoutGains
 from stewart_kinematics.cueing.filters import expm, TIME_QUANTUM
 from stewart_kinematics.cueing.limit_margins import poses_allowed
 from stewart_kinematics.cueing.qp_solver import QpSolver
@@ -207,6 +209,12 @@ class MpcCueing:
     :param solver: a :class:`~.qp_solver.QpSolver` (default: one built from the settings).
     """
 
+    #: The plan keeps the cue within its box (each coordinate's reach times
+    #: ``mpc_workspace_share``) and the legs' stroke whatever the gains, so the travel check
+    #: of a gain change (:class:`~.controls.GainCheck`, which measures the classical filters'
+    #: response) does not apply: a larger aim is met as far as the limits allow.
+    keeps_travel = True
+
     def __init__(self, settings: CueingSettings, limiter, solver: Optional[QpSolver] = None):
         self.settings = s = settings
         self.limiter = limiter
@@ -260,6 +268,7 @@ class MpcCueing:
             self.hessian, max_iterations=s.mpc_max_iterations, hard_rows=self.hard_rows,
             bounds=DOF * n)
         self._yaw = ClassicalWashout(s)
+        self._yaw_gains = None
         self._cache = {}
         self.reset()
 
@@ -278,9 +287,60 @@ class MpcCueing:
             state_map = phi @ state_map
             psi[5 * k:5 * k + 5] = c @ state_map
             upsilon[5 * k:5 * k + 5] = c @ input_map
-        scales = np.concatenate([s.mpc_force_scale, s.rotation_scale[:2]])
-        self._psi = psi * np.tile(scales, n)[:, None]
-        self._upsilon = upsilon * np.tile(scales, n)[:, None]
+        self._psi_unit, self._upsilon_unit = psi, upsilon
+        #: The aim: the reference's scale of the perceived force x, y, z and roll, pitch rate.
+        self.reference_scale = np.concatenate([s.mpc_force_scale, s.rotation_scale[:2]])
+        self._scale_reference()
+
+    def _scale_reference(self) -> None:
+        """Scale the reference's matrices by :attr:`reference_scale`."""
+        scales = np.tile(self.reference_scale, self.horizon)[:, None]
+        self._psi = self._psi_unit * scales
+        self._upsilon = self._upsilon_unit * scales
+
+    def set_gains(self, gains) -> None:
+        """
+        Take the eight effective gains (intensity times each channel gain) from the next step.
+
+        Called by :class:`~.controls.WashoutGains` at each step of a gain ramp
+        (:class:`~.controls.GainRamp`: no jump). The gains ``e`` are compared with the
+        configured ones ``c`` (this object's settings' ``translation_scale`` x y z,
+        ``tilt_scale`` x y, ``rotation_scale`` roll pitch yaw, at intensity 1):
+
+        - the force aim along x is ``mpc_force_scale`` x times ``(e_tx + e_tilt_x) /
+          (c_tx + c_tilt_x)``, along y likewise with the y gains; along z times
+          ``e_tz / c_tz``. The MPC has no tilt channel of its own: it meets the whole force
+          reference with translation (onsets) and tilt (sustained) at once, so the tilt gain is
+          folded into the force aim of its axis, weighted by the configured gains (equal ratios,
+          as a change of intensity gives, scale the aim by that ratio exactly). A tilt gain of 0
+          therefore lowers the aim but does not forbid tilt (``tilt_max`` does that). Where the
+          configured gains are 0 the aim of that axis is left as configured;
+        - the aim of the perceived roll and pitch rate is the effective rotation gain itself
+          (the configured aim is ``rotation_scale``, so the ratio is the same);
+        - yaw (the classical rotational channel kept): the effective yaw gain, as in the
+          classical washout.
+
+        The solver's warm start is kept: a ramp moves the reference a little at each step, so
+        the plan moves a little too. No limit changes: the constraints do not depend on gains.
+
+        :param gains: the effective gains, shape (8,), finite and >= 0 (checked by the caller).
+        """
+        gains = np.asarray(gains, dtype=float)
+        s = self.settings
+        configured = np.concatenate([s.translation_scale, s.tilt_scale, s.rotation_scale])
+        force = np.ones(3)
+        for axis, (now, then) in enumerate((
+                (gains[0] + gains[3], configured[0] + configured[3]),
+                (gains[1] + gains[4], configured[1] + configured[4]),
+                (gains[2], configured[2]))):
+            if then > 0.0:
+                force[axis] = now / then
+        self.reference_scale = np.concatenate([np.asarray(s.mpc_force_scale) * force,
+                                               gains[5:7]])
+        self._scale_reference()
+        if self._yaw_gains is None:
+            self._yaw_gains = WashoutGains(self._yaw)
+        self._yaw_gains.apply(gains)
 
     def reset(self) -> None:
         """Forget the input: the next sample settles the vehicle's perception; cue at neutral."""
