@@ -76,13 +76,13 @@ from rcl_interfaces.srv import GetParameters, SetParameters, SetParametersAtomic
 import rclpy
 from rosidl_parser import definition
 
+from stewart_kinematics.cueing.telemetry_packet import encode
 from stewart_kinematics.ros.interfaces import (
     NODE_INTERFACES,
     PUBLISHER,
     SERVICE,
     SUBSCRIPTION,
 )
-from stewart_kinematics.cueing.telemetry_packet import encode
 from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.node_processes import (

@@ -53,6 +53,8 @@ COMMANDS = {
     'trajectory_node': {'target_pose', 'leg_trajectory', 'joint_commands'},
     'motion_cueing_node': {'target_pose'},
     'mock_platform': set(),
+    # vehicle_imu is the vehicle's motion, an input of motion_cueing_node, not a command.
+    'telemetry_bridge': set(),
 }
 
 
