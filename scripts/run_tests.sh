@@ -15,11 +15,12 @@ source "${root}/scripts/ros_env.sh"
 cd "${root}"
 python="${root}/.venv/bin/python"
 
-# The whole suite (no arguments but output flags) runs in two phases: the core and lint tiers
-# (pure numpy, the linters, the documentation build: independent, no timing) on every core
-# with pytest-xdist, then the node and process tiers in one process, as before, since they
-# measure timing and rates that a second worker on the same cores would disturb. Any other
-# arguments (paths, -m, -k, -n, ...) go to one pytest run as they are.
+# The whole suite (no arguments but output flags) runs in two phases: the core, lint and node
+# tiers (pure numpy, the linters, the documentation build, nodes in the test's process with
+# deadlines, not timings) on every core with pytest-xdist, each worker on a ROS domain of its
+# own, then the process tier in one process, as before, since its node processes are timed
+# and rated, which a second worker on the same cores would disturb. Any other arguments (paths,
+# -m, -k, -n, ...) go to one pytest run as they are.
 whole_suite=true
 for argument in "$@"; do
   case "${argument}" in
@@ -33,10 +34,10 @@ if [[ "${whole_suite}" != true ]]; then
 fi
 workers="$("${python}" -c 'import os; print(max(1, min(2, len(os.sched_getaffinity(0)))))')"
 status=0
-echo "run_tests.sh: core and lint tiers on ${workers} worker(s)"
-"${python}" -m pytest "$@" -m 'core or lint' -n "${workers}" --dist worksteal || status=$?
-echo "run_tests.sh: node and process tiers in one process"
-"${python}" -m pytest "$@" -m 'node or process' || {
+echo "run_tests.sh: core, lint and node tiers on ${workers} worker(s)"
+"${python}" -m pytest "$@" -m 'core or lint or node' -n "${workers}" --dist worksteal || status=$?
+echo "run_tests.sh: process tier in one process"
+"${python}" -m pytest "$@" -m process || {
   code=$?
   if [[ "${status}" -eq 0 ]]; then status=${code}; fi
 }
