@@ -270,20 +270,33 @@ class NonEmpty(Validator):
         return 'not empty'
 
 
+#: Longest frame name taken, characters: a name goes into every stamped output and /tf_static,
+#: and a longer one is a mistake, not a frame (the soak found 10,000 on /tf_static).
+MAX_FRAME_NAME_LENGTH = 256
+
+
 @dataclass(frozen=True)
 class FrameName(Validator):
-    """Require a tf frame name (or ``''``): no spaces, no leading slash (tf2 refuses those)."""
+    """
+    Require a tf frame name (or ``''``): no spaces, no leading slash (tf2 refuses those).
+
+    At most :data:`MAX_FRAME_NAME_LENGTH` characters.
+    """
 
     def reason(self, subject: str, value: Any) -> str:
-        """Refuse a name with a space or a leading ``/``."""
+        """Refuse a name with a space or a leading ``/``, or a name too long."""
         if value.startswith('/') or any(character.isspace() for character in value):
             return (f"{subject} must be a frame name without spaces or a leading '/', got "
                     f'{preview(value)}')
+        if len(value) > MAX_FRAME_NAME_LENGTH:
+            return (f'{subject} must be a frame name of at most {MAX_FRAME_NAME_LENGTH} '
+                    f'characters, got {len(value)}')
         return ''
 
     def describe(self) -> str:
         """Return what a frame name may not hold."""
-        return "a frame name (no spaces, no leading '/')"
+        return (f"a frame name (no spaces, no leading '/', at most {MAX_FRAME_NAME_LENGTH} "
+                'characters)')
 
 
 @dataclass(frozen=True)

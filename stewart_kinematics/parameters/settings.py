@@ -356,20 +356,20 @@ class FrameSettings(Settings):
     """
     Name of the base frame: the parent of the platform on /tf, and the frame of stamped poses; a
     stamped target in a frame other than this one or user_frame is refused. Allowed: a frame name
-    (no spaces, no leading '/'). Read-only at run time.
+    (no spaces, no leading '/', at most 256 characters). Read-only at run time.
     """
 
     platform_frame: str = 'stewart_platform'
     """
     Name of the platform frame (the frame the platform joints are given in) on /tf. Allowed: a
-    frame name (no spaces, no leading '/'). Read-only at run time.
+    frame name (no spaces, no leading '/', at most 256 characters). Read-only at run time.
     """
 
     user_frame: str = ''
     """
     Name of a user frame fixed to the base (a work piece's frame), on /tf_static, in which stamped
-    poses may be given; '' for none. Allowed: a frame name (no spaces, no leading '/') or ''.
-    Read-only at run time.
+    poses may be given; '' for none. Allowed: a frame name (no spaces, no leading '/', at most 256
+    characters) or ''. Read-only at run time.
     """
 
     user_frame_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
@@ -387,7 +387,8 @@ class FrameSettings(Settings):
     tool_frame: str = ''
     """
     Name of the tool frame fixed to the platform, on /tf_static; '' leaves it unnamed (its pose
-    below still applies). Allowed: a frame name (no spaces, no leading '/') or ''.
+    below still applies). Allowed: a frame name (no spaces, no leading '/', at most 256 characters)
+    or ''.
     """
 
     tool_frame_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
@@ -423,7 +424,8 @@ class FkFrameSettings(Settings):
     estimated_pose_frame: str = ''
     """
     Frame of estimated_pose_stamped: base_frame or user_frame; '' means base_frame. Allowed: a
-    frame name (no spaces, no leading '/') or ''; base_frame or user_frame. Read-only at run time.
+    frame name (no spaces, no leading '/', at most 256 characters) or ''; base_frame or user_frame.
+    Read-only at run time.
     """
 
 
@@ -943,14 +945,15 @@ class CueingParameterSettings(Settings):
     """
     The vehicle's body frame (x forward, y left, z up, REP 103): vehicle_imu in this frame (or with
     an empty frame_id) is cued as it is; a sample in a frame neither this nor imu_frame is refused
-    with the reason. Allowed: a frame name (no spaces, no leading '/'). Read-only at run time.
+    with the reason. Allowed: a frame name (no spaces, no leading '/', at most 256 characters).
+    Read-only at run time.
     """
 
     imu_frame: str = ''
     """
     Another frame vehicle_imu may come in (an IMU mounted turned, or in NED axes), placed by
-    imu_orientation_rpy_deg; '' for none. Allowed: a frame name (no spaces, no leading '/') or ''.
-    Read-only at run time.
+    imu_orientation_rpy_deg; '' for none. Allowed: a frame name (no spaces, no leading '/', at most
+    256 characters) or ''. Read-only at run time.
     """
 
     imu_orientation_rpy_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
@@ -1224,7 +1227,7 @@ class TelemetrySettings(Settings):
     """
     The header.frame_id of the vehicle_imu it publishes: motion_cueing_node's vehicle_frame (the
     packets are in the vehicle frame, x forward, y left, z up). Allowed: a frame name (no spaces,
-    no leading '/'). Read-only at run time.
+    no leading '/', at most 256 characters). Read-only at run time.
     """
 
     telemetry_timeout: float = 0.5

@@ -52,7 +52,7 @@ ZERO_OR = re.compile(rf'^0\.0 or in \[({NUMBER}), ({NUMBER})\]$')
 INTEGERS = re.compile(r'^(-?\d+)(?:, (-?\d+))* or (-?\d+)$')
 ARRAY = re.compile(r'^(\d+) (finite )?values(?: (.+))?$')
 NAMES = re.compile(r'^(\d+) distinct, non-empty names$')
-FRAME = "a frame name (no spaces, no leading '/')"
+FRAME = "a frame name (no spaces, no leading '/', at most 256 characters)"
 QUOTED = re.compile(r"^'[^']*'(?:, '[^']*')* or '[^']*'$")
 
 
@@ -110,6 +110,7 @@ def claims(spec):
     if kind == 'string':
         if text in (FRAME, FRAME + " or ''"):
             return [('tool_0', True), ('a b', False), ('/tool', False), ('tool\t', False),
+                    ('x' * 256, True), ('x' * 257, False), ('x' * 10_000, False),
                     ('', text.endswith("or ''"))]
         if text == IPv4Address().describe():
             return [('127.0.0.1', True), ('0.0.0.0', True), ('192.168.1.20', True), ('', False),
