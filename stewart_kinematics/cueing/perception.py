@@ -112,13 +112,7 @@ def perceived_motion(times, poses, head_position, gravity: float = STANDARD_GRAV
     :raises ValueError: for fewer than 3 samples, mismatched shapes or times that do not
         increase.
     """
-    times = np.asarray(times, dtype=float)
-    poses = np.asarray(poses, dtype=float)
-    if times.ndim != 1 or times.size < 3 or poses.shape != (times.size, 6):
-        raise ValueError(f'times must be (N,) with N >= 3 and poses (N, 6), got {times.shape} '
-                         f'and {poses.shape}')
-    if not np.all(np.diff(times) > 0.0):
-        raise ValueError('times must increase')
+    times, poses = _sampled_poses(times, poses)
     heads = head_positions(poses, head_position)
     rotations = euler_zyx_to_matrix(poses[:, 3:])
     t0, t1, t2 = times[:-2, None], times[1:-1, None], times[2:, None]
@@ -142,6 +136,12 @@ def body_rates(times, poses) -> np.ndarray:
     :raises ValueError: for fewer than 3 samples, mismatched shapes or times that do not
         increase.
     """
+    times, poses = _sampled_poses(times, poses)
+    return _body_rates(times, euler_zyx_to_matrix(poses[:, 3:]))
+
+
+def _sampled_poses(times, poses):
+    """Return ``times`` (N,) and ``poses`` (N, 6) as float arrays, or raise ``ValueError``."""
     times = np.asarray(times, dtype=float)
     poses = np.asarray(poses, dtype=float)
     if times.ndim != 1 or times.size < 3 or poses.shape != (times.size, 6):
@@ -149,7 +149,7 @@ def body_rates(times, poses) -> np.ndarray:
                          f'and {poses.shape}')
     if not np.all(np.diff(times) > 0.0):
         raise ValueError('times must increase')
-    return _body_rates(times, euler_zyx_to_matrix(poses[:, 3:]))
+    return times, poses
 
 
 def _body_rates(times, rotations):
