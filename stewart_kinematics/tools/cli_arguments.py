@@ -91,6 +91,22 @@ def integer_at_least(low: int):
     return parse
 
 
+def existing_file(text: str) -> Path:
+    """``type=`` of an input file: the path, when it names a file."""
+    path = Path(text)
+    if not path.is_file():
+        raise argparse.ArgumentTypeError(f'{text} is not a file')
+    return path
+
+
+def existing_path(text: str) -> Path:
+    """``type=`` of an input that may be a file or a folder (a rosbag2 folder, say)."""
+    path = Path(text)
+    if not path.exists():
+        raise argparse.ArgumentTypeError(f'{text} does not exist')
+    return path
+
+
 def output_problem(path: Path, directory: bool = False) -> str:
     """
     Say why ``path`` cannot be written, or return ``''``.

@@ -46,7 +46,6 @@ with ``--strict``, a target missed.
 """
 
 import argparse
-import csv
 import math
 from pathlib import Path
 import sys
@@ -54,17 +53,22 @@ import time
 
 import numpy as np
 
-from stewart_kinematics.model.arrays import preview
 from stewart_kinematics.tools.cli_arguments import (
     check_output_paths,
+    existing_file,
+    existing_path,
     number_in,
     refuse_parameter_file,
 )
+from stewart_kinematics.tools.csv_input import read_number_table
 import yaml
 
 #: The CSV columns, in order.
 CSV_COLUMNS = ('time', 'specific_force_x', 'specific_force_y', 'specific_force_z',
                'angular_velocity_x', 'angular_velocity_y', 'angular_velocity_z')
+#: The most samples a CSV input may hold (over half an hour at 1 kHz), and its largest file.
+MAX_CSV_SAMPLES = 2_000_000
+MAX_CSV_BYTES = 256 * 1024 * 1024
 #: The node's name: the parameter files' sections read besides ``/**``.
 NODE_NAME = 'motion_cueing_node'
 #: Exit codes.
@@ -103,13 +107,6 @@ class ProgressBar:
         self.stream.flush()
 
 
-def _existing_file(text):
-    path = Path(text)
-    if not path.exists():
-        raise argparse.ArgumentTypeError(f'{text} does not exist')
-    return path
-
-
 def build_parser() -> argparse.ArgumentParser:
     """Return the command line's parser."""
     from stewart_kinematics.cueing.evaluation import SETTLE_TIME
@@ -121,13 +118,13 @@ def build_parser() -> argparse.ArgumentParser:
     source = parser.add_mutually_exclusive_group()
     source.add_argument('--scenario', action='append', choices=SCENARIO_NAMES + ('all',),
                         help='a generated scenario; repeat for several (default: all)')
-    source.add_argument('--csv', type=_existing_file, help='replay this CSV file')
-    source.add_argument('--mcap', type=_existing_file,
+    source.add_argument('--csv', type=existing_file, help='replay this CSV file')
+    source.add_argument('--mcap', type=existing_path,
                         help='replay sensor_msgs/msg/Imu from this .mcap file or rosbag2 folder')
     parser.add_argument('--topic', default='/vehicle_imu',
                         help='the Imu topic in the --mcap recording (default /vehicle_imu)')
     parser.add_argument('--params-file', dest='params_files', action='append', required=True,
-                        type=_existing_file,
+                        type=existing_file,
                         help='ROS 2 parameter file (geometry, limits, motion_cueing_node); '
                              'repeat to layer files, as the node takes them')
     parser.add_argument('--rate', type=number_in(0.0, 10000.0, low_inclusive=False),
@@ -169,32 +166,8 @@ def load_csv(path: Path):
     :raises ValueError: naming the file, the line and the column, for a bad header, a row of
         the wrong length, a value that is not a finite number, or times that do not increase.
     """
-    rows = []
-    with open(path, encoding='utf-8', newline='') as stream:
-        lines = [(number, line) for number, line in enumerate(stream, start=1)
-                 if line.strip() and not line.lstrip().startswith('#')]
-        if not lines:
-            raise ValueError(f'{path}: no header and no data')
-        reader = csv.reader(line for _, line in lines)
-        header = [cell.strip() for cell in next(reader)]
-        if tuple(header) != CSV_COLUMNS:
-            raise ValueError(f'{path} line {lines[0][0]}: the header must be '
-                             f'{",".join(CSV_COLUMNS)}, got {",".join(header)}')
-        for (number, _), cells in zip(lines[1:], reader):
-            if len(cells) != len(CSV_COLUMNS):
-                raise ValueError(f'{path} line {number}: expected {len(CSV_COLUMNS)} values, '
-                                 f'got {len(cells)}')
-            row = []
-            for column, cell in zip(CSV_COLUMNS, cells):
-                try:
-                    value = float(cell)
-                except ValueError:
-                    value = math.nan
-                if not math.isfinite(value):
-                    raise ValueError(f'{path} line {number}: {column} must be a finite number, '
-                                     f'got {preview(cell.strip())}')
-                row.append(value)
-            rows.append(row)
+    _, rows = read_number_table(path, [CSV_COLUMNS], what='samples',
+                                max_rows=MAX_CSV_SAMPLES, max_bytes=MAX_CSV_BYTES)
     return _checked_samples(str(path), np.array(rows).reshape(-1, len(CSV_COLUMNS)))
 
 

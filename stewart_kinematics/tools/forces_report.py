@@ -61,10 +61,12 @@ import numpy as np
 
 from stewart_kinematics.tools.cli_arguments import (
     check_output_paths,
+    existing_file,
     EXIT_USAGE,
     number_in,
     refuse_parameter_file,
 )
+from stewart_kinematics.tools.csv_input import read_number_table
 
 PROG = 'stewart_forces'
 #: Default sampling rate of a trajectory or a pose list, hertz.
@@ -90,13 +92,6 @@ class InputError(ValueError):
     """An input that cannot be used: the message names it and says why."""
 
 
-def _existing_file(text):
-    path = Path(text)
-    if not path.is_file():
-        raise argparse.ArgumentTypeError(f'{text} is not a file')
-    return path
-
-
 def build_parser() -> argparse.ArgumentParser:
     """Return the command line's parser."""
     from stewart_kinematics.cueing.scenarios import SCENARIO_NAMES
@@ -104,15 +99,15 @@ def build_parser() -> argparse.ArgumentParser:
         prog=PROG, description=__doc__.split('\n\n')[1].replace('\n', ' '),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     source = parser.add_mutually_exclusive_group(required=True)
-    source.add_argument('--trajectory', type=_existing_file,
+    source.add_argument('--trajectory', type=existing_file,
                         help="trajectory_node's parameter file with a ramp (Table 3 layout)")
-    source.add_argument('--poses', type=_existing_file,
+    source.add_argument('--poses', type=existing_file,
                         help='CSV of timed poses: ' + ','.join(POSE_COLUMNS)
                              + ' (radians) or ' + ','.join(POSE_COLUMNS_DEG))
     source.add_argument('--scenario', choices=SCENARIO_NAMES,
                         help='a drive of stewart_cueing, played through the motion cueing')
     parser.add_argument('--params-file', dest='params_files', action='append', required=True,
-                        type=_existing_file,
+                        type=existing_file,
                         help='ROS 2 parameter file (geometry, masses, limits); repeat to '
                              'layer files, as the nodes take them')
     parser.add_argument('--duration', type=number_in(0.0, 1e6, low_inclusive=False),
@@ -142,48 +137,10 @@ def read_poses(path: Path):
     :raises InputError: naming the file, the line and the column.
     """
     try:
-        size = path.stat().st_size
-        if size > MAX_POSE_FILE_BYTES:
-            raise InputError(f'{path}: {size:,} bytes, more than a pose list of '
-                             f'{MAX_POSES:,} poses may take ({MAX_POSE_FILE_BYTES:,})')
-        with open(path, encoding='utf-8', newline='') as stream:
-            lines = [(number, line) for number, line in enumerate(stream, start=1)
-                     if line.strip() and not line.lstrip().startswith('#')]
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f'{path}: cannot be read: {error}') from None
-    if not lines:
-        raise InputError(f'{path}: no header and no data')
-    if len(lines) > MAX_POSES + 1:
-        raise InputError(f'{path}: at most {MAX_POSES:,} poses, got {len(lines) - 1:,}')
-    try:
-        return _pose_rows(path, lines)
-    except csv.Error as error:   # a field beyond the csv module's limit, say
-        raise InputError(f'{path}: not a CSV file of poses: {error}') from None
-
-
-def _pose_rows(path, lines):
-    reader = csv.reader(line for _, line in lines)
-    header = tuple(cell.strip() for cell in next(reader))
-    if header not in (POSE_COLUMNS, POSE_COLUMNS_DEG):
-        raise InputError(f'{path} line {lines[0][0]}: the header must be '
-                         f'{",".join(POSE_COLUMNS)} or {",".join(POSE_COLUMNS_DEG)}, got '
-                         f'{",".join(header)[:200]}')
-    rows = []
-    for (number, _), cells in zip(lines[1:], reader):
-        if len(cells) != len(header):
-            raise InputError(f'{path} line {number}: expected {len(header)} values, got '
-                             f'{len(cells)}')
-        row = []
-        for column, cell in zip(header, cells):
-            try:
-                value = float(cell)
-            except ValueError:
-                value = math.nan
-            if not math.isfinite(value):
-                raise InputError(f'{path} line {number}: {column} must be a finite number, '
-                                 f'got {cell.strip()[:40]!r}')
-            row.append(value)
-        rows.append(row)
+        header, rows = read_number_table(path, [POSE_COLUMNS, POSE_COLUMNS_DEG], what='poses',
+                                         max_rows=MAX_POSES, max_bytes=MAX_POSE_FILE_BYTES)
+    except ValueError as error:
+        raise InputError(str(error)) from None
     if len(rows) < 2:
         raise InputError(f'{path}: needs at least 2 poses, got {len(rows)}')
     data = np.array(rows)

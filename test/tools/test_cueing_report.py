@@ -128,6 +128,31 @@ def test_unusable_csv_exits_1_saying_where(capsys, tmp_path, rows, header, fragm
     assert fragment in err and 'bad.csv' in err
 
 
+@pytest.mark.parametrize('content, fragment', [
+    # A quoted field beyond the csv module's limit was a traceback from _csv.Error.
+    (','.join(CSV_COLUMNS).encode() + b'\n"' + b'1' * 200_000 + b'",0,0,9.8,0,0,0\n',
+     'not a CSV file of samples: field larger than field limit'),
+    (b'\xff\xfe\x00 not text', 'bad.csv: cannot be read'),
+    (b'', 'no header and no data'),
+])
+def test_csv_that_is_no_table_exits_1_naming_it(capsys, tmp_path, content, fragment):
+    """A field too large for the csv module, bytes that are not text, an empty file."""
+    path = tmp_path / 'bad.csv'
+    path.write_bytes(content)
+    assert main(TUNED + ['--csv', str(path), '--output', str(tmp_path / 'out'),
+                         '--quiet']) == 1
+    err = capsys.readouterr().err
+    assert fragment in err and 'Traceback' not in err
+
+
+def test_csv_that_is_a_folder_is_refused_as_an_option(capsys, tmp_path):
+    """--csv naming a folder was an IsADirectoryError traceback; now exit 2 naming it."""
+    with pytest.raises(SystemExit) as exit_:
+        main(TUNED + ['--csv', str(tmp_path), '--output', str(tmp_path / 'out')])
+    assert exit_.value.code == 2
+    assert f'{tmp_path} is not a file' in capsys.readouterr().err
+
+
 def test_strict_exits_3_when_a_target_is_missed(capsys, tmp_path):
     """The literature's defaults on this platform return too slowly: --strict says so."""
     code = main(PLATFORM + ['--scenario', 'acceleration_braking', '--output',

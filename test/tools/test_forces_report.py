@@ -273,7 +273,7 @@ def test_a_huge_pose_file_is_refused_before_it_is_read(tmp_path, capsys):
     with open(huge, 'wb') as stream:
         stream.truncate(33 * 1024 * 1024)     # sparse: 33 MB of NUL bytes, nothing written
     code, _, err = run(['--poses', str(huge)] + PARAMS, capsys)
-    assert code == 2 and err.count('\n') == 1 and 'more than a pose list' in err, err
+    assert code == 2 and err.count('\n') == 1 and 'more than a list of 100,000 poses' in err, err
 
 
 def test_a_bad_ramp_file_is_one_line_and_exit_2(tmp_path, capsys):
