@@ -497,7 +497,7 @@ def test_the_bound_never_proves_a_clearance_the_legs_do_not_keep(limited, offset
 
 
 def test_the_bound_proves_the_table_3_ramp_and_the_results_stay_the_same(limited):
-    """The early-out takes every ramp pose (the reason for it); near the clearance it falls back."""
+    """The early-out takes every ramp pose; near the clearance the exact distances decide."""
     ramp = Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
                            [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
     poses = ramp.sample(np.linspace(0.0, 10.0, 201), 10.0)
