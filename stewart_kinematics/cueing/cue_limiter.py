@@ -335,6 +335,8 @@ class CueLimiter:
         change = acceleration * span
         speed = self._velocity_plan
         limits = limits_of(self.geometry)
+        # Read once: a setting is a lookup in the limits' table, which six legs would repeat.
+        longest, shortest = limits.leg_length_max, limits.leg_length_min
         stroke = stroke and math.isfinite(acceleration)
         lower, upper = [], []
         for length, velocity in zip(self.lengths.tolist(), self.leg_velocities.tolist()):
@@ -342,12 +344,12 @@ class CueLimiter:
             high = min(speed, velocity + change)
             if stroke:
                 # v dt + v^2 / (2 a) <= room: one step, then braking at the planned rate.
-                if math.isfinite(limits.leg_length_max):
-                    room = max(limits.leg_length_max - length, 0.0)
+                if math.isfinite(longest):
+                    room = max(longest - length, 0.0)
                     high = max(low, min(high, acceleration * (
                         -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
-                if limits.leg_length_min > 0.0:
-                    room = max(length - limits.leg_length_min, 0.0)
+                if shortest > 0.0:
+                    room = max(length - shortest, 0.0)
                     low = min(high, max(low, -acceleration * (
                         -dt + math.sqrt(dt * dt + 2.0 * room / acceleration))))
             lower.append(low)

@@ -36,7 +36,15 @@ import reference
 
 from stewart_kinematics import Geometry, load_geometry, Ramp
 from stewart_kinematics.limits import LEG_PAIRS, LimitModel, PoseLimits, segment_distances
-from stewart_kinematics.limits.leg_collision import FIRST, NEAR_PARALLEL, SECOND
+from stewart_kinematics.limits.base import PoseLegs
+from stewart_kinematics.limits.leg_collision import (
+    BOUND_ROUNDING,
+    cleared,
+    FIRST,
+    LegCollision,
+    NEAR_PARALLEL,
+    SECOND,
+)
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 
 pytestmark = pytest.mark.core
@@ -454,3 +462,62 @@ def test_the_exact_reference_agrees_with_the_search_and_closed_forms():
     assert reference.segment_distance_exact([0, 0, 0], [1, 0, 0], [0.5, 0.2, 0]) == 0.2
     assert reference.segment_distance_exact([0, 0, 0], [0, 0, 0], [0, 3, 4]) == 5.0
     assert reference.segment_distance_exact([1, 1, 0], [-1, 1, 0], [-1, 0, 0]) == 0.0
+
+
+# The one-pose lower bound --------------------------------------------------------------------
+
+#: Poses anywhere near home and beyond: offsets (m) and Euler angle offsets (rad).
+WIDE_OFFSETS = st.tuples(*[floats(-0.3, 0.3)] * 3, *[floats(-1.2, 1.2)] * 3).map(np.array)
+
+
+def one_pose_bound(geometry, pose, clearance):
+    """Return :func:`cleared` of one pose with this clearance for every pair, and the legs."""
+    legs = PoseLegs.of_pose(geometry, pose[:3].tolist(),
+                            euler_zyx_to_matrix(pose[3:]).ravel().tolist())
+    columns = np.array(legs.floats)
+    evaluator = LegCollision(geometry, clearance / 2.0)
+    scale = evaluator._offset_scale + 2.0 * columns[:, 0].max()
+    return cleared(columns[:, 1:4], evaluator._pair_offsets, np.full(15, clearance),
+                   evaluator.shared_rows, BOUND_ROUNDING * scale * scale)
+
+
+@budget(60)
+@given(WIDE_OFFSETS, floats(0.0, 1.0))
+@example(np.zeros(6), 1.0)
+def test_the_bound_never_proves_a_clearance_the_legs_do_not_keep(limited, offset, fraction):
+    """Proved clear of the closest pair's distance (less up to 0.1 m) only when truly above."""
+    pose = limited.home_pose + offset
+    closest = reference_distances(limited, pose[None, :]).min()
+    clearance = max(closest - 0.1 * (1.0 - fraction), 1e-6)
+    proved = one_pose_bound(limited, pose, clearance)
+    assert not (proved and closest <= clearance + 1e-12)
+    # At the closest distance itself (and above it) nothing is ever proved.
+    assert not one_pose_bound(limited, pose, closest)
+    assert not one_pose_bound(limited, pose, closest * (1.0 + 1e-9) + 1e-15)
+
+
+def test_the_bound_proves_the_table_3_ramp_and_the_results_stay_the_same(limited):
+    """The early-out takes every ramp pose; near the clearance the exact distances decide."""
+    ramp = Ramp.from_table([0.0, 0.0, 0.4325], [0.01, 0.015, 0.01], [0.1, 0.15, 0.5325],
+                           [0.0, 0.0, 0.0], [1.5, -1.5, 2.0], [15.0, -15.0, 20.0])
+    poses = ramp.sample(np.linspace(0.0, 10.0, 201), 10.0)
+    assert all(one_pose_bound(limited, pose, 2.0 * limited.leg_radius) for pose in poses)
+    # The closest pair is 47.3 mm apart at the end: a clearance just under it is not proved
+    # there, and the exact distances decide, as for a batch.
+    assert not one_pose_bound(limited, poses[-1], 0.0472)
+    model = LimitModel(collisions_only(limited, 0.0236))
+    rng = np.random.default_rng(7)
+    near = poses + rng.uniform(-1.0, 1.0, poses.shape) * [0.01, 0.01, 0.01, 0.05, 0.05, 0.05]
+    batch = model.check_poses(near)
+    for index, pose in enumerate(near):
+        one = model.check_pose(pose[:3], euler_zyx_to_matrix(pose[3:]))
+        assert [(v.leg, v.other_leg, v.value) for v in one] == \
+            [(v.leg, v.other_leg, v.value) for v in batch.violations(index)]
+    assert not batch.allowed.all() and batch.allowed.any()
+
+
+def test_a_pair_that_shares_a_joint_does_not_stop_the_proof():
+    """A 6-3 platform's pairs meet at their shared joints: unchecked, the others proved."""
+    shared = load_geometry(CONFIG / 'platform_6_3.yaml')
+    assert LegCollision(shared, 0.001).shared_rows.size == 3
+    assert one_pose_bound(shared, shared.home_pose, 0.002)
