@@ -321,6 +321,7 @@ def start_load(client, start_node, config_directory, geometry, names):
 
 
 @pytest.mark.parametrize('names', [('ik_node',), ('fk_node',)], ids=['ik_node', 'fk_node'])
+@pytest.mark.serial   # a loss-free rate: run alone in the whole suite (scripts/run_tests.sh)
 def test_node_loses_nothing_at_500_hz(client, start_node, config_directory, paper_geometry,
                                       names):
     """

@@ -35,7 +35,8 @@ import sys
 
 import pytest
 
-pytestmark = pytest.mark.process
+# Its targets are rates and latencies: run alone in the whole suite (scripts/run_tests.sh).
+pytestmark = [pytest.mark.process, pytest.mark.serial]
 
 SOAK = Path(__file__).resolve().parents[2] / 'benchmarks' / 'soak.py'
 #: The 30 s soak: a kill every 7 s (SIGKILL and SIGTERM in turn), a flood every
