@@ -474,9 +474,9 @@ class MotionCueing:
         :meth:`stewart_kinematics.limits.CommandGate.brake`), which the motion follows on from,
         as from a step the gate refused; called each period until it returns ``None``, the
         platform rests. Then :meth:`reset` makes the next samples glide it home within the
-        limits. What a managed motion_cueing_node does when it is deactivated: easing home
-        takes the washout's time (tens of seconds from a sustained cue), braking a fraction of
-        a second.
+        limits. The first part of :meth:`stop` and :meth:`pause` (and so of a managed
+        motion_cueing_node's deactivate): easing home takes the washout's time (tens of
+        seconds from a sustained cue), braking a fraction of a second.
 
         :param command_time: when the command is sent, seconds (the node's clock, after the
             last command).
