@@ -158,7 +158,9 @@ def test_a_later_p_of_the_wrong_type_stops_the_start_with_its_source(ros):
     for text, words in (('cueing_method:=5', "'cueing_method' must be of type string"),
                         ('tilt_max_deg:=.nan', 'tilt_max_deg'),
                         ('tilt_max_deg:=1e308', 'tilt_max_deg'),
-                        ('park_position:=[0.0]', 'park_position')):
+                        ('park_position:=[0.0]', 'park_position'),
+                        ('park_orientation_deg:=[0.0, 60.0, 0.0]', 'beyond its limits'),
+                        ('park_orientation_deg:=[0.0, .nan, 0.0]', 'park_orientation_deg')):
         with pytest.raises(Exception) as raised:
             MotionCueingNode(cli_args=['--ros-args'] + FILES + ['-p', text]).destroy_node()
         assert words in str(raised.value), (text, raised.value)
