@@ -537,7 +537,7 @@ class MotionCueing:
             self.mode = PARKED
 
     def _checked_park(self, park) -> np.ndarray:
-        """Return the park pose asked, or raise ``ValueError`` naming it and the limits it breaks."""
+        """Return the park pose asked; raise ``ValueError`` naming it and the limits it breaks."""
         violations = pose_violations(self.geometry, park[:3], euler_zyx_to_matrix(park[3:]))
         if violations:
             controls = self.controls

@@ -140,7 +140,7 @@ class MotionCueingNode(ManagedNode):
 
     def activate(self):
         """
-        Managed: start from park, as the ``start`` service does (unmanaged: nothing to do).
+        Start from park, as the ``start`` service does, when managed (unmanaged: nothing).
 
         The platform was configured at park (or parked by the last deactivate): the soft
         start to neutral over ``soft_start_time`` is stepped by the timer from now on, and

@@ -324,8 +324,8 @@ def test_a_tilted_park_is_where_stop_takes_the_platform_within_the_limits(positi
     ('tilted', 'park_orientation_deg'),
     ([0.0, [2.0], 0.0], 'park_orientation_deg'),
 ])
-def test_a_park_orientation_beyond_the_limits_or_no_angles_is_refused_naming_it(orientation,
-                                                                               words):
+def test_a_park_orientation_beyond_the_limits_or_no_angles_is_refused_naming_it(
+        orientation, words):
     with pytest.raises(ValueError) as raised:
         make_cueing(park_orientation_deg=orientation)
     message = str(raised.value)

@@ -31,8 +31,8 @@ import time
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
-import reference
 from rclpy.lifecycle import TransitionCallbackReturn
+import reference
 from sensor_msgs.msg import Imu
 
 from stewart_kinematics.cueing.motion_cueing import CUEING, PARKED, STARTING
@@ -53,7 +53,7 @@ PERIOD = 0.02
 
 
 def imu(stamp, force_x):
-    """A vehicle_imu sample: a forward specific force, at rest otherwise, stamped (seconds)."""
+    """Return a vehicle_imu sample: a forward specific force, at rest otherwise (seconds)."""
     message = Imu()
     message.header.stamp.sec, message.header.stamp.nanosec = divmod(int(stamp * 1e9), 10 ** 9)
     message.linear_acceleration.x, message.linear_acceleration.z = force_x, G
@@ -69,7 +69,7 @@ def legs(message):
 
 @pytest.fixture
 def node(ros):
-    """A managed motion_cueing_node whose target_pose commands are recorded with their times."""
+    """Make a managed motion_cueing_node; its commands are recorded with their send times."""
     made = MotionCueingNode(cli_args=ARGUMENTS)
     made.sent = []
     yield made
