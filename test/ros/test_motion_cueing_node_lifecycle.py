@@ -152,7 +152,7 @@ def test_activate_starts_from_park_and_deactivate_stops_to_park(node):
 def test_an_activate_deactivate_flood_ends_parked_within_the_limits(node):
     assert node.trigger_configure() == SUCCESS
     record(node)
-    for round_ in range(6):
+    for round_ in range(4):
         assert node.trigger_activate() == SUCCESS
         operate_until(node, lambda: False, 0.04 * round_)   # cut the start short, or not
         assert node.trigger_deactivate() == SUCCESS
