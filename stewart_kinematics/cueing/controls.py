@@ -38,8 +38,8 @@ The pieces :class:`~stewart_kinematics.cueing.MotionCueing` composes (its method
   allowed; a change that lowers it is always taken (so a start-up gain beyond it can be
   lowered). The cue limiter keeps every command within the limits whatever the gains; the
   check refuses gains at which it would be scaling the cue down all the time.
-- **Park** (:func:`lowest_pose`): the lowest pose straight below home, oriented as home, that
-  keeps the cue margins; or a pose given.
+- **Park** (:func:`lowest_pose`): the lowest pose straight below home, oriented as home (or
+  as ``park_orientation_deg``), that keeps the cue margins; or a pose given.
 - **Soft motion** (:class:`SoftMotion`): from rest at some leg lengths to rest at others,
   in the time asked or longer: ruckig's jerk-limited, phase-synchronised motion
   (:class:`~stewart_kinematics.motion.streaming.CommandFilter`: a straight line in leg space)
@@ -315,16 +315,20 @@ class GainCheck:
         return ''
 
 
-def lowest_pose(geometry, limiter) -> np.ndarray:
+def lowest_pose(geometry, limiter, orientation=None) -> np.ndarray:
     """
     Return the lowest pose straight below home, oriented as home, within the cue margins.
 
     :param geometry: the platform.
     :param limiter: the :class:`~.cue_limiter.CueLimiter` (its narrowed limits).
-    :returns: ``[X, Y, Z, alpha, beta, gamma]``, shape (6,); home itself when no lower pose
-        keeps the margins.
+    :param orientation: alpha, beta, gamma, radians, shape (3,): the pose's orientation
+        instead of home's (a platform that parks tilted).
+    :returns: ``[X, Y, Z, alpha, beta, gamma]``, shape (6,); home's position (so oriented)
+        when no lower pose keeps the margins.
     """
     home = np.array(geometry.home_pose, dtype=float)
+    if orientation is not None:
+        home[3:] = np.asarray(orientation, dtype=float)
     low, high = 0.0, max(float(home[2]), 1e-3)   # how far below home
     poses = home + np.zeros((_TRAVEL_SAMPLES, 6))
     drops = np.linspace(0.0, high, _TRAVEL_SAMPLES + 1)[1:]

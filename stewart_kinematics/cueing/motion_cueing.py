@@ -474,9 +474,9 @@ class MotionCueing:
         :meth:`stewart_kinematics.limits.CommandGate.brake`), which the motion follows on from,
         as from a step the gate refused; called each period until it returns ``None``, the
         platform rests. Then :meth:`reset` makes the next samples glide it home within the
-        limits. What a managed motion_cueing_node does when it is deactivated: easing home
-        takes the washout's time (tens of seconds from a sustained cue), braking a fraction of
-        a second.
+        limits. The first part of :meth:`stop` and :meth:`pause` (and so of a managed
+        motion_cueing_node's deactivate): easing home takes the washout's time (tens of
+        seconds from a sustained cue), braking a fraction of a second.
 
         :param command_time: when the command is sent, seconds (the node's clock, after the
             last command).
@@ -517,16 +517,17 @@ class MotionCueing:
         if controls.cueing_intensity != 1.0:
             self._apply_gains()
         self._park = None
+        #: The park orientation asked (radians), or ``None``: home's.
+        self._park_orientation = (np.radians(np.array(controls.park_orientation_deg, float))
+                                  if any(controls.park_orientation_deg) else None)
+        orientation = (self._park_orientation if self._park_orientation is not None
+                       else np.array(self.geometry.home_pose[3:], dtype=float))
         if any(controls.park_position):
-            park = np.array(list(controls.park_position)
-                            + list(self.geometry.home_pose[3:]), dtype=float)
-            violations = pose_violations(self.geometry, park[:3], euler_zyx_to_matrix(park[3:]))
-            if violations:
-                raise ValueError(
-                    f'park_position {list(controls.park_position)} m puts the platform beyond '
-                    f'its limits: {"; ".join(map(str, violations))}; give a pose within every '
-                    'limit, or all 0.0 for the lowest pose below home')
-            self._park = park
+            self._park = self._checked_park(
+                np.concatenate([np.array(controls.park_position, dtype=float), orientation]))
+        elif self._park_orientation is not None:
+            self._park = self._checked_park(lowest_pose(self.geometry, self.limiter,
+                                                        self._park_orientation))
         #: What the platform does: CUEING, PAUSING, PAUSED, PARKED, STARTING or STOPPING.
         self.mode = CUEING
         #: The soft motion under way (start or stop), or ``None``.
@@ -535,9 +536,29 @@ class MotionCueing:
             self._place(self.park_pose)
             self.mode = PARKED
 
+    def _checked_park(self, park) -> np.ndarray:
+        """Return the park pose asked; raise ``ValueError`` naming it and the limits it breaks."""
+        violations = pose_violations(self.geometry, park[:3], euler_zyx_to_matrix(park[3:]))
+        if violations:
+            controls = self.controls
+            raise ValueError(
+                f'park_position {list(controls.park_position)} m with park_orientation_deg '
+                f'{list(controls.park_orientation_deg)} puts the platform at '
+                f'{[round(float(value), 6) for value in park[:3]]} m, '
+                f'{[round(math.degrees(value), 4) for value in park[3:]]} deg, beyond its '
+                f'limits: {"; ".join(map(str, violations))}; give a pose within every limit '
+                '(park_position all 0.0: the lowest pose below home, park_orientation_deg all '
+                "0.0: home's orientation)")
+        return park
+
     @property
     def park_pose(self) -> np.ndarray:
-        """Return the park pose: ``park_position`` oriented as home, or the lowest below home."""
+        """
+        Return the park pose, ``[X, Y, Z, alpha, beta, gamma]`` (metres, radians, base frame).
+
+        ``park_position`` oriented by ``park_orientation_deg`` (all 0.0: as home), or (all
+        0.0) the lowest pose straight below home so oriented that keeps the cue margins.
+        """
         if self._park is None:
             self._park = lowest_pose(self.geometry, self.limiter)
         return self._park.copy()

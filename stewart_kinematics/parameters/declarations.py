@@ -820,12 +820,22 @@ CUEING_CONTROL_PARAMETERS = (
         default=3.0, validators=(Finite(), InRange(0.1, 600.0))),
     ParameterSpec(
         'park_position', DOUBLE_ARRAY,
-        "The park pose's X, Y, Z, metres, base frame, oriented as home: where stop takes the "
+        "The park pose's X, Y, Z, metres, base frame, oriented by park_orientation_deg (all 0.0: "
+        'as home): where stop takes the '
         'platform and start_parked starts it; all 0.0: the lowest pose straight below home '
         'that keeps the cue margins (leg_length_margin inside the stroke)',
         default=[0.0, 0.0, 0.0], read_only=True,
         validators=(FixedLength(3), Finite(), InRange(-1000.0, 1000.0)),
         note='within every limit, or all 0.0'),
+    ParameterSpec(
+        'park_orientation_deg', DOUBLE_ARRAY,
+        "The park pose's orientation in the base frame, alpha, beta, gamma (R = Rz(gamma) "
+        'Ry(beta) Rx(alpha)), degrees, for a platform that parks tilted: with park_position, '
+        'that pose; with park_position all 0.0, the lowest pose straight below home so '
+        "oriented; all 0.0: home's orientation",
+        default=[0.0, 0.0, 0.0], read_only=True,
+        validators=(FixedLength(3), Finite(), InRange(-180.0, 180.0)),
+        note='the park pose within every limit'),
     ParameterSpec(
         'start_parked', BOOL,
         'Start with the platform at park: nothing is cued until the start service; false: '

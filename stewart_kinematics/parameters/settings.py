@@ -1115,10 +1115,19 @@ class CueingControlSettings(Settings):
 
     park_position: Tuple[float, ...] = (0.0, 0.0, 0.0)
     """
-    The park pose's X, Y, Z, metres, base frame, oriented as home: where stop takes the platform
-    and start_parked starts it; all 0.0: the lowest pose straight below home that keeps the cue
-    margins (leg_length_margin inside the stroke). Allowed: 3 values in [-1000, 1000]; within every
-    limit, or all 0.0. Read-only at run time.
+    The park pose's X, Y, Z, metres, base frame, oriented by park_orientation_deg (all 0.0: as
+    home): where stop takes the platform and start_parked starts it; all 0.0: the lowest pose
+    straight below home that keeps the cue margins (leg_length_margin inside the stroke). Allowed:
+    3 values in [-1000, 1000]; within every limit, or all 0.0. Read-only at run time.
+    """
+
+    park_orientation_deg: Tuple[float, ...] = (0.0, 0.0, 0.0)
+    """
+    The park pose's orientation in the base frame, alpha, beta, gamma (R = Rz(gamma) Ry(beta)
+    Rx(alpha)), degrees, for a platform that parks tilted: with park_position, that pose; with
+    park_position all 0.0, the lowest pose straight below home so oriented; all 0.0: home's
+    orientation. Allowed: 3 values in [-180, 180]; the park pose within every limit. Read-only at
+    run time.
     """
 
     start_parked: bool = False

@@ -48,7 +48,10 @@ reference input would leave the platform's travel. The ``start``, ``stop``, ``pa
 it and go on; their motions are stepped on the node's clock by a timer
 (:meth:`stewart_kinematics.cueing.MotionCueing.operate`), and while the platform is not cueing
 the samples are counted as ``cueing_held`` and not cued. ``start_parked`` starts the node at
-park, waiting for ``start``.
+park, waiting for ``start``. Managed (``managed: true``), the node is configured at park, its
+activate transition starts as ``start`` does (answering at once; the timer steps the motion),
+and its deactivate stops as ``stop`` does, answering once the platform is parked (the commands
+published while the node is still active).
 
 Parameters are declared as for the other nodes (a bad parameter file or a misspelt name stops
 the start with the reason). Every one is read-only but the tool frame's (``tool_frame``,
@@ -57,6 +60,7 @@ on, the gains and intensity above, and ``gain_ramp_time``, ``soft_start_time`` a
 ``soft_stop_time`` (from the next ramp, start or stop).
 """
 
+import math
 import time
 
 from geometry_msgs.msg import AccelStamped, PoseStamped
@@ -64,7 +68,7 @@ from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
-from stewart_kinematics.cueing.motion_cueing import WATCHDOG_PERIOD
+from stewart_kinematics.cueing.motion_cueing import PARKED, WATCHDOG_PERIOD
 from stewart_kinematics.parameters import (
     frame_parameters_reason,
     frames_from_settings,
@@ -83,8 +87,9 @@ from stewart_kinematics.ros.node_main import (
 )
 from stewart_kinematics.ros.ros_parameters import RunTimePayload
 
-#: Most braking commands the deactivate transition sends (a bound; rest comes far sooner).
-MAX_BRAKING_STEPS = 10_000
+#: Longest the deactivate transition waits for park beyond ``soft_stop_time``, seconds (a
+#: bound: braking takes a fraction of a second, a stop the limits slow a few more).
+MAX_STOP_SECONDS = 120.0
 #: The parameters that set the cue's gains at run time (ramped, checked against the travel).
 GAIN_PARAMETERS = ('cueing_intensity', 'translation_scale', 'tilt_scale', 'rotation_scale')
 #: The control times, taken from the next ramp, start or stop.
@@ -108,8 +113,8 @@ class MotionCueingNode(ManagedNode):
 
     def configure(self):
         """Build the motion cueing, every publisher, subscription, service and timer."""
-        self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
-                                                   frames_from_settings(self.settings.frames))
+        # Managed: configured at park, where deactivate leaves the platform; activate starts.
+        self.cueing = self.make_cueing(parked=self.managed or None)
         depth = self.settings.queue.queue_depth
         interface = MOTION_CUEING_NODE
         self.target_publisher = create_output_publisher(
@@ -133,31 +138,56 @@ class MotionCueingNode(ManagedNode):
             f'{list(self.cueing.settings.head_position)} m, tilt rate at most '
             f'{self.settings.cueing.tilt_rate_max_deg:g} deg/s)')
 
+    def activate(self):
+        """
+        Start from park, as the ``start`` service does, when managed (unmanaged: nothing).
+
+        The platform was configured at park (or parked by the last deactivate): the soft
+        start to neutral over ``soft_start_time`` is stepped by the timer from now on, and
+        cueing begins once it rests at neutral (samples meanwhile: ``cueing_held``). The
+        transition answers at once.
+        """
+        if not self.managed:
+            return
+        answer = self.cueing.start()
+        log = self.get_logger().info if answer.success else self.get_logger().warning
+        log(f'activate: {answer.message}')
+
     def deactivate(self):
         """
-        Brake the platform to rest where it is, then wash out (the next samples glide it home).
+        Stop to park, as the ``stop`` service does, and answer once the platform is parked.
 
-        One braking command a watchdog period (:meth:`stewart_kinematics.cueing.MotionCueing.
-        brake`), within the velocity and acceleration limits, until the legs rest: a fraction
-        of a second, where easing home would take the washout's tens of seconds. Runs in the
-        deactivate transition, which answers once the platform rests.
+        From any mode (cueing or paused: braked to rest first; starting: turned back to park
+        from where it is; parked: nothing to do), one command a watchdog period through the
+        command gate (leg velocity and acceleration within the limits), published while the
+        node is still active: the deactivate transition answers once the legs rest at park
+        (``soft_stop_time`` or longer when the limits need, at most :data:`MAX_STOP_SECONDS`
+        more). The next activate starts from park.
         """
+        cueing = self.cueing
+        answer = cueing.stop()
         period = WATCHDOG_PERIOD
-        moment = self.cueing.gate.last_time
-        braked = 0
-        for _ in range(MAX_BRAKING_STEPS if moment is not None else 0):
-            moment += period
-            result = self.cueing.brake(moment)
-            if result is None:
+        moment = self.command_time(self.get_clock().now())
+        if cueing.gate.last_time is not None:
+            moment = max(moment, cueing.gate.last_time)
+        sent = 0
+        steps = math.ceil((cueing.controls.soft_stop_time + MAX_STOP_SECONDS) / period)
+        for _ in range(steps if answer.success else 0):
+            if cueing.mode == PARKED:
                 break
-            self.target_publisher.publish(result.command)
-            self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
-            braked += 1
+            moment += period
+            result = cueing.operate(moment)
+            if result is not None:
+                self.target_publisher.publish(result.command)
+                self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
+                sent += 1
             time.sleep(period)
-        if braked:
-            self.get_logger().info(f'deactivated: braked to rest in {braked} commands')
-        self.cueing.reset()
-        self.cueing.restart_time()
+        if cueing.mode == PARKED:
+            self.get_logger().info(f'deactivated: stopped to park in {sent} commands')
+        else:
+            self.get_logger().error(
+                f'deactivate: the platform did not reach park ({cueing.mode} after {sent} '
+                f'commands: {answer.message}); it goes on stopping once active again')
 
     def parameters_check(self, values) -> str:
         """
@@ -206,8 +236,18 @@ class MotionCueingNode(ManagedNode):
 
     def set_mass_properties(self, geometry):
         """Cue with a new payload (the platform rests at home): a new cueing of the settings."""
-        self.cueing = MotionCueing.from_parameters(self.settings.as_values(),
-                                                   frames_from_settings(self.settings.frames))
+        self.cueing = self.make_cueing(parked=self.cueing.mode == PARKED)
+
+    def make_cueing(self, parked=None) -> MotionCueing:
+        """
+        Return the motion cueing of the settings.
+
+        :param parked: whether the platform starts at park; ``None``: as ``start_parked``.
+        """
+        values = self.settings.as_values()
+        if parked is not None:
+            values['start_parked'] = bool(parked)
+        return MotionCueing.from_parameters(values, frames_from_settings(self.settings.frames))
 
     def control_service(self, name):
         """Return the callback of the ``start``, ``stop``, ``pause`` or ``resume`` service."""

@@ -173,12 +173,17 @@ def declare_parameters(node, specs, on_change=None, check=None,
 
     node.add_on_set_parameters_callback(validate)
     guard_node(node)
+    # A -p given after a file that names the node: its value, as the command line reads.
+    later = sources.later_p_values()
     for spec in specs:
         default = _ROS_TYPES[spec.value_type] if spec.default is None else spec.default
+        ignore = spec.name in later
+        if ignore:
+            default = later[spec.name]
         if deferred is None:
-            node.declare_parameter(spec.name, default, descriptor(spec))
+            node.declare_parameter(spec.name, default, descriptor(spec), ignore_override=ignore)
         else:
-            deferred.declare(node, spec, default, descriptor(spec))
+            deferred.declare(node, spec, default, descriptor(spec), ignore_override=ignore)
     declaring[0] = False
 
     if deferred is not None:
@@ -253,15 +258,21 @@ class DeferredChecks:
         #: Parameter name (or :data:`SOURCES`) -> why its value given cannot be used.
         self.problems: Dict[str, str] = {}
 
-    def declare(self, node, spec, default, ros_descriptor) -> None:
-        """Declare one parameter settable while unconfigured; a wrong type: the default."""
+    def declare(self, node, spec, default, ros_descriptor, ignore_override=False) -> None:
+        """
+        Declare one parameter settable while unconfigured; a wrong type: the default.
+
+        :param ignore_override: ``default`` is the value given (a later ``-p``), not rcl's.
+        """
         if self.settable:
             ros_descriptor.read_only = False
         try:
-            node.declare_parameter(spec.name, default, ros_descriptor)
+            node.declare_parameter(spec.name, default, ros_descriptor,
+                                   ignore_override=ignore_override)
         except ParameterException as error:
             self.problems.setdefault(spec.name, str(error))
-            node.declare_parameter(spec.name, default, ros_descriptor, ignore_override=True)
+            fallback = _ROS_TYPES[spec.value_type] if spec.default is None else spec.default
+            node.declare_parameter(spec.name, fallback, ros_descriptor, ignore_override=True)
 
     def settings(self, node, settings_class, check=None):
         """
@@ -408,6 +419,28 @@ class ParameterSources:
     def values(self) -> List[Tuple[str, object, str]]:
         """Return ``(name, value, source)`` for every value given."""
         return list(self._values)
+
+    def later_p_values(self) -> Dict[str, object]:
+        """
+        Return name -> value of each ``-p`` given after a parameter file gave the same name.
+
+        The command line is read left to right, the last value given winning; rcl does not:
+        a plain ``-p name:=value`` is a ``/**`` value, and a file's section naming the node
+        wins over it whatever their order (``--params-file motion_cueing.yaml -p
+        cueing_method:=mpc`` kept the file's ``classical``). Only a ``-p`` that is the last
+        value of its name counts (``parameter_overrides`` come last and win in any case).
+        """
+        later = {}
+        filed = set()
+        for name, value, source in self._values:
+            if source.startswith('parameter file'):
+                filed.add(name)
+                later.pop(name, None)
+            elif source.startswith('-p ') and name in filed:
+                later[name] = value
+            else:
+                later.pop(name, None)
+        return later
 
 
 def parameter_file_problem(arguments: Sequence[str]) -> str:

@@ -289,6 +289,51 @@ def test_soft_stop_brakes_then_parks_within_the_leg_limits_in_the_time_asked():
     assert cueing.operate(20.1) is None and cueing.watch(25.0) is None
 
 
+@pytest.mark.parametrize('position', [[0.0, 0.0, 0.0], [0.005, 0.0, 0.41]])
+def test_a_tilted_park_is_where_stop_takes_the_platform_within_the_limits(position):
+    # park_orientation_deg: a platform that parks tilted (before: always home's orientation).
+    cueing = make_cueing(park_orientation_deg=[0.0, 2.0, 0.0], park_position=position,
+                         soft_stop_time=1.0)
+    park = cueing.park_pose
+    assert_allclose(park[3:], [0.0, math.radians(2.0), 0.0], rtol=0.0, atol=1e-15)
+    if any(position):
+        assert_allclose(park[:3], position, rtol=0.0, atol=0.0)
+    else:   # the lowest pose below home so tilted: its shortest leg at the 10 mm margin
+        assert_allclose(park[:2], cueing.geometry.home_pose[:2], rtol=0.0, atol=0.0)
+        assert_allclose(legs(park).min(), 0.66, atol=1e-5)
+    steps = stream(cueing, 0.0, 100)
+    assert cueing.stop().success
+    _, stopping = operate_until(cueing, PARKED, steps[-1].command.time)
+    poses = [steps[-1].pose] + [step.pose for step in stopping]
+    times = [steps[-1].command.time] + [step.command.time for step in stopping]
+    lengths = assert_leg_limits(poses, times)
+    assert_allclose(lengths[-1], legs(park), rtol=0.0, atol=1e-9)
+    assert_allclose(stopping[-1].pose, park, rtol=0.0, atol=1e-7)
+    started = make_cueing(park_orientation_deg=[0.0, 2.0, 0.0], park_position=position,
+                          start_parked=True)
+    assert_allclose(started.pose, park, rtol=0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize('orientation, words', [
+    ([0.0, 60.0, 0.0], 'beyond its limits'),
+    ([0.0, math.nan, 0.0], 'park_orientation_deg'),
+    ([math.inf, 0.0, 0.0], 'park_orientation_deg'),
+    ([1e308, 0.0, 0.0], 'park_orientation_deg'),
+    ([0.0, 2.0], 'park_orientation_deg'),
+    ([], 'park_orientation_deg'),
+    ('tilted', 'park_orientation_deg'),
+    ([0.0, [2.0], 0.0], 'park_orientation_deg'),
+])
+def test_a_park_orientation_beyond_the_limits_or_no_angles_is_refused_naming_it(
+        orientation, words):
+    with pytest.raises(ValueError) as raised:
+        make_cueing(park_orientation_deg=orientation)
+    message = str(raised.value)
+    assert words in message and '\n' not in message, message
+    if words == 'beyond its limits':
+        assert 'park_orientation_deg [0.0, 60.0, 0.0]' in message
+
+
 def test_start_parked_then_soft_start_to_neutral_then_cueing():
     cueing = make_cueing(start_parked=True, soft_start_time=2.5)
     assert cueing.mode == PARKED

@@ -22,10 +22,12 @@ parameter specs and check that each value the files give is the value the node e
 
 import math
 from pathlib import Path
+import socket
 
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
+from rclpy.parameter import Parameter
 
 from stewart_kinematics import parameters
 from stewart_kinematics.parameters import load_geometry
@@ -111,6 +113,13 @@ def nodes(ros):
         node.destroy_node()
 
 
+def free_udp_port():
+    """Return a UDP port of 127.0.0.1 free now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
 def test_config_directory_has_yaml_files():
     """The package ships its parameter files in config/."""
     assert {path.name for path in CONFIG_FILES} >= {
@@ -161,10 +170,13 @@ def test_node_starts_with_its_config_files(nodes, node_name):
     arguments = ['--ros-args']
     for path in paths:
         arguments += ['--params-file', path]
-    node = node_class(cli_args=arguments)
+    # telemetry_bridge on a free port, not the file's: two test workers never collide.
+    overrides = {'telemetry_port': free_udp_port()} if node_name == 'telemetry_bridge' else {}
+    node = node_class(cli_args=arguments, parameter_overrides=[
+        Parameter(name, value=value) for name, value in overrides.items()])
     nodes.append(node)
     assert node.get_name() == node_name
-    seen = file_view(paths, node_name)
+    seen = {**file_view(paths, node_name), **overrides}
     # /** sections may hold parameters of other nodes; each of this node's own is applied.
     declared = names_of(NODE_SPECS[node_name])
     assert set(seen) & declared, f'{node_name} takes nothing from {file_names}'

@@ -189,7 +189,7 @@ def test_notes_are_few_and_say_what_no_validator_can():
         'base_joints', 'platform_joints', 'leg_length_min', 'leg_length_max', 'position_step',
         'orientation_step_deg', 'estimated_pose_frame', 'platform_inertia', 'payload_inertia',
         'leg_lower_inertia', 'leg_upper_inertia', 'initial_leg_lengths', 'stalled_legs',
-        'park_position'])
+        'park_position', 'park_orientation_deg'])
 
 
 @pytest.mark.parametrize('validator, text', [

@@ -29,7 +29,7 @@ import time
 from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
-from rcl_interfaces.srv import SetParameters
+from rcl_interfaces.srv import GetParameters, SetParameters
 from rclpy.parameter import Parameter
 from reference import leg_lengths_of_matrix, quaternion_matrix
 from sensor_msgs.msg import Imu
@@ -143,3 +143,19 @@ def test_intensity_set_mid_stream_stays_smooth_and_stop_parks(client, start_node
     assert np.all(steps <= VELOCITY_MAX * (np.diff(moments) + SLACK))
     assert cueing.stop() == 0, cueing.output()
     assert 'Traceback' not in cueing.output()
+
+
+def test_a_p_after_the_parameter_files_takes_effect(client, start_node, config_directory):
+    # `motion_cueing_node --ros-args --params-file ... -p cueing_method:=mpc` kept the file's
+    # 'classical' (rcl's /** value loses to the file's section naming the node): the last value
+    # given on the command line is the one taken. About 3 s.
+    files = ['--ros-args', '--params-file', str(config_directory / 'paper_platform.yaml'),
+             '--params-file', str(config_directory / 'example_limits.yaml'),
+             '--params-file', str(config_directory / 'motion_cueing.yaml'),
+             '-p', 'cueing_method:=mpc', '-p', 'tilt_max_deg:=7.0']
+    cueing = start_node('motion_cueing_node', files)
+    service = client.node.create_client(GetParameters, 'motion_cueing_node/get_parameters')
+    answer = call(client, service, GetParameters.Request(
+        names=['cueing_method', 'tilt_max_deg']), [cueing])
+    assert [value.string_value for value in answer.values[:1]] == ['mpc']
+    assert [value.double_value for value in answer.values[1:]] == [7.0]

@@ -327,16 +327,17 @@ def imu(stamp, force_x):
     return message
 
 
-def test_motion_cueing_node_brakes_to_rest_when_deactivated(
+def test_motion_cueing_node_starts_from_park_and_stops_to_park(
         client, start_node, config_directory):
     """
-    Brake motion_cueing_node's platform to rest when it is deactivated.
+    motion_cueing_node's activate starts from park, its deactivate stops to park.
 
-    Inactive: samples ignored, reset answers that it is inactive; active: cues; deactivated
-    mid-cue: the platform brakes to rest, then nothing is published.
+    Inactive: samples ignored, reset answers that it is inactive; active: up from park, then
+    cues; deactivated mid-cue: the platform brakes and parks, then nothing is published.
     """
     node = start_node('motion_cueing_node', config_args(
-        config_directory, '--params-file', str(config_directory / 'motion_cueing.yaml')))
+        config_directory, '--params-file', str(config_directory / 'motion_cueing.yaml'),
+        '-p', 'soft_start_time:=0.5', '-p', 'soft_stop_time:=0.5'))
     lifecycle = Lifecycle(client, 'motion_cueing_node', [node])
     poses = listen(client, Pose, '/target_pose')
     samples = client.node.create_publisher(Imu, '/vehicle_imu', CLIENT_DEPTH)
@@ -368,9 +369,11 @@ def test_motion_cueing_node_brakes_to_rest_when_deactivated(
         [p.position.x, p.position.y, p.position.z], reference.quaternion_matrix(
             p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w))
         for p in poses[-2:]])
-    # The last two commands are the same pose: the legs rest.
-    assert_allclose(legs[-1], legs[-2], rtol=0, atol=1e-9)
-    assert 'braked to rest' in node.output()
+    # The last command is park (the shortest leg 10 mm above the stroke's 0.65 m,
+    # leg_length_margin), arrived at rest: the last step a few micrometres.
+    assert_allclose(legs[-1], legs[-2], rtol=0, atol=1e-5)
+    assert_allclose(legs[-1].min(), 0.66, rtol=0, atol=1e-6)
+    assert 'stopped to park' in node.output()
     assert lifecycle.change('shutdown')
     client.wait(lambda: not node.running(), 'the process ends after shutdown', [])
     assert stop_cleanly(node)

@@ -131,3 +131,36 @@ def test_gains_set_together_are_checked_as_a_whole_and_taken_together(node):
     [raised] = node.set_parameters([Parameter('cueing_intensity', value=1.0)])
     assert not raised.successful and 'cueing_intensity' in raised.reason
     assert_allclose(node.cueing.gains.target[:3], [0.4, 0.04, 0.04], rtol=1e-12)
+
+
+def test_a_p_given_after_the_files_wins_over_their_value(ros):
+    # rcl takes a plain -p as a /** value, and the file's motion_cueing_node section won over it
+    # whatever the order: cueing_method stayed 'classical', tilt_max_deg 10.
+    made = MotionCueingNode(cli_args=['--ros-args'] + FILES + [
+        '-p', 'cueing_method:=mpc', '-p', 'tilt_max_deg:=7.0', '-p', 'cueing_intensity:=0.5'])
+    try:
+        assert made.get_parameter('cueing_method').value == 'mpc'
+        assert made.get_parameter('tilt_max_deg').value == 7.0
+        assert made.get_parameter('cueing_intensity').value == 0.5
+        assert made.cueing.settings.cueing_method == 'mpc'
+        assert made.cueing.settings.tilt_max == pytest.approx(math.radians(7.0), abs=1e-12)
+    finally:
+        made.destroy_node()
+    # A file given after the -p wins in turn: the last value given is the one taken.
+    made = MotionCueingNode(cli_args=['--ros-args', '-p', 'cueing_method:=mpc'] + FILES)
+    try:
+        assert made.get_parameter('cueing_method').value == 'classical'
+    finally:
+        made.destroy_node()
+
+
+def test_a_later_p_of_the_wrong_type_stops_the_start_with_its_source(ros):
+    for text, words in (('cueing_method:=5', "'cueing_method' must be of type string"),
+                        ('tilt_max_deg:=.nan', 'tilt_max_deg'),
+                        ('tilt_max_deg:=1e308', 'tilt_max_deg'),
+                        ('park_position:=[0.0]', 'park_position'),
+                        ('park_orientation_deg:=[0.0, 60.0, 0.0]', 'beyond its limits'),
+                        ('park_orientation_deg:=[0.0, .nan, 0.0]', 'park_orientation_deg')):
+        with pytest.raises(Exception) as raised:
+            MotionCueingNode(cli_args=['--ros-args'] + FILES + ['-p', text]).destroy_node()
+        assert words in str(raised.value), (text, raised.value)
