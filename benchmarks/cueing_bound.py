@@ -17,7 +17,8 @@ The least perceived specific-force RMSE any cueing can reach on a scenario: a cl
 
 Run from the repository root with ``.venv/bin/python benchmarks/cueing_bound.py`` (``--scenario
 NAME`` repeated, default the 60 s mixed drive; ``--step SECONDS`` repeated, the grid's steps,
-default 0.1 and 0.05). For each scenario and horizontal axis the vehicle drives, it solves
+default 0.1 and 0.05; DAQP's flag 1 is an optimum, any other a failure, shown as not
+solved). For each scenario and horizontal axis the vehicle drives, it solves
 :func:`stewart_kinematics.cueing.cueing_bound.axis_bound` (the whole drive known in advance,
 one QP per axis) within relaxed limits of the paper's platform with ``example_limits.yaml``
 and ``config/motion_cueing.yaml``'s tilt limits, and prints the bound beside the classical
@@ -192,10 +193,13 @@ def main(argv=None) -> int:
                 bound = axis_bound(drive.times, vehicle.perceived_force[:, axis], limits[axis],
                                    step)
                 cost = time.process_time() - began
-                print(f'| {name} | {label} | {step:g} | {bound.rmse:.3f} | '
-                      f'{bound.fine_rmse:.3f} | {classical:.2f} | {mpc:.2f} | '
-                      f'{TARGET_SHARE * classical:.3f} | '
-                      f'{"yes" if bound.rmse <= TARGET_SHARE * classical else "no"} | '
+                solved = bound.status == 1
+                figures = (f'{bound.rmse:.3f} | {bound.fine_rmse:.3f}' if solved else
+                           'not solved | -')
+                verdict = ('yes' if bound.rmse <= TARGET_SHARE * classical else 'no') if \
+                    solved else '-'
+                print(f'| {name} | {label} | {step:g} | {figures} | {classical:.2f} | '
+                      f'{mpc:.2f} | {TARGET_SHARE * classical:.3f} | {verdict} | '
                       f'{bound.status} | {cost:.0f} |', flush=True)
     return 0
 
