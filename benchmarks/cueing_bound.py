@@ -43,6 +43,8 @@ The relaxed limits (each contains every motion the platform can make within its 
 DEG`` sets another tilt limit (the platform reaches about 20 deg of roll and 17 deg of pitch
 from neutral), ``--tilt-rate DEG`` another tilt rate (``inf``: none), ``--yaw-rate DEG`` a
 yaw-rate limit in the velocity bound (default none; 3 deg/s changes it by 2 % on x).
+``--replay-tilt-only`` replays the tilt-only optimum (the head held still, both axes at once)
+through the evaluator's perception and checks its limits.
 """
 
 import argparse
@@ -53,11 +55,13 @@ import time
 import numpy as np
 from scipy.optimize import linprog
 
-from stewart_kinematics import load_geometry
+from stewart_kinematics import inverse_kinematics, load_geometry
 from stewart_kinematics.cueing.cueing_bound import axis_bound, AxisLimits
-from stewart_kinematics.cueing.limit_margins import poses_allowed
-from stewart_kinematics.cueing.perception import perception
+from stewart_kinematics.cueing.limit_margins import leg_speed_violations, poses_allowed
+from stewart_kinematics.cueing.perception import perceived_motion, perception
 from stewart_kinematics.cueing.scenarios import scenario
+from stewart_kinematics.cueing.settings import STANDARD_GRAVITY
+from stewart_kinematics.model.actuators import ActuatorLimits
 from stewart_kinematics.model.jacobians import twist_jacobian
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
 from stewart_kinematics.parameters import read_parameter_files
@@ -149,6 +153,50 @@ def relaxed_limits(geometry, settings, actuators, axis, tilt, tilt_rate, rates=T
                       acceleration=acceleration), len(poses)
 
 
+def replay_tilt_only(geometry, settings, actuators, name, tilt, tilt_rate, step):
+    """
+    Replay both axes' tilt-only optimum at once through the evaluator's perception; print it.
+
+    The platform turns about the head (the head held at neutral), pitch and roll from the
+    optimum's ``s`` (``beta = -asin(s_x)``, ``alpha = asin(s_y / cos(beta))``), sampled at the
+    scenario's rate; the specific force felt at the head is then :func:`perceived_motion`'s
+    (exact kinematics) and its perceived RMSE the evaluator's. Also the poses' limits and the
+    legs' velocity and acceleration against ``example_limits.yaml``.
+    """
+    head = np.asarray(settings['head_position'], dtype=float)
+    home = np.asarray(geometry.home_pose, dtype=float)
+    drive = scenario(name)
+    times = drive.times
+    vehicle = perception(times, drive.specific_force, drive.angular_velocity)
+    poses = np.tile(home, (times.size, 1))
+    bounds = []
+    for axis in (0, 1):
+        bound = axis_bound(times, vehicle.perceived_force[:, axis],
+                           AxisLimits(tilt, tilt_rate, 0.0, 0.0, 0.0), step)
+        sine = np.interp(times, np.r_[times[0], bound.times],
+                         np.r_[0.0, bound.gravity_term]) / STANDARD_GRAVITY
+        if axis == 0:
+            poses[:, 4] = -np.arcsin(sine)
+        else:
+            poses[:, 3] = np.arcsin(sine / np.cos(poses[:, 4]))
+        bounds.append(bound)
+    poses[:, :3] = home[:3] + head - euler_zyx_to_matrix(poses[:, 3:]) @ head
+    felt = perceived_motion(times, poses, head)
+    platform = perception(times, felt.specific_force, felt.angular_velocity)
+    for axis, bound in enumerate(bounds):
+        error = platform.perceived_force[:, axis] - vehicle.perceived_force[:, axis]
+        print(f'{name} {"xy"[axis]}: tilt-only optimum {bound.rmse:.3f} (flag {bound.status}), '
+              f'replayed {math.sqrt(float(np.mean(error ** 2))):.3f} m/s^2')
+    legs = leg_speed_violations(times, inverse_kinematics(geometry, poses), ActuatorLimits(
+        velocity_max=actuators['leg_velocity_max'],
+        acceleration_max=actuators['leg_acceleration_max']))
+    print(f'poses allowed: {bool(np.all(poses_allowed(geometry, poses)))}; leg velocity peak '
+          f'{legs["velocity_peak"]:.3f} m/s ({legs["velocity"]} over), acceleration peak '
+          f'{legs["acceleration_peak"]:.2f} m/s^2 ({legs["acceleration"]} over); body roll and '
+          f'pitch rate peak {math.degrees(np.max(np.abs(felt.angular_velocity[:, :2]))):.2f} '
+          f'deg/s; travel {np.max(np.abs(poses[:, :2] - home[:2])) * 1e3:.0f} mm')
+
+
 def main(argv=None) -> int:
     """Print the bound per scenario and axis; return 0."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
@@ -159,6 +207,8 @@ def main(argv=None) -> int:
     parser.add_argument('--tilt-rate', type=float, default=None, help='degrees per second')
     parser.add_argument('--yaw-rate', type=float, default=math.inf,
                         help='degrees per second: a yaw-rate limit in the velocity bound')
+    parser.add_argument('--replay-tilt-only', action='store_true',
+                        help='replay the tilt-only optimum of the first scenario and stop')
     options = parser.parse_args(argv)
     scenarios = options.scenarios or ['mixed_drive']
     steps = options.steps or [0.1, 0.05]
@@ -168,6 +218,9 @@ def main(argv=None) -> int:
     tilt = math.radians(values['tilt_max_deg'] if options.tilt is None else options.tilt)
     tilt_rate = math.radians(values['tilt_rate_max_deg'] if options.tilt_rate is None
                              else options.tilt_rate)
+    if options.replay_tilt_only:
+        replay_tilt_only(geometry, values, actuators, scenarios[0], tilt, tilt_rate, steps[0])
+        return 0
     limits = {}
     for axis in (0, 1):
         limits[axis], count = relaxed_limits(geometry, values, actuators, axis, tilt, tilt_rate,
