@@ -20,6 +20,7 @@ the declared one (at a queue_depth other than any fixed depth, so a depth taken 
 shows).
 """
 
+from helpers import free_udp_port
 import pytest
 
 from stewart_kinematics.ros import interfaces
@@ -81,6 +82,9 @@ def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directo
                           f'    queue_depth: {QUEUE_DEPTH}\n', encoding='utf-8')
     arguments += ['--params-file', str(depth_file)]
     arguments += ['-p', 'publish_commanded_tf:=true'] if interface is IK_NODE else []
+    # A free port, not the default 47800 that other workers and runs may hold.
+    arguments += ['-p', f'telemetry_port:={free_udp_port()}'] if interface is TELEMETRY_BRIDGE \
+        else []
     node = node_class(interface.node)(cli_args=arguments)
     try:
         assert node.get_parameter('queue_depth').value == QUEUE_DEPTH
