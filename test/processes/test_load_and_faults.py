@@ -58,7 +58,9 @@ from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.node_main import create_executor
 
-pytestmark = pytest.mark.process
+# serial: sustained rates and losses need the machine to themselves; run_tests.sh runs these
+# modules alone, after the other process tests.
+pytestmark = [pytest.mark.process, pytest.mark.serial]
 
 #: Seconds to wait for discovery or data.
 DEADLINE = 20.0

@@ -35,7 +35,9 @@ import sys
 
 import pytest
 
-pytestmark = pytest.mark.process
+# serial: every node at once under floods, kills and restarts; run_tests.sh runs these
+# modules alone, after the other process tests.
+pytestmark = [pytest.mark.process, pytest.mark.serial]
 
 SOAK = Path(__file__).resolve().parents[2] / 'benchmarks' / 'soak.py'
 #: The 30 s soak: a kill every 7 s (SIGKILL and SIGTERM in turn), a flood every
