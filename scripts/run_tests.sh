@@ -15,13 +15,14 @@ source "${root}/scripts/ros_env.sh"
 cd "${root}"
 python="${root}/.venv/bin/python"
 
-# The whole suite (no arguments but output flags) runs in three phases. First the core, lint
-# and node tiers (pure numpy, the linters, the documentation build, nodes in the test's process
-# with deadlines, not timings), then the process tier but its `serial` tests, each on every core
-# with pytest-xdist, each worker on a ROS domain of its own (test/conftest.py reserves one per
-# worker); last the `serial` tests in one process: they measure rates and loss against the
-# clock (the soak, loss-free delivery at 500 Hz), which a second worker on the same cores
-# would disturb. Any other arguments (paths, -m, -k, -n, ...) go to one pytest run as they are.
+# The whole suite (no arguments but output flags) runs in three phases, each pytest-xdist worker
+# on a ROS domain of its own (test/conftest.py) and every telemetry_bridge on a free port: the
+# core, lint and node tiers (pure numpy, the linters, the documentation build, nodes in the
+# test's process with deadlines, not timings) on every core; then the process tier but its
+# `serial` modules on every core too (node processes with deadlines, asserting no timing); then
+# the `serial` modules in one process (sustained rates, losses, floods, the soak: a second worker
+# on the same cores would disturb what they measure). Any other arguments (paths, -m, -k,
+# -n, ...) go to one pytest run as they are.
 whole_suite=true
 for argument in "$@"; do
   case "${argument}" in
@@ -35,15 +36,16 @@ if [[ "${whole_suite}" != true ]]; then
 fi
 workers="$("${python}" -c 'import os; print(max(1, min(2, len(os.sched_getaffinity(0)))))')"
 status=0
-run_phase() {
-  local code=0
-  "${python}" -m pytest "$@" || code=$?
+echo "run_tests.sh: core, lint and node tiers on ${workers} worker(s)"
+"${python}" -m pytest "$@" -m 'core or lint or node' -n "${workers}" --dist worksteal || status=$?
+echo "run_tests.sh: process tier but its serial modules on ${workers} worker(s)"
+"${python}" -m pytest "$@" -m 'process and not serial' -n "${workers}" --dist worksteal || {
+  code=$?
   if [[ "${status}" -eq 0 ]]; then status=${code}; fi
 }
-echo "run_tests.sh: core, lint and node tiers on ${workers} worker(s)"
-run_phase "$@" -m 'core or lint or node' -n "${workers}" --dist worksteal
-echo "run_tests.sh: process tier but its serial tests, on ${workers} worker(s)"
-run_phase "$@" -m 'process and not serial' -n "${workers}" --dist worksteal
-echo "run_tests.sh: the serial tests (timed against the clock) in one process"
-run_phase "$@" -m 'process and serial'
+echo "run_tests.sh: the serial process modules in one process"
+"${python}" -m pytest "$@" -m 'process and serial' || {
+  code=$?
+  if [[ "${status}" -eq 0 ]]; then status=${code}; fi
+}
 exit "${status}"

@@ -23,6 +23,7 @@ the package's own conversions. ROS messages are imported here: the core tier doe
 this module.
 """
 
+import socket
 import threading
 import time
 
@@ -86,6 +87,18 @@ def trajectory_message(times, poses, frame_id='stewart_base'):
             transforms=[transform], velocities=[], accelerations=[],
             time_from_start=Duration(sec=nanoseconds // 10**9, nanosec=nanoseconds % 10**9)))
     return message
+
+
+def free_udp_port():
+    """
+    Return a UDP port of loopback that nobody uses now, for a telemetry_bridge under test.
+
+    The bridge's default port (47800) is one per machine: two pytest-xdist workers, or two
+    runs of the suite, would take it from each other.
+    """
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
 
 
 def fail_with_output(message, processes):

@@ -22,8 +22,8 @@ parameter specs and check that each value the files give is the value the node e
 
 import math
 from pathlib import Path
-import socket
 
+from helpers import free_udp_port
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -111,13 +111,6 @@ def nodes(ros):
     yield created
     for node in created:
         node.destroy_node()
-
-
-def free_udp_port():
-    """Return a UDP port of 127.0.0.1 free now."""
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
-        probe.bind(('127.0.0.1', 0))
-        return probe.getsockname()[1]
 
 
 def test_config_directory_has_yaml_files():

@@ -58,7 +58,9 @@ from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.parameters import load_geometry
 from stewart_kinematics.ros.node_main import create_executor
 
-pytestmark = pytest.mark.process
+# serial: sustained rates and losses need the machine to themselves; run_tests.sh runs these
+# modules alone, after the other process tests.
+pytestmark = [pytest.mark.process, pytest.mark.serial]
 
 #: Seconds to wait for discovery or data.
 DEADLINE = 20.0
@@ -321,7 +323,6 @@ def start_load(client, start_node, config_directory, geometry, names):
 
 
 @pytest.mark.parametrize('names', [('ik_node',), ('fk_node',)], ids=['ik_node', 'fk_node'])
-@pytest.mark.serial   # a loss-free rate: run alone in the whole suite (scripts/run_tests.sh)
 def test_node_loses_nothing_at_500_hz(client, start_node, config_directory, paper_geometry,
                                       names):
     """

@@ -35,7 +35,8 @@ import sys
 
 import pytest
 
-# Its targets are rates and latencies: run alone in the whole suite (scripts/run_tests.sh).
+# serial: every node at once under floods, kills and restarts; run_tests.sh runs these
+# modules alone, after the other process tests.
 pytestmark = [pytest.mark.process, pytest.mark.serial]
 
 SOAK = Path(__file__).resolve().parents[2] / 'benchmarks' / 'soak.py'

@@ -20,8 +20,7 @@ the declared one (at a queue_depth other than any fixed depth, so a depth taken 
 shows).
 """
 
-import socket
-
+from helpers import free_udp_port
 import pytest
 
 from stewart_kinematics.ros import interfaces
@@ -84,9 +83,7 @@ def test_a_node_has_exactly_its_declared_topics_and_services(ros, config_directo
     arguments += ['--params-file', str(depth_file)]
     arguments += ['-p', 'publish_commanded_tf:=true'] if interface is IK_NODE else []
     if interface is TELEMETRY_BRIDGE:   # a free port: two test workers never collide
-        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
-            probe.bind(('127.0.0.1', 0))
-            arguments += ['-p', f'telemetry_port:={probe.getsockname()[1]}']
+        arguments += ['-p', f'telemetry_port:={free_udp_port()}']
     node = node_class(interface.node)(cli_args=arguments)
     try:
         assert node.get_parameter('queue_depth').value == QUEUE_DEPTH
