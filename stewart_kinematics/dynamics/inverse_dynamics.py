@@ -198,7 +198,19 @@ def _single_forces(constants, pose, motion, mass_properties):
     """
     entries = _entries(pose[3:], math.cos, math.sin)
     legs = single_legs(constants, pose[:3], entries)
-    rows = twist_rows(legs)
+    transposed, wrench = _single_system(legs, entries, motion, mass_properties)
+    return np.linalg.solve(transposed, wrench)
+
+
+def _single_system(legs, entries, motion, mass_properties):
+    """
+    The linear system of one pose's leg forces: ``(J^T, wrench)``, ``J^T f = wrench``.
+
+    :param legs: per leg ``(l, lx, ly, lz, ax, ay, az)``, floats.
+    :param entries: the nine entries of the platform-to-base rotation, floats.
+    :param motion: the platform's motion terms, as :func:`~.wrenches.body_wrench` takes them.
+    :returns: the (6, 6) transposed Jacobian's array and the six wrench terms (N, N m).
+    """
     gravity = mass_properties.gravity
     fx, fy, fz, mx, my, mz = body_wrench(entries, motion, mass_properties.moving_body, gravity)
     if not mass_properties.legs_massless:
@@ -206,7 +218,7 @@ def _single_forces(constants, pose, motion, mass_properties):
         for leg in legs:
             gx, gy, gz, nx, ny, nz = leg_wrench(leg, motion, leg_bodies, gravity)
             fx, fy, fz, mx, my, mz = fx + gx, fy + gy, fz + gz, mx + nx, my + ny, mz + nz
-    return np.linalg.solve(np.array(rows).reshape(6, 6).T, [fx, fy, fz, mx, my, mz])
+    return np.array(twist_rows(legs)).reshape(6, 6).T, [fx, fy, fz, mx, my, mz]
 
 
 def _batch_forces(constants, poses, motions, mass_properties):
@@ -285,18 +297,9 @@ def single_static_forces_of_legs(legs, rotation, mass_properties) -> list:
 
 def _single_static_forces(legs, entries, mass_properties):
     """Return the forces of :func:`single_static_forces_of_legs`; raise where singular."""
-    motion = _AT_REST * 2
-    rows = twist_rows(legs)
-    gravity = mass_properties.gravity
-    fx, fy, fz, mx, my, mz = body_wrench(entries, motion, mass_properties.moving_body, gravity)
-    if not mass_properties.legs_massless:
-        leg_bodies = _leg_bodies(mass_properties)
-        for leg in legs:
-            gx, gy, gz, nx, ny, nz = leg_wrench(leg, motion, leg_bodies, gravity)
-            fx, fy, fz, mx, my, mz = fx + gx, fy + gy, fz + gz, mx + nx, my + ny, mz + nz
+    transposed, wrench = _single_system(legs, entries, _AT_REST * 2, mass_properties)
     with np.errstate(all='ignore'):
-        return np.linalg.solve(np.array(rows).reshape(6, 6).T,
-                               [fx, fy, fz, mx, my, mz]).tolist()
+        return np.linalg.solve(transposed, wrench).tolist()
 
 
 def _balance(entries, lengths, vectors, motion, mass_properties):
