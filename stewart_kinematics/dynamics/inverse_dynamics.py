@@ -204,7 +204,7 @@ def _single_forces(constants, pose, motion, mass_properties):
 
 def _single_system(legs, entries, motion, mass_properties):
     """
-    The linear system of one pose's leg forces: ``(J^T, wrench)``, ``J^T f = wrench``.
+    Return the linear system of one pose's leg forces: ``(J^T, wrench)``, ``J^T f = wrench``.
 
     :param legs: per leg ``(l, lx, ly, lz, ax, ay, az)``, floats.
     :param entries: the nine entries of the platform-to-base rotation, floats.
