@@ -144,17 +144,36 @@ def _steepest_change(path, geometry, tau, rate, allowed, step) -> float:
     """
     Return the most negative ``tau''`` (1/s) keeping every leg's acceleration within ``allowed``.
 
-    Each leg asks ``-allowed <= l_tautau rate^2 + l_tau change <= allowed``; the change is at
-    most 0 (holding the rate keeps the trajectory's own accelerations, scaled by ``rate^2``).
+    Each leg asks ``-allowed <= l_tautau r^2 + l_tau change <= allowed`` all along the step:
+    at its start and at the farthest path time it can reach (``tau + rate * step``, the path's
+    derivatives there), and for every rate ``r`` it passes through, from ``rate`` down to
+    ``rate + change * step`` (at least 0). The acceleration is linear in ``r^2``, so both ends
+    are asked, the lower with the change the start alone allows (a smaller ``r^2`` than the
+    step's end can have). Asking the start only let the curvature that helped the braking
+    there vanish as the rate fell, and missed a slope growing along the step: braked just
+    after a start from rest, a leg reached 0.2515 and 0.296 m/s^2 against 0.25. The change is
+    at most 0 (holding the rate keeps the trajectory's own accelerations, scaled by ``rate^2``).
     """
     if not math.isfinite(allowed):
         return -rate / UNLIMITED_BRAKING_TIME if rate > 0.0 else 0.0
-    legs = leg_states(geometry, path.sample(np.array([tau])))
-    slope, curvature = legs.velocities[0], legs.accelerations[0] * rate ** 2
-    moving = np.abs(slope) > FLAT
-    if not moving.any():
+    far = min(tau + rate * step, float(path.times[-1]))
+    legs = leg_states(geometry, path.sample(np.array([tau, far])))
+    slopes, curvatures = legs.velocities, legs.accelerations * rate ** 2
+    if not (np.abs(slopes[0]) > FLAT).any():
         # The legs do not move along the path here: the clock may stop at once.
         return -rate / step
+    change = _lowest_change(slopes[0], curvatures[0], allowed)
+    # The step's end, at the slowest rate the start's change can reach there.
+    end_share = max(1.0 + change * step / rate, 0.0) ** 2 if rate > 0.0 else 0.0
+    for point, share in ((0, end_share), (1, 1.0), (1, end_share)):
+        change = max(change, _lowest_change(slopes[point], curvatures[point] * share, allowed))
+    return min(change, 0.0)
+
+
+def _lowest_change(slope, curvature, allowed) -> float:
+    """Return the most negative change with ``|curvature + slope change| <= allowed`` per leg."""
+    moving = np.abs(slope) > FLAT
+    if not moving.any():
+        return -math.inf
     g, b = slope[moving], curvature[moving]
-    lower = np.where(g > 0.0, (-allowed - b) / g, (allowed - b) / g)
-    return min(float(np.max(lower)), 0.0)
+    return float(np.max(np.where(g > 0.0, (-allowed - b) / g, (allowed - b) / g)))

@@ -253,6 +253,9 @@ def test_braking_keeps_the_path_and_the_limits(geometry):
        st.floats(-0.1, 0.1), st.booleans())
 # Braked 1e-313 s after a retimed start: a rate that underflows gave a braking lasting inf s.
 @example(share=2.2250738585e-313, dx=0.0, dz=0.0, yaw=0.0625, retimed=True)
+# Braked 0.023 s into a 3 s goal from rest: the curvature that helped the braking at its start
+# vanished with the rate, 0.2515 m/s^2 at its end (found in CI).
+@example(share=0.0078125, dx=0.0, dz=0.02734375, yaw=0.0, retimed=False)
 def test_braking_anywhere_stays_within_the_acceleration_limit(geometry, share, dx, dz, yaw,
                                                               retimed):
     """Whenever a goal is braked, the legs slow within leg_acceleration_max, on the path."""
