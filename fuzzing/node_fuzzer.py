@@ -78,6 +78,7 @@ from rosidl_parser import definition
 
 from stewart_kinematics.cueing.telemetry_packet import encode
 from stewart_kinematics.ros.interfaces import (
+    MOCK_PLATFORM,
     NODE_INTERFACES,
     PUBLISHER,
     SERVICE,
@@ -272,7 +273,8 @@ def _fuzz_once(settings: FuzzSettings, drawn: dict, context) -> FuzzReport:
                                               context=context))
     clock = SimClock(client.node) if sim_time else None
     try:
-        _run(settings, interface, process, client, rng, invariants, hints, report, clock, files)
+        _run(settings, interface, process, client, rng, invariants, hints, report, clock, files,
+             {**drawn, **settings.parameters})
     finally:
         if clock is not None:
             clock.close()
@@ -329,6 +331,21 @@ def _datagram_input(client, services, node):
     return f'udp {address}:{port}', send
 
 
+def _inputs_taken(interface, started):
+    """
+    Return the subscriptions the node makes when started with the parameters ``started``.
+
+    Every declared one, but mock_platform's: its ``command_input`` names the one command input
+    it takes (or ``all``). Waiting for the others to match would wait for ever, and a message
+    sent to them would reach nobody.
+    """
+    endpoints = list(interface.of_kind(SUBSCRIPTION))
+    chosen = started.get('command_input', 'all') if interface is MOCK_PLATFORM else 'all'
+    if chosen == 'all':
+        return endpoints
+    return [endpoint for endpoint in endpoints if endpoint is MOCK_PLATFORM[chosen]]
+
+
 def _start_refusal(output: str) -> str:
     """Return the reason of a node's fatal 'cannot start' log line, or ''."""
     for line in output.splitlines():
@@ -337,8 +354,14 @@ def _start_refusal(output: str) -> str:
     return ''
 
 
-def _run(settings, interface, process, client, rng, invariants, hints, report, clock, files):
-    """Run the body of :func:`fuzz_node`: discovery, flood, answers, scenario, checks."""
+def _run(settings, interface, process, client, rng, invariants, hints, report, clock, files,
+         started):
+    """
+    Run the body of :func:`fuzz_node`: discovery, flood, answers, scenario, checks.
+
+    :param started: the parameters given on the command line (the variant's and the
+        settings'), name -> value.
+    """
     node = client.node
     fqn = '/' + settings.node
     diagnostics = DiagnosticsLog()
@@ -363,7 +386,7 @@ def _run(settings, interface, process, client, rng, invariants, hints, report, c
                 diagnostics(array)
         node.create_subscription(message_type, endpoint.name, callback, QUEUE_DEPTH)
     inputs = []
-    for endpoint in interface.of_kind(SUBSCRIPTION):
+    for endpoint in _inputs_taken(interface, started):
         publisher = node.create_publisher(endpoint.message_type, endpoint.name, QUEUE_DEPTH)
         inputs.append((endpoint.name, publisher, MessageFuzzer(
             endpoint.message_type, rng, hints, endpoint.name)))

@@ -56,6 +56,7 @@ from fuzzing.fuzz_parameters import (
     start_variant,
 )
 from fuzzing.fuzz_targets import parameter_files
+from fuzzing.node_fuzzer import _inputs_taken
 from fuzzing.output_invariants import (
     log_problems,
     MAX_LOG_LINE,
@@ -406,3 +407,22 @@ def test_a_leg_trajectory_point_beyond_the_stroke_is_found_and_never_excused(inv
     log.callback('target_pose')(high, {})
     assert len(log.problems(allowance=1)) == 1
     assert 'more than the 0' in log.problems(allowance=0)[1]
+
+
+def test_the_fuzzer_feeds_mock_platform_only_the_command_input_it_takes():
+    """
+    A variant with command_input: leg_lengths subscribes to that input alone.
+
+    Once a -p after the files took effect, the fuzzer waited for the other inputs to match
+    for ever (CI: 'not matched on its inputs within 20 s').
+    """
+    from stewart_kinematics.ros.interfaces import IK_NODE, MOCK_PLATFORM, SUBSCRIPTION
+    every = list(MOCK_PLATFORM.of_kind(SUBSCRIPTION))
+    assert len(every) == 3
+    assert _inputs_taken(MOCK_PLATFORM, {'command_input': 'leg_lengths'}) == [
+        MOCK_PLATFORM['leg_lengths']]
+    assert _inputs_taken(MOCK_PLATFORM, {'command_input': 'all'}) == every
+    assert _inputs_taken(MOCK_PLATFORM, {}) == every
+    # Another node's inputs do not hang on a parameter of that name.
+    assert _inputs_taken(IK_NODE, {'command_input': 'leg_lengths'}) == list(
+        IK_NODE.of_kind(SUBSCRIPTION))
