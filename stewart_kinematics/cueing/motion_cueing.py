@@ -517,17 +517,14 @@ class MotionCueing:
         if controls.cueing_intensity != 1.0:
             self._apply_gains()
         self._park = None
-        #: The park orientation asked (radians), or ``None``: home's.
-        self._park_orientation = (np.radians(np.array(controls.park_orientation_deg, float))
-                                  if any(controls.park_orientation_deg) else None)
-        orientation = (self._park_orientation if self._park_orientation is not None
+        tilted = any(controls.park_orientation_deg)
+        orientation = (np.radians(np.array(controls.park_orientation_deg, dtype=float)) if tilted
                        else np.array(self.geometry.home_pose[3:], dtype=float))
         if any(controls.park_position):
             self._park = self._checked_park(
                 np.concatenate([np.array(controls.park_position, dtype=float), orientation]))
-        elif self._park_orientation is not None:
-            self._park = self._checked_park(lowest_pose(self.geometry, self.limiter,
-                                                        self._park_orientation))
+        elif tilted:
+            self._park = self._checked_park(lowest_pose(self.geometry, self.limiter, orientation))
         #: What the platform does: CUEING, PAUSING, PAUSED, PARKED, STARTING or STOPPING.
         self.mode = CUEING
         #: The soft motion under way (start or stop), or ``None``.
