@@ -84,6 +84,7 @@ from stewart_kinematics.ros.interfaces import (
     SERVICE,
     SUBSCRIPTION,
 )
+from stewart_kinematics.ros.mock_platform import inputs_taken
 from stewart_kinematics.ros.node_main import EXIT_START_FAILED
 from stewart_kinematics.tools.cli_arguments import number_in, positive_number
 from stewart_kinematics.tools.node_processes import (
@@ -336,14 +337,14 @@ def _inputs_taken(interface, started):
     Return the subscriptions the node makes when started with the parameters ``started``.
 
     Every declared one, but mock_platform's: its ``command_input`` names the one command input
-    it takes (or ``all``). Waiting for the others to match would wait for ever, and a message
-    sent to them would reach nobody.
+    it takes (or ``all``), as the node reads it (:func:`~stewart_kinematics.ros.mock_platform.
+    inputs_taken`). Waiting for the others to match would wait for ever, and a message sent to
+    them would reach nobody.
     """
-    endpoints = list(interface.of_kind(SUBSCRIPTION))
-    chosen = started.get('command_input', 'all') if interface is MOCK_PLATFORM else 'all'
-    if chosen == 'all':
-        return endpoints
-    return [endpoint for endpoint in endpoints if endpoint is MOCK_PLATFORM[chosen]]
+    if interface is MOCK_PLATFORM:
+        return [MOCK_PLATFORM[name]
+                for name in inputs_taken(started.get('command_input', 'all'))]
+    return list(interface.of_kind(SUBSCRIPTION))
 
 
 def _start_refusal(output: str) -> str:

@@ -73,6 +73,11 @@ from trajectory_msgs.msg import JointTrajectory
 COMMAND_INPUTS = ('leg_lengths', 'joint_commands', 'leg_trajectory')
 
 
+def inputs_taken(command_input: str) -> tuple:
+    """Return the command inputs the node subscribes to: the one command_input names, or all."""
+    return COMMAND_INPUTS if command_input == 'all' else (command_input,)
+
+
 def check_parameters(values) -> str:
     """Return ``''`` if the stalled legs name legs of ``joint_names``, else why not."""
     try:
@@ -131,10 +136,9 @@ class MockPlatform(ManagedNode):
         callbacks = {'leg_lengths': self.on_leg_lengths, 'joint_commands': self.on_joint_commands,
                      'leg_trajectory': self.on_leg_trajectory}
         self.accounting = {}
-        for name in COMMAND_INPUTS:
-            if mock.command_input in ('all', name):
-                self.accounting[name] = diagnostics.accounting(name)
-                create_input_subscription(self, MOCK_PLATFORM[name], callbacks[name], depth)
+        for name in inputs_taken(mock.command_input):
+            self.accounting[name] = diagnostics.accounting(name)
+            create_input_subscription(self, MOCK_PLATFORM[name], callbacks[name], depth)
         # After a jump back of the clock, rcl's timer ticks one period after it (rcl 9).
         self.create_timer(1.0 / mock.joint_state_rate, self.on_timer)
         self.get_logger().info(
