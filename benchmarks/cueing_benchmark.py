@@ -55,7 +55,7 @@ import time
 import numpy as np
 
 from stewart_kinematics import inverse_kinematics
-from stewart_kinematics.cueing import cue_limiter, MotionCueing
+from stewart_kinematics.cueing import cue_limiter, motion_cueing, MotionCueing
 from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
 from stewart_kinematics.limits import check_pose
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -288,22 +288,35 @@ MPC_MEDIAN_TARGET = 2e-3
 MPC_P99_TARGET = 5e-3
 
 
-def mpc_cueing():
-    """Return the core from the shipped files with ``cueing_method: mpc``."""
+def mpc_cueing(extra_files=(), preview=None):
+    """
+    Return the core from the shipped files, then ``extra_files``, with ``cueing_method: mpc``.
+
+    :param preview: a scenario whose whole input the core is told (``set_preview``), or None.
+    """
     values = {}
-    for path in FILES:
+    for path in tuple(FILES) + tuple(extra_files):
         values.update(read_parameter_file(path, 'motion_cueing_node'))
     values['cueing_method'] = 'mpc'
-    return MotionCueing.from_parameters(values)
+    core = MotionCueing.from_parameters(values)
+    if preview is not None:
+        core.set_preview(preview.times, preview.specific_force, preview.angular_velocity)
+    return core
 
 
-def mpc_steps(rate=100.0):
-    """Run the MPC scenarios; return the MPC step's seconds per sample and the QPs solved."""
+def mpc_steps(rate=100.0, extra_files=(), preview=False):
+    """
+    Run the MPC scenarios; return the MPC step's seconds per sample and the QPs solved.
+
+    With ``preview``, each scenario's input is the core's preview, and the step's time
+    includes the preview's means over the horizon (``vehicle_preview.interval_means``, computed
+    by the core before the MPC's step).
+    """
     times, problems = [], []
     clock = time.perf_counter
     for name in MPC_SCENARIOS:
         generated = scenario(name, rate)
-        core = mpc_cueing()
+        core = mpc_cueing(extra_files, generated if preview else None)
         mpc = core.washout
         step = mpc.step_checked
         solve = mpc.solver.solve
@@ -328,22 +341,32 @@ def mpc_steps(rate=100.0):
     # and in the thread's CPU time (which a busy machine's preemption does not inflate).
     times, cpu_times = [], []
     cpu_clock = time.thread_time
+    means = motion_cueing.interval_means
     for name in MPC_SCENARIOS:
         generated = scenario(name, rate)
-        core = mpc_cueing()
+        core = mpc_cueing(extra_files, generated if preview else None)
         step = core.washout.step_checked
+        started = []
+
+        def timed_means(*arguments):
+            started.append((clock(), cpu_clock()))
+            return means(*arguments)
 
         def timed_step(*arguments, step=step):
-            start, cpu_start = clock(), cpu_clock()
+            start, cpu_start = started.pop() if started else (clock(), cpu_clock())
             result = step(*arguments)
             times.append(clock() - start)
             cpu_times.append(cpu_clock() - cpu_start)
             return result
 
         core.washout.step_checked = timed_step
-        for t, force, angular in zip(generated.times, generated.specific_force.tolist(),
-                                     generated.angular_velocity.tolist()):
-            core.step(t, force, angular)
+        motion_cueing.interval_means = timed_means
+        try:
+            for t, force, angular in zip(generated.times, generated.specific_force.tolist(),
+                                         generated.angular_velocity.tolist()):
+                core.step(t, force, angular)
+        finally:
+            motion_cueing.interval_means = means
     return np.array(times[1:]), np.array(cpu_times[1:]), problems, hessian
 
 
@@ -418,14 +441,15 @@ class _Daqp:
         return result.x, result.solved, result.iterations
 
 
-def mpc_benchmark():
+def mpc_benchmark(extra_files=(), preview=False):
     """Print the MPC step's cost and the solvers' comparison; return (median, p99)."""
-    measured, cpu, problems, hessian = mpc_steps()
+    measured, cpu, problems, hessian = mpc_steps(extra_files=extra_files, preview=preview)
     median, p99 = float(np.median(cpu)), float(np.percentile(cpu, 99))
     load = os.getloadavg()[0] if hasattr(os, 'getloadavg') else math.nan
-    print(f'MPC step, {measured.size:,} samples ({", ".join(MPC_SCENARIOS)} at 100 Hz), '
-          f'shipped mpc_* tuning: {problems[0][1].shape[1]} variables, '
-          f'{problems[0][1].shape[0]} constraint rows + bounds')
+    tuning = ' + '.join(['shipped mpc_* tuning'] + [str(path) for path in extra_files])
+    print(f'MPC step{" with the preview" if preview else ""}, {measured.size:,} samples '
+          f'({", ".join(MPC_SCENARIOS)} at 100 Hz), {tuning}: {problems[0][1].shape[1]} '
+          f'variables, {problems[0][1].shape[0]} constraint rows + bounds')
     print(f'  step, CPU time: median {median * 1e3:.3f} ms, p90 '
           f'{np.percentile(cpu, 90) * 1e3:.3f} ms, p99 {p99 * 1e3:.3f} ms, max '
           f'{cpu.max() * 1e3:.2f} ms')
@@ -475,9 +499,14 @@ def main(argv=None) -> int:
                         help='seconds per rung (default 2)')
     parser.add_argument('--mpc', action='store_true',
                         help='the model-predictive cueing and its solvers only (issue 31)')
+    parser.add_argument('--params-file', dest='params_files', action='append', default=[],
+                        type=Path, help='with --mpc: a parameter file layered after the '
+                        'shipped ones (config/motion_cueing_preview.yaml); repeat to layer')
+    parser.add_argument('--preview', action='store_true',
+                        help="with --mpc: tell the MPC each scenario's input to come")
     options = parser.parse_args(argv)
     if options.mpc:
-        median, p99 = mpc_benchmark()
+        median, p99 = mpc_benchmark(options.params_files, options.preview)
         print()
         print(f'{"Target":<44} {"Met":>4}  This run')
         for label, value, target in (('MPC step < 2 ms (median, CPU)', median, MPC_MEDIAN_TARGET),

@@ -308,6 +308,13 @@ INVALID_VEHICLE_MOTION = _register(
     'A specific force or angular velocity that is not three finite numbers, or beyond '
     '`max_specific_force` or `max_angular_velocity`; the platform takes the step as if the '
     'vehicle were at rest, so that bad input eases it back to neutral.')
+INVALID_PREVIEW = _register(
+    'invalid_preview', 'refusal',
+    '`MotionCueing.set_preview` (motion_cueing_node: `vehicle_preview`)',
+    "A preview of the vehicle's motion that cannot be used: a point without its specific "
+    'force or angular velocity, times that do not increase, a value that is not finite or '
+    'beyond `max_specific_force` or `max_angular_velocity`, a frame that cannot be placed in '
+    'the vehicle frame, or a cueing that is not `mpc`. The preview before it stays in use.')
 TIME_NOT_INCREASING = _register(
     'time_not_increasing', 'refusal',
     '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',

@@ -100,6 +100,7 @@ from stewart_kinematics.cueing.limit_margins import pose_violations
 from stewart_kinematics.cueing.mpc_cueing import MpcCueing
 from stewart_kinematics.cueing.perception import PerceptionEstimator
 from stewart_kinematics.cueing.settings import CueingSettings
+from stewart_kinematics.cueing.vehicle_preview import input_preview, interval_means
 from stewart_kinematics.cueing.washout import ClassicalWashout
 from stewart_kinematics.findings import (
     COMMAND_BRAKING,
@@ -226,6 +227,9 @@ class MotionCueing:
         self._imu_rotation = euler_zyx_to_matrix(np.array(self.settings.imu_orientation_rpy))
         self.perception = PerceptionEstimator(self.settings.head_position, self.settings.gravity)
         self._rest_force = np.array([0.0, 0.0, self.settings.gravity])
+        self._rest_input = np.concatenate([self._rest_force, np.zeros(3)])
+        #: The vehicle's motion to come (:meth:`set_preview`), or ``None``.
+        self.input_preview = None
         self.time = None
         #: Seconds of the input's motion so far (input steps and rest steps): the clock the
         #: commands are sent on in an offline run.
@@ -301,9 +305,59 @@ class MotionCueing:
 
         For an input lost and found again (a restarted simulator, a recording played again, or a
         stream whose one absurd stamp put the last time years ahead): its first sample is taken
-        as the first one ever (no step), the motion goes on from where it is.
+        as the first one ever (no step), the motion goes on from where it is. A preview
+        (:meth:`set_preview`) is on the old time line's clock: it is dropped.
         """
         self.time = None
+        self.input_preview = None
+
+    def set_preview(self, times, specific_force, angular_velocity,
+                    frame_id: Optional[str] = None) -> None:
+        """
+        Tell the model-predictive cueing the vehicle's motion to come (``cueing_method: mpc``).
+
+        From the next sample on, the MPC plans against the vehicle's perception of this motion
+        over its horizon (:func:`~.vehicle_preview.interval_means`: the mean input over each
+        step, the present sample first) instead of the present input held and fading; past the
+        preview's last sample, that sample is held and fades. A simulator that knows its next
+        seconds (a replay, a scripted drive, a driver model's prediction) gives them here,
+        at once or a window at a time; each call replaces the last. doc/motion_cueing_mpc.md
+        measures what it is worth.
+
+        :param times: seconds on the clock of :meth:`step`'s ``time``, shape (M,), M >= 1,
+            increasing.
+        :param specific_force: m/s^2, head, vehicle frame, with gravity, shape (M, 3).
+        :param angular_velocity: rad/s, vehicle frame, shape (M, 3).
+        :param frame_id: the frame of both (a message's ``header.frame_id``, as for
+            :meth:`cue`: ``imu_frame`` is turned into the vehicle frame), or ``None``: the
+            vehicle frame.
+        :raises ValueError: naming the argument, for a malformed, non-finite or absurd
+            preview (beyond ``max_specific_force`` or ``max_angular_velocity``), a frame that
+            cannot be placed in the vehicle frame, or if the cueing is not model-predictive
+            (the classical washout has no horizon to use it). The preview before stays.
+        """
+        if not isinstance(self.washout, MpcCueing):
+            raise ValueError('a preview needs cueing_method mpc (the classical washout has no '
+                             f'horizon to use it); this cueing is '
+                             f'{self.settings.cueing_method!r}')
+        checked = input_preview(
+            times, specific_force, angular_velocity, self.settings.max_specific_force,
+            self.settings.max_angular_velocity)
+        if frame_id is not None:
+            refusal = self.vehicle_frame_refusal(frame_id)
+            if refusal is not None:
+                raise ValueError(refusal.message.replace('the sample is', 'the preview is'))
+            if frame_id and frame_id == self.settings.imu_frame:
+                turned = checked.inputs.copy()
+                turned[:, :3] = turned[:, :3] @ self._imu_rotation.T
+                turned[:, 3:] = turned[:, 3:] @ self._imu_rotation.T
+                turned.setflags(write=False)
+                checked = dataclasses.replace(checked, inputs=turned)
+        self.input_preview = checked
+
+    def clear_preview(self) -> None:
+        """Forget the preview: the MPC predicts the present input held and fading again."""
+        self.input_preview = None
 
     def refusal(self, time, specific_force, angular_velocity) -> Optional[Finding]:
         """
@@ -829,7 +883,15 @@ class MotionCueing:
 
     def _move(self, time, dt, specific_force, angular_velocity, refusal, warnings,
               command_time) -> CueStep:
-        washout = self.washout.step_checked(specific_force, angular_velocity, dt)
+        if self.input_preview is None:
+            washout = self.washout.step_checked(specific_force, angular_velocity, dt)
+        else:
+            mpc = self.washout
+            to_come = interval_means(
+                self.input_preview, time,
+                np.concatenate([specific_force, angular_velocity]), mpc.step_time, mpc.horizon,
+                self._rest_input, self.settings.mpc_reference_time_constant)
+            washout = mpc.step_checked(specific_force, angular_velocity, dt, to_come)
         if self._clock is None or dt > 0.0:
             self._clock = 0.0 if self._clock is None else self._clock + dt
         # Offline, commands are sent on the motion's own clock (the input's, gaps capped).

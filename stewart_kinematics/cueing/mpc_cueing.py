@@ -66,6 +66,7 @@ from stewart_kinematics.cueing.vestibular import vestibular_bank
 from stewart_kinematics.cueing.washout import ClassicalWashout, WashoutStep
 from stewart_kinematics.findings import Finding, MPC_FALLBACK
 from stewart_kinematics.limits import limits_of
+from stewart_kinematics.model.arrays import as_float_array
 from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.model.jacobians import jacobian
 
@@ -279,8 +280,19 @@ class MpcCueing:
         c = self._vehicle.c[0:5]
         tau = s.mpc_reference_time_constant
         fading = 0.0 if tau == 0.0 else math.exp(-h / tau)
+        inputs = gamma.shape[1]
         psi = np.zeros((n * 5, phi.shape[0]))
-        upsilon = np.zeros((n * 5, gamma.shape[1]))
+        upsilon = np.zeros((n * 5, inputs))
+        # With a preview, the input u_j of each step j given: r_k = C Phi^(k+1) x
+        # + sum_{j <= k} C Phi^(k-j) Gamma u_j (block lower triangular).
+        upsilon_preview = np.zeros((n * 5, n * inputs))
+        response = gamma
+        for lag in range(n):
+            block = c @ response
+            for j in range(n - lag):
+                upsilon_preview[5 * (j + lag):5 * (j + lag + 1), inputs * j:inputs * (j + 1)] = \
+                    block
+            response = phi @ response
         state_map, input_map = np.eye(phi.shape[0]), np.zeros_like(gamma)
         for k in range(n):
             input_map = phi @ input_map + gamma * (fading ** k)
@@ -288,6 +300,7 @@ class MpcCueing:
             psi[5 * k:5 * k + 5] = c @ state_map
             upsilon[5 * k:5 * k + 5] = c @ input_map
         self._psi_unit, self._upsilon_unit = psi, upsilon
+        self._upsilon_preview_unit = upsilon_preview
         #: The aim: the reference's scale of the perceived force x, y, z and roll, pitch rate.
         self.reference_scale = np.concatenate([s.mpc_force_scale, s.rotation_scale[:2]])
         self._scale_reference()
@@ -297,6 +310,7 @@ class MpcCueing:
         scales = np.tile(self.reference_scale, self.horizon)[:, None]
         self._psi = self._psi_unit * scales
         self._upsilon = self._upsilon_unit * scales
+        self._upsilon_preview = self._upsilon_preview_unit * scales
 
     def set_gains(self, gains) -> None:
         """
@@ -365,21 +379,32 @@ class MpcCueing:
         u[3:] = angular_velocity
         return u
 
-    def step(self, specific_force, angular_velocity, dt: float) -> MpcStep:
+    def step(self, specific_force, angular_velocity, dt: float, preview=None) -> MpcStep:
         """
         Advance by one sample (as :meth:`.washout.ClassicalWashout.step`).
 
-        :raises ValueError: naming the argument, for a malformed or non-finite input or dt.
+        :param preview: the vehicle's input to come, or ``None`` (predicted held and fading):
+            its mean over each step of the horizon, shape (``mpc_horizon``, 6), the specific
+            force (m/s^2, with gravity) and angular velocity (rad/s) as the sample's
+            (:func:`~.vehicle_preview.interval_means` gives it from samples).
+        :raises ValueError: naming the argument, for a malformed or non-finite input, dt or
+            preview.
         """
         yaw = self._yaw.step(specific_force, angular_velocity, dt)   # checks the inputs
-        return self._step(specific_force, angular_velocity, dt, yaw)
+        if preview is not None:
+            preview = as_float_array(preview, 'preview')
+            if preview.shape != (self.horizon, 6) or not np.all(np.isfinite(preview)):
+                raise ValueError(f'preview must be finite, of shape ({self.horizon}, 6), got '
+                                 f'shape {preview.shape}')
+        return self._step(specific_force, angular_velocity, dt, yaw, preview)
 
-    def step_checked(self, specific_force, angular_velocity, dt: float) -> MpcStep:
+    def step_checked(self, specific_force, angular_velocity, dt: float,
+                     preview=None) -> MpcStep:
         """:meth:`step` for inputs already checked (3 finite floats each, ``dt >= 0``)."""
         yaw = self._yaw.step_checked(specific_force, angular_velocity, dt)
-        return self._step(specific_force, angular_velocity, dt, yaw)
+        return self._step(specific_force, angular_velocity, dt, yaw, preview)
 
-    def _step(self, specific_force, angular_velocity, dt, yaw) -> MpcStep:
+    def _step(self, specific_force, angular_velocity, dt, yaw, preview) -> MpcStep:
         vehicle = self._vehicle_input(specific_force, angular_velocity)
         if not self._settled:
             self._vehicle.settle(vehicle)
@@ -398,7 +423,7 @@ class MpcCueing:
         findings = ()
         iterations = 0
         solved = False
-        problem = self._problem(vehicle, yaw.rotation[2])
+        problem = self._problem(vehicle, yaw.rotation[2], preview)
         if problem is not None:
             result = self.solver.solve(*problem)
             iterations = result.iterations
@@ -451,7 +476,7 @@ class MpcCueing:
         lengths = inverse_kinematics(self.limiter.geometry, poses[0])
         return lengths, jacobian(self.limiter.geometry, poses[0]) @ pose_of_q
 
-    def _problem(self, vehicle, yaw):
+    def _problem(self, vehicle, yaw, preview=None):
         """
         Return the QP ``(g, A, lower, upper, bounds_lower, bounds_upper)``, or ``None``.
 
@@ -459,7 +484,13 @@ class MpcCueing:
         """
         n = self.horizon
         x0 = self.state
-        reference = self._psi @ self._vehicle.state + self._upsilon @ vehicle
+        reference = self._psi @ self._vehicle.state
+        if preview is None:
+            reference += self._upsilon @ vehicle
+        else:
+            to_come = np.array(preview, dtype=float)
+            to_come[:, 2] -= self.gravity   # relative to rest, as the bank takes it
+            reference += self._upsilon_preview @ to_come.ravel()
         free = self._phi_z @ x0
         error = free.copy()
         error.reshape(n, OUTPUTS)[:, 0:5] -= reference.reshape(n, 5)

@@ -78,7 +78,8 @@ def _samples(name, values, count):
 
 
 def replay(cueing: MotionCueing, times, specific_force, angular_velocity,
-           progress: Optional[Callable[[int, int], None]] = None) -> CueReplay:
+           progress: Optional[Callable[[int, int], None]] = None,
+           preview: bool = False) -> CueReplay:
     """
     Step ``cueing`` through every sample and return what it gave.
 
@@ -88,8 +89,12 @@ def replay(cueing: MotionCueing, times, specific_force, angular_velocity,
     :param angular_velocity: rad/s, shape (N, 3).
     :param progress: called as ``progress(done, total)`` every :data:`PROGRESS_EVERY` samples
         and at the end.
+    :param preview: tell a model-predictive cueing the input to come
+        (:meth:`MotionCueing.set_preview` with the whole input: at each sample the MPC sees
+        the next horizon of it), as a simulator that knows its drive would.
     :raises ValueError: naming the argument and the sample, for a malformed, non-finite or
-        absurd sample, or times that do not increase.
+        absurd sample, or times that do not increase; for a preview, if the cueing is not
+        model-predictive.
     """
     times = np.asarray(times, dtype=float)
     if times.ndim != 1 or times.size < 3:
@@ -97,6 +102,8 @@ def replay(cueing: MotionCueing, times, specific_force, angular_velocity,
     count = times.size
     forces = _samples('specific_force', specific_force, count)
     rates = _samples('angular_velocity', angular_velocity, count)
+    if preview:
+        cueing.set_preview(times, forces, rates)
     outputs = {name: np.empty((count, size)) for name, size in (
         ('poses', 6), ('lengths', 6), ('displacement', 3), ('angles', 3), ('tilt', 2),
         ('tilt_rate', 2), ('workspace_scale', 1), ('tilt_scale', 1), ('acceleration_scale', 1))}

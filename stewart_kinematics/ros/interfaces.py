@@ -353,6 +353,14 @@ MOTION_CUEING_NODE = NodeInterface('motion_cueing_node', (
              "The vehicle's specific force (linear_acceleration, m/s^2: 9.81 on z at rest) and "
              "angular velocity (rad/s) at the driver's head, vehicle frame (x forward, y left, "
              'z up); header.stamp sets the time step; the orientation is not used'),
+    Endpoint('vehicle_preview', SUBSCRIPTION, 'trajectory_msgs/msg/MultiDOFJointTrajectory',
+             QUEUE,
+             "The vehicle's motion to come, for cueing_method mpc (a replay, a scripted drive, a "
+             "driver model's prediction): per point, time_from_start after header.stamp (the "
+             "clock of vehicle_imu's stamps), the specific force in accelerations[0].linear "
+             '(m/s^2, with gravity) and the angular velocity in velocities[0].angular (rad/s), '
+             "in header.frame_id as vehicle_imu's; each message replaces the last, the MPC plans "
+             'against it over its horizon (doc/motion_cueing_mpc.md)'),
     Endpoint('target_pose', PUBLISHER, 'geometry_msgs/msg/Pose', QUEUE,
              'The cue as the pose of the tool frame in the base frame, one per sample (and while '
              'easing home after input_timeout), for ik_node', commands=True),

@@ -277,6 +277,38 @@ def pose_trajectory_from_message(message: MultiDOFJointTrajectory) -> dict:
     return arguments
 
 
+def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
+    """
+    Return the vehicle's motion to come from a trajectory_msgs/msg/MultiDOFJointTrajectory.
+
+    Each point gives, ``time_from_start`` after ``header.stamp``, the specific force in
+    ``accelerations[0].linear`` (m/s^2, with gravity, as an IMU's ``linear_acceleration``)
+    and the angular velocity in ``velocities[0].angular`` (rad/s); ``transforms``,
+    ``joint_names`` and the other twist halves are not used.
+
+    :returns: ``(offsets (M,), specific_force (M, 3), angular_velocity (M, 3), frame_id)``:
+        seconds after ``header.stamp``, in the header's frame. The values are not checked
+        here: :meth:`stewart_kinematics.cueing.MotionCueing.set_preview` says what is wrong
+        with them.
+    :raises ValueError: naming the first point without one acceleration or one velocity, or
+        for more points than a trajectory may have.
+    """
+    points = message.points
+    _check_count(len(points))
+    for index, point in enumerate(points):
+        if len(point.accelerations) != 1 or len(point.velocities) != 1:
+            raise ValueError(
+                f'preview point {index} must have one acceleration (its linear part: the '
+                'specific force) and one velocity (its angular part: the angular velocity), '
+                f'got {len(point.accelerations)} and {len(point.velocities)}')
+    forces = _rows([(p.accelerations[0].linear.x, p.accelerations[0].linear.y,
+                     p.accelerations[0].linear.z) for p in points], 3)
+    rates = _rows([(p.velocities[0].angular.x, p.velocities[0].angular.y,
+                    p.velocities[0].angular.z) for p in points], 3)
+    offsets = np.array([seconds(point.time_from_start) for point in points], dtype=float)
+    return offsets, forces, rates, message.header.frame_id
+
+
 def path_from_message(message: Path):
     """
     Positions and quaternions of the waypoints of a nav_msgs/msg/Path (no timing).

@@ -39,6 +39,13 @@ home on the node's clock until it rests (:meth:`stewart_kinematics.cueing.Motion
 called on a timer; ``target_pose`` and ``cue_pose`` stamped now; no ``perceived_accel`` then).
 Refusals and warnings are counted on ``/diagnostics``.
 
+With ``cueing_method: mpc``, ``vehicle_preview`` (trajectory_msgs/msg/MultiDOFJointTrajectory)
+tells the MPC the vehicle's motion to come, on the clock of ``vehicle_imu``'s stamps (per
+point: ``time_from_start`` after ``header.stamp``, the specific force in
+``accelerations[0].linear``, the angular velocity in ``velocities[0].angular``); each message
+replaces the last (:meth:`stewart_kinematics.cueing.MotionCueing.set_preview`). One that cannot
+be used is refused with its reason (``invalid_preview``), and the preview before it stays.
+
 Run-time controls (doc/motion_cueing.md, "The node at run time"): ``cueing_intensity`` and the
 gains ``translation_scale``, ``tilt_scale``, ``rotation_scale`` may be set at run time
 (``ros2 param set``, the parameter services): the change is ramped over ``gain_ramp_time``, or
@@ -69,6 +76,7 @@ from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.cueing.motion_cueing import PARKED, WATCHDOG_PERIOD
+from stewart_kinematics.findings import Finding, INVALID_PREVIEW
 from stewart_kinematics.parameters import (
     frame_parameters_reason,
     frames_from_settings,
@@ -78,7 +86,11 @@ from stewart_kinematics.ros.command_publishing import send_command
 from stewart_kinematics.ros.interfaces import MOTION_CUEING_NODE
 from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
-from stewart_kinematics.ros.message_conversions import command_pose_message, pose_to_message
+from stewart_kinematics.ros.message_conversions import (
+    command_pose_message,
+    pose_to_message,
+    vehicle_preview_from_message,
+)
 from stewart_kinematics.ros.node_main import (
     create_declared_service,
     create_input_subscription,
@@ -86,6 +98,7 @@ from stewart_kinematics.ros.node_main import (
     run_node,
 )
 from stewart_kinematics.ros.ros_parameters import RunTimePayload
+from trajectory_msgs.msg import MultiDOFJointTrajectory
 
 #: Longest the deactivate transition waits for park beyond ``soft_stop_time``, seconds (a
 #: bound: braking takes a fraction of a second, a stop the limits slow a few more).
@@ -122,8 +135,11 @@ class MotionCueingNode(ManagedNode):
         self.cue_publisher = create_output_publisher(self, interface['cue_pose'], depth)
         self.perceived_publisher = create_output_publisher(
             self, interface['perceived_accel'], depth)
-        self.accounting = NodeDiagnostics(self).accounting('vehicle_imu')
+        diagnostics = NodeDiagnostics(self)
+        self.accounting = diagnostics.accounting('vehicle_imu')
+        self.preview_accounting = diagnostics.accounting('vehicle_preview')
         create_input_subscription(self, interface['vehicle_imu'], self.on_imu, depth)
+        create_input_subscription(self, interface['vehicle_preview'], self.on_preview, depth)
         create_declared_service(self, interface['reset'], self.on_reset)
         for name in ('start', 'stop', 'pause', 'resume'):
             create_declared_service(self, interface[name], self.control_service(name))
@@ -267,9 +283,7 @@ class MotionCueingNode(ManagedNode):
         """
         self.accounting.receive()
         stamp = message.header.stamp
-        stamp_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
-        if self.origin_ns is None:
-            self.origin_ns = stamp_ns
+        stamp_ns = self.stamp_ns(stamp)
         force, rate = message.linear_acceleration, message.angular_velocity
         result = self.cueing.cue((stamp_ns - self.origin_ns) * 1e-9,
                                  (force.x, force.y, force.z), (rate.x, rate.y, rate.z),
@@ -299,6 +313,25 @@ class MotionCueingNode(ManagedNode):
             send_command(self.target_publisher, self.accounting, result.command)
         if result.pose is not None:
             self.publish_extras(result, stamp)
+
+    def stamp_ns(self, stamp) -> int:
+        """Return a stamp in nanoseconds; the first stamp seen is the origin of the times."""
+        stamp_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+        if self.origin_ns is None:
+            self.origin_ns = stamp_ns
+        return stamp_ns
+
+    def on_preview(self, message: MultiDOFJointTrajectory):
+        """Take the vehicle's motion to come (cueing_method mpc), or refuse it saying why."""
+        self.preview_accounting.receive()
+        start = (self.stamp_ns(message.header.stamp) - self.origin_ns) * 1e-9
+        try:
+            offsets, forces, rates, frame_id = vehicle_preview_from_message(message)
+            self.cueing.set_preview(start + offsets, forces, rates, frame_id)
+        except ValueError as error:
+            self.preview_accounting.reject(Finding(INVALID_PREVIEW, str(error)))
+            return
+        self.preview_accounting.use()
 
     def command_time(self, now) -> float:
         """Return the seconds of the node's clock ``now`` since its origin: a command's time."""

@@ -144,6 +144,11 @@ def build_parser() -> argparse.ArgumentParser:
                         default=SETTLE_TIME,
                         help='judge the return to neutral this long after the input rests, s '
                              f'(default {SETTLE_TIME:g})')
+    parser.add_argument('--preview', action='store_true',
+                        help='tell the model-predictive cueing (cueing_method: mpc) the input '
+                             'to come, as a simulator that knows its drive would: at each '
+                             'sample the MPC plans against the next horizon of it '
+                             '(doc/motion_cueing_mpc.md)')
     parser.add_argument('--strict', action='store_true',
                         help="exit 3 when a target is missed (each scenario's targets: "
                              'doc/cueing_evaluation.md)')
@@ -413,7 +418,7 @@ def run(options, stream=None):
         progress = None if options.quiet else ProgressBar(name)
         started = time.perf_counter()
         try:
-            played = replay(cueing, times, forces, rates, progress)
+            played = replay(cueing, times, forces, rates, progress, preview=options.preview)
         except ValueError as error:
             raise ValueError(f'{name}: {error}') from None
         seconds = time.perf_counter() - started

@@ -67,8 +67,9 @@ NODE_FILES = {
     'fk_node': (FkNode, ('paper_platform.yaml', 'example_limits.yaml', 'solver.yaml')),
     'trajectory_node': (TrajectoryNode, ('paper_platform.yaml', 'example_limits.yaml',
                                          'table3_ramp.yaml')),
+    # motion_cueing_preview.yaml is layered last: the MPC with a preview, over the classical.
     'motion_cueing_node': (MotionCueingNode, ('paper_platform.yaml', 'example_limits.yaml',
-                                              'motion_cueing.yaml')),
+                                              'motion_cueing.yaml', 'motion_cueing_preview.yaml')),
     'mock_platform': (MockPlatform, ('paper_platform.yaml', 'example_limits.yaml',
                                      'example_masses.yaml', 'mock_platform.yaml')),
     'telemetry_bridge': (TelemetryBridge, ('telemetry_bridge.yaml',)),

@@ -225,3 +225,25 @@ def test_markdown_table_shows_unknowns_as_dashes():
     assert cueing_report._number(math.nan) == '-'
     assert cueing_report._number(math.inf, '.0f') == '> 2000'
     assert cueing_report._number(-math.inf, '.0f') == '< -2000'
+
+
+def test_preview_with_the_classical_washout_exits_1_saying_why(capsys, tmp_path):
+    """--preview needs the MPC: with the classical washout it is refused, naming the setting."""
+    code = main(TUNED + ['--scenario', 'lane_change', '--preview', '--output',
+                         str(tmp_path / 'out'), '--no-figures', '--quiet'])
+    assert code == 1
+    assert 'a preview needs cueing_method mpc' in capsys.readouterr().err
+
+
+def test_preview_tells_the_mpc_the_drive(capsys, tmp_path):
+    """With the preview preset, --preview cues the lane change closer than without it."""
+    preset = TUNED + ['--params-file', str(CONFIG / 'motion_cueing_preview.yaml')]
+    rmse = {}
+    for told in (False, True):
+        output = tmp_path / f'out{told}'
+        code = main(preset + ['--scenario', 'lane_change', '--output', str(output),
+                              '--no-figures', '--quiet'] + (['--preview'] if told else []))
+        assert code == 0
+        numbers = yaml.safe_load((output / 'cueing_results.yaml').read_text(encoding='utf-8'))
+        rmse[told] = numbers['lane_change']['specific_force']['y']['rmse']
+    assert rmse[True] < 0.9 * rmse[False]

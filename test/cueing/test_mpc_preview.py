@@ -1,0 +1,207 @@
+# Copyright 2026 stewart_kinematics developers
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The MPC told the vehicle's motion to come (``MotionCueing.set_preview``, ``--preview``).
+
+Independent values: the interval means against integrals done by hand, the reference over the
+horizon against scipy's integration of the vestibular model, and what a preview is for: the
+tilt built before a brake step begins, which no causal cueing can do.
+"""
+
+import math
+from pathlib import Path
+
+import numpy as np
+from numpy.testing import assert_allclose
+import pytest
+from scipy.integrate import solve_ivp
+
+from stewart_kinematics.cueing import MotionCueing, replay
+from stewart_kinematics.cueing.evaluation import evaluate
+from stewart_kinematics.cueing.scenarios import scenario
+from stewart_kinematics.cueing.vehicle_preview import input_preview, interval_means
+from stewart_kinematics.parameters import read_parameter_file
+
+pytestmark = pytest.mark.core
+
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
+FILES = [CONFIG / name for name in ('paper_platform.yaml', 'example_limits.yaml',
+                                    'motion_cueing.yaml', 'motion_cueing_preview.yaml')]
+G = 9.80665
+REST = np.array([0.0, 0.0, G, 0.0, 0.0, 0.0])
+
+
+def preview_values(**changes):
+    """Return the shipped files' parameters, the preview preset last, and ``changes``."""
+    values = {}
+    for path in FILES:
+        values.update(read_parameter_file(path, 'motion_cueing_node'))
+    values.update(changes)
+    return values
+
+
+def test_interval_means_are_the_means_over_each_step():
+    """A ramp's mean is its midpoint value; past the end the last sample fades (by hand)."""
+    times = np.array([0.0, 1.0, 2.0])
+    force = np.array([[0.0, 0.0, G], [1.0, -2.0, G], [2.0, -4.0, G]])
+    rates = np.zeros((3, 3))
+    preview = input_preview(times, force, rates, 100.0, 20.0)
+    means = interval_means(preview, 0.0, REST, 0.25, 8, REST, 0.5)
+    # Steps 0..7 cover 0..2 s: the ramp x = t, y = -2 t; its mean is the midpoint's value.
+    middles = (np.arange(8) + 0.5) * 0.25
+    assert_allclose(means[:, 0], middles, atol=1e-12)
+    assert_allclose(means[:, 1], -2.0 * middles, atol=1e-12)
+    assert_allclose(means[:, 2], G, atol=1e-12)
+    # Past the end (2 s): x = 2 exp(-(t - 2) / 0.5); its mean over [2 + a, 2 + b].
+    tail = interval_means(preview, 1.5, force[1].tolist() + [0.0] * 3, 0.5, 4, REST, 0.5)
+    for k, (a, b) in enumerate([(-0.5, 0.0), (0.0, 0.5), (0.5, 1.0), (1.0, 1.5)]):
+        if a < 0.0:
+            continue   # still on the ramp (from the present sample, 1.5 s, x = 1 given)
+        exact = 2.0 * 0.5 * (math.exp(-a / 0.5) - math.exp(-b / 0.5)) / (b - a)
+        # The 16-point midpoint rule: (0.5 / 16 / 0.5)^2 / 24 = 1.6e-4 of the mean.
+        assert tail[k, 0] == pytest.approx(exact, rel=2e-4)
+    # The present sample is where the series starts; samples at or before it are not used.
+    assert tail[0, 0] == pytest.approx(np.mean(np.interp(
+        1.5 + (np.arange(16) + 0.5) / 32.0, [1.5, 2.0], [1.0, 2.0])), abs=1e-12)
+    # Held (inf) and at rest at once (0).
+    held = interval_means(preview, 2.0, force[2].tolist() + [0.0] * 3, 0.5, 3, REST, math.inf)
+    assert_allclose(held[:, 0], 2.0)
+    gone = interval_means(preview, 2.0, force[2].tolist() + [0.0] * 3, 0.5, 3, REST, 0.0)
+    assert_allclose(gone, np.tile(REST, (3, 1)))
+
+
+def test_reference_over_the_horizon_integrates_the_vestibular_model():
+    """The reference from a preview is the vehicle's bank integrated by scipy, step by step."""
+    core = MotionCueing.from_parameters(preview_values())
+    mpc = core.washout
+    rng = np.random.default_rng(5)
+    n, h = mpc.horizon, mpc.step_time
+    to_come = rng.normal(0.0, 1.0, (n, 6))
+    to_come[:, 2] += G
+    bank = mpc._vehicle
+    state = rng.normal(0.0, 0.1, bank.a.shape[0])
+    reference = (mpc._psi_unit @ state
+                 + mpc._upsilon_preview_unit @ (to_come - REST).ravel()).reshape(n, 5)
+    x = state.copy()
+    for k in range(n):
+        u = to_come[k] - REST
+        solution = solve_ivp(lambda _t, y: bank.a @ y + bank.b @ u, (0.0, h), x, rtol=1e-10,
+                             atol=1e-12)
+        x = solution.y[:, -1]
+        assert_allclose(reference[k], (bank.c @ x)[:5], atol=1e-7)
+
+
+@pytest.mark.parametrize('arguments, words', [
+    (([0.0, 0.1], [[0, 0, G]] * 3, [[0, 0, 0]] * 2), 'shape (2, 3)'),
+    (([0.0, 0.1], [[0, 0, G], [math.nan, 0, G]], [[0, 0, 0]] * 2), 'finite: sample 1'),
+    (([0.0, 0.1], [[0, 0, G]] * 2, [[0, 0, 0], [math.inf, 0, 0]]), 'finite: sample 1'),
+    (([0.0, 0.1], [[0, 0, G], [1e308, 0, G]], [[0, 0, 0]] * 2), 'absurd'),
+    (([0.0, 0.0], [[0, 0, G]] * 2, [[0, 0, 0]] * 2), 'must increase'),
+    (([0.0, math.nan], [[0, 0, G]] * 2, [[0, 0, 0]] * 2), 'finite'),
+    (([], [], []), 'M >= 1'),
+    (('soon', [[0, 0, G]], [[0, 0, 0]]), 'preview times'),
+    (([0.0], [['a', 0, G]], [[0, 0, 0]]), 'preview specific_force'),
+])
+def test_bad_previews_are_refused_naming_what_is_wrong(arguments, words):
+    """A malformed preview is refused with a ValueError; the cueing goes on as before."""
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview([0.0, 10.0], [[1.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    kept = core.input_preview
+    with pytest.raises(ValueError, match=None) as raised:
+        core.set_preview(*arguments)
+    assert words in str(raised.value)
+    assert core.input_preview is kept
+    step = core.step(0.0, [0.0, 0.0, G], [0.0, 0.0, 0.0])
+    assert step.accepted
+
+
+def test_a_preview_needs_the_mpc():
+    """The classical washout has no horizon: a preview is refused, saying so."""
+    core = MotionCueing.from_parameters(preview_values(cueing_method='classical'))
+    with pytest.raises(ValueError, match='needs cueing_method mpc'):
+        core.set_preview([0.0], [[0.0, 0.0, G]], [[0.0, 0.0, 0.0]])
+
+
+def test_mpc_step_refuses_a_preview_of_the_wrong_shape():
+    """MpcCueing.step checks its preview (shape, finite) as it checks its inputs."""
+    mpc = MotionCueing.from_parameters(preview_values()).washout
+    for bad in (np.zeros((mpc.horizon - 1, 6)), np.full((mpc.horizon, 6), math.nan), 'x'):
+        with pytest.raises(ValueError, match='preview'):
+            mpc.step([0.0, 0.0, G], [0.0, 0.0, 0.0], 0.01, preview=bad)
+
+
+def _pitch_before_braking(preview):
+    """Return the cue's pitch (rad) at the brake step's onset, and the braking's mean pitch."""
+    drive = scenario('brake_step')
+    core = MotionCueing.from_parameters(preview_values())
+    played = replay(core, drive.times, drive.specific_force, drive.angular_velocity,
+                    preview=preview)
+    braking = np.flatnonzero(np.abs(drive.specific_force[:, 0]) > 0.05)
+    onset = braking[0]
+    return played.angles[onset, 1], np.mean(played.angles[braking, 1]), played
+
+
+def test_a_preview_builds_the_tilt_before_the_brake_step():
+    """
+    Knowing the braking to come, the MPC has tilted toward it when it begins; without, not.
+
+    The tilt at the onset has the sign the braking's tilt has, and is more than half a degree
+    (3 deg/s is the rate limit: the preview's 4 s horizon gives it time); without a preview
+    the platform is level at the onset (nothing to aim at). Every command keeps the limits
+    either way (the replay's limiter and gate).
+    """
+    ahead, braking_mean, played = _pitch_before_braking(True)
+    assert np.sign(ahead) == np.sign(braking_mean)
+    assert abs(ahead) > math.radians(0.5)
+    level, _, _ = _pitch_before_braking(False)
+    assert abs(level) < math.radians(0.01)
+    assert 'command_refused' not in played.warnings
+
+
+def test_a_new_time_line_drops_the_preview():
+    """restart_time: the preview's clock is the old time line's, so it is forgotten."""
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview([0.0, 1.0], [[0.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    core.restart_time()
+    assert core.input_preview is None
+
+
+def _evaluated(values, name, preview):
+    """Replay scenario ``name`` with the parameters ``values``; return its evaluation."""
+    drive = scenario(name)
+    template = MotionCueing.from_parameters(values)
+    cueing = MotionCueing(template.geometry, template.settings, template.actuator_limits)
+    played = replay(cueing, drive.times, drive.specific_force, drive.angular_velocity,
+                    preview=preview)
+    return evaluate(played, template.geometry, template.actuator_limits,
+                    template.settings.tilt_rate_max, rest=drive.rest_time,
+                    gravity=template.settings.gravity)
+
+
+def test_told_the_mixed_drive_the_mpc_errs_20_percent_less_than_classical():
+    """
+    Issue 31's target on the 60 s mixed drive, along x and y: RMSE at least 20 % lower.
+
+    Classical washout with the shipped tuning against the MPC with the preview preset, told
+    the drive; equal limits and perception model. Every command within the limits, the
+    perceived tilt rate within 3 deg/s. (Heave, z, is not met: doc/motion_cueing_mpc.md.)
+    About 20 s.
+    """
+    classical = _evaluated(preview_values(cueing_method='classical'), 'mixed_drive', False)
+    told = _evaluated(preview_values(), 'mixed_drive', True)
+    for axis in ('x', 'y'):
+        assert told.measures(axis).rmse <= 0.8 * classical.measures(axis).rmse, axis
+    assert told.limit_violations == 0
+    assert told.perceived_tilt_rate_peak <= math.radians(3.0)
