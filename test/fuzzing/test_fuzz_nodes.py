@@ -29,6 +29,7 @@ Run with ``-s`` to see the figures (lines starting ``FUZZ``).
 """
 
 import os
+from pathlib import Path
 import random
 
 from fuzzing.node_fuzzer import fuzz_node, FuzzSettings
@@ -41,6 +42,7 @@ from stewart_kinematics.ros.interfaces import NODE_INTERFACES
 # modules alone, after the other process tests.
 pytestmark = [pytest.mark.process, pytest.mark.serial]
 
+CONFIG = Path(__file__).resolve().parents[2] / 'config'
 #: Messages per node in the test command: a few seconds of flood at 1 kHz.
 MESSAGES = int(os.environ.get('STEWART_FUZZ_MESSAGES', '2000'))
 #: One seed for the whole session, so that a failure's seed replays every node's run.
@@ -53,5 +55,16 @@ def test_node_keeps_its_invariants_under_fuzzed_input(ros, node):
     # telemetry_bridge on a free port, not its default 47800 that other runs may hold.
     parameters = {'telemetry_port': free_udp_port()} if node == 'telemetry_bridge' else {}
     report = fuzz_node(FuzzSettings(node, SEED, MESSAGES, parameters=parameters))
+    print(report.summary())
+    assert not report.problems, report.failure()
+
+
+def test_mpc_cueing_keeps_its_invariants_under_fuzzed_input_and_previews(ros):
+    """motion_cueing_node with the MPC and the preview preset: previews fuzzed with the IMU."""
+    files = tuple(str(CONFIG / name) for name in (
+        'paper_platform.yaml', 'example_limits.yaml', 'motion_cueing.yaml',
+        'motion_cueing_preview.yaml'))
+    report = fuzz_node(FuzzSettings('motion_cueing_node', SEED, MESSAGES, files=files,
+                                    parameters={'cueing_method': 'mpc'}))
     print(report.summary())
     assert not report.problems, report.failure()
