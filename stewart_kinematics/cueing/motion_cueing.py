@@ -306,10 +306,15 @@ class MotionCueing:
         For an input lost and found again (a restarted simulator, a recording played again, or a
         stream whose one absurd stamp put the last time years ahead): its first sample is taken
         as the first one ever (no step), the motion goes on from where it is. A preview
-        (:meth:`set_preview`) is on the old time line's clock: it is dropped.
+        (:meth:`set_preview`) is on the old time line's clock: it is dropped. (A resume and the
+        end of a start also start a new time line, on the same clock: the preview stays.)
         """
-        self.time = None
+        self._new_time_line()
         self.input_preview = None
+
+    def _new_time_line(self) -> None:
+        """Take the next sample as the first one ever (no step), on the same clock."""
+        self.time = None
 
     def set_preview(self, times, specific_force, angular_velocity,
                     frame_id: Optional[str] = None) -> None:
@@ -782,7 +787,7 @@ class MotionCueing:
         """
         if self.mode in (PAUSING, PAUSED):
             self.mode = CUEING
-            self.restart_time()
+            self._new_time_line()
             return ControlAnswer(True, 'resumed: cueing from the held state')
         if self.mode == CUEING:
             return ControlAnswer(True, 'not paused: nothing to do')
@@ -849,7 +854,7 @@ class MotionCueing:
                 # At rest at neutral: the cueing starts afresh from the next sample.
                 limiter.reset()
                 self.washout.reset()
-                self.restart_time()
+                self._new_time_line()
                 self.mode = CUEING
             else:
                 self.mode = PARKED

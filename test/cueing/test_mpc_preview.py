@@ -178,6 +178,43 @@ def test_a_new_time_line_drops_the_preview():
     assert core.input_preview is None
 
 
+def _operate_until(core, mode, time):
+    """Call operate every 20 ms until the core is in ``mode``; return the time reached."""
+    for _ in range(5000):
+        time += 0.02
+        core.operate(time)
+        if core.mode == mode:
+            return time
+    raise AssertionError(f'never {mode}: {core.mode}')
+
+
+def test_the_preview_stays_through_a_start_and_a_pause_and_goes_when_the_input_is_lost():
+    """
+    Start and resume go on on the same clock: the preview given before them stays in use.
+
+    Before, the end of a start dropped a preview sent while the platform rose from park (as a
+    simulator sends its scripted drive once, at the start): silently, the MPC cued without it.
+    The watchdog's loss of input starts a new clock: that one drops it.
+    """
+    core = MotionCueing.from_parameters(preview_values(start_parked=True, soft_start_time=1.0))
+    told = ([0.0, 100.0], [[1.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    core.set_preview(*told)
+    preview = core.input_preview
+    assert core.start().success
+    time = _operate_until(core, 'cueing', 0.0)
+    assert core.input_preview is preview
+    core.cue(time, [1.0, 0.0, G], [0.0, 0.0, 0.0], command_time=time)
+    assert core.pause().success
+    time = _operate_until(core, 'paused', time)
+    assert core.resume().success
+    assert core.input_preview is preview
+    time += 0.01
+    assert core.cue(time, [1.0, 0.0, G], [0.0, 0.0, 0.0], command_time=time).accepted
+    # No input for input_timeout: the stream is lost, and its preview with it.
+    core.watch(time + 10.0)
+    assert core.input_preview is None
+
+
 def _evaluated(values, name, preview):
     """Replay scenario ``name`` with the parameters ``values``; return its evaluation."""
     drive = scenario(name)
