@@ -242,3 +242,21 @@ def test_told_the_mixed_drive_the_mpc_errs_20_percent_less_than_classical():
         assert told.measures(axis).rmse <= 0.8 * classical.measures(axis).rmse, axis
     assert told.limit_violations == 0
     assert told.perceived_tilt_rate_peak <= math.radians(3.0)
+
+
+def test_a_preview_in_the_imu_frame_is_turned_into_the_vehicle_frame():
+    """
+    As for a sample: values in imu_frame are turned by imu_orientation_rpy_deg.
+
+    An IMU mounted upside down about x (NED-like: roll 180 deg) reports x, -y, -z of the
+    vehicle frame; the preview taken is the vehicle frame's, by hand.
+    """
+    core = MotionCueing.from_parameters(preview_values(
+        imu_frame='imu_ned', imu_orientation_rpy_deg=[180.0, 0.0, 0.0]))
+    core.set_preview([0.0, 1.0], [[1.0, 2.0, -G], [3.0, -4.0, -G]],
+                     [[0.1, 0.2, 0.3], [0.0, 0.0, -0.5]], frame_id='imu_ned')
+    assert_allclose(core.input_preview.inputs,
+                    [[1.0, -2.0, G, 0.1, -0.2, -0.3], [3.0, 4.0, G, 0.0, 0.0, 0.5]],
+                    rtol=0.0, atol=1e-12)
+    core.set_preview([0.0], [[1.0, 2.0, G]], [[0.0, 0.0, 0.0]], frame_id='')
+    assert_allclose(core.input_preview.inputs, [[1.0, 2.0, G, 0.0, 0.0, 0.0]], atol=0.0)
