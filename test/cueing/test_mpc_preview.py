@@ -178,6 +178,83 @@ def test_a_new_time_line_drops_the_preview():
     assert core.input_preview is None
 
 
+
+def test_preview_times_spanning_the_float_range_are_taken_without_overflow():
+    """
+    Times from -1e308 to 1e308 increase: taken, without numpy's 'overflow encountered'.
+
+    Their difference is beyond the float range (pytest.ini makes a RuntimeWarning an error).
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview([-1e308, 1e308], [[0.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    assert_allclose(core.input_preview.times, [-1e308, 1e308], rtol=0.0)
+    assert core.step(0.0, [0.0, 0.0, G], [0.0, 0.0, 0.0]).accepted
+
+
+def test_times_that_do_not_increase_are_shown_as_plain_numbers():
+    """The refusal shows the times as a user wrote them, not numpy's np.float64(...)."""
+    core = MotionCueing.from_parameters(preview_values())
+    with pytest.raises(ValueError) as raised:
+        core.set_preview(np.array([0.0, -0.0]), [[0.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    assert str(raised.value) == ('preview times must increase: sample 1 (-0.0 s) does not '
+                                 'come after the one before (0.0 s)')
+    assert 'np.' not in str(raised.value)
+
+
+def _brake_ahead(start):
+    """Return a preview from ``start`` (s): 1 s at rest, then braking at 5 m/s^2 for 3 s."""
+    times = start + np.arange(401) * 0.01
+    force = np.tile([0.0, 0.0, G], (401, 1))
+    force[times > start + 1.0, 0] = -5.0
+    return times, force, np.zeros((401, 3))
+
+
+def _pitch_after(core, start, samples=50):
+    """Cue ``samples`` samples at rest from ``start`` (s); return the last cue's pitch, rad."""
+    for index in range(samples):
+        step = core.step(start + index * 0.01, [0.0, 0.0, G], [0.0, 0.0, 0.0])
+    return step.pose[4]
+
+
+def test_a_preview_given_while_paused_is_used_after_resume():
+    """
+    Resume goes on on the simulator's clock: the preview given during the pause stays.
+
+    The cue then tilts toward the braking to come (against a twin told nothing); the preview
+    was dropped on resume before.
+    """
+    pitches = []
+    for told in (True, False):
+        core = MotionCueing.from_parameters(preview_values())
+        _pitch_after(core, 0.0, 10)
+        assert core.pause().success
+        if told:
+            core.set_preview(*_brake_ahead(1.0))
+        assert core.resume().success
+        assert (core.input_preview is not None) == told
+        pitches.append(_pitch_after(core, 1.0))
+    assert abs(pitches[0]) > math.radians(0.1)
+    assert abs(pitches[1]) < math.radians(0.01)
+
+
+def test_a_preview_given_while_parked_is_used_once_started():
+    """The end of a start from park keeps the preview given while parked (it was dropped)."""
+    core = MotionCueing.from_parameters(preview_values())
+    assert core.stop().success
+    now = 0.0
+    while core.mode != 'parked' and now < 60.0:
+        now += 0.01
+        core.operate(now)
+    assert core.mode == 'parked'
+    core.set_preview(*_brake_ahead(0.0))
+    assert core.start().success
+    while core.mode != 'cueing' and now < 120.0:
+        now += 0.01
+        core.operate(now)
+    assert core.mode == 'cueing'
+    assert core.input_preview is not None
+    assert abs(_pitch_after(core, 0.0)) > math.radians(0.1)
+
 def _evaluated(values, name, preview):
     """Replay scenario ``name`` with the parameters ``values``; return its evaluation."""
     drive = scenario(name)
@@ -205,3 +282,23 @@ def test_told_the_mixed_drive_the_mpc_errs_20_percent_less_than_classical():
         assert told.measures(axis).rmse <= 0.8 * classical.measures(axis).rmse, axis
     assert told.limit_violations == 0
     assert told.perceived_tilt_rate_peak <= math.radians(3.0)
+
+
+def test_rest_without_input_eases_home_whatever_the_preview_says():
+    """
+    rest() (no input came): the platform glides to neutral, as told nothing.
+
+    The input's clock stands still there, so a braking told to come 0.5 s after the last
+    sample stayed 0.5 s ahead for ever: 10 s of rest held the platform 9.5 deg tilted.
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview(*_brake_ahead(0.0))
+    _pitch_after(core, 0.0)
+    for _ in range(1000):
+        step = core.rest(0.01)
+    # Near neutral (the geometry's home pose, level): within 1 mm and 0.05 deg after 10 s
+    # (the tilt built toward the braking washes out slowly: 0.02 deg left), not 62 mm and
+    # 9.5 deg as before.
+    assert_allclose(step.pose[:3], core.geometry.home_pose[:3], atol=1e-3)
+    assert_allclose(step.pose[3:], core.geometry.home_pose[3:], atol=math.radians(0.05))
+    assert core.input_preview is not None
