@@ -343,8 +343,10 @@ class MotionCueing:
             vehicle frame.
         :raises ValueError: naming the argument, for a malformed, non-finite or absurd
             preview (beyond ``max_specific_force`` or ``max_angular_velocity``), a frame that
-            cannot be placed in the vehicle frame, or if the cueing is not model-predictive
-            (the classical washout has no horizon to use it). The preview before stays.
+            cannot be placed in the vehicle frame, a preview that ends at or before the last
+            sample (none of it to come: times on another clock), or if the cueing is not
+            model-predictive (the classical washout has no horizon to use it). The preview
+            before stays.
         """
         if not isinstance(self.washout, MpcCueing):
             raise ValueError('a preview needs cueing_method mpc (the classical washout has no '
@@ -353,6 +355,12 @@ class MotionCueing:
         checked = input_preview(
             times, specific_force, angular_velocity, self.settings.max_specific_force,
             self.settings.max_angular_velocity)
+        if self.time is not None and not checked.end > self.time:
+            # Nothing of it would be used: most likely a stamp on another clock (unset: 0).
+            raise ValueError(
+                f'the preview ends at {checked.end!r} s, not after the last sample '
+                f'({self.time!r} s): none of it is to come; give its times on the clock of '
+                "the samples' times (a message's header.stamp on vehicle_imu's clock)")
         if frame_id is not None:
             refusal = self.vehicle_frame_refusal(frame_id)
             if refusal is not None:

@@ -302,3 +302,24 @@ def test_rest_without_input_eases_home_whatever_the_preview_says():
     assert_allclose(step.pose[:3], core.geometry.home_pose[:3], atol=1e-3)
     assert_allclose(step.pose[3:], core.geometry.home_pose[3:], atol=math.radians(0.05))
     assert core.input_preview is not None
+
+
+@pytest.mark.parametrize('times', [[0.0, 0.2], [-3.0], [0.1, 0.49]])
+def test_a_preview_wholly_past_is_refused_naming_the_clock(times):
+    """
+    A preview ending at or before the last sample (0.49 s) has nothing to come: refused.
+
+    It was taken without a word (a message stamped 0, or on another clock, did nothing);
+    the preview before stays in use.
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview(*_brake_ahead(0.0))
+    kept = core.input_preview
+    _pitch_after(core, 0.0)
+    with pytest.raises(ValueError) as raised:
+        core.set_preview(times, [[0.0, 0.0, G]] * len(times), [[0.0, 0.0, 0.0]] * len(times))
+    assert str(raised.value).startswith(f'the preview ends at {times[-1]!r} s, not after the '
+                                        'last sample (0.49 s)')
+    assert core.input_preview is kept
+    core.set_preview([0.5], [[0.0, 0.0, G]], [[0.0, 0.0, 0.0]])   # one point to come: taken
+    assert core.input_preview is not kept
