@@ -799,8 +799,9 @@ class MotionCueing:
         Resume after a pause: the next sample is cued from the washout's frozen state.
 
         The next sample starts a new time line (no step over the pause; a preview given
-        before stays: the clock is the same), the cue goes on from where it was, and the follower brings the held platform back onto it within the
-        actuator limits. Only after a pause (cueing: nothing to do; else refused).
+        before stays: the clock is the same), the cue goes on from where it was, and the
+        follower brings the held platform back onto it within the actuator limits. Only after
+        a pause (cueing: nothing to do; else refused).
         """
         if self.mode in (PAUSING, PAUSED):
             self.mode = CUEING

@@ -134,6 +134,30 @@ def test_a_preview_needs_the_mpc():
         core.set_preview([0.0], [[0.0, 0.0, G]], [[0.0, 0.0, 0.0]])
 
 
+@pytest.mark.parametrize('force, rate, column, words', [
+    ([1e308, 0.0, G], [0.0, 0.0, 0.0], None, 'specific_force: row 0 of magnitude at least 1e+308'),
+    ([0.0, 0.0, G], [0.0, 30.0, 0.0], None, 'angular_velocity: row 0 of magnitude at least 30'),
+    ([0.0, 0.0, G], [0.0, 0.0, 0.0], 0, 'preview specific_force: row 3 of magnitude at least 1e'),
+    ([0.0, 0.0, G], [0.0, 0.0, 0.0], 4, 'preview angular_velocity: row 3 of magnitude'),
+])
+def test_mpc_step_refuses_absurd_inputs_and_previews(force, rate, column, words):
+    """
+    MpcCueing.step bounds its inputs and preview as MotionCueing does (100 m/s^2, 20 rad/s).
+
+    1e308 gave numpy's 'overflow encountered in matmul' (an error under pytest.ini) and 1e10
+    a fallback finding instead of a refusal naming the value.
+    """
+    mpc = MotionCueing.from_parameters(preview_values()).washout
+    preview = None
+    if column is not None:
+        preview = np.tile(REST, (mpc.horizon, 1))
+        preview[3, column] = 1e308
+    with pytest.raises(ValueError) as raised:
+        mpc.step(force, rate, 0.01, preview=preview)
+    assert words in str(raised.value)
+    assert 'absurd for a vehicle' in str(raised.value)
+
+
 def test_mpc_step_refuses_a_preview_of_the_wrong_shape():
     """MpcCueing.step checks its preview (shape, finite) as it checks its inputs."""
     mpc = MotionCueing.from_parameters(preview_values()).washout
