@@ -202,7 +202,6 @@ def test_a_new_time_line_drops_the_preview():
     assert core.input_preview is None
 
 
-
 def test_preview_times_spanning_the_float_range_are_taken_without_overflow():
     """
     Times from -1e308 to 1e308 increase: taken, without numpy's 'overflow encountered'.
@@ -278,6 +277,7 @@ def test_a_preview_given_while_parked_is_used_once_started():
     assert core.mode == 'cueing'
     assert core.input_preview is not None
     assert abs(_pitch_after(core, 0.0)) > math.radians(0.1)
+
 
 def _evaluated(values, name, preview):
     """Replay scenario ``name`` with the parameters ``values``; return its evaluation."""
