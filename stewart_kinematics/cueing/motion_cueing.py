@@ -309,11 +309,17 @@ class MotionCueing:
         (:meth:`set_preview`) is on the old time line's clock: it is dropped. (A resume and the
         end of a start also start a new time line, on the same clock: the preview stays.)
         """
-        self._new_time_line()
+        self.time = None
         self.input_preview = None
 
-    def _new_time_line(self) -> None:
-        """Take the next sample as the first one ever (no step), on the same clock."""
+    def _continue_clock(self) -> None:
+        """
+        Start a new time line on the same clock (after a pause, or a start from park).
+
+        The next sample is taken as the first one ever, but the simulator's clock goes on: a
+        preview given before (while paused or parked) stays; its samples up to the next
+        sample's time are not used.
+        """
         self.time = None
 
     def set_preview(self, times, specific_force, angular_velocity,
@@ -338,8 +344,10 @@ class MotionCueing:
             vehicle frame.
         :raises ValueError: naming the argument, for a malformed, non-finite or absurd
             preview (beyond ``max_specific_force`` or ``max_angular_velocity``), a frame that
-            cannot be placed in the vehicle frame, or if the cueing is not model-predictive
-            (the classical washout has no horizon to use it). The preview before stays.
+            cannot be placed in the vehicle frame, a preview that ends at or before the last
+            sample (none of it to come: times on another clock), or if the cueing is not
+            model-predictive (the classical washout has no horizon to use it). The preview
+            before stays.
         """
         if not isinstance(self.washout, MpcCueing):
             raise ValueError('a preview needs cueing_method mpc (the classical washout has no '
@@ -348,6 +356,12 @@ class MotionCueing:
         checked = input_preview(
             times, specific_force, angular_velocity, self.settings.max_specific_force,
             self.settings.max_angular_velocity)
+        if self.time is not None and not checked.end > self.time:
+            # Nothing of it would be used: most likely a stamp on another clock (unset: 0).
+            raise ValueError(
+                f'the preview ends at {checked.end!r} s, not after the last sample '
+                f'({self.time!r} s): none of it is to come; give its times on the clock of '
+                "the samples' times (a message's header.stamp on vehicle_imu's clock)")
         if frame_id is not None:
             refusal = self.vehicle_frame_refusal(frame_id)
             if refusal is not None:
@@ -468,7 +482,9 @@ class MotionCueing:
         Advance ``dt`` seconds as if the vehicle were at rest: no input came (a watchdog).
 
         The sample time stays the last one received; the next sample's step then covers the
-        pause (as an input gap when longer than ``max_input_gap``).
+        pause (as an input gap when longer than ``max_input_gap``). A preview
+        (:meth:`set_preview`) is not used here (its clock stands still), but kept for the next
+        sample.
 
         :param command_time: when the command is sent, seconds (the node's clock); ``None``:
             ``dt`` after the last command.
@@ -480,8 +496,10 @@ class MotionCueing:
         if command_time is None and self.gate.last_time is not None:
             command_time = self.gate.last_time + dt
         self._ramp_gains(min(dt, self.settings.max_input_gap))
+        # Without the preview: its clock is the input's, which stands still here, so its motion
+        # to come would stay ahead for ever and hold the platform off neutral.
         return self._move(time, min(dt, self.settings.max_input_gap), self._rest_force,
-                          np.zeros(3), None, [], command_time)
+                          np.zeros(3), None, [], command_time, told=False)
 
     @property
     def watchdog_period(self) -> Optional[float]:
@@ -781,13 +799,14 @@ class MotionCueing:
         """
         Resume after a pause: the next sample is cued from the washout's frozen state.
 
-        The next sample starts a new time line (no step over the pause), the cue goes on
-        from where it was, and the follower brings the held platform back onto it within the
-        actuator limits. Only after a pause (cueing: nothing to do; else refused).
+        The next sample starts a new time line (no step over the pause; a preview given
+        before stays: the clock is the same), the cue goes on from where it was, and the
+        follower brings the held platform back onto it within the actuator limits. Only after
+        a pause (cueing: nothing to do; else refused).
         """
         if self.mode in (PAUSING, PAUSED):
             self.mode = CUEING
-            self._new_time_line()
+            self._continue_clock()
             return ControlAnswer(True, 'resumed: cueing from the held state')
         if self.mode == CUEING:
             return ControlAnswer(True, 'not paused: nothing to do')
@@ -854,7 +873,7 @@ class MotionCueing:
                 # At rest at neutral: the cueing starts afresh from the next sample.
                 limiter.reset()
                 self.washout.reset()
-                self._new_time_line()
+                self._continue_clock()
                 self.mode = CUEING
             else:
                 self.mode = PARKED
@@ -887,8 +906,8 @@ class MotionCueing:
                           command_time)
 
     def _move(self, time, dt, specific_force, angular_velocity, refusal, warnings,
-              command_time) -> CueStep:
-        if self.input_preview is None:
+              command_time, told=True) -> CueStep:
+        if self.input_preview is None or not told:
             washout = self.washout.step_checked(specific_force, angular_velocity, dt)
         else:
             mpc = self.washout

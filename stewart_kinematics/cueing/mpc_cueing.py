@@ -388,7 +388,7 @@ class MpcCueing:
             force (m/s^2, with gravity) and angular velocity (rad/s) as the sample's
             (:func:`~.vehicle_preview.interval_means` gives it from samples).
         :raises ValueError: naming the argument, for a malformed or non-finite input, dt or
-            preview.
+            preview, or one beyond ``max_specific_force`` or ``max_angular_velocity``.
         """
         yaw = self._yaw.step(specific_force, angular_velocity, dt)   # checks the inputs
         if preview is not None:
@@ -396,6 +396,27 @@ class MpcCueing:
             if preview.shape != (self.horizon, 6) or not np.all(np.isfinite(preview)):
                 raise ValueError(f'preview must be finite, of shape ({self.horizon}, 6), got '
                                  f'shape {preview.shape}')
+        s = self.settings
+        # Beyond these the model's products overflow (1e308: numpy's 'overflow encountered').
+        for name, values, largest, unit in (
+                ('specific_force', np.reshape(np.asarray(specific_force, float), (1, 3)),
+                 s.max_specific_force, 'm/s^2'),
+                ('angular_velocity', np.reshape(np.asarray(angular_velocity, float), (1, 3)),
+                 s.max_angular_velocity, 'rad/s'),
+                ('preview specific_force', None if preview is None else preview[:, :3],
+                 s.max_specific_force, 'm/s^2'),
+                ('preview angular_velocity', None if preview is None else preview[:, 3:],
+                 s.max_angular_velocity, 'rad/s')):
+            if values is None:
+                continue
+            # The largest component first: squaring 1e308 would overflow.
+            norms = np.max(np.abs(values), axis=1)
+            if np.all(norms <= largest):
+                norms = np.sqrt(np.sum(values * values, axis=1))
+            if not np.all(norms <= largest):
+                index = int(np.argmax(norms))
+                raise ValueError(f'{name}: row {index} of magnitude at least {norms[index]:.6g} '
+                                 f'{unit} is beyond {largest:g} {unit}: absurd for a vehicle')
         return self._step(specific_force, angular_velocity, dt, yaw, preview)
 
     def step_checked(self, specific_force, angular_velocity, dt: float,

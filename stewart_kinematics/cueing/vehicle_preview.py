@@ -75,10 +75,13 @@ def input_preview(times, specific_force, angular_velocity, max_specific_force: f
         raise ValueError(f'preview times must have shape (M,) with M >= 1, got {times.shape}')
     if not np.all(np.isfinite(times)):
         raise ValueError('preview times must be finite')
-    if times.size > 1 and not np.all(np.diff(times) > 0.0):
-        index = int(np.argmin(np.diff(times) > 0.0)) + 1
-        raise ValueError(f'preview times must increase: sample {index} ({times[index]!r} s) '
-                         f'does not come after the one before ({times[index - 1]!r} s)')
+    # Compared, not subtracted: the difference of -1e308 and 1e308 overflows.
+    increasing = times[1:] > times[:-1]
+    if not np.all(increasing):
+        index = int(np.argmin(increasing)) + 1
+        raise ValueError(f'preview times must increase: sample {index} '
+                         f'({float(times[index])!r} s) does not come after the one before '
+                         f'({float(times[index - 1])!r} s)')
     columns = []
     for name, value, largest, unit in (
             ('preview specific_force', specific_force, max_specific_force, 'm/s^2'),

@@ -134,6 +134,30 @@ def test_a_preview_needs_the_mpc():
         core.set_preview([0.0], [[0.0, 0.0, G]], [[0.0, 0.0, 0.0]])
 
 
+@pytest.mark.parametrize('force, rate, column, words', [
+    ([1e308, 0.0, G], [0.0, 0.0, 0.0], None, 'specific_force: row 0 of magnitude at least 1e+308'),
+    ([0.0, 0.0, G], [0.0, 30.0, 0.0], None, 'angular_velocity: row 0 of magnitude at least 30'),
+    ([0.0, 0.0, G], [0.0, 0.0, 0.0], 0, 'preview specific_force: row 3 of magnitude at least 1e'),
+    ([0.0, 0.0, G], [0.0, 0.0, 0.0], 4, 'preview angular_velocity: row 3 of magnitude'),
+])
+def test_mpc_step_refuses_absurd_inputs_and_previews(force, rate, column, words):
+    """
+    MpcCueing.step bounds its inputs and preview as MotionCueing does (100 m/s^2, 20 rad/s).
+
+    1e308 gave numpy's 'overflow encountered in matmul' (an error under pytest.ini) and 1e10
+    a fallback finding instead of a refusal naming the value.
+    """
+    mpc = MotionCueing.from_parameters(preview_values()).washout
+    preview = None
+    if column is not None:
+        preview = np.tile(REST, (mpc.horizon, 1))
+        preview[3, column] = 1e308
+    with pytest.raises(ValueError) as raised:
+        mpc.step(force, rate, 0.01, preview=preview)
+    assert words in str(raised.value)
+    assert 'absurd for a vehicle' in str(raised.value)
+
+
 def test_mpc_step_refuses_a_preview_of_the_wrong_shape():
     """MpcCueing.step checks its preview (shape, finite) as it checks its inputs."""
     mpc = MotionCueing.from_parameters(preview_values()).washout
@@ -215,6 +239,83 @@ def test_the_preview_stays_through_a_start_and_a_pause_and_goes_when_the_input_i
     assert core.input_preview is None
 
 
+def test_preview_times_spanning_the_float_range_are_taken_without_overflow():
+    """
+    Times from -1e308 to 1e308 increase: taken, without numpy's 'overflow encountered'.
+
+    Their difference is beyond the float range (pytest.ini makes a RuntimeWarning an error).
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview([-1e308, 1e308], [[0.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    assert_allclose(core.input_preview.times, [-1e308, 1e308], rtol=0.0)
+    assert core.step(0.0, [0.0, 0.0, G], [0.0, 0.0, 0.0]).accepted
+
+
+def test_times_that_do_not_increase_are_shown_as_plain_numbers():
+    """The refusal shows the times as a user wrote them, not numpy's np.float64(...)."""
+    core = MotionCueing.from_parameters(preview_values())
+    with pytest.raises(ValueError) as raised:
+        core.set_preview(np.array([0.0, -0.0]), [[0.0, 0.0, G]] * 2, [[0.0, 0.0, 0.0]] * 2)
+    assert str(raised.value) == ('preview times must increase: sample 1 (-0.0 s) does not '
+                                 'come after the one before (0.0 s)')
+    assert 'np.' not in str(raised.value)
+
+
+def _brake_ahead(start):
+    """Return a preview from ``start`` (s): 1 s at rest, then braking at 5 m/s^2 for 3 s."""
+    times = start + np.arange(401) * 0.01
+    force = np.tile([0.0, 0.0, G], (401, 1))
+    force[times > start + 1.0, 0] = -5.0
+    return times, force, np.zeros((401, 3))
+
+
+def _pitch_after(core, start, samples=50):
+    """Cue ``samples`` samples at rest from ``start`` (s); return the last cue's pitch, rad."""
+    for index in range(samples):
+        step = core.step(start + index * 0.01, [0.0, 0.0, G], [0.0, 0.0, 0.0])
+    return step.pose[4]
+
+
+def test_a_preview_given_while_paused_is_used_after_resume():
+    """
+    Resume goes on on the simulator's clock: the preview given during the pause stays.
+
+    The cue then tilts toward the braking to come (against a twin told nothing); the preview
+    was dropped on resume before.
+    """
+    pitches = []
+    for told in (True, False):
+        core = MotionCueing.from_parameters(preview_values())
+        _pitch_after(core, 0.0, 10)
+        assert core.pause().success
+        if told:
+            core.set_preview(*_brake_ahead(1.0))
+        assert core.resume().success
+        assert (core.input_preview is not None) == told
+        pitches.append(_pitch_after(core, 1.0))
+    assert abs(pitches[0]) > math.radians(0.1)
+    assert abs(pitches[1]) < math.radians(0.01)
+
+
+def test_a_preview_given_while_parked_is_used_once_started():
+    """The end of a start from park keeps the preview given while parked (it was dropped)."""
+    core = MotionCueing.from_parameters(preview_values())
+    assert core.stop().success
+    now = 0.0
+    while core.mode != 'parked' and now < 60.0:
+        now += 0.01
+        core.operate(now)
+    assert core.mode == 'parked'
+    core.set_preview(*_brake_ahead(0.0))
+    assert core.start().success
+    while core.mode != 'cueing' and now < 120.0:
+        now += 0.01
+        core.operate(now)
+    assert core.mode == 'cueing'
+    assert core.input_preview is not None
+    assert abs(_pitch_after(core, 0.0)) > math.radians(0.1)
+
+
 def _evaluated(values, name, preview):
     """Replay scenario ``name`` with the parameters ``values``; return its evaluation."""
     drive = scenario(name)
@@ -260,3 +361,44 @@ def test_a_preview_in_the_imu_frame_is_turned_into_the_vehicle_frame():
                     rtol=0.0, atol=1e-12)
     core.set_preview([0.0], [[1.0, 2.0, G]], [[0.0, 0.0, 0.0]], frame_id='')
     assert_allclose(core.input_preview.inputs, [[1.0, 2.0, G, 0.0, 0.0, 0.0]], atol=0.0)
+
+
+def test_rest_without_input_eases_home_whatever_the_preview_says():
+    """
+    rest() (no input came): the platform glides to neutral, as told nothing.
+
+    The input's clock stands still there, so a braking told to come 0.5 s after the last
+    sample stayed 0.5 s ahead for ever: 10 s of rest held the platform 9.5 deg tilted.
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview(*_brake_ahead(0.0))
+    _pitch_after(core, 0.0)
+    for _ in range(1000):
+        step = core.rest(0.01)
+    # Near neutral (the geometry's home pose, level): within 1 mm and 0.05 deg after 10 s
+    # (the tilt built toward the braking washes out slowly: 0.02 deg left), not 62 mm and
+    # 9.5 deg as before.
+    assert_allclose(step.pose[:3], core.geometry.home_pose[:3], atol=1e-3)
+    assert_allclose(step.pose[3:], core.geometry.home_pose[3:], atol=math.radians(0.05))
+    assert core.input_preview is not None
+
+
+@pytest.mark.parametrize('times', [[0.0, 0.2], [-3.0], [0.1, 0.49]])
+def test_a_preview_wholly_past_is_refused_naming_the_clock(times):
+    """
+    A preview ending at or before the last sample (0.49 s) has nothing to come: refused.
+
+    It was taken without a word (a message stamped 0, or on another clock, did nothing);
+    the preview before stays in use.
+    """
+    core = MotionCueing.from_parameters(preview_values())
+    core.set_preview(*_brake_ahead(0.0))
+    kept = core.input_preview
+    _pitch_after(core, 0.0)
+    with pytest.raises(ValueError) as raised:
+        core.set_preview(times, [[0.0, 0.0, G]] * len(times), [[0.0, 0.0, 0.0]] * len(times))
+    assert str(raised.value).startswith(f'the preview ends at {times[-1]!r} s, not after the '
+                                        'last sample (0.49 s)')
+    assert core.input_preview is kept
+    core.set_preview([0.5], [[0.0, 0.0, G]], [[0.0, 0.0, 0.0]])   # one point to come: taken
+    assert core.input_preview is not kept

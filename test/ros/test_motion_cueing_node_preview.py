@@ -188,3 +188,27 @@ def test_a_preview_to_the_classical_washout_is_refused_saying_why(ros):
         assert 'needs cueing_method mpc' in rejection.message
     finally:
         node.destroy_node()
+
+
+def test_a_preview_stamped_before_the_samples_is_refused_and_counted(ros):
+    """
+    A preview left unstamped (0) while vehicle_imu is at 5 s has nothing to come: refused.
+
+    It was counted as used and did nothing. Each preview counts once: received = used +
+    refused; the samples keep being cued.
+    """
+    node = make_node()
+    try:
+        for k in range(3):
+            node.on_imu(imu(START_NS + k * 10_000_000, (0.0, 0.0, G), (0.0, 0.0, 0.0)))
+        node.on_preview(preview_message(0, [0.0, 0.5], [[0.0, 0.0, G]] * 2, [[0.0] * 3] * 2))
+        accounting = node.preview_accounting
+        assert accounting.rejections_by_code == {'invalid_preview': 1}
+        assert 'not after the last sample' in accounting.last_rejection.message
+        node.on_preview(preview_message(START_NS, [0.0, 0.5], [[0.0, 0.0, G]] * 2,
+                                        [[0.0] * 3] * 2))
+        assert (accounting.received, accounting.published, accounting.rejected) == (2, 1, 1)
+        node.on_imu(imu(START_NS + 30_000_000, (0.0, 0.0, G), (0.0, 0.0, 0.0)))
+        assert len(node.sent) == 4
+    finally:
+        node.destroy_node()
