@@ -36,6 +36,9 @@ from stewart_kinematics.parameters.files import read_parameter_sections
 
 #: The geometry and limits every node is fuzzed with, from the package's config/ folder.
 GEOMETRY_FILES = ('paper_platform.yaml', 'example_limits.yaml')
+#: Optional layers over a node's own file, not how its documentation starts it: the MPC with a
+#: preview (test_fuzz_nodes fuzzes motion_cueing_node with it in a run of its own).
+OPTIONAL_LAYERS = ('motion_cueing_preview.yaml',)
 
 
 def config_directory() -> Path:
@@ -52,13 +55,13 @@ def parameter_files(node: str, directory: Optional[Path] = None) -> List[Path]:
     ``table3_ramp.yaml`` for trajectory_node), so a node added later with its own file is
     started as its documentation starts it; but not a file of another platform (one that
     sets joints, such as ``platform_6_3.yaml``), which replaces the geometry rather than adds
-    to it.
+    to it, nor an optional layer (:data:`OPTIONAL_LAYERS`).
     """
     directory = directory or config_directory()
     files = [directory / name for name in GEOMETRY_FILES]
     for path in sorted(directory.glob('*.yaml')):
         sections = read_parameter_sections(path)
-        if path.name not in GEOMETRY_FILES and any(
+        if path.name not in GEOMETRY_FILES + OPTIONAL_LAYERS and any(
                 key.strip('/') == node for key in sections) and not _sets_joints(sections):
             files.append(path)
     return files
