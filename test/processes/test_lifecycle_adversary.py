@@ -62,6 +62,8 @@ def test_transitions_in_a_wrong_order_are_refused_and_the_node_goes_on(
     assert stop_cleanly(node)
 
 
+# serial: with two workers, DDS dropped all but 3 of the kept responses in a CI run.
+@pytest.mark.serial
 def test_a_flood_of_change_state_calls_leaves_a_working_node(
         client, start_node, config_directory):
     """
