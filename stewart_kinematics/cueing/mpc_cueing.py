@@ -62,6 +62,7 @@ from stewart_kinematics.cueing.filters import expm, TIME_QUANTUM
 from stewart_kinematics.cueing.limit_margins import poses_allowed
 from stewart_kinematics.cueing.qp_solver import QpSolver
 from stewart_kinematics.cueing.settings import CueingSettings
+from stewart_kinematics.cueing.vehicle_preview import refuse_absurd_rows
 from stewart_kinematics.cueing.vestibular import vestibular_bank
 from stewart_kinematics.cueing.washout import ClassicalWashout, WashoutStep
 from stewart_kinematics.findings import Finding, MPC_FALLBACK
@@ -407,16 +408,8 @@ class MpcCueing:
                  s.max_specific_force, 'm/s^2'),
                 ('preview angular_velocity', None if preview is None else preview[:, 3:],
                  s.max_angular_velocity, 'rad/s')):
-            if values is None:
-                continue
-            # The largest component first: squaring 1e308 would overflow.
-            norms = np.max(np.abs(values), axis=1)
-            if np.all(norms <= largest):
-                norms = np.sqrt(np.sum(values * values, axis=1))
-            if not np.all(norms <= largest):
-                index = int(np.argmax(norms))
-                raise ValueError(f'{name}: row {index} of magnitude at least {norms[index]:.6g} '
-                                 f'{unit} is beyond {largest:g} {unit}: absurd for a vehicle')
+            if values is not None:
+                refuse_absurd_rows(name, values, largest, unit, row='row')
         return self._step(specific_force, angular_velocity, dt, yaw, preview)
 
     def step_checked(self, specific_force, angular_velocity, dt: float,

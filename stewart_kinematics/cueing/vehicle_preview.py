@@ -93,19 +93,34 @@ def input_preview(times, specific_force, angular_velocity, max_specific_force: f
         if not np.all(np.isfinite(array)):
             index = int(np.argmin(np.all(np.isfinite(array), axis=1)))
             raise ValueError(f'{name} must be finite: sample {index} is {array[index].tolist()}')
-        # The largest component first: squaring 1e308 would overflow.
-        norms = np.max(np.abs(array), axis=1)
-        if np.all(norms <= largest):
-            norms = np.sqrt(np.sum(array * array, axis=1))
-        if not np.all(norms <= largest):
-            index = int(np.argmax(norms))
-            raise ValueError(f'{name}: sample {index} of magnitude at least {norms[index]:.6g} '
-                             f'{unit} is beyond {largest:g} {unit}: absurd for a vehicle')
+        refuse_absurd_rows(name, array, largest, unit)
         columns.append(array)
     inputs = np.concatenate(columns, axis=1)
     times.setflags(write=False)
     inputs.setflags(write=False)
     return InputPreview(times=times, inputs=inputs)
+
+
+def refuse_absurd_rows(name: str, rows: np.ndarray, largest: float, unit: str,
+                       row: str = 'sample') -> None:
+    """
+    Refuse rows of three finite numbers whose magnitude is beyond ``largest``.
+
+    :param name: the argument, as the message gives it.
+    :param rows: shape (M, 3), finite.
+    :param largest: the largest magnitude allowed (``max_specific_force`` or
+        ``max_angular_velocity``), in ``unit``.
+    :param row: what a row is called in the message (``sample``, ``row``).
+    :raises ValueError: naming the first row beyond, and its magnitude.
+    """
+    # The largest component first: squaring 1e308 would overflow.
+    norms = np.max(np.abs(rows), axis=1)
+    if np.all(norms <= largest):
+        norms = np.sqrt(np.sum(rows * rows, axis=1))
+    if not np.all(norms <= largest):
+        index = int(np.argmax(norms))
+        raise ValueError(f'{name}: {row} {index} of magnitude at least {norms[index]:.6g} '
+                         f'{unit} is beyond {largest:g} {unit}: absurd for a vehicle')
 
 
 def interval_means(preview: InputPreview, now: float, current, step: float, horizon: int,
