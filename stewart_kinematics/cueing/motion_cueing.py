@@ -411,7 +411,7 @@ class MotionCueing:
             if not np.all(np.isfinite(vector)):
                 return Finding(INVALID_VEHICLE_MOTION,
                                f'{name} must be finite, got {vector.tolist()}')
-            norm = float(np.linalg.norm(vector))
+            norm = math.hypot(*vector.tolist())   # scaled: 1e308 does not overflow
             if not norm <= largest:
                 return Finding(
                     INVALID_VEHICLE_MOTION,

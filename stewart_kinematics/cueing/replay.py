@@ -27,6 +27,7 @@ import numpy as np
 
 from stewart_kinematics.cueing.motion_cueing import MotionCueing
 from stewart_kinematics.cueing.perception import perceived_motion, PerceivedMotion
+from stewart_kinematics.model.arrays import as_float_array
 
 #: Samples between two calls of the progress callback.
 PROGRESS_EVERY = 200
@@ -70,7 +71,7 @@ class CueReplay:
 
 
 def _samples(name, values, count):
-    array = np.asarray(values, dtype=float)
+    array = as_float_array(values, name)
     if array.shape != (count, 3):
         raise ValueError(f'{name} must have shape ({count}, 3) to match the times, got '
                          f'{array.shape}')
@@ -96,7 +97,7 @@ def replay(cueing: MotionCueing, times, specific_force, angular_velocity,
         absurd sample, or times that do not increase; for a preview, if the cueing is not
         model-predictive.
     """
-    times = np.asarray(times, dtype=float)
+    times = as_float_array(times, 'times')
     if times.ndim != 1 or times.size < 3:
         raise ValueError(f'times must have shape (N,) with N >= 3, got {times.shape}')
     count = times.size

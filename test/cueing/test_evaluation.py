@@ -190,6 +190,21 @@ def test_a_perfect_cue_has_no_false_cue_and_full_correlation():
         measured.measures('w')
 
 
+@pytest.mark.parametrize('argument, fragment', [
+    ('times', 'times'), ('specific_force', 'specific_force'),
+    ('angular_velocity', 'angular_velocity')])
+def test_a_replay_of_words_is_refused_naming_the_argument(argument, fragment):
+    """Strings where numbers belong: ValueError naming the argument, no numpy message."""
+    from stewart_kinematics import load_geometry
+    times = np.arange(0.0, 0.05, 0.01)
+    inputs = {'times': times, 'specific_force': np.tile([0.0, 0.0, G], (times.size, 1)),
+              'angular_velocity': np.zeros((times.size, 3))}
+    inputs[argument] = np.array(inputs[argument]).astype(str).tolist()
+    with pytest.raises(ValueError, match=fragment) as raised:
+        replay(MotionCueing(load_geometry(FILES[:2])), **inputs)
+    assert 'could not convert' not in str(raised.value)
+
+
 def test_false_cues_and_travel_are_measured_on_a_replay():
     """
     A replay whose felt force opposes the input for 1 s, then is felt sideways at rest for 1 s.
