@@ -487,18 +487,21 @@ class MotionCueing:
         sample.
 
         :param command_time: when the command is sent, seconds (the node's clock); ``None``:
-            ``dt`` after the last command.
+            the step taken (``dt``, at most ``max_input_gap``) after the last command.
         :raises ValueError: if ``dt`` is not a positive, finite number of seconds.
         """
         if not (isinstance(dt, (int, float)) and math.isfinite(dt) and dt > 0.0):
             raise ValueError(f'dt must be a positive, finite number of seconds, got {dt!r}')
         time = (self.time or 0.0)
+        step = min(dt, self.settings.max_input_gap)
         if command_time is None and self.gate.last_time is not None:
-            command_time = self.gate.last_time + dt
-        self._ramp_gains(min(dt, self.settings.max_input_gap))
+            # The step taken, not dt: a dt of 1e308 put the command clock where a later step
+            # no longer moved it (the platform held for ever) or overflowed the legs' check.
+            command_time = self.gate.last_time + step
+        self._ramp_gains(step)
         # Without the preview: its clock is the input's, which stands still here, so its motion
         # to come would stay ahead for ever and hold the platform off neutral.
-        return self._move(time, min(dt, self.settings.max_input_gap), self._rest_force,
+        return self._move(time, step, self._rest_force,
                           np.zeros(3), None, [], command_time, told=False)
 
     @property

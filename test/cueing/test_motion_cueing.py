@@ -205,3 +205,23 @@ def test_without_limits_files_the_cueing_still_runs():
     cueing = MotionCueing(load_geometry(FILES[0]), CueingSettings(), LIMITS)
     for k in range(100):
         assert cueing.cue(k * 0.01, [3.0, -2.0, G], [0.1, 0.0, 0.3]).accepted
+
+
+@pytest.mark.parametrize('huge', [1e308, 1e200])
+def test_rest_with_a_huge_dt_still_eases_home(cueing, huge):
+    """
+    A rest of 1e308 s (finite: allowed) must not freeze the command clock or overflow.
+
+    Before, the command clock moved by dt: 1e308 left it where later steps of 0.01 s no longer
+    moved it, and the platform stayed off home for ever.
+    """
+    cueing.start()
+    for k in range(100):
+        step = cueing.cue(k * 0.01, [1.0, 0.0, G], STILL)
+    off_before = off_home(cueing, step.pose)[0]
+    assert off_before > 1e-3
+    cueing.rest(huge)
+    for _ in range(3000):
+        step = cueing.rest(0.01)
+        assert np.all(np.isfinite(step.pose))
+    assert off_home(cueing, step.pose)[0] < 0.1 * off_before
