@@ -117,7 +117,7 @@ from stewart_kinematics.findings import (
 )
 from stewart_kinematics.limits import CommandGate, LegCommand, MOTION
 from stewart_kinematics.model.actuators import ActuatorLimits
-from stewart_kinematics.model.arrays import as_float_array, preview
+from stewart_kinematics.model.arrays import as_float_array, preview, seconds_text
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.inverse import inverse_kinematics
 from stewart_kinematics.model.rotations import euler_zyx_to_matrix
@@ -394,8 +394,9 @@ class MotionCueing:
         if self.time is not None and not time > self.time:
             return Finding(
                 TIME_NOT_INCREASING,
-                f'time {time:.9f} s does not come after the previous sample ({self.time:.9f} '
-                's): a repeated or backward stamp; sample ignored (set header.stamp)',
+                f'time {seconds_text(time)} s does not come after the previous sample '
+                f'({seconds_text(self.time)} s): a repeated or backward stamp; sample ignored '
+                '(set header.stamp)',
                 (('time', repr(time)), ('previous time', repr(self.time))))
         s = self.settings
         for name, value, largest, unit in (

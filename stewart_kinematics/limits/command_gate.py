@@ -76,6 +76,7 @@ from stewart_kinematics.limits.limit_model import LimitModel
 from stewart_kinematics.limits.settings import limits_of
 from stewart_kinematics.limits.violation import Violation
 from stewart_kinematics.model.actuators import ActuatorLimits
+from stewart_kinematics.model.arrays import seconds_text
 from stewart_kinematics.model.forward import forward_kinematics
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.model.inverse import leg_vectors
@@ -576,8 +577,8 @@ class CommandGate:
         if self._time is not None and not time > self._time:
             return LegCommand(None, refusal=Finding(
                 findings.CLOCK_NOT_ADVANCING,
-                f'the command at {time:.9f} s does not come after the last one '
-                f'({self._time:.9f} s): no time passed, so no motion may be commanded'))
+                f'the command at {seconds_text(time)} s does not come after the last one '
+                f'({seconds_text(self._time)} s): no time passed, so no motion may be commanded'))
         rates = None if self._time is None else self._rates(lengths, time - self._time)
         if rates is not None:
             too_fast = tuple(self.limits.leg_state_violations(**rates['checked']))

@@ -107,6 +107,19 @@ def preview(values) -> str:
     return text if len(text) <= PREVIEW_MAX else text[:PREVIEW_MAX - 3] + '...'
 
 
+def seconds_text(time: float) -> str:
+    """
+    Write a time in seconds for a message: to the nanosecond, as a stamp is given.
+
+    A time beyond a billion years in seconds (a finite 1e308, say) is written in nine
+    significant digits instead of its 300 digits before the point.
+
+    >>> seconds_text(1732000000.5), seconds_text(-1e308)
+    ('1732000000.500000000', '-1e+308')
+    """
+    return f'{time:.9f}' if abs(time) < 1e17 else f'{time:.9g}'
+
+
 def _preview(values, depth: int) -> str:
     """Return :func:`preview` of one value, with ``depth`` levels of nesting left to show."""
     if isinstance(values, (str, bytes, bytearray)):

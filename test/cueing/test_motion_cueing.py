@@ -104,6 +104,16 @@ def test_times_that_do_not_move_forward_are_refused_and_nothing_moves(cueing, ti
     assert cueing.cue(0.51, [2.0, 0.0, G], STILL).accepted
 
 
+def test_a_backward_stamp_of_minus_1e308_is_refused_in_one_short_line(cueing):
+    """The refusal writes the times readably: 1e308 in nine digits, a stamp to the nanosecond."""
+    cueing.cue(1732000000.5, REST, STILL)
+    result = cueing.cue(-1e308, REST, STILL)
+    assert result.refusal.code == TIME_NOT_INCREASING
+    assert 'time -1e+308 s does not come after the previous sample (1732000000.500000000 s)' \
+        in result.reason
+    assert len(result.reason) < 200
+
+
 def test_bad_input_eases_the_platform_back_to_neutral(cueing):
     """A stream of NaN after a sustained turn: every sample refused, the platform glides home."""
     time = lean(cueing)

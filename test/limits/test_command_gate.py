@@ -257,6 +257,9 @@ def test_the_clock_a_motion_is_sent_on():
     moved = home + 1e-5
     assert gate.legs(moved, 1.01).accepted
     assert gate.legs(moved + 1e-6, 1.01).refusal.code == 'clock_not_advancing'
+    far_back = gate.legs(moved + 1e-6, -1e308).refusal   # its time in 9 digits, not 300
+    assert 'the command at -1e+308 s does not come after the last one (1.010000000 s)' \
+        in far_back.message and len(far_back.message) < 200
     assert gate.legs(moved, 1.01).accepted
     assert gate.elapsed(0.5) is None and gate.last_time == 0.5
     assert gate.elapsed(0.51) == pytest.approx(0.01)
