@@ -128,8 +128,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help='ROS 2 parameter file (geometry, limits, motion_cueing_node); '
                              'repeat to layer files, as the node takes them')
     parser.add_argument('--rate', type=number_in(0.0, 10000.0, low_inclusive=False),
-                        default=DEFAULT_RATE,
-                        help=f'sampling rate of the scenarios, Hz (default {DEFAULT_RATE:g})')
+                        help=f'sampling rate of the scenarios, Hz (default {DEFAULT_RATE:g}; '
+                             'a --csv or --mcap replay keeps its own times)')
     parser.add_argument('--output', type=Path, default=Path('cueing_output'),
                         help='folder for the table, the numbers and the figures '
                              '(default cueing_output/)')
@@ -161,7 +161,11 @@ def check_output(parser, folder: Path) -> None:
     check_output_paths(parser, [('--output', folder, True)] + [
         ('--output', folder / name, False)
         for name in ('cueing_results.md', 'cueing_results.yaml')])
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:   # what the check cannot foresee (root in /proc)
+        parser.error(f'argument --output: cannot write there: {error.filename or folder}: '
+                     f'{error.strerror}')
 
 
 def load_csv(path: Path):
@@ -411,6 +415,14 @@ def run(options, stream=None):
     values = read_parameters(options.params_files)
     template = MotionCueing.from_parameters(values)
     geometry, settings = template.geometry, template.settings
+    scenarios = options.csv is None and options.mcap is None
+    if scenarios and options.rate * settings.max_input_gap < 1.0:
+        # Slower samples would each count as max_input_gap: the replay would run on a wrong
+        # clock, and its measures would grade a drive that was not played.
+        raise ValueError(
+            f'--rate {options.rate:g} Hz samples every {1.0 / options.rate:g} s, longer than '
+            f'max_input_gap ({settings.max_input_gap:g} s), which the cueing counts a longer '
+            f'gap as: use at least {1.0 / settings.max_input_gap:g} Hz')
     travel = travel_ranges(geometry).as_array()
     results, numbers, verdicts, all_met = [], {}, {}, True
     for name, times, forces, rates, rest in _inputs(options):
@@ -489,6 +501,12 @@ def main(argv=None) -> int:
     """Run the report; see the module's documentation for the exit codes."""
     parser = build_parser()
     options = parser.parse_args(argv)
+    if options.rate is not None and (options.csv is not None or options.mcap is not None):
+        parser.error('argument --rate: a --csv or --mcap replay keeps its own times; '
+                     '--rate samples the generated scenarios only')
+    if options.rate is None:
+        from stewart_kinematics.cueing.scenarios import DEFAULT_RATE
+        options.rate = DEFAULT_RATE
     check_output(parser, options.output)
     from stewart_kinematics.parameters import ParameterFileError
     try:
@@ -497,6 +515,10 @@ def main(argv=None) -> int:
         return refuse_parameter_file('stewart_cueing', error)
     except ValueError as error:
         print(f'stewart_cueing: {error}', file=sys.stderr)
+        return EXIT_INPUT
+    except OSError as error:   # a write that fails during the run (a full disk)
+        print(f'stewart_cueing: cannot write {error.filename or options.output}: '
+              f'{error.strerror}', file=sys.stderr)
         return EXIT_INPUT
     return EXIT_TARGET_MISSED if options.strict and not all_met else 0
 

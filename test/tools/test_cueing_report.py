@@ -80,6 +80,60 @@ def test_output_that_is_a_file_exits_2_before_any_work(capsys, tmp_path):
     assert '--output' in err and 'not a folder' in err
 
 
+def test_a_rate_slower_than_the_input_gap_exits_1_saying_why(capsys, tmp_path):
+    """
+    A scenario sampled below 1 / max_input_gap (10 Hz) would be replayed on a wrong clock.
+
+    Before, 1e-300 Hz gave "times must have shape (N,)", and 0.1 Hz a run that met targets
+    with the platform never moved.
+    """
+    for rate in ('1e-300', '0.1', '9.99'):
+        code = main(TUNED + ['--scenario', 'brake_step', '--rate', rate, '--no-figures',
+                             '--quiet', '--output', str(tmp_path / 'out')])
+        assert code == 1
+        assert 'longer than max_input_gap (0.1 s)' in capsys.readouterr().err
+    assert not (tmp_path / 'out' / 'cueing_results.yaml').exists()
+
+
+@pytest.mark.parametrize('source', ['--csv', '--mcap'])
+def test_a_rate_with_a_recorded_input_exits_2_not_ignored(capsys, tmp_path, source):
+    """--rate samples the generated scenarios only: with a file it would be dropped unsaid."""
+    with pytest.raises(SystemExit) as raised:
+        main(TUNED + [source, __file__, '--rate', '50', '--output', str(tmp_path / 'out')])
+    assert raised.value.code == 2
+    assert 'argument --rate: a --csv or --mcap replay keeps its own times' \
+        in capsys.readouterr().err
+
+
+def test_an_output_folder_that_cannot_be_made_exits_2_naming_the_option(capsys, tmp_path,
+                                                                         monkeypatch):
+    """A folder the check before the run cannot foresee (root in /proc): no traceback."""
+    def refuse(*args, **kwargs):
+        raise FileNotFoundError(2, 'No such file or directory', str(tmp_path / 'out'))
+    monkeypatch.setattr(Path, 'mkdir', refuse)
+    with pytest.raises(SystemExit) as raised:
+        main(TUNED + ['--scenario', 'brake_step', '--output', str(tmp_path / 'out')])
+    assert raised.value.code == 2
+    assert capsys.readouterr().err.endswith(
+        f'argument --output: cannot write there: {tmp_path / "out"}: '
+        'No such file or directory\n')
+
+
+def test_an_output_that_fails_during_the_run_exits_1_in_one_line(capsys, tmp_path,
+                                                                  monkeypatch):
+    """A write refused after the replay (a full disk): one line naming the file, exit 1."""
+    results = tmp_path / 'out' / 'cueing_results.md'
+
+    def full(self, *args, **kwargs):
+        raise OSError(28, 'No space left on device', str(self))
+    monkeypatch.setattr(Path, 'write_text', full)
+    code = main(TUNED + ['--scenario', 'brake_step', '--no-figures', '--quiet',
+                         '--output', str(tmp_path / 'out')])
+    assert code == 1
+    assert capsys.readouterr().err == \
+        f'stewart_cueing: cannot write {results}: No space left on device\n'
+
+
 def test_params_file_is_required(capsys):
     """Without a parameter file there is no platform: usage error naming the option."""
     with pytest.raises(SystemExit) as raised:
