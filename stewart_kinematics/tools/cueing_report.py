@@ -183,12 +183,23 @@ def load_csv(path: Path):
 def _checked_samples(source, data):
     if data.shape[0] < 3:
         raise ValueError(f'{source}: needs at least 3 samples, got {data.shape[0]}')
-    steps = np.diff(data[:, 0])
+    with np.errstate(over='ignore'):   # -1e308 to 1e308: an infinite step still increases
+        steps = np.diff(data[:, 0])
+        times = data[:, 0] - data[0, 0]
     if not np.all(steps > 0.0):
         bad = int(np.argmax(~(steps > 0.0))) + 1
-        raise ValueError(f'{source}: times must increase; sample {bad} is at {data[bad, 0]!r} s '
-                         f'after {data[bad - 1, 0]!r} s')
-    return data[:, 0] - data[0, 0], data[:, 1:4], data[:, 4:7]
+        raise ValueError(f'{source}: times must increase; sample {bad} is at '
+                         f'{float(data[bad, 0])!r} s after {float(data[bad - 1, 0])!r} s')
+    # Counted from the first sample, each step must survive (a stamp of -1e308 first makes
+    # every later time 1e308, or inf).
+    with np.errstate(over='ignore', invalid='ignore'):   # inf - inf
+        kept = np.isfinite(times[1:]) & (np.diff(times) > 0.0)
+    if not np.all(kept):
+        bad = int(np.argmax(~kept)) + 1
+        raise ValueError(f'{source}: sample {bad} at {float(data[bad, 0])!r} s is too far from '
+                         f'the first ({float(data[0, 0])!r} s) for its time since the first to keep the '
+                         'step from the sample before it: a stamp out of place?')
+    return times, data[:, 1:4], data[:, 4:7]
 
 
 def mcap_file(path: Path) -> Path:
