@@ -197,8 +197,8 @@ def _checked_samples(source, data):
     if not np.all(kept):
         bad = int(np.argmax(~kept)) + 1
         raise ValueError(f'{source}: sample {bad} at {float(data[bad, 0])!r} s is too far from '
-                         f'the first ({float(data[0, 0])!r} s) for its time since the first to keep the '
-                         'step from the sample before it: a stamp out of place?')
+                         f'the first ({float(data[0, 0])!r} s) for its time since the first to '
+                         'keep the step from the sample before it: a stamp out of place?')
     return times, data[:, 1:4], data[:, 4:7]
 
 

@@ -106,8 +106,8 @@ def test_a_rate_with_a_recorded_input_exits_2_not_ignored(capsys, tmp_path, sour
         in capsys.readouterr().err
 
 
-def test_an_output_folder_that_cannot_be_made_exits_2_naming_the_option(capsys, tmp_path,
-                                                                         monkeypatch):
+def test_an_output_folder_that_cannot_be_made_exits_2_naming_the_option(
+        capsys, tmp_path, monkeypatch):
     """A folder the check before the run cannot foresee (root in /proc): no traceback."""
     def refuse(*args, **kwargs):
         raise FileNotFoundError(2, 'No such file or directory', str(tmp_path / 'out'))
@@ -120,8 +120,8 @@ def test_an_output_folder_that_cannot_be_made_exits_2_naming_the_option(capsys, 
         'No such file or directory\n')
 
 
-def test_an_output_that_fails_during_the_run_exits_1_in_one_line(capsys, tmp_path,
-                                                                  monkeypatch):
+def test_an_output_that_fails_during_the_run_exits_1_in_one_line(
+        capsys, tmp_path, monkeypatch):
     """A write refused after the replay (a full disk): one line naming the file, exit 1."""
     results = tmp_path / 'out' / 'cueing_results.md'
 
