@@ -73,7 +73,7 @@ def main(argv=None) -> int:
     parser = build_parser()
     arguments = parser.parse_args(argv)
     if arguments.port > 65535:
-        parser.error(f'--port must be at most 65535, got {arguments.port}')
+        parser.error(f'argument --port: must be at most 65535, got {arguments.port}')
     drive = scenario(arguments.scenario, arguments.rate)
     count = len(drive.times)
     if arguments.duration is not None:
