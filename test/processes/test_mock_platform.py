@@ -246,7 +246,10 @@ def test_a_stalled_leg_and_noise_set_at_run_time_show_on_joint_states(
     client.wait(lambda: reached(recorder, target, count), 'leg_3 moved again', [node])
     assert set_parameter(client, node, 'noise_seed', 3).successful
     assert set_parameter(client, node, 'position_noise', 0.001).successful
-    client.spin_for(0.2)
+    # The first noisy state marks the change (states sent before it may still be arriving:
+    # a fixed wait lost that race once under load).
+    client.wait(lambda: np.any(positions(recorder.received['joint_states'][-1]) != target),
+                'the first noisy joint state', [node])
     start = len(recorder.received['joint_states'])
     recorder.wait_for('joint_states', start + 300)
     noisy = np.array([positions(m) for m in recorder.received['joint_states'][start:]])
@@ -259,7 +262,12 @@ def test_a_stalled_leg_and_noise_set_at_run_time_show_on_joint_states(
     assert set_parameter(client, node, 'position_noise', 0.0).successful
     bias = [0.0, 0.0, 0.0, 0.0, 0.0, 0.002]
     assert set_parameter(client, node, 'position_bias', bias).successful
-    client.spin_for(0.2)
-    assert_allclose(positions(recorder.received['joint_states'][-1]), target + bias, atol=1e-12)
+    client.wait(lambda: np.allclose(positions(recorder.received['joint_states'][-1]),
+                                    target + bias, rtol=0.0, atol=1e-12),
+                'a joint state with the bias and no noise', [node])
+    count = len(recorder.received['joint_states'])
+    recorder.wait_for('joint_states', count + 20)   # and it stays so
+    after = np.array([positions(m) for m in recorder.received['joint_states'][count:]])
+    assert_allclose(after, np.tile(target + bias, (len(after), 1)), rtol=0.0, atol=1e-12)
     refused = set_parameter(client, node, 'position_bias', [0.0] * 5 + [float('nan')])
     assert not refused.successful and 'position_bias' in refused.reason
