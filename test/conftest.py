@@ -78,6 +78,29 @@ def pytest_collection_modifyitems(config, items):
             'pytest.mark.<tier> in its module):\n' + '\n'.join(wrong))
 
 
+#: The failed first attempts of tests run again (``--reruns``, scripts/run_tests.sh), kept to
+#: show why: the summary names a rerun test, not its failure.
+_first_attempts = []
+
+
+def pytest_runtest_logreport(report):
+    """Keep the failure of a test that is to run again (pytest-rerunfailures' ``rerun``)."""
+    if report.outcome == 'rerun':
+        _first_attempts.append((report.nodeid, report.when, report.longreprtext))
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Show why each rerun test failed the first time (its last lines), for a flake to mend."""
+    if not _first_attempts:
+        return
+    terminalreporter.section('first attempts of the tests run again')
+    for nodeid, when, text in _first_attempts:
+        lines = text.splitlines()
+        terminalreporter.write_line(f'{nodeid} ({when}):')
+        for line in lines[-25:]:
+            terminalreporter.write_line(f'    {line}')
+
+
 def pytest_unconfigure(config):
     """Release the reserved domain."""
     _environment.close()
