@@ -48,6 +48,7 @@ with ``--strict``, a target missed.
 import argparse
 import math
 from pathlib import Path
+import re
 import sys
 import time
 
@@ -418,11 +419,17 @@ def _inputs(options):
                    generated.rest_time)
 
 
+def _first_clause(meaning: str) -> str:
+    """Return a code's meaning up to its first colon or full stop, without Markdown."""
+    return re.split(r'[:.](?:\s|$)', meaning.replace('`', ''), maxsplit=1)[0]
+
+
 def run(options, stream=None):
     """Replay every input and write the outputs; return ``(results, every target met)``."""
     stream = sys.stdout if stream is None else stream
     from stewart_kinematics import travel_ranges
     from stewart_kinematics.cueing import evaluate, MotionCueing, replay
+    from stewart_kinematics.findings import CODES
     values = read_parameters(options.params_files)
     template = MotionCueing.from_parameters(values)
     geometry, settings = template.geometry, template.settings
@@ -458,6 +465,12 @@ def run(options, stream=None):
               f'({1e6 * seconds / times.size:.0f} us a sample)', file=stream)
         for target, ok, value in met:
             print(f'  {"met   " if ok else "MISSED"} {target}: {value}', file=stream)
+        for code, count in evaluation.warnings.items():
+            # Said, not only counted in the numbers: an MPC that never solved moves nothing,
+            # and a platform at rest meets the targets of limits and false cues.
+            print(f'  warning {code} at {count} of {times.size} samples: '
+                  f'{_first_clause(CODES[code].meaning) if code in CODES else code}',
+                  file=stream)
         numbers[name] = _numbers(evaluation, met)
         if not options.no_figures:
             write_figure(options.output / f'{Path(name).stem}.png', name, played, evaluation,

@@ -135,6 +135,20 @@ def test_an_output_that_fails_during_the_run_exits_1_in_one_line(
         f'stewart_cueing: cannot write {results}: No space left on device\n'
 
 
+def test_a_warning_of_the_run_is_printed_not_only_counted(capsys, tmp_path):
+    """An MPC whose QP never solves leaves the platform at rest: the summary says so."""
+    starved = tmp_path / 'starved.yaml'
+    starved.write_text('/**:\n  ros__parameters:\n    cueing_method: mpc\n'
+                       '    mpc_max_iterations: 1\n', encoding='utf-8')
+    assert main(TUNED + ['--params-file', str(starved), '--scenario', 'brake_step',
+                         '--no-figures', '--quiet', '--output', str(tmp_path / 'out')]) == 0
+    out = capsys.readouterr().out
+    samples = scenario('brake_step', 100.0).times.size
+    assert f'  warning mpc_fallback at {samples - 1} of {samples} samples: ' \
+        "The model-predictive cueing's QP was not solved (infeasible, out of iterations)\n" \
+        in out
+
+
 def test_params_file_is_required(capsys):
     """Without a parameter file there is no platform: usage error naming the option."""
     with pytest.raises(SystemExit) as raised:
