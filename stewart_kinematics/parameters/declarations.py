@@ -93,6 +93,9 @@ MASS_MAX = 1e9
 CENTER_OF_MASS_MAX = 1000.0
 #: Largest magnitude of each component of gravity, m/s^2.
 GRAVITY_MAX = 1000.0
+#: The lowest frequency of a cueing filter, rad/s (a period of 1.7 h, longer than any drive):
+#: below it the filter's polynomial loses its lowest terms (1e-300 cubed is 0).
+MIN_FILTER_FREQUENCY = 1e-3
 
 _MASS_RULES = (Finite(), InRange(0.0, MASS_MAX))
 _CENTER_RULES = (FixedLength(3), Finite(), InRange(-CENTER_OF_MASS_MAX, CENTER_OF_MASS_MAX))
@@ -548,7 +551,7 @@ MOTION_CUEING_PARAMETERS = (
         'translation_frequency', DOUBLE_ARRAY,
         'Natural frequency of the second-order translational high-pass, rad/s, x y z',
         default=[2.5, 2.5, 4.0], read_only=True,
-        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
+        validators=(FixedLength(3), Finite(), InRange(MIN_FILTER_FREQUENCY, 100.0))),
     ParameterSpec(
         'translation_damping', DOUBLE_ARRAY,
         'Damping ratio of the translational high-pass, x y z; >= 1 never reverses through '
@@ -560,7 +563,7 @@ MOTION_CUEING_PARAMETERS = (
         'Frequency of the first-order part of the third-order translational high-pass, rad/s, '
         'x y z',
         default=[0.25, 0.25, 0.25], read_only=True,
-        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
+        validators=(FixedLength(3), Finite(), InRange(MIN_FILTER_FREQUENCY, 100.0))),
     ParameterSpec(
         'tilt_scale', DOUBLE_ARRAY,
         'Gain on the specific force rendered by tilt coordination, x (pitch) and y (roll); '
@@ -578,7 +581,7 @@ MOTION_CUEING_PARAMETERS = (
     ParameterSpec(
         'tilt_frequency', DOUBLE, 'Cut-off of the tilt low-pass, rad/s',
         default=5.0, read_only=True,
-        validators=(Finite(), InRange(0.0, 100.0, low_inclusive=False))),
+        validators=(Finite(), InRange(MIN_FILTER_FREQUENCY, 100.0))),
     ParameterSpec(
         'tilt_damping', DOUBLE, 'Damping ratio of the tilt low-pass (order 2)',
         default=1.0, read_only=True,
@@ -614,7 +617,7 @@ MOTION_CUEING_PARAMETERS = (
         'rotation_frequency', DOUBLE_ARRAY,
         'Natural frequency of the rotational high-pass, rad/s, roll pitch yaw',
         default=[1.0, 1.0, 1.0], read_only=True,
-        validators=(FixedLength(3), Finite(), InRange(0.0, 100.0, low_inclusive=False))),
+        validators=(FixedLength(3), Finite(), InRange(MIN_FILTER_FREQUENCY, 100.0))),
     ParameterSpec(
         'rotation_damping', DOUBLE_ARRAY,
         'Damping ratio of the rotational high-pass, roll pitch yaw',

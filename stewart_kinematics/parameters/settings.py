@@ -791,7 +791,7 @@ class CueingParameterSettings(Settings):
     translation_frequency: Tuple[float, ...] = (2.5, 2.5, 4.0)
     """
     Natural frequency of the second-order translational high-pass, rad/s, x y z. Allowed: 3 values
-    in (0, 100]. Read-only at run time.
+    in [0.001, 100]. Read-only at run time.
     """
 
     translation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)
@@ -803,7 +803,7 @@ class CueingParameterSettings(Settings):
     translation_break_frequency: Tuple[float, ...] = (0.25, 0.25, 0.25)
     """
     Frequency of the first-order part of the third-order translational high-pass, rad/s, x y z.
-    Allowed: 3 values in (0, 100]. Read-only at run time.
+    Allowed: 3 values in [0.001, 100]. Read-only at run time.
     """
 
     tilt_scale: Tuple[float, ...] = (0.5, 0.5)
@@ -822,7 +822,7 @@ class CueingParameterSettings(Settings):
     """Order of the tilt low-pass. Allowed: 1 or 2. Read-only at run time."""
 
     tilt_frequency: float = 5.0
-    """Cut-off of the tilt low-pass, rad/s. Allowed: in (0, 100]. Read-only at run time."""
+    """Cut-off of the tilt low-pass, rad/s. Allowed: in [0.001, 100]. Read-only at run time."""
 
     tilt_damping: float = 1.0
     """Damping ratio of the tilt low-pass (order 2). Allowed: in (0, 10]. Read-only at run time."""
@@ -858,8 +858,8 @@ class CueingParameterSettings(Settings):
 
     rotation_frequency: Tuple[float, ...] = (1.0, 1.0, 1.0)
     """
-    Natural frequency of the rotational high-pass, rad/s, roll pitch yaw. Allowed: 3 values in (0,
-    100]. Read-only at run time.
+    Natural frequency of the rotational high-pass, rad/s, roll pitch yaw. Allowed: 3 values in
+    [0.001, 100]. Read-only at run time.
     """
 
     rotation_damping: Tuple[float, ...] = (1.0, 1.0, 1.0)

@@ -107,6 +107,24 @@ def test_values_the_parameters_refuse_are_refused_by_the_settings(changes, messa
         CueingSettings(**changes)
 
 
+@pytest.mark.parametrize('changes', [
+    {'translation_frequency': (1e-300, 1.0, 1.0)},
+    {'translation_break_frequency': (1.0, 1e-300, 1.0)},
+    {'tilt_frequency': 1e-300}, {'rotation_frequency': (1.0, 1.0, 1e-300)},
+])
+def test_a_filter_frequency_too_low_to_build_is_refused_naming_it(changes):
+    """
+    1e-300 rad/s was allowed and cubed to 0 in the filter: an internal "monic" message.
+
+    A filter frequency is at least 1e-3 rad/s (a period of 1.7 hours); the refusal names it.
+    """
+    (name, _), = changes.items()
+    with pytest.raises(ValueError, match=rf'^{name} must be in \[0.001, 100\], got '):
+        CueingSettings(**changes)
+    settings = CueingSettings(**{name: 1e-3 if name == 'tilt_frequency' else (1e-3,) * 3})
+    assert getattr(settings, name) in (1e-3, (1e-3,) * 3)
+
+
 def test_from_parameters_names_the_parameter_in_degrees():
     with pytest.raises(ValueError, match='^tilt_max_deg must be in degrees within the allowed '
                                          r'range; tilt_max must be in \(0, 0.785398\]'):
