@@ -192,12 +192,27 @@ class CueEvaluation:
         raise ValueError(f'unknown axis {axis!r}; known: {", ".join(AXES + RATE_AXES)}')
 
 
+#: A series whose spread about its mean is within this share of its size (plus this much in
+#: its units) counts as constant: rounding (a turn by 180 deg leaves 1e-16 along the other
+#: axes) is no motion to correlate.
+ROUNDING_SPREAD = 1e-12
+
+
+def _centred(series) -> Optional[np.ndarray]:
+    """Return a series less its mean, or ``None`` when it is constant to rounding."""
+    series = np.asarray(series, dtype=float)
+    centred = series - series.mean()
+    spread = math.sqrt(float(np.dot(centred, centred)) / max(centred.size, 1))
+    size = float(np.max(np.abs(series))) if series.size else 0.0
+    return centred if spread > ROUNDING_SPREAD * (1.0 + size) else None
+
+
 def pearson(a, b) -> float:
     """Pearson correlation of two equally long series; NaN when one is constant."""
-    a = np.asarray(a, dtype=float) - np.mean(a)
-    b = np.asarray(b, dtype=float) - np.mean(b)
-    norm = math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b)))
-    return float(np.dot(a, b) / norm) if norm > 0.0 else math.nan
+    a, b = _centred(a), _centred(b)
+    if a is None or b is None:
+        return math.nan
+    return float(np.dot(a, b) / math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b))))
 
 
 def cross_correlation_peak(times, reference, delayed, max_delay: float = MAX_DELAY
@@ -210,19 +225,18 @@ def cross_correlation_peak(times, reference, delayed, max_delay: float = MAX_DEL
     refined by a parabola through its three samples. ``delay`` is in seconds, positive when
     ``delayed`` lags ``reference``; plus or minus infinity when the peak lies at the end of the
     window searched (no delay within ``max_delay`` explains them). Both NaN when either series
-    is constant.
+    is constant (to rounding: :data:`ROUNDING_SPREAD`).
 
     :param max_delay: largest lag searched either way, seconds.
     """
     times = np.asarray(times, dtype=float)
     step = float(np.median(np.diff(times)))
     grid = np.arange(times[0], times[-1] + 0.5 * step, step)
-    a = np.interp(grid, times, reference)
-    b = np.interp(grid, times, delayed)
-    a, b = a - a.mean(), b - b.mean()
-    norm = math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b)))
-    if not norm > 0.0:
+    a = _centred(np.interp(grid, times, reference))
+    b = _centred(np.interp(grid, times, delayed))
+    if a is None or b is None:
         return math.nan, math.nan
+    norm = math.sqrt(float(np.dot(a, a)) * float(np.dot(b, b)))
     size = 1 << int(math.ceil(math.log2(2 * grid.size)))
     # c[k] = sum a[n] b[n + k]: a peak at k > 0 means b lags a.
     correlation = np.fft.irfft(np.conj(np.fft.rfft(a, size)) * np.fft.rfft(b, size),

@@ -367,9 +367,9 @@ class MotionCueing:
             if refusal is not None:
                 raise ValueError(refusal.message.replace('the sample is', 'the preview is'))
             if frame_id and frame_id == self.settings.imu_frame:
-                turned = checked.inputs.copy()
-                turned[:, :3] = turned[:, :3] @ self._imu_rotation.T
-                turned[:, 3:] = turned[:, 3:] @ self._imu_rotation.T
+                forces, rates = self.to_vehicle_frame(
+                    checked.inputs[:, :3], checked.inputs[:, 3:], frame_id)
+                turned = np.hstack([forces, rates])
                 turned.setflags(write=False)
                 checked = dataclasses.replace(checked, inputs=turned)
         self.input_preview = checked
@@ -430,6 +430,31 @@ class MotionCueing:
             f'the sample is in frame {preview(frame_id)}, which cannot be placed in the vehicle '
             f'frame: known are {known[1:]!r} (and an empty frame_id, the vehicle frame); set '
             'vehicle_frame, or imu_frame and imu_orientation_rpy_deg'))
+
+    def to_vehicle_frame(self, specific_force, angular_velocity,
+                         frame_id: str) -> Tuple[np.ndarray, np.ndarray]:
+        """
+        Turn samples given in ``frame_id`` into the vehicle frame, as :meth:`cue` turns them.
+
+        A sample in ``vehicle_frame`` (or an empty ``frame_id``) is returned as it is; one in
+        ``imu_frame`` is turned by ``imu_orientation_rpy_deg``. For a recording replayed
+        offline, where each message carries its frame.
+
+        :param specific_force: m/s^2, shape (3,) or (N, 3), finite.
+        :param angular_velocity: rad/s, the same shape.
+        :param frame_id: their frame (a message's ``header.frame_id``).
+        :returns: ``(specific_force, angular_velocity)`` in the vehicle frame, new arrays.
+        :raises ValueError: for a frame that cannot be placed in the vehicle frame
+            (:meth:`vehicle_frame_refusal`'s message).
+        """
+        refusal = self.vehicle_frame_refusal(frame_id)
+        if refusal is not None:
+            raise ValueError(refusal.message)
+        forces = np.array(specific_force, dtype=float)
+        rates = np.array(angular_velocity, dtype=float)
+        if frame_id and frame_id == self.settings.imu_frame:
+            forces, rates = forces @ self._imu_rotation.T, rates @ self._imu_rotation.T
+        return forces, rates
 
     def cue(self, time, specific_force, angular_velocity, command_time: Optional[float] = None,
             frame_id: Optional[str] = None) -> CueStep:

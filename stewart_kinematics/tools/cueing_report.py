@@ -221,18 +221,21 @@ def load_mcap(path: Path, topic: str):
     Times are the messages' ``header.stamp`` (as the node uses them); a recording whose stamps
     are all zero falls back to the log times.
 
+    :returns: ``(times, specific_force, angular_velocity, frame_ids)``, the samples as
+        recorded, each in its message's ``header.frame_id``.
     :raises ValueError: naming the file, when it cannot be read or holds no such messages.
     """
     from mcap.exceptions import McapError
     from mcap_ros2.reader import read_ros2_messages
     source = mcap_file(path)
-    rows = []
+    rows, frame_ids = [], []
     try:
         for message in read_ros2_messages(str(source), topics=[topic]):
             imu = message.ros_msg
             stamp = imu.header.stamp.sec + 1e-9 * imu.header.stamp.nanosec
             a, w = imu.linear_acceleration, imu.angular_velocity
             rows.append((stamp, message.log_time_ns * 1e-9, a.x, a.y, a.z, w.x, w.y, w.z))
+            frame_ids.append(imu.header.frame_id)
     except (McapError, OSError, ValueError, KeyError, AttributeError) as error:
         raise ValueError(
             f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
@@ -245,7 +248,32 @@ def load_mcap(path: Path, topic: str):
     finite = np.all(np.isfinite(data), axis=1)
     if not np.all(finite):
         raise ValueError(f'{source}: message {int(np.argmin(finite))} on {topic} is not finite')
-    return _checked_samples(f'{source} ({topic})', data)
+    return _checked_samples(f'{source} ({topic})', data) + (frame_ids,)
+
+
+def in_vehicle_frame(cueing, source: str, forces, rates, frame_ids):
+    """
+    Turn recorded samples into the vehicle frame, each from its ``frame_id``, as the node does.
+
+    :param cueing: the :class:`~stewart_kinematics.cueing.MotionCueing` whose
+        ``vehicle_frame``, ``imu_frame`` and ``imu_orientation_rpy_deg`` apply.
+    :param source: the recording, for the message.
+    :param forces: m/s^2, shape (N, 3); ``rates``: rad/s, shape (N, 3).
+    :param frame_ids: N frame names.
+    :raises ValueError: naming the first message in a frame the parameters do not place (the
+        node would refuse each of them and cue rest instead).
+    """
+    frame_ids = np.array(frame_ids, dtype=object)
+    forces, rates = np.array(forces, dtype=float), np.array(rates, dtype=float)
+    for frame_id in dict.fromkeys(frame_ids.tolist()):
+        chosen = frame_ids == frame_id
+        try:
+            forces[chosen], rates[chosen] = cueing.to_vehicle_frame(
+                forces[chosen], rates[chosen], frame_id)
+        except ValueError as error:
+            raise ValueError(f'{source}: message {int(np.argmax(chosen))} and '
+                             f'{int(np.sum(chosen)) - 1} more: {error}') from None
+    return forces, rates
 
 
 def read_parameters(paths):
@@ -402,21 +430,25 @@ def write_figure(path: Path, name, replay, evaluation, geometry, scales=(1.0, 1.
 
 
 def _inputs(options):
-    """Yield ``(name, times, specific_force, angular_velocity, rest_time)`` of each run."""
+    """
+    Yield ``(name, times, specific_force, angular_velocity, rest_time, frame_ids)`` of each run.
+
+    ``frame_ids`` is ``None`` for samples in the vehicle frame (a CSV, a scenario).
+    """
     from stewart_kinematics.cueing.scenarios import scenario, SCENARIO_NAMES
     if options.csv is not None:
         times, forces, rates = load_csv(options.csv)
-        yield options.csv.name, times, forces, rates, None
+        yield options.csv.name, times, forces, rates, None, None
     elif options.mcap is not None:
-        times, forces, rates = load_mcap(options.mcap, options.topic)
-        yield mcap_file(options.mcap).name, times, forces, rates, None
+        times, forces, rates, frame_ids = load_mcap(options.mcap, options.topic)
+        yield mcap_file(options.mcap).name, times, forces, rates, None, frame_ids
     else:
         names = options.scenario or ['all']
         names = SCENARIO_NAMES if 'all' in names else list(dict.fromkeys(names))
         for name in names:
             generated = scenario(name, options.rate)
             yield (name, generated.times, generated.specific_force, generated.angular_velocity,
-                   generated.rest_time)
+                   generated.rest_time, None)
 
 
 def _first_clause(meaning: str) -> str:
@@ -443,7 +475,9 @@ def run(options, stream=None):
             f'gap as: use at least {1.0 / settings.max_input_gap:g} Hz')
     travel = travel_ranges(geometry).as_array()
     results, numbers, verdicts, all_met = [], {}, {}, True
-    for name, times, forces, rates, rest in _inputs(options):
+    for name, times, forces, rates, rest, frame_ids in _inputs(options):
+        if frame_ids is not None:
+            forces, rates = in_vehicle_frame(template, name, forces, rates, frame_ids)
         cueing = MotionCueing(geometry, settings, template.actuator_limits)
         progress = None if options.quiet else ProgressBar(name)
         started = time.perf_counter()

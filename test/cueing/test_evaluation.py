@@ -71,6 +71,25 @@ def test_pearson_matches_numpy():
     assert math.isnan(pearson(a, np.ones(500)))
 
 
+def test_a_series_constant_to_rounding_has_no_correlation_or_delay():
+    """
+    1e-16 of rounding (what a turn by 180 deg leaves on the other axes) is no motion.
+
+    Before, its correlation with itself, and with any like it, came out near 1: a table showed
+    r 1.00 for an axis nothing moved along. A small real signal (1e-6) still correlates.
+    """
+    rng = np.random.default_rng(3)
+    times = np.arange(0.0, 10.0, 0.01)
+    signal = np.sin(times)
+    noise = 1e-16 * rng.normal(size=times.size)
+    assert math.isnan(pearson(noise, noise)) and math.isnan(pearson(signal, noise))
+    assert all(math.isnan(value) for value in cross_correlation_peak(times, noise, noise))
+    assert math.isnan(pearson(G + 1e-15 * signal, signal))   # gravity and its last bits
+    small = 1e-6 * signal
+    assert pearson(small, signal) == pytest.approx(1.0, abs=1e-12)
+    assert cross_correlation_peak(times, small, signal)[0] == pytest.approx(0.0, abs=1e-9)
+
+
 @pytest.mark.parametrize('shift', [0.03, -0.02, 0.0, 0.1234])
 def test_delay_recovers_a_known_shift(shift):
     """A multi-sine and the same shifted by ``shift`` seconds: the delay is ``shift``."""
