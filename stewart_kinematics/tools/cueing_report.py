@@ -228,9 +228,12 @@ def load_mcap(path: Path, topic: str):
     from mcap.exceptions import McapError
     from mcap_ros2.reader import read_ros2_messages
     source = mcap_file(path)
-    rows, frame_ids = [], []
+    rows, frame_ids, wrong_type = [], [], None
     try:
         for message in read_ros2_messages(str(source), topics=[topic]):
+            if message.schema.name != 'sensor_msgs/msg/Imu':
+                wrong_type = message.schema.name
+                break
             imu = message.ros_msg
             stamp = imu.header.stamp.sec + 1e-9 * imu.header.stamp.nanosec
             a, w = imu.linear_acceleration, imu.angular_velocity
@@ -239,6 +242,8 @@ def load_mcap(path: Path, topic: str):
     except (McapError, OSError, ValueError, KeyError, AttributeError) as error:
         raise ValueError(
             f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
+    if wrong_type is not None:
+        raise ValueError(f'{source}: {topic} holds {wrong_type}, not sensor_msgs/msg/Imu')
     if not rows:
         raise ValueError(f'{source}: no message on {topic}')
     data = np.array(rows)

@@ -22,6 +22,7 @@ naming it (before, every sample was replayed as if in the vehicle frame).
 
 from pathlib import Path
 
+from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
 from rclpy.qos import QoSProfile
@@ -104,3 +105,15 @@ def test_a_recording_in_a_frame_the_parameters_do_not_place_exits_1_naming_it(tm
     assert 'message 0 and ' in err and "the sample is in frame 'camera_link', which cannot " \
         "be placed in the vehicle frame: known are ['base_link', 'imu_ned']" in err
     assert not (output / 'cueing_results.yaml').exists()
+
+
+def test_a_topic_of_another_type_exits_1_naming_it(tmp_path, capsys):
+    """Poses recorded on the topic: refused naming the type (was "no attribute 'header'")."""
+    writer = BagWriter(tmp_path / 'poses', [('/vehicle_imu', Pose, QoSProfile(depth=10))])
+    for index in range(5):
+        writer.write('/vehicle_imu', 10_000_000 * (index + 1), serialize_message(Pose()))
+    writer.close()
+    code, _ = replayed(tmp_path, tmp_path / 'poses', 'poses')
+    assert code == 1
+    assert capsys.readouterr().err.endswith(
+        '/vehicle_imu holds geometry_msgs/msg/Pose, not sensor_msgs/msg/Imu\n')
