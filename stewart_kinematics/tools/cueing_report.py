@@ -226,19 +226,21 @@ def load_mcap(path: Path, topic: str):
     :raises ValueError: naming the file, when it cannot be read or holds no such messages.
     """
     from mcap.exceptions import McapError
-    from mcap_ros2.reader import read_ros2_messages
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
     source = mcap_file(path)
     rows, frame_ids, wrong_type = [], [], None
     try:
-        for message in read_ros2_messages(str(source), topics=[topic]):
-            if message.schema.name != 'sensor_msgs/msg/Imu':
-                wrong_type = message.schema.name
-                break
-            imu = message.ros_msg
-            stamp = imu.header.stamp.sec + 1e-9 * imu.header.stamp.nanosec
-            a, w = imu.linear_acceleration, imu.angular_velocity
-            rows.append((stamp, message.log_time_ns * 1e-9, a.x, a.y, a.z, w.x, w.y, w.z))
-            frame_ids.append(imu.header.frame_id)
+        with open(source, 'rb') as stream:
+            reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+            for schema, _, message, imu in reader.iter_decoded_messages(topics=[topic]):
+                if schema is None or schema.name != 'sensor_msgs/msg/Imu':
+                    wrong_type = 'no schema' if schema is None else schema.name
+                    break
+                stamp = imu.header.stamp.sec + 1e-9 * imu.header.stamp.nanosec
+                a, w = imu.linear_acceleration, imu.angular_velocity
+                rows.append((stamp, message.log_time * 1e-9, a.x, a.y, a.z, w.x, w.y, w.z))
+                frame_ids.append(imu.header.frame_id)
     except (McapError, OSError, ValueError, KeyError, AttributeError) as error:
         raise ValueError(
             f'{source}: cannot read {topic} as sensor_msgs/msg/Imu: {error}') from None
