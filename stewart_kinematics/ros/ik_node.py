@@ -55,6 +55,7 @@ import time
 
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 import numpy as np
+from rclpy.time import Time
 from std_msgs.msg import Header
 
 from stewart_kinematics.limits.command_gate import BRAKING_SHARES
@@ -218,7 +219,9 @@ class IkNode(ManagedNode):
                      + limits.acceleration_max / limits.jerk_max)
                     / gentlest / period) + 3
         # Times on the gate's own line, a period apart: the executor (and with it a simulated
-        # clock) does not run meanwhile; the stamps are the clock's.
+        # clock) does not run meanwhile. Each command is stamped with its time on that line
+        # (the node's clock since its origin), so the rates its stamps give are those checked,
+        # also under a simulated clock that stands still meanwhile.
         moment = stream.gate.last_time
         last = None
         for _ in range(min(steps, MAX_BRAKING_STEPS)):
@@ -228,8 +231,10 @@ class IkNode(ManagedNode):
                 break
             last = command
             self.stream_accounting.receive()
+            stamp = Time(nanoseconds=self.clock_origin_ns + round(moment * 1e9),
+                         clock_type=self.get_clock().clock_type).to_msg()
             send_command(self.joint_command_publisher, self.stream_accounting, command, Header(
-                stamp=self.get_clock().now().to_msg(), frame_id=self.base_frame))
+                stamp=stamp, frame_id=self.base_frame))
             if np.abs(command.velocities).max() <= REST_SPEED:
                 break
             time.sleep(period)

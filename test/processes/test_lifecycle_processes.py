@@ -187,6 +187,14 @@ def test_ik_node_every_transition_and_a_stream_braked_to_rest(
     steps = np.abs(np.diff(velocities[start:], axis=0))
     assert len(steps) >= 5, speed
     assert np.all(steps <= ACCELERATION_MAX * 0.01 * (1 + 1e-6)), steps
+    # Stamped with their times on that line (exactly a period apart), so that the rates their
+    # stamps give are those checked: before, the clock's now, late by the send each time, and
+    # all one stamp under a simulated clock, which stands still meanwhile.
+    # The last five are braking commands at least (it takes over 0.1 s from 0.6 of the speed
+    # limit); nanoseconds, rounded each: 1 ns either way.
+    braking = [m.header.stamp.sec * 1_000_000_000 + m.header.stamp.nanosec
+               for m in commands[-6:]]
+    assert np.all(np.abs(np.diff(braking) - 10_000_000) <= 1), np.diff(braking)
     assert 'braked to rest' in node.output()
 
     # Cleanup: the topics go; configure and activate again: it answers again.
