@@ -71,6 +71,7 @@ import math
 import time
 
 from geometry_msgs.msg import AccelStamped, PoseStamped
+from rclpy.time import Time
 from sensor_msgs.msg import Imu
 from std_msgs.msg import Header
 
@@ -195,7 +196,11 @@ class MotionCueingNode(ManagedNode):
             result = cueing.operate(moment)
             if result is not None:
                 self.target_publisher.publish(result.command)
-                self.publish_extras(result, self.get_clock().now().to_msg(), perceived=False)
+                # Stamped with the command's time, as the gate checked it: a simulated clock
+                # stands still during the transition.
+                self.publish_extras(result, Time(
+                    nanoseconds=self.clock_origin_ns + round(moment * 1e9),
+                    clock_type=self.get_clock().clock_type).to_msg(), perceived=False)
                 sent += 1
             time.sleep(period)
         if cueing.mode == PARKED:

@@ -132,9 +132,20 @@ def test_activate_starts_from_park_and_deactivate_stops_to_park(node):
     cued = len(node.sent)
     assert cued > started + 20
     assert np.max(np.abs(legs(node.sent[-1][1]) - home)) > 1e-4   # moving, away from home
+    cue_poses = []
+    node.cue_publisher.get_subscription_count = lambda: 1
+    node.cue_publisher.publish = cue_poses.append
     assert node.trigger_deactivate() == SUCCESS
     assert not node.active and node.cueing.mode == PARKED
     assert len(node.sent) > cued + 10
+    # cue_pose is stamped with each stop command's time as the gate checked it (the clock's
+    # origin plus it), not the clock's now, which stands still under a simulated clock.
+    stops = [moment for moment, _ in node.sent[-len(cue_poses):]]
+    stamps = [pose.header.stamp.sec * 1_000_000_000 + pose.header.stamp.nanosec
+              for pose in cue_poses]
+    assert len(cue_poses) > 10
+    assert_allclose(np.array(stamps) - node.clock_origin_ns, np.array(stops) * 1e9,
+                    rtol=0.0, atol=1.0)
     # Ended at park, arrived at rest: the last step a few micrometres at most.
     last = legs(node.sent[-1][1])
     assert_allclose(legs(node.sent[-2][1]), last, rtol=0.0, atol=1e-5)
