@@ -17,7 +17,8 @@ Start a motion simulator's chain: telemetry_bridge -> motion_cueing_node -> ik_n
 
 A simulator sends UDP telemetry packets to telemetry_bridge, which publishes ``vehicle_imu``;
 motion_cueing_node turns it into ``target_pose``; ik_node into leg lengths and
-``joint_commands`` for the drives. The three share the namespace, so their relative topics
+``joint_commands`` for the drives, streamed at ``command_rate`` (100 Hz) within the leg limits
+on its own clock. The three share the namespace, so their relative topics
 connect without remapping. The files: the platform's geometry (``platform_config``) and its
 limits (``limits_config``) for motion_cueing_node and ik_node, a cueing preset per vehicle
 (``preset``: ``config/cueing_presets/<preset>.yaml``) or a file of your own
@@ -76,6 +77,11 @@ def generate_launch_description():
         DeclareLaunchArgument(
             'telemetry_port', default_value='47800',
             description='The UDP port telemetry_bridge listens on'),
+        DeclareLaunchArgument(
+            'command_rate', default_value='100.0',
+            description="ik_node's joint_commands stream, Hz: the drives get the leg rates "
+                        'checked at the times they are stamped, whatever the transport did '
+                        'to the cue'),
         Node(
             package=PACKAGE, executable='telemetry_bridge', namespace=namespace,
             parameters=[os.path.join(config, 'telemetry_bridge.yaml')],
@@ -88,5 +94,7 @@ def generate_launch_description():
             parameters=[platform_config, limits_config, cueing_config], output='screen'),
         Node(
             package=PACKAGE, executable='ik_node', namespace=namespace,
-            parameters=[platform_config, limits_config], output='screen'),
+            parameters=[platform_config, limits_config],
+            ros_arguments=['-p', ['command_rate:=', LaunchConfiguration('command_rate')]],
+            output='screen'),
     ])

@@ -124,6 +124,10 @@ def test_default_launch_is_the_chain_with_the_car_preset(launch, share_directory
     platform = [str(config / 'paper_platform.yaml'), str(config / 'example_limits.yaml')]
     assert cueing['parameter_files'] == platform + [str(config / 'cueing_presets' / 'car.yaml')]
     assert ik['parameter_files'] == platform
+    # ik_node streams: the drives get the leg rates at the times joint_commands is stamped,
+    # not the cue's as the transport delivered it (uneven by a few ms at 100 Hz).
+    assert ik['ros_arguments'] == ['-p', 'command_rate:=100.0']
+    assert launch(command_rate='250.0')[2]['ros_arguments'] == ['-p', 'command_rate:=250.0']
     scripts = stand_ins.console_scripts()
     for node in nodes:
         assert node['executable'] in scripts and node['namespace'] == '/'
