@@ -20,7 +20,8 @@ node can catch it, and the process exits with a traceback, on
 
 - a SetParameters request whose value has a type code that rcl_interfaces does not define
   (``Parameter.Type(42)``): :func:`guard_parameter_services` refuses such a value with a
-  reason, handles the others of the request as usual, and refuses an atomic request whole;
+  reason, handles the others of the request as usual, and refuses an atomic request whole
+  (and so a name the node does not declare, which rclpy refuses naming none);
 - a /clock message with negative seconds under ``use_sim_time`` (``Time(seconds=-5)``):
   :func:`guard_clock` skips it with a throttled warning, and the clock keeps its last time.
 - a lifecycle ChangeState request (a managed node's ``~/change_state``) by a transition id
@@ -32,6 +33,8 @@ node can catch it, and the process exits with a traceback, on
 (rclpy then creates the /clock subscription). The guards wrap the ``callback`` attribute of
 rclpy's own service and subscription objects, which every executor calls.
 """
+
+import difflib
 
 from lifecycle_msgs.srv import ChangeState
 from rcl_interfaces.msg import SetParametersResult
@@ -71,13 +74,16 @@ def guard_parameter_services(node) -> None:
     value is refused with a reason, the other values of a ``set_parameters`` request are
     handled as usual, and an atomic request is refused whole. Idempotent.
     """
+    def refusal(parameter) -> str:
+        return _unknown_type_reason(parameter) or _undeclared_reason(node, parameter)
+
     for service in node.services:
         if getattr(service.callback, 'guards_parameter_types', False):
             continue
         if service.srv_type is SetParameters:
-            service.callback = _guard_set_parameters(service.callback)
+            service.callback = _guard_set_parameters(service.callback, refusal)
         elif service.srv_type is SetParametersAtomically:
-            service.callback = _guard_set_parameters_atomically(service.callback)
+            service.callback = _guard_set_parameters_atomically(service.callback, refusal)
 
 
 #: The type codes of rcl_interfaces/msg/ParameterType that rclpy knows.
@@ -93,10 +99,27 @@ def _unknown_type_reason(parameter) -> str:
             f'(rcl_interfaces/msg/ParameterType defines {sorted(_KNOWN_TYPE_CODES)})')
 
 
-def _guard_set_parameters(callback):
-    """Wrap rclpy's set_parameters callback: refuse unknown type codes one by one."""
+def _undeclared_reason(node, parameter) -> str:
+    """
+    Say that a parameter message names no parameter of the node, with the closest name.
+
+    rclpy's own refusal names none: ``Invalid access to undeclared parameter(s): []`` (its
+    check consumes the generator of names it then lists). An empty name is left to the
+    node's own check.
+    """
+    if not parameter.name or node.has_parameter(parameter.name):
+        return ''
+    names = node.list_parameters([], 0).names
+    close = difflib.get_close_matches(parameter.name, names, n=1)
+    return (f'parameter {preview(parameter.name)} is not a parameter of {node.get_name()}'
+            + (f" (did you mean '{close[0]}'?)" if close else '')
+            + f'; it has {len(names)}: doc/nodes.md lists them')
+
+
+def _guard_set_parameters(callback, refusal):
+    """Wrap rclpy's set_parameters callback: refuse bad values one by one, with a reason."""
     def guarded(request, response):
-        reasons = [_unknown_type_reason(parameter) for parameter in request.parameters]
+        reasons = [refusal(parameter) for parameter in request.parameters]
         if not any(reasons):
             return callback(request, response)
         known = SetParameters.Request(parameters=[
@@ -110,10 +133,10 @@ def _guard_set_parameters(callback):
     return guarded
 
 
-def _guard_set_parameters_atomically(callback):
-    """Wrap rclpy's set_parameters_atomically callback: refuse a request with unknown types."""
+def _guard_set_parameters_atomically(callback, refusal):
+    """Wrap rclpy's set_parameters_atomically callback: refuse a request with a bad value."""
     def guarded(request, response):
-        reasons = [reason for reason in map(_unknown_type_reason, request.parameters) if reason]
+        reasons = [reason for reason in map(refusal, request.parameters) if reason]
         if not reasons:
             return callback(request, response)
         response.result = SetParametersResult(successful=False, reason='; '.join(reasons))

@@ -117,3 +117,27 @@ def test_a_parameter_without_a_name_is_refused_and_not_created(served):
                   SetParametersAtomically.Request(parameters=[double('', 1.0)]))
     assert not atomic.result.successful
     assert not node.has_parameter('')
+
+
+def test_a_name_the_node_does_not_declare_is_refused_naming_it_and_the_closest(served):
+    """
+    A misspelt name: the refusal names it, the node and the closest name; nothing is set.
+
+    rclpy's own refusal named none ("Invalid access to undeclared parameter(s): []": its
+    check consumes the generator of names it then lists).
+    """
+    node, call = served
+    response = call(SetParameters, 'set_parameters', SetParameters.Request(parameters=[
+        double('queue_dpth', 5.0),
+        Parameter(name='tool_frame', value=ParameterValue(
+            type=ParameterType.PARAMETER_STRING, string_value=''))]))
+    refused, applied = response.results
+    assert not refused.successful and applied.successful, applied.reason
+    assert refused.reason.startswith(
+        f"parameter 'queue_dpth' is not a parameter of {node.get_name()} (did you mean "
+        "'queue_depth'?); it has "), refused.reason
+    assert not node.has_parameter('queue_dpth')
+    atomic = call(SetParametersAtomically, 'set_parameters_atomically',
+                  SetParametersAtomically.Request(parameters=[double('no_such_name', 1.0)]))
+    assert not atomic.result.successful
+    assert "parameter 'no_such_name' is not a parameter of" in atomic.result.reason
