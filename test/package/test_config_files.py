@@ -90,6 +90,11 @@ def names_of(specs):
     return {spec.name for spec in specs}
 
 
+def node_of(key):
+    """Return the node a section is for: ``ik_node``, ``/ik_node`` or ``/**/ik_node``."""
+    return key[len('/**/'):] if key.startswith('/**/') else key.lstrip('/')
+
+
 def file_view(paths, node_name):
     """
     Return the parameters a node sees from some files, as rcl applies them.
@@ -99,7 +104,7 @@ def file_view(paths, node_name):
     values = {}
     for path in paths:
         document = load(path)
-        for section in ('/**', node_name, '/' + node_name):
+        for section in ('/**', '/**/' + node_name, node_name, '/' + node_name):
             if section in document:
                 values.update(document[section]['ros__parameters'])
     return values
@@ -126,7 +131,7 @@ def test_file_parses_with_the_ros_parameters_layout(path):
     document = load(path)
     assert isinstance(document, dict) and document, f'{path.name} is empty or not a map'
     for key, section in document.items():
-        assert key == '/**' or key.lstrip('/') in NODE_SPECS, (
+        assert key == '/**' or node_of(key) in NODE_SPECS, (
             f'{path.name}: section {key!r} is neither /** nor a node of this package')
         assert isinstance(section, dict) and list(section) == ['ros__parameters'], (
             f'{path.name}: section {key!r} must hold exactly ros__parameters')
@@ -142,7 +147,7 @@ def test_file_names_only_declared_parameters(path):
         if key == '/**':
             unknown = names - every_name
         else:
-            unknown = names - names_of(NODE_SPECS[key.lstrip('/')])
+            unknown = names - names_of(NODE_SPECS[node_of(key)])
         assert not unknown, f'{path.name}: section {key!r} sets unknown parameters {unknown}'
 
 
@@ -181,7 +186,7 @@ def test_node_starts_with_its_config_files(nodes, node_name):
             assert node.get_parameter(name).value == value, name
     for file_name in file_names:
         for key, section in load(CONFIG_DIRECTORY / file_name).items():
-            if key.lstrip('/') == node_name:
+            if node_of(key) == node_name:
                 assert set(section['ros__parameters']) <= declared
 
 

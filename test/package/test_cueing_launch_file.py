@@ -31,6 +31,7 @@ import sys
 import pytest
 from stewart_kinematics.parameters import (IkNodeSettings, MotionCueingNodeSettings,
                                            TelemetryBridgeNodeSettings)
+from stewart_kinematics.parameters.files import section_applies
 import test_launch_file as stand_ins
 import yaml
 
@@ -88,11 +89,14 @@ def launch(monkeypatch, share_directory):
 
 def given_parameters(node):
     """Return the parameters a node gets from its files and ``-p``, as rcl layers them."""
+    full_name = node['namespace'].rstrip('/') + '/' + node['executable']
     values = {}
     for path in node['parameter_files']:
         sections = yaml.safe_load(Path(path).read_text(encoding='utf-8'))
-        for key in ('/**', node['executable'], '/' + node['executable']):
-            values.update((sections.get(key) or {}).get('ros__parameters', {}))
+        # rcl matches a section against the node's full name: 'ik_node' is /ik_node only.
+        for key in ['/**'] + [key for key in sections if key != '/**']:
+            if section_applies(key, full_name):
+                values.update((sections.get(key) or {}).get('ros__parameters', {}))
     arguments = node['ros_arguments']
     for flag, option in zip(arguments[::2], arguments[1::2]):
         assert flag == '-p', arguments
@@ -149,6 +153,18 @@ def test_each_preset_is_a_choice_and_every_parameter_is_declared_and_allowed(lau
             assert name in specs, f"{node['executable']} has no parameter {name}"
             assert not specs[name].check(value), (name, value, specs[name].check(value))
     assert given_parameters(nodes[0])['telemetry_port'] == 50000
+
+
+@pytest.mark.parametrize('preset', PRESETS)
+def test_a_namespace_changes_no_parameter_a_node_gets(launch, preset):
+    """namespace:=sim: each node still gets its section of the shipped files (its preset)."""
+    plain = launch(preset=preset)
+    spaced = launch(preset=preset, namespace='sim')
+    for root, inside in zip(plain, spaced):
+        assert inside['namespace'] == '/sim'
+        assert given_parameters(inside) == given_parameters(root), inside['executable']
+    assert given_parameters(spaced[0])['queue_depth'] == 100   # telemetry_bridge.yaml's
+    assert given_parameters(spaced[1])['queue_depth'] == 100   # the preset's
 
 
 def test_files_of_ones_own_replace_the_shipped_ones(launch, tmp_path):

@@ -46,6 +46,8 @@ import types
 from lifecycle_msgs.msg import Transition
 import pytest
 from rclpy.validate_namespace import validate_namespace
+from stewart_kinematics.parameters.files import section_applies
+import yaml
 
 pytestmark = pytest.mark.node
 
@@ -532,6 +534,23 @@ def test_namespace_argument_moves_every_node(launch, namespace):
     assert len(nodes) == 3
     expected = namespace if namespace.startswith('/') else '/' + namespace
     assert {node['namespace'] for node in nodes} == {expected}
+
+
+def sections_taken(node):
+    """Return, per file a node gets, the sections that rcl applies to the node's full name."""
+    full_name = node['namespace'].rstrip('/') + '/' + node['executable']
+    taken = []
+    for path in node['parameter_files']:
+        document = yaml.safe_load(Path(path).read_text(encoding='utf-8'))
+        taken.append(sorted(key for key in document if section_applies(key, full_name)))
+    return taken
+
+
+def test_a_namespace_changes_no_section_a_node_takes(launch):
+    """namespace:=platform_a: each node still takes its own section (the ramp, the solver)."""
+    for root, inside in zip(launch(), launch(namespace='platform_a')):
+        assert inside['namespace'] == '/platform_a'
+        assert sections_taken(inside) == sections_taken(root), inside['executable']
 
 
 def test_platform_config_and_play_ramp_arguments(launch, share_directory, tmp_path):

@@ -55,7 +55,7 @@ def test_a_preset_starts_motion_cueing_node_with_its_values(ros, path):
     node = MotionCueingNode(cli_args=arguments)
     try:
         values = yaml.safe_load(path.read_text(encoding='utf-8'))[
-            'motion_cueing_node']['ros__parameters']
+            '/**/motion_cueing_node']['ros__parameters']
         assert len(values) > 15
         for name, value in values.items():
             assert node.has_parameter(name), name

@@ -180,7 +180,7 @@ def test_main_returns_1_for_a_bad_parameter_file(tmp_path, name, value):
     """A ramp that is not whole steps, an unknown mode or a short array makes main() return 1."""
     with open(RAMP_FILE, encoding='utf-8') as stream:
         document = yaml.safe_load(stream)
-    document['trajectory_node']['ros__parameters'][name] = value
+    document['/**/trajectory_node']['ros__parameters'][name] = value
     bad_file = tmp_path / 'bad_ramp.yaml'
     bad_file.write_text(yaml.safe_dump(document), encoding='utf-8')
     assert trajectory_node.main(
