@@ -26,6 +26,7 @@ above the stroke's 0.65 m). About 8 s.
 import math
 import time
 
+from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Pose
 import numpy as np
 import pytest
@@ -84,6 +85,8 @@ def test_intensity_set_mid_stream_stays_smooth_and_stop_parks(client, start_node
     node.create_subscription(Pose, 'target_pose',
                              lambda message: received.append((time.monotonic(), message)),
                              DEPTH)
+    reports = []
+    node.create_subscription(DiagnosticArray, '/diagnostics', reports.append, DEPTH)
     publisher = node.create_publisher(Imu, 'vehicle_imu', DEPTH)
     parameters = node.create_client(SetParameters, 'motion_cueing_node/set_parameters')
     stop = node.create_client(Trigger, 'stop')
@@ -107,14 +110,24 @@ def test_intensity_set_mid_stream_stays_smooth_and_stop_parks(client, start_node
             answers['beyond'] = setting('translation_scale', [5.0, 0.2, 0.2])
             answers['nan'] = setting('cueing_intensity', math.nan)
         client.spin_for(0.01)
-    client.spin_for(0.2)
+
+    def samples_counted():
+        """Return the counters of the last /diagnostics status of vehicle_imu, as a dict."""
+        found = [status for report in reports for status in report.status
+                 if status.name.endswith('vehicle_imu')]
+        return {value.key: value.value for value in found[-1].values} if found else {}
+    # The node's own count of the samples it answered, once it took all 200 (a fixed 0.2 s
+    # could end before the last answers on a loaded machine; poses counted on the wire
+    # instead would also count those the watchdog sends, easing home, after the samples).
+    client.wait(lambda: samples_counted().get('received') == '200',
+                'a report counting the 200 samples', [cueing])
 
     assert answers['intensity'].successful, answers['intensity'].reason
     assert not answers['beyond'].successful
     assert 'translation_scale x = 5 times cueing_intensity 0.4' in answers['beyond'].reason
     assert 'travel' in answers['beyond'].reason
     assert not answers['nan'].successful and 'cueing_intensity' in answers['nan'].reason
-    assert len(received) > 150
+    assert int(samples_counted()['published']) > 150
     times = np.array([moment for moment, _ in received])
     lengths = np.array([legs(message) for _, message in received])
     steps = np.abs(np.diff(lengths, axis=0)).max(axis=1)
