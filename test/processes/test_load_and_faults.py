@@ -454,6 +454,9 @@ def test_a_flood_of_bad_poses_gives_one_diagnostics_report_a_second(
     flood_time = time.monotonic() - start
     client.wait(lambda: reports.latest_values().get('received') == str(FLOOD_COUNT),
                 'a report counting every pose of the flood', [node])
+    # The node logs while it works through the flood, which on a loaded machine ends after
+    # the sending: until this report (a second late at most).
+    handled_time = time.monotonic() - start
     during = reports.since(start)
     values = reports.latest_values()
     output = stop_cleanly(node)
@@ -473,7 +476,7 @@ def test_a_flood_of_bad_poses_gives_one_diagnostics_report_a_second(
     assert 2 <= len(during) <= math.ceil(time.monotonic() - start) + 1, len(during)
     assert any('target_pose rejected: position must be finite' in line for line in logged)
     assert any('target_pose rejected: the pose is out of the limits' in line for line in logged)
-    assert len(logged) <= 2 * (math.ceil(flood_time) + 2), '\n'.join(logged)
+    assert len(logged) <= 2 * (math.ceil(handled_time) + 2), '\n'.join(logged)
     assert any('more like it not logged' in line for line in logged)
 
 
