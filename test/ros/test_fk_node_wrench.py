@@ -28,6 +28,7 @@ import math
 from pathlib import Path
 
 from geometry_msgs.msg import Pose, WrenchStamped
+from helpers import DEADLINE
 import numpy as np
 from numpy.testing import assert_allclose
 import pytest
@@ -75,17 +76,21 @@ def start(node_rig, spin_until):
                               and node.wrench_publisher.get_subscription_count() >= 1),
                      'fk_node and probe')
 
-    def send(pose, efforts, message=None):
+    def send(pose, efforts, message=None, wrench=True):
         if message is None:
             message = JointState(name=[f'leg_{leg}' for leg in range(1, 7)],
                                  position=inverse_kinematics(GEOMETRY, pose).tolist(),
                                  effort=list(efforts))
             message.header.stamp.sec, message.header.stamp.nanosec = 7, 500
-        count = len(probe.poses)
+        count, wrenches = len(probe.poses), len(probe.wrenches)
         probe.publisher.publish(message)
         assert spin_until(node_rig.executor, lambda: len(probe.poses) > count)
-        # A wrench, if any, is published right after the pose: one more spin delivers it.
-        node_rig.executor.spin_once(timeout_sec=0.2)
+        # The wrench is published right after the pose. Awaited (one more spin could run
+        # another callback first, a timer's, and leave it undelivered); else a window in which
+        # none must come.
+        arrived = spin_until(node_rig.executor, lambda: len(probe.wrenches) > wrenches,
+                             DEADLINE if wrench else 0.2)
+        assert arrived == wrench, f'{len(probe.wrenches) - wrenches} wrenches, {wrench} awaited'
     return node, probe, send
 
 
@@ -150,7 +155,7 @@ def test_joint_names_in_another_order_match_their_efforts(start):
 def test_hostile_efforts_give_a_warning_and_no_wrench_the_pose_still_published(
         start, efforts, words):
     node, probe, send = start
-    send(POSE, efforts)
+    send(POSE, efforts, wrench=False)
     assert len(probe.poses) == 1 and probe.wrenches == []
     accounting = node.joint_state_accounting
     assert accounting.warnings_by_code == {'invalid_efforts': 1}
