@@ -311,12 +311,12 @@ def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
     """
     points = message.points
     _check_count(len(points))
-    reason = malformed_time_reason(message.header.stamp, 'the preview\'s header.stamp')
+    reason = malformed_time_reason(message.header.stamp, "the preview's header.stamp")
     if reason:
         raise ValueError(reason)
     for index, point in enumerate(points):
         reason = malformed_time_reason(
-            point.time_from_start, f'preview point {index}\'s time_from_start')
+            point.time_from_start, f"preview point {index}'s time_from_start")
         if reason:
             raise ValueError(reason)
         if len(point.accelerations) != 1 or len(point.velocities) != 1:
