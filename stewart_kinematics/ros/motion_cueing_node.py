@@ -250,8 +250,10 @@ class MotionCueingNode(ManagedNode):
             if refusal is not None:   # checked before the set: not expected
                 self.get_logger().error(f'{name} not taken: {refusal.message}')
             else:
+                # rclpy gives an array parameter as array('d', [...]): say it as a list.
+                shown = value if isinstance(value, float) else [float(v) for v in value]
                 self.get_logger().info(
-                    f'{name} set to {value}: ramping over '
+                    f'{name} set to {shown}: ramping over '
                     f'{self.cueing.controls.gain_ramp_time:g} s')
         elif name in CONTROL_TIMES:
             self.cueing.controls = self.cueing.controls.replace(**{name: value})
