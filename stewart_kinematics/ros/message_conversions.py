@@ -306,11 +306,14 @@ def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
         here: :meth:`stewart_kinematics.cueing.MotionCueing.set_preview` says what is wrong
         with them.
     :raises ValueError: naming the first point without one acceleration or one velocity, or
-        with a malformed ``time_from_start``, for a malformed ``header.stamp``, or for more
-        points than a trajectory may have.
+        with a malformed ``time_from_start``, for a malformed ``header.stamp``, or for no
+        points or more than a trajectory may have.
     """
     points = message.points
     _check_count(len(points))
+    if not points:
+        raise ValueError('the preview has no points: give the drive to come, at least one '
+                         'point (10 to 100 a second over the horizon)')
     reason = malformed_time_reason(message.header.stamp, "the preview's header.stamp")
     if reason:
         raise ValueError(reason)
