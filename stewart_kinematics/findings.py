@@ -319,7 +319,7 @@ TIME_NOT_INCREASING = _register(
     'time_not_increasing', 'refusal',
     '`MotionCueing` (motion_cueing_node: `vehicle_imu`)',
     'A sample whose time (`header.stamp`) is not after the previous one: repeated, backward '
-    'or not finite; nothing moves.')
+    'or not finite, or malformed (`nanosec` of 1e9 or more); nothing moves.')
 INPUT_GAP = _register(
     'input_gap', 'warning',
     '`MotionCueing` (motion_cueing_node)',

@@ -222,6 +222,21 @@ def seconds(duration) -> float:
     return duration.sec + duration.nanosec * 1e-9
 
 
+def malformed_time_reason(time, name: str) -> str:
+    """
+    Return ``''`` for a well-formed builtin_interfaces Time or Duration, else why not.
+
+    ``nanosec`` must be below 1e9 (rclpy does not check it): 4e9 would silently move the
+    time 4 s on.
+
+    :param name: what the time is, for the reason (``'header.stamp'``).
+    """
+    if time.nanosec >= 1_000_000_000:
+        return (f'{name} is malformed: nanosec {time.nanosec} is not below 1000000000 '
+                f'(sec {time.sec}); a time is sec plus nanosec in [0, 1e9)')
+    return ''
+
+
 def duration_message(value: float) -> Duration:
     """builtin_interfaces/msg/Duration of ``value`` seconds (>= 0), to the nanosecond."""
     nanoseconds = int(round(value * 1e9))
@@ -291,11 +306,22 @@ def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
         here: :meth:`stewart_kinematics.cueing.MotionCueing.set_preview` says what is wrong
         with them.
     :raises ValueError: naming the first point without one acceleration or one velocity, or
-        for more points than a trajectory may have.
+        with a malformed ``time_from_start``, for a malformed ``header.stamp``, or for no
+        points or more than a trajectory may have.
     """
     points = message.points
     _check_count(len(points))
+    if not points:
+        raise ValueError('the preview has no points: give the drive to come, at least one '
+                         'point (10 to 100 a second over the horizon)')
+    reason = malformed_time_reason(message.header.stamp, "the preview's header.stamp")
+    if reason:
+        raise ValueError(reason)
     for index, point in enumerate(points):
+        reason = malformed_time_reason(
+            point.time_from_start, f"preview point {index}'s time_from_start")
+        if reason:
+            raise ValueError(reason)
         if len(point.accelerations) != 1 or len(point.velocities) != 1:
             raise ValueError(
                 f'preview point {index} must have one acceleration (its linear part: the '

@@ -77,7 +77,7 @@ from std_msgs.msg import Header
 
 from stewart_kinematics.cueing import MotionCueing
 from stewart_kinematics.cueing.motion_cueing import PARKED, WATCHDOG_PERIOD
-from stewart_kinematics.findings import Finding, INVALID_PREVIEW
+from stewart_kinematics.findings import Finding, INVALID_PREVIEW, TIME_NOT_INCREASING
 from stewart_kinematics.parameters import (
     frame_parameters_reason,
     frames_from_settings,
@@ -89,6 +89,7 @@ from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.message_accounting import NodeDiagnostics
 from stewart_kinematics.ros.message_conversions import (
     command_pose_message,
+    malformed_time_reason,
     pose_to_message,
     vehicle_preview_from_message,
 )
@@ -249,8 +250,10 @@ class MotionCueingNode(ManagedNode):
             if refusal is not None:   # checked before the set: not expected
                 self.get_logger().error(f'{name} not taken: {refusal.message}')
             else:
+                # rclpy gives an array parameter as array('d', [...]): say it as a list.
+                shown = value if isinstance(value, float) else [float(v) for v in value]
                 self.get_logger().info(
-                    f'{name} set to {value}: ramping over '
+                    f'{name} set to {shown}: ramping over '
                     f'{self.cueing.controls.gain_ramp_time:g} s')
         elif name in CONTROL_TIMES:
             self.cueing.controls = self.cueing.controls.replace(**{name: value})
@@ -288,6 +291,10 @@ class MotionCueingNode(ManagedNode):
         """
         self.accounting.receive()
         stamp = message.header.stamp
+        malformed = malformed_time_reason(stamp, 'header.stamp')
+        if malformed:   # no time at all: no input, as a backward stamp
+            self.accounting.reject(Finding(TIME_NOT_INCREASING, f'{malformed}; sample ignored'))
+            return
         stamp_ns = self.stamp_ns(stamp)
         force, rate = message.linear_acceleration, message.angular_velocity
         result = self.cueing.cue((stamp_ns - self.origin_ns) * 1e-9,
@@ -329,9 +336,10 @@ class MotionCueingNode(ManagedNode):
     def on_preview(self, message: MultiDOFJointTrajectory):
         """Take the vehicle's motion to come (cueing_method mpc), or refuse it saying why."""
         self.preview_accounting.receive()
-        start = (self.stamp_ns(message.header.stamp) - self.origin_ns) * 1e-9
         try:
+            # Checked first: a malformed stamp must not become the origin of the times.
             offsets, forces, rates, frame_id = vehicle_preview_from_message(message)
+            start = (self.stamp_ns(message.header.stamp) - self.origin_ns) * 1e-9
             self.cueing.set_preview(start + offsets, forces, rates, frame_id)
         except ValueError as error:
             self.preview_accounting.reject(Finding(INVALID_PREVIEW, str(error)))

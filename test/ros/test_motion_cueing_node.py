@@ -233,6 +233,25 @@ def test_repeated_and_backward_stamps_publish_nothing(rig):
     assert rig.node.accounting.rejections_by_code == {'time_not_increasing': 2}
 
 
+def test_a_malformed_stamp_is_refused_and_does_not_block_the_samples_after_it(rig):
+    """
+    A stamp of nanosec 4e9 (not below 1e9): refused saying so, the next samples are cued.
+
+    Before, it was taken as 4 s on (rclpy does not check nanosec): every good sample after it
+    was refused as backward until input_timeout.
+    """
+    rig.send([imu(5_000_000_000), imu(5_010_000_000)])
+    before = len(rig.inbox['target_pose'])
+    malformed = imu(5_020_000_000)
+    malformed.header.stamp.nanosec = 4_000_000_000
+    rig.publisher.publish(malformed)
+    rig.send([imu(5_030_000_000), imu(5_040_000_000)])
+    assert len(rig.inbox['target_pose']) == before + 2
+    accounting = rig.node.accounting
+    assert accounting.rejections_by_code == {'time_not_increasing': 1}
+    assert 'header.stamp is malformed: nanosec 4000000000' in accounting.last_rejection.message
+
+
 def test_reset_service_washes_out_to_neutral(rig):
     """A reset mid-turn: the platform glides home while the vehicle is at rest."""
     start = 20_000_000_000

@@ -23,6 +23,7 @@ frame's is read-only, and a new tool frame applies from the next command on. The
 callbacks are called directly, as its executor would.
 """
 
+from array import array
 import math
 from pathlib import Path
 
@@ -131,6 +132,24 @@ def test_gains_set_together_are_checked_as_a_whole_and_taken_together(node):
     [raised] = node.set_parameters([Parameter('cueing_intensity', value=1.0)])
     assert not raised.successful and 'cueing_intensity' in raised.reason
     assert_allclose(node.cueing.gains.target[:3], [0.4, 0.04, 0.04], rtol=1e-12)
+
+
+def test_a_gain_set_at_run_time_is_logged_as_a_list(node, monkeypatch):
+    """
+    The log says the gains as numbers; it said rclpy's array('d', [0.5, 0.5, 0.5]).
+
+    The parameter services give an array parameter as an array.array, as here.
+    """
+    logged = []
+
+    class Logger:
+        info = warning = error = logged.append
+
+    monkeypatch.setattr(node, 'get_logger', Logger)
+    [result] = node.set_parameters([Parameter('rotation_scale', value=array('d', [0.5] * 3))])
+    assert result.successful, result.reason
+    assert any(line.startswith('rotation_scale set to [0.5, 0.5, 0.5]: ramping over')
+               for line in logged), logged
 
 
 def test_a_p_given_after_the_files_wins_over_their_value(ros):

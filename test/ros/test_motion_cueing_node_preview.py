@@ -149,7 +149,20 @@ def _point_without_acceleration():
     return message
 
 
+def _malformed(stamp=False):
+    """
+    Return a preview whose header.stamp (``stamp``) or last time_from_start has 4e9 nanosec.
+
+    Malformed: before, taken as 4 s later (rclpy does not check nanosec), silently.
+    """
+    message = preview_message(START_NS, [0.0, 0.1], [[0.0, 0.0, G]] * 2, [[0.0] * 3] * 2)
+    (message.header.stamp if stamp else message.points[1].time_from_start).nanosec = 4 * 10 ** 9
+    return message
+
+
 @pytest.mark.parametrize('make, words', [
+    (_malformed, "preview point 1's time_from_start is malformed: nanosec 4000000000"),
+    (lambda: _malformed(stamp=True), 'header.stamp is malformed: nanosec 4000000000'),
     (_point_without_acceleration, 'preview point 1 must have one acceleration'),
     (lambda: preview_message(START_NS, [0.0, 0.1], [[0.0, 0.0, G], [math.nan, 0.0, G]],
                              [[0.0] * 3] * 2), 'must be finite: sample 1'),
@@ -157,7 +170,8 @@ def _point_without_acceleration():
                              [[0.0] * 3] * 2), 'absurd'),
     (lambda: preview_message(START_NS, [0.1, 0.1], [[0.0, 0.0, G]] * 2, [[0.0] * 3] * 2),
      'must increase'),
-    (lambda: preview_message(START_NS, [], [], []), 'M >= 1'),
+    # It said 'preview times must have shape (M,) with M >= 1, got (0,)'.
+    (lambda: preview_message(START_NS, [], [], []), 'the preview has no points'),
     (lambda: preview_message(START_NS, [0.0], [[0.0, 0.0, G]], [[0.0] * 3], 'camera'),
      "frame 'camera'"),
 ])
