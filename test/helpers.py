@@ -146,6 +146,11 @@ class TopicClient:
         end = time.monotonic() + seconds
         self._spin_until(self.executor, lambda: time.monotonic() >= end, seconds + 1.0)
 
+    def look_for(self, condition, seconds) -> bool:
+        """Spin until ``condition()`` holds, ``seconds`` at most; return whether it holds."""
+        self._spin_until(self.executor, condition, seconds)
+        return bool(condition())
+
 
 class SpinningClient:
     """The test's node, spun by a background thread, with waits that fail with node output."""

@@ -43,9 +43,10 @@ START_NS = 1000 * 1_000_000_000
 #: Wall-clock seconds the clock stands still while the test watches for poses.
 STILL_SECONDS = 1.0
 #: Until the ramp starts: simulated time per tick (trajectory_node checks for subscribers
-#: every 0.05 s), and wall-clock seconds to wait for a pose after each tick.
+#: every 0.05 s), and wall-clock seconds to wait for a pose after each tick: long, for the
+#: pose to be that tick's (one later than this, under load, would shift the start a tick).
 WAIT_TICK_NS = 50_000_000
-TICK_WAIT = 0.3
+TICK_WAIT = 2.0
 
 
 def table3_pose(elapsed):
@@ -91,6 +92,9 @@ def test_the_ramp_plays_at_the_simulated_rate_and_stops_with_the_clock(
                 'trajectory_node and ik_node on /clock', [node, ik_node])
     poses = []
     client.node.create_subscription(Pose, 'target_pose', poses.append, 100)
+    # Both subscribers in the graph first: the first tick then most likely starts the ramp.
+    client.wait(lambda: client.node.count_subscribers('target_pose') >= 2,
+                'ik_node and the test on target_pose', [node, ik_node])
 
     def tick(nanoseconds):
         clock.publish(Clock(clock=Time(sec=nanoseconds // 1_000_000_000,
@@ -100,9 +104,8 @@ def test_the_ramp_plays_at_the_simulated_rate_and_stops_with_the_clock(
     # sees both and starts, with time for each tick's pose to arrive. The ramp starts then.
     start = START_NS
     tick(start)
-    for _ in range(100):
-        client.spin_for(TICK_WAIT)
-        if poses:
+    for _ in range(20):
+        if client.look_for(lambda: poses, TICK_WAIT):
             break
         start += WAIT_TICK_NS
         tick(start)
