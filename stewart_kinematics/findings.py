@@ -69,7 +69,8 @@ INVALID_POSE = _register(
     '`CommandCheck` (ik_node: `target_pose`, `target_pose_stamped`), `PoseTracker.anchor` '
     '(fk_node: `anchor_pose`)',
     'A pose with a NaN or infinite coordinate, a zero or NaN quaternion, a matrix that is no '
-    'rotation, or the wrong shape.')
+    'rotation, or the wrong shape; a stamped pose whose `header.stamp` is malformed (`nanosec` '
+    'not below 1e9: ik_node would pass it on to `joint_commands`).')
 WRONG_FRAME = _register(
     'wrong_frame', 'refusal',
     '`CommandCheck.tool_pose` (ik_node: `target_pose_stamped`; fk_node: `anchor_pose`)',
@@ -243,7 +244,8 @@ INVALID_TRAJECTORY = _register(
     'A malformed trajectory or path: another frame, more than one joint, no point or one, more '
     'than 100,000, times not finite, negative, beyond 1e6 s or not increasing, velocities or '
     'accelerations on only some points, a zero quaternion, a turn of half a revolution or more '
-    'between two waypoints, a path of fewer than two different poses.')
+    'between two waypoints, a path of fewer than two different poses, a malformed '
+    '`time_from_start` (`nanosec` not below 1e9).')
 TRAJECTORY_TOO_LONG = _register(
     'trajectory_too_long', 'refusal',
     '`check_trajectory`, `plan_motion` (trajectory_node)',
@@ -274,7 +276,8 @@ INVALID_GOAL = _register(
     'trajectory_node (`follow_joint_trajectory`: result `INVALID_GOAL`)',
     'A goal that cannot be played as given: no points, sizes that do not match the joints, '
     'values not finite or beyond 1e6, times not increasing, a last point that does not rest, '
-    'efforts, a `multi_dof_trajectory`, an illegal tolerance, a first point at time 0 away '
+    'efforts, a `multi_dof_trajectory`, an illegal tolerance, a malformed time (`nanosec` not '
+    'below 1e9), a first point at time 0 away '
     "from the current state, no `joint_states` yet; the planner's refusals (limits, "
     'retiming) answer `INVALID_GOAL` with their own code and reason in `error_string`.')
 OLD_HEADER_TIMESTAMP = _register(
@@ -419,7 +422,8 @@ INVALID_LEG_COMMAND = _register(
     '`leg_trajectory`)',
     'A leg command mock_platform cannot follow: not six values (or the joint names missing or '
     'repeated), a value not finite, a length outside the stroke, or a trajectory with no '
-    'point, times not increasing, absurd velocities or one that ended in the past. The legs '
+    'point, times not increasing or malformed (`nanosec` not below 1e9), absurd velocities or '
+    'one that ended in the past. The legs '
     'keep following the last valid command.')
 CLOCK_JUMP = _register(
     'clock_jump', 'warning',

@@ -58,6 +58,8 @@ import numpy as np
 from rclpy.time import Time
 from std_msgs.msg import Header
 
+from stewart_kinematics import findings
+from stewart_kinematics.findings import Finding
 from stewart_kinematics.limits.command_gate import BRAKING_SHARES
 from stewart_kinematics.model.frames import Transform
 from stewart_kinematics.motion.streaming import CommandFilter
@@ -74,7 +76,11 @@ from stewart_kinematics.ros.interfaces import IK_NODE
 from stewart_kinematics.ros.managed import ManagedNode
 from stewart_kinematics.ros.markers import PlatformMarkerPublisher
 from stewart_kinematics.ros.message_accounting import MessageAccounting, NodeDiagnostics
-from stewart_kinematics.ros.message_conversions import joint_state_message, legs_to_message
+from stewart_kinematics.ros.message_conversions import (
+    joint_state_message,
+    legs_to_message,
+    malformed_time_reason,
+)
 from stewart_kinematics.ros.node_main import (
     create_input_subscription,
     create_output_publisher,
@@ -259,6 +265,10 @@ class IkNode(ManagedNode):
     def on_target_pose_stamped(self, message: PoseStamped):
         """Turn a stamped pose into leg lengths; joint_commands carries its stamp."""
         self.stamped_accounting.receive()
+        malformed = malformed_time_reason(message.header.stamp, 'header.stamp')
+        if malformed:   # joint_commands would carry it to the drives
+            self.stamped_accounting.reject(Finding(findings.INVALID_POSE, malformed))
+            return
         self.command(message.pose, message.header, self.stamped_accounting, self.frames)
 
     def command(self, pose: Pose, header: Header, accounting: MessageAccounting, frames):

@@ -217,9 +217,30 @@ def wrench_to_message(header, wrench) -> WrenchStamped:
     return message
 
 
-def seconds(duration) -> float:
-    """Seconds of a builtin_interfaces/msg/Duration."""
+def seconds(duration, name: str = 'time_from_start') -> float:
+    """
+    Seconds of a builtin_interfaces/msg/Duration (or Time).
+
+    :param name: what it is, for the refusal.
+    :raises ValueError: for a malformed one (``nanosec`` not below 1e9:
+        :func:`malformed_time_reason`), which would move the time on by whole seconds.
+    """
+    reason = malformed_time_reason(duration, name)
+    if reason:
+        raise ValueError(reason)
     return duration.sec + duration.nanosec * 1e-9
+
+
+def stamp_nanoseconds(stamp, name: str = 'header.stamp') -> int:
+    """
+    Integer nanoseconds of a builtin_interfaces/msg/Time.
+
+    :raises ValueError: for a malformed one (:func:`malformed_time_reason`).
+    """
+    reason = malformed_time_reason(stamp, name)
+    if reason:
+        raise ValueError(reason)
+    return stamp.sec * 1_000_000_000 + stamp.nanosec
 
 
 def malformed_time_reason(time, name: str) -> str:
@@ -270,7 +291,8 @@ def pose_trajectory_from_message(message: MultiDOFJointTrajectory) -> dict:
                          'platform, or the tool frame, in the frame of the header)')
     transforms = [point.transforms[0] for point in points]
     arguments = {
-        'times': np.array([seconds(point.time_from_start) for point in points], dtype=float),
+        'times': np.array([seconds(point.time_from_start, f"point {index}'s time_from_start")
+                           for index, point in enumerate(points)], dtype=float),
         'positions': _rows([(t.translation.x, t.translation.y, t.translation.z)
                             for t in transforms], 3),
         'quaternions': _unit_quaternions(_rows([(t.rotation.x, t.rotation.y, t.rotation.z,
@@ -436,8 +458,9 @@ def leg_trajectory_from_message(message: JointTrajectory,
         raise ValueError(f'a leg trajectory may have at most {MAX_LEG_POINTS:,} points, got '
                          f'{len(points):,}: send it in parts')
     arguments = {
-        'start': message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec,
-        'times': np.array([seconds(point.time_from_start) for point in points], dtype=float)}
+        'start': stamp_nanoseconds(message.header.stamp),
+        'times': np.array([seconds(point.time_from_start, f"point {index}'s time_from_start")
+                           for index, point in enumerate(points)], dtype=float)}
     for field, key in (('positions', 'lengths'), ('velocities', 'velocities'),
                        ('accelerations', 'accelerations')):
         counts = {len(getattr(point, field)) for point in points}

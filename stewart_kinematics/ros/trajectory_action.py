@@ -77,6 +77,7 @@ from stewart_kinematics.ros.message_conversions import (
     joint_state_message,
     legs_from_joint_state,
     seconds,
+    stamp_nanoseconds,
 )
 from stewart_kinematics.ros.node_main import create_input_subscription, create_output_publisher
 
@@ -530,14 +531,21 @@ def goal_request(goal):
         return tuple(JointToleranceValues(entry.name, entry.position, entry.velocity,
                                           entry.acceleration) for entry in entries)
     multi = goal.multi_dof_trajectory
+    try:   # a malformed time (nanosec not below 1e9) would move the goal by whole seconds
+        times = tuple(seconds(point.time_from_start, f"point {index}'s time_from_start")
+                      for index, point in enumerate(points))
+        start = stamp_nanoseconds(stamp, 'trajectory.header.stamp') * 1e-9
+        time_tolerance = seconds(goal.goal_time_tolerance, 'goal_time_tolerance')
+    except ValueError as error:
+        return Finding(findings.INVALID_GOAL, str(error))
     return GoalRequest(
-        tuple(trajectory.joint_names), tuple(seconds(point.time_from_start) for point in points),
+        tuple(trajectory.joint_names), times,
         tuple(point.positions for point in points),
         tuple(point.velocities for point in points),
         tuple(point.accelerations for point in points),
         tuple(point.effort for point in points), trajectory.header.frame_id,
-        stamp.sec + stamp.nanosec * 1e-9, tolerances(goal.path_tolerance),
-        tolerances(goal.goal_tolerance), seconds(goal.goal_time_tolerance),
+        start, tolerances(goal.path_tolerance),
+        tolerances(goal.goal_tolerance), time_tolerance,
         len(multi.points), len(multi.joint_names))
 
 

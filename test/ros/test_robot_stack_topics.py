@@ -99,6 +99,28 @@ def test_pose_in_another_frame_is_refused(chain, spin_until):
     assert received['joint_commands'] == []
 
 
+def test_a_malformed_stamp_is_refused_not_passed_to_the_drives(chain, spin_until):
+    """
+    A nanosec not below 1e9 (rclpy does not refuse it): refused, counted, nothing sent.
+
+    Before, joint_commands carried it on to the drives, where it reads whole seconds later.
+    """
+    ik, fk, publishers, received, executor = chain
+    assert spin_until(executor, lambda: publishers['target_pose_stamped']
+                      .get_subscription_count() >= 1)
+    message = stamped(POSE)
+    message.header.stamp.nanosec = 4_000_000_000
+    publishers['target_pose_stamped'].publish(message)
+    assert spin_until(executor, lambda: ik.stamped_accounting.rejected == 1)
+    refusal = ik.stamped_accounting.last_rejection
+    assert refusal.code == 'invalid_pose'
+    assert refusal.message.startswith('header.stamp is malformed: nanosec 4000000000')
+    publishers['target_pose_stamped'].publish(stamped(POSE))   # the next one passes
+    assert spin_until(executor, lambda: received['joint_commands'])
+    assert [(m.header.stamp.sec, m.header.stamp.nanosec)
+            for m in received['joint_commands']] == [(123, 456)]
+
+
 def test_twist_gives_leg_velocities_and_back(chain, spin_until):
     """target_twist -> leg_velocities equals the core; joint velocities -> estimated_twist."""
     ik, fk, publishers, received, executor = chain

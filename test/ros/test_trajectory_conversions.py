@@ -19,6 +19,7 @@ Messages built field by field here; the expected numbers are the ones typed into
 """
 
 from builtin_interfaces.msg import Duration
+from control_msgs.action import FollowJointTrajectory
 from geometry_msgs.msg import PoseStamped, Transform, Twist
 from nav_msgs.msg import Path
 import numpy as np
@@ -27,10 +28,17 @@ import pytest
 
 from stewart_kinematics.motion.pose_trajectory import MAX_WAYPOINTS
 from stewart_kinematics.ros.message_conversions import (
+    leg_trajectory_from_message,
     path_from_message,
     pose_trajectory_from_message,
 )
-from trajectory_msgs.msg import MultiDOFJointTrajectory, MultiDOFJointTrajectoryPoint
+from stewart_kinematics.ros.trajectory_action import goal_request
+from trajectory_msgs.msg import (
+    JointTrajectory,
+    JointTrajectoryPoint,
+    MultiDOFJointTrajectory,
+    MultiDOFJointTrajectoryPoint,
+)
 
 pytestmark = pytest.mark.node
 
@@ -137,3 +145,38 @@ def test_oversized_names_and_frames_are_refused_in_one_short_line():
     with pytest.raises(ValueError, match='pose 1 of the path is in frame') as raised:
         path_from_message(path)
     assert len(str(raised.value)) < 400 and str(raised.value).count('(10,000,000 characters)') == 2
+
+
+def test_malformed_times_are_refused_naming_the_field_not_moved_by_seconds():
+    """
+    A nanosec of 4e9 (rclpy does not refuse it) would be 4 s more, silently.
+
+    A pose trajectory's point, a leg trajectory's point and stamp, and a follow_joint_trajectory
+    goal's point, stamp and goal_time_tolerance are each refused, naming the field.
+    """
+    message = MultiDOFJointTrajectory(joint_names=['platform'],
+                                      points=[point(0, 0, 0.4), point(1, 4_000_000_000, 0.41)])
+    with pytest.raises(ValueError, match="^point 1's time_from_start is malformed: nanosec "
+                                         '4000000000 is not below 1000000000'):
+        pose_trajectory_from_message(message)
+
+    legs = JointTrajectory(joint_names=[f'leg_{leg}' for leg in range(1, 7)], points=[
+        JointTrajectoryPoint(positions=[0.7] * 6, time_from_start=Duration(sec=1))])
+    assert leg_trajectory_from_message(legs)['times'].tolist() == [1.0]
+    legs.header.stamp.nanosec = 1_000_000_000
+    with pytest.raises(ValueError, match='^header.stamp is malformed: nanosec 1000000000'):
+        leg_trajectory_from_message(legs)
+    legs.header.stamp.nanosec = 0
+    legs.points[0].time_from_start.nanosec = 2_000_000_000
+    with pytest.raises(ValueError, match="^point 0's time_from_start is malformed"):
+        leg_trajectory_from_message(legs)
+
+    goal = FollowJointTrajectory.Goal()
+    goal.trajectory = legs
+    refused = goal_request(goal)
+    assert refused.code == 'invalid_goal'
+    assert refused.message.startswith("point 0's time_from_start is malformed")
+    legs.points[0].time_from_start.nanosec = 0
+    assert goal_request(goal).times == (1.0,)
+    goal.goal_time_tolerance.nanosec = 3_000_000_000
+    assert goal_request(goal).message.startswith('goal_time_tolerance is malformed')
