@@ -207,6 +207,13 @@ def test_streamed_commands_and_two_hexapods_on_one_joint_states(
         recorder.subscribe(Pose, f'/{namespace}/estimated_pose')
         recorder.advertise(Pose, f'/{namespace}/target_pose')
     recorder.connect()
+    # /b's one command must reach /b's fk_node too, not only the recorder: both fk_nodes and
+    # both ik_nodes on /joint_states first (a command sent before its reader matched is lost,
+    # which failed this test once under load), then time for them to match each other.
+    recorder.client.wait(lambda: client.node.count_subscribers('/joint_states') >= 3
+                         and client.node.count_publishers('/joint_states') >= 2,
+                         'both ik_nodes and both fk_nodes on /joint_states', nodes)
+    client.spin_for(0.5)
 
     target_a, target_b = TABLE_3[3], TABLE_3[8]
     recorder.publishers['/a/target_pose'].publish(pose_message(target_a))
