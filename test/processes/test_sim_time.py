@@ -93,19 +93,28 @@ def test_the_ramp_plays_at_the_simulated_rate_and_stops_with_the_clock(
     client.wait(lambda: clock.get_subscription_count() >= 2
                 and client.node.count_publishers('joint_commands') >= 1,
                 'trajectory_node and ik_node on /clock', [node, ik_node])
+
+    def tick(nanoseconds):
+        clock.publish(Clock(clock=Time(sec=nanoseconds // 1_000_000_000,
+                                       nanosec=nanoseconds % 1_000_000_000)))
+
+    # Both nodes on the simulated clock before the ramp may start (it waits for the test's
+    # subscription below). rclpy takes /clock best effort: a tick sent before a node's reader
+    # matched is lost, and ik_node, its clock still at 0, would stamp the ramp's next command
+    # 0 for good (the likely cause of "the pose and the command of t = 0.1 s: not within
+    # 20 s", twice in one session). The same time again moves nothing.
+    for _ in range(4):
+        tick(START_NS)
+        client.spin_for(0.25)
     poses = []
     client.node.create_subscription(Pose, 'target_pose', poses.append, 100)
     # Both subscribers in the graph first: the first tick then most likely starts the ramp.
     client.wait(lambda: client.node.count_subscribers('target_pose') >= 2,
                 'ik_node and the test on target_pose', [node, ik_node])
 
-    def tick(nanoseconds):
-        clock.publish(Clock(clock=Time(sec=nanoseconds // 1_000_000_000,
-                                       nanosec=nanoseconds % 1_000_000_000)))
-
     # The node checks for its subscribers on a timer of the simulated clock: tick until it
     # sees both and starts, with time for each tick's pose to arrive. The ramp starts then.
-    start = START_NS
+    start = START_NS + WAIT_TICK_NS
     tick(start)
     for _ in range(20):
         if client.look_for(lambda: poses, TICK_WAIT):
