@@ -187,6 +187,10 @@ class SpinningClient:
         """Return a publisher on ``topic``, reliable, of the client's depth."""
         return self.node.create_publisher(message_type, topic, self.depth)
 
+    def look_for(self, condition, seconds) -> bool:
+        """Wait until ``condition()`` holds, ``seconds`` at most; return whether it holds."""
+        return self.wait(condition, '', timeout=seconds, fail=False)
+
     def wait(self, condition, what, processes=(), timeout=DEADLINE, fail=True):
         """
         Wait until ``condition()`` holds, for ``timeout`` s at most or until a process exits.

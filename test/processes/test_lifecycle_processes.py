@@ -75,6 +75,15 @@ class Lifecycle:
             f'the lifecycle services of {node_name}', processes)
         client.wait(lambda: self.subscription.get_publisher_count() >= 1,
                     f'{node_name}/transition_event matched', processes)
+        # A ready service may still lose its answer, the node not yet matched with this
+        # client's response reader ("failed to send response (timeout)": a stop's CI failed
+        # so on configure). Ask the idempotent get_state, again each second, until it answers.
+        deadline = time.monotonic() + DEADLINE
+        while True:
+            future = self.state_client.call_async(GetState.Request())
+            if client.look_for(future.done, 1.0) or time.monotonic() > deadline:
+                break
+        client.wait(future.done, f'an answer of {self.state_client.srv_name}', processes)
 
     def call(self, service, request):
         """Call a service and return its response (fail with the nodes' output if none)."""
