@@ -339,11 +339,9 @@ def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
     reason = malformed_time_reason(message.header.stamp, "the preview's header.stamp")
     if reason:
         raise ValueError(reason)
+    offsets = []
     for index, point in enumerate(points):
-        reason = malformed_time_reason(
-            point.time_from_start, f"preview point {index}'s time_from_start")
-        if reason:
-            raise ValueError(reason)
+        offsets.append(seconds(point.time_from_start, f"preview point {index}'s time_from_start"))
         if len(point.accelerations) != 1 or len(point.velocities) != 1:
             raise ValueError(
                 f'preview point {index} must have one acceleration (its linear part: the '
@@ -353,8 +351,7 @@ def vehicle_preview_from_message(message: MultiDOFJointTrajectory):
                      p.accelerations[0].linear.z) for p in points], 3)
     rates = _rows([(p.velocities[0].angular.x, p.velocities[0].angular.y,
                     p.velocities[0].angular.z) for p in points], 3)
-    offsets = np.array([seconds(point.time_from_start) for point in points], dtype=float)
-    return offsets, forces, rates, message.header.frame_id
+    return np.array(offsets, dtype=float), forces, rates, message.header.frame_id
 
 
 def path_from_message(message: Path):
